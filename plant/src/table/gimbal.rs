@@ -1,0 +1,59 @@
+//! Dual-axis table kinematics: gimbal angles to IMU attitude and body rate.
+
+use nalgebra::{Matrix3, Vector3};
+
+use super::scheme::GimbalAxis;
+
+/// Outer (azimuth) and inner gimbal angles, rad.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct GimbalAngles {
+    /// Outer gimbal angle about the vehicle's z axis, rad.
+    pub outer_rad: f64,
+    /// Inner gimbal angle about the IMU's x axis, rad.
+    pub inner_rad: f64,
+}
+
+impl GimbalAngles {
+    /// Angles in rad.
+    pub fn new(outer_rad: f64, inner_rad: f64) -> Self {
+        Self { outer_rad, inner_rad }
+    }
+
+    /// The angles after moving `axis` by `angle_rad`.
+    pub fn moved(self, axis: GimbalAxis, angle_rad: f64) -> Self {
+        match axis {
+            GimbalAxis::Outer => Self { outer_rad: self.outer_rad + angle_rad, ..self },
+            GimbalAxis::Inner => Self { inner_rad: self.inner_rad + angle_rad, ..self },
+        }
+    }
+}
+
+/// Rotation about x by `a` (active, right-handed).
+pub fn rot_x(a: f64) -> Matrix3<f64> {
+    let (s, c) = a.sin_cos();
+    Matrix3::new(1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c)
+}
+
+/// Rotation about y by `a`.
+pub fn rot_y(a: f64) -> Matrix3<f64> {
+    let (s, c) = a.sin_cos();
+    Matrix3::new(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c)
+}
+
+/// Rotation about z by `a`.
+pub fn rot_z(a: f64) -> Matrix3<f64> {
+    let (s, c) = a.sin_cos();
+    Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
+}
+
+/// IMU attitude C_b^n = C_v^n · R_z(outer) · R_x(inner). With a level vehicle at azimuth 0 this
+/// gives Eq. 5's positions A (0,0), B (180°,0), C (180°,180°), D (0,180°) and Table 2's matrices.
+pub fn body_to_nav(c_vn: &Matrix3<f64>, g: GimbalAngles) -> Matrix3<f64> {
+    c_vn * rot_z(g.outer_rad) * rot_x(g.inner_rad)
+}
+
+/// Body rate of the IMU relative to the vehicle, ω_vb^b = R_x(inner)ᵀ·[0,0,ȯuter] + [ịnner,0,0].
+pub fn gimbal_body_rate(inner_rad: f64, outer_rate: f64, inner_rate: f64) -> Vector3<f64> {
+    let (s, c) = inner_rad.sin_cos();
+    Vector3::new(inner_rate, s * outer_rate, c * outer_rate)
+}

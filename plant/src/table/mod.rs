@@ -1,0 +1,10 @@
+//! The dual-axis rotation table: schemes as data, motion profiles, gimbal kinematics.
+
+pub mod gimbal;
+pub mod profile;
+pub mod schedule;
+pub mod scheme;
+
+pub use gimbal::{GimbalAngles, body_to_nav, gimbal_body_rate};
+pub use schedule::{GimbalState, Schedule};
+pub use scheme::{GimbalAxis, RotationStep, SchemeKind, SchemeSpec};
