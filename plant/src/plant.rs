@@ -6,11 +6,12 @@ use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use crate::config::{ConfigError, PlantConfig};
 use crate::earth::Site;
 use crate::effects::accel::ACCEL_TERMS;
-use crate::effects::gyro::GYRO_TERMS;
+use crate::effects::gyro::{GYRO_TERMS, GyroThermalRates};
 use crate::effects::noise::NoiseState;
 use crate::effects::quantize::Quantizer;
 use crate::effects::{AccelModel, GyroModel, TermContext};
 use crate::table::gimbal::{rot_x, rot_y, rot_z};
+use crate::table::gimbal::gimbal_rotation;
 use crate::table::{GimbalState, Schedule, body_to_nav};
 use crate::thermal::{Temperatures, ThermalNetwork};
 use crate::units::{ARCSEC, DEG};
@@ -47,6 +48,26 @@ pub struct Truth {
     pub position_weight: f64,
 }
 
+/// Last internal tick at or before `hold_s` (a dwell end); whether the boundary tick itself is
+/// held or evaluated does not matter, the table is still there either way.
+fn hold_tick(hold_s: f64, internal_rate_hz: f64) -> u64 {
+    let t = (hold_s * internal_rate_hz).floor();
+    if t.is_finite() && t >= 0.0 { t as u64 } else if t > 0.0 { u64::MAX } else { 0 }
+}
+
+/// Attitude at the last evaluated midpoint, reused while the gimbal angles do not change; the
+/// sine and cosine of each angle are cached separately because only one gimbal moves at a time.
+#[derive(Clone, Copy, Debug)]
+struct MidCache {
+    outer_rad: f64,
+    inner_rad: f64,
+    c_nb: Matrix3<f64>,
+    sin_outer: f64,
+    cos_outer: f64,
+    sin_inner: f64,
+    cos_inner: f64,
+}
+
 /// The rotating IMU.
 #[derive(Clone, Debug)]
 pub struct Plant {
@@ -67,9 +88,20 @@ pub struct Plant {
     slow_every: u64,
     /// Internal ticks since start (substeps × output samples).
     tick: u64,
+    /// Output samples since start.
+    samples: u64,
+    /// Output samples left before the next thermal / slow-noise update.
+    slow_countdown: u64,
     chamber_override_c: Option<f64>,
+    /// Temperature-dependent error rates at the current node temperatures.
+    gyro_thermal: GyroThermalRates,
+    accel_thermal_mps2: Vector3<f64>,
     gimbal_now: GimbalState,
-    mid_cache: (f64, f64, Matrix3<f64>),
+    /// C_v^n is the identity (the usual level, azimuth-0 mount): skip one matrix product.
+    vehicle_level: bool,
+    /// The table holds `gimbal_now` up to this internal tick (end of the current dwell).
+    hold_until_tick: u64,
+    mid_cache: MidCache,
     truth: Truth,
 }
 
@@ -90,14 +122,17 @@ impl Plant {
         let quant = |on: bool, p: [f64; 3], unit: f64| Quantizer::new(if on { Vector3::from(p) * unit } else { Vector3::zeros() });
         let dt = 1.0 / cfg.rate_hz;
         let temps = thermal.temperatures();
+        let gyro = GyroModel::new(&s.gyro);
+        let accel = AccelModel::new(&s.accel);
         Ok(Self {
+            gyro_thermal: gyro.thermal_rates(&temps.gyro_c(), &temps.gyro_gradient_k()),
+            accel_thermal_mps2: accel.thermal_bias_mps2(temps.accel_c()),
             site,
             c_vn,
             f_n: Vector3::new(0.0, 0.0, site.gravity_mps2),
-            schedule,
             thermal,
-            gyro: GyroModel::new(&s.gyro),
-            accel: AccelModel::new(&s.accel),
+            gyro,
+            accel,
             noise: NoiseState::new(&s.gyro, &s.accel, cfg.seed),
             gyro_quant: quant(s.gyro.quantization.enabled, s.gyro.quantization.pulse, ARCSEC),
             accel_quant: quant(s.accel.quantization.enabled, s.accel.quantization.pulse, 1.0),
@@ -106,9 +141,22 @@ impl Plant {
             h_s: dt / cfg.substeps as f64,
             slow_every: (cfg.thermal.step_s * cfg.rate_hz).round() as u64,
             tick: 0,
+            samples: 0,
+            slow_countdown: (cfg.thermal.step_s * cfg.rate_hz).round() as u64,
             chamber_override_c: None,
             gimbal_now: g0,
-            mid_cache: (f64::NAN, f64::NAN, Matrix3::identity()),
+            hold_until_tick: hold_tick(schedule.eval_hold(0.0).1, cfg.rate_hz * cfg.substeps as f64),
+            schedule,
+            mid_cache: MidCache {
+                outer_rad: f64::NAN,
+                inner_rad: f64::NAN,
+                c_nb: Matrix3::identity(),
+                sin_outer: 0.0,
+                cos_outer: 1.0,
+                sin_inner: 0.0,
+                cos_inner: 1.0,
+            },
+            vehicle_level: c_vn == Matrix3::identity(),
             truth: Truth {
                 gimbal: g0,
                 dtheta_true_rad: Vector3::zeros(),
@@ -139,7 +187,7 @@ impl Plant {
 
     /// Output samples produced so far.
     pub fn samples_done(&self) -> u64 {
-        self.tick / self.cfg.substeps as u64
+        self.samples
     }
 
     /// Simulated time, s (from the integer tick counter).
@@ -191,28 +239,57 @@ impl Plant {
         self.chamber_override_c.unwrap_or_else(|| self.cfg.thermal.chamber.temp_at(t_s))
     }
 
-    fn c_bn_at(&mut self, g: &GimbalState) -> Matrix3<f64> {
+    fn mid_attitude(&mut self, g: &GimbalState) -> MidCache {
         // Dwells reuse the last attitude: no trigonometry while the table is still.
-        let (o, i, c) = self.mid_cache;
-        if o == g.angles.outer_rad && i == g.angles.inner_rad {
-            return c;
+        let mut m = self.mid_cache;
+        let (o, i) = (g.angles.outer_rad, g.angles.inner_rad);
+        if m.outer_rad == o && m.inner_rad == i {
+            return m;
         }
-        let c = body_to_nav(&self.c_vn, g.angles);
-        self.mid_cache = (g.angles.outer_rad, g.angles.inner_rad, c);
-        c
+        if m.outer_rad != o {
+            (m.sin_outer, m.cos_outer) = o.sin_cos();
+            m.outer_rad = o;
+        }
+        if m.inner_rad != i {
+            (m.sin_inner, m.cos_inner) = i.sin_cos();
+            m.inner_rad = i;
+        }
+        let r = gimbal_rotation(m.sin_outer, m.cos_outer, m.sin_inner, m.cos_inner);
+        m.c_nb = if self.vehicle_level { r.transpose() } else { (self.c_vn * r).transpose() };
+        self.mid_cache = m;
+        m
+    }
+
+    /// Table state at internal tick `tick` and at the midpoint before it, skipping evaluation
+    /// while the table dwells.
+    fn gimbal_at(&mut self, tick: u64) -> (GimbalState, GimbalState) {
+        if tick <= self.hold_until_tick {
+            return (self.gimbal_now, self.gimbal_now);
+        }
+        let ((g1, hold), gm) = self
+            .schedule
+            .eval_end_and_mid(tick as f64 / self.internal_rate_hz, (tick as f64 - 0.5) / self.internal_rate_hz);
+        self.hold_until_tick = hold_tick(hold, self.internal_rate_hz);
+        (g1, gm)
     }
 
     /// Advances one output interval: kinematics → thermal → sensor effects → noise → quantisation.
     pub fn step(&mut self) -> ImuSample {
-        let index = self.samples_done();
-        if index > 0 && index % self.slow_every == 0 {
+        let index = self.samples;
+        self.samples += 1;
+        if self.slow_countdown == 0 {
+            self.slow_countdown = self.slow_every;
             let h = self.cfg.thermal.step_s;
             let t = self.time_s();
             let up_b = self.attitude_c_bn().transpose() * Vector3::z();
             let ch = self.chamber_c(t);
             self.thermal.step(h, ch, &up_b);
             self.noise.step_slow(h);
+            let t = self.thermal.temperatures();
+            self.gyro_thermal = self.gyro.thermal_rates(&t.gyro_c(), &t.gyro_gradient_k());
+            self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(t.accel_c());
         }
+        self.slow_countdown -= 1;
         let temps = self.thermal.temperatures();
         let (gyro_temp, gradient, accel_temp) = (temps.gyro_c(), temps.gyro_gradient_k(), temps.accel_c());
 
@@ -220,26 +297,21 @@ impl Plant {
         let mut dv_true = Vector3::zeros();
         let mut gyro_err = Vector3::zeros();
         let mut accel_err = Vector3::zeros();
-        let mut gyro_terms = [Vector3::zeros(); GYRO_TERMS];
-        let mut accel_terms = [Vector3::zeros(); ACCEL_TERMS];
-        let mut gterm = [Vector3::zeros(); GYRO_TERMS];
-        let mut aterm = [Vector3::zeros(); ACCEL_TERMS];
         let mut weight = 0.0;
         let h = self.h_s;
-        for _ in 0..self.cfg.substeps {
+        let substeps = self.cfg.substeps;
+        for sub in 0..substeps {
             let g0 = self.gimbal_now;
-            let g1 = self.schedule.eval((self.tick + 1) as f64 / self.internal_rate_hz);
-            let gm = self.schedule.eval((self.tick as f64 + 0.5) / self.internal_rate_hz);
-            let c_nb = self.c_bn_at(&gm).transpose();
+            let (g1, gm) = self.gimbal_at(self.tick + 1);
+            let m = self.mid_attitude(&gm);
             // Gimbal part from exact angle differences (one axis moves at a time); Earth rate
             // and specific force at the midpoint.
             let d_outer = g1.angles.outer_rad - g0.angles.outer_rad;
             let d_inner = g1.angles.inner_rad - g0.angles.inner_rad;
-            let (si, ci) = gm.angles.inner_rad.sin_cos();
-            let gimbal_inc = Vector3::new(d_inner, si * d_outer, ci * d_outer);
-            let dtheta = gimbal_inc + c_nb * self.site.omega_ie_n * h;
-            let up_b = c_nb.column(2).into_owned();
-            let f_b = c_nb * self.f_n;
+            let gimbal_inc = Vector3::new(d_inner, m.sin_inner * d_outer, m.cos_inner * d_outer);
+            let dtheta = gimbal_inc + m.c_nb * self.site.omega_ie_n * h;
+            let up_b = m.c_nb.column(2).into_owned();
+            let f_b = m.c_nb * self.f_n;
             let dv = f_b * h;
             let ctx = TermContext {
                 dt_s: h,
@@ -251,20 +323,25 @@ impl Plant {
                 gyro_gradient_k: gradient,
                 accel_temp_c: accel_temp,
             };
-            gyro_err += self.gyro.increment_error(&ctx, &mut gterm);
-            accel_err += self.accel.increment_error(&ctx, &mut aterm);
-            for k in 0..GYRO_TERMS {
-                gyro_terms[k] += gterm[k];
+            let (gyro_terms, accel_terms) = (&mut self.truth.gyro_terms_rad, &mut self.truth.accel_terms_mps);
+            if sub == 0 {
+                gyro_err = self.gyro.increment_error_with(&ctx, &self.gyro_thermal, gyro_terms);
+                accel_err = self.accel.increment_error_with(&ctx, &self.accel_thermal_mps2, accel_terms);
+            } else {
+                let mut gterm = [Vector3::zeros(); GYRO_TERMS];
+                let mut aterm = [Vector3::zeros(); ACCEL_TERMS];
+                gyro_err += self.gyro.increment_error_with(&ctx, &self.gyro_thermal, &mut gterm);
+                accel_err += self.accel.increment_error_with(&ctx, &self.accel_thermal_mps2, &mut aterm);
+                gyro_terms.iter_mut().zip(gterm).for_each(|(a, b)| *a += b);
+                accel_terms.iter_mut().zip(aterm).for_each(|(a, b)| *a += b);
             }
-            for k in 0..ACCEL_TERMS {
-                accel_terms[k] += aterm[k];
-            }
-            weight += self.gyro.position_weight(&up_b) / self.cfg.substeps as f64;
+            weight += self.gyro.position_weight(&up_b);
             dtheta_true += dtheta;
             dv_true += dv;
             self.gimbal_now = g1;
             self.tick += 1;
         }
+        weight /= substeps as f64;
 
         let dt = self.dt_s;
         use crate::effects::{AccelTerm as A, GyroTerm as G};
@@ -272,27 +349,23 @@ impl Plant {
         let gm = self.noise.gm_bias_rps * dt;
         let rrw = self.noise.rrw_bias_rps * dt;
         let vrw = if self.noise.has_vrw() { self.noise.vrw_increment(dt) } else { Vector3::zeros() };
-        gyro_terms[G::AngleRandomWalk as usize] = arw;
-        gyro_terms[G::BiasInstability as usize] = gm;
-        gyro_terms[G::RateRandomWalk as usize] = rrw;
-        accel_terms[A::VelocityRandomWalk as usize] = vrw;
+        let tr = &mut self.truth;
+        tr.gyro_terms_rad[G::AngleRandomWalk as usize] = arw;
+        tr.gyro_terms_rad[G::BiasInstability as usize] = gm;
+        tr.gyro_terms_rad[G::RateRandomWalk as usize] = rrw;
+        tr.accel_terms_mps[A::VelocityRandomWalk as usize] = vrw;
 
         let dtheta_analog = dtheta_true + gyro_err + arw + gm + rrw;
         let dv_analog = dv_true + accel_err + vrw;
         let dtheta_out = self.gyro_quant.apply(&dtheta_analog);
         let dv_out = self.accel_quant.apply(&dv_analog);
-        gyro_terms[G::Quantization as usize] = dtheta_out - dtheta_analog;
-        accel_terms[A::Quantization as usize] = dv_out - dv_analog;
-
-        self.truth = Truth {
-            gimbal: self.gimbal_now,
-            dtheta_true_rad: dtheta_true,
-            dv_true_mps: dv_true,
-            temps,
-            gyro_terms_rad: gyro_terms,
-            accel_terms_mps: accel_terms,
-            position_weight: weight,
-        };
+        tr.gyro_terms_rad[G::Quantization as usize] = dtheta_out - dtheta_analog;
+        tr.accel_terms_mps[A::Quantization as usize] = dv_out - dv_analog;
+        tr.gimbal = self.gimbal_now;
+        tr.dtheta_true_rad = dtheta_true;
+        tr.dv_true_mps = dv_true;
+        tr.temps = temps;
+        tr.position_weight = weight;
         ImuSample { index, t_s: self.time_s(), dtheta_rad: dtheta_out, dv_mps: dv_out }
     }
 }

@@ -163,14 +163,30 @@ impl AccelModel {
         }
     }
 
+    /// Temperature polynomial bias at cluster temperature `temp_c`, m/s² (evaluated per thermal update).
+    pub fn thermal_bias_mps2(&self, temp_c: f64) -> Vector3<f64> {
+        let x = temp_c - self.temp_ref_c;
+        let t = &self.temp_mps2;
+        Vector3::from_fn(|i, _| cubic(t[0][i], t[1][i], t[2][i], x))
+    }
+
     /// Adds each deterministic term's increment error (m/s) to `out` and returns the sum.
     #[inline]
     pub fn increment_error(&self, c: &TermContext, out: &mut [Vector3<f64>; ACCEL_TERMS]) -> Vector3<f64> {
+        self.increment_error_with(c, &self.thermal_bias_mps2(c.accel_temp_c), out)
+    }
+
+    /// [`AccelModel::increment_error`] with the temperature bias precomputed.
+    #[inline]
+    pub fn increment_error_with(
+        &self,
+        c: &TermContext,
+        thermal_bias_mps2: &Vector3<f64>,
+        out: &mut [Vector3<f64>; ACCEL_TERMS],
+    ) -> Vector3<f64> {
         let (sf, mis) = scale_and_misalign(&self.sf, &self.mis_rad, &c.dv_mps);
         let bias = self.bias_mps2 * c.dt_s;
-        let x = c.accel_temp_c - self.temp_ref_c;
-        let t = &self.temp_mps2;
-        let temp = Vector3::from_fn(|i, _| cubic(t[0][i], t[1][i], t[2][i], x) * c.dt_s);
+        let temp = thermal_bias_mps2 * c.dt_s;
         out[0] = bias;
         out[1] = sf;
         out[2] = mis;

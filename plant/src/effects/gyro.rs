@@ -346,6 +346,17 @@ pub struct GyroModel {
     dither_rps: Vector3<f64>,
 }
 
+/// Temperature-dependent gyro rates at the current node temperatures, rad/s.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct GyroThermalRates {
+    /// Temperature polynomial bias.
+    pub temp_rps: Vector3<f64>,
+    /// Temperature-gradient bias.
+    pub grad_rps: Vector3<f64>,
+    /// δβ(T) before the position weight.
+    pub position_rps: Vector3<f64>,
+}
+
 /// Number of gyro terms with a reported contribution.
 pub const GYRO_TERMS: usize = GyroTerm::ALL.len();
 
@@ -406,22 +417,42 @@ impl GyroModel {
         Vector3::from_fn(|i, _| 1.0 + self.dither_kappa[i] * ((f_b[i] / G0).powi(2) - 1.0 / 3.0))
     }
 
+    /// Evaluates the temperature-dependent rates once per thermal update (temperatures are
+    /// constant between updates), so the per-sample path does no polynomial work.
+    pub fn thermal_rates(&self, gyro_temp_c: &Vector3<f64>, gradient_k: &Vector3<f64>) -> GyroThermalRates {
+        let dtemp = gyro_temp_c.add_scalar(-self.temp_ref_c);
+        GyroThermalRates {
+            temp_rps: Vector3::from_fn(|i, _| cubic(self.temp_rps[0][i], self.temp_rps[1][i], self.temp_rps[2][i], dtemp[i])),
+            grad_rps: self.grad_rps_per_k.component_mul(gradient_k),
+            position_rps: if self.pos_on { self.position_bias_rps(gyro_temp_c) } else { Vector3::zeros() },
+        }
+    }
+
     /// Adds each deterministic term's increment error (rad) over the interval to `out`
     /// (indexed like [`GyroTerm::ALL`]) and returns their sum.
     #[inline]
     pub fn increment_error(&self, c: &TermContext, out: &mut [Vector3<f64>; GYRO_TERMS]) -> Vector3<f64> {
+        let rates = self.thermal_rates(&c.gyro_temp_c, &c.gyro_gradient_k);
+        self.increment_error_with(c, &rates, out)
+    }
+
+    /// [`GyroModel::increment_error`] with the temperature-dependent rates precomputed.
+    #[inline]
+    pub fn increment_error_with(
+        &self,
+        c: &TermContext,
+        rates: &GyroThermalRates,
+        out: &mut [Vector3<f64>; GYRO_TERMS],
+    ) -> Vector3<f64> {
         let dt = c.dt_s;
         let (sf, mis) = scale_and_misalign(&self.sf, &self.mis_rad, &c.dtheta_rad);
         let asym = self.asym.component_mul(&c.dtheta_rad.abs());
         let bias = self.bias_rps * dt;
-        let dtemp = c.gyro_temp_c.add_scalar(-self.temp_ref_c);
-        let temp = Vector3::from_fn(|i, _| {
-            cubic(self.temp_rps[0][i], self.temp_rps[1][i], self.temp_rps[2][i], dtemp[i]) * dt
-        });
-        let grad = self.grad_rps_per_k.component_mul(&c.gyro_gradient_k) * dt;
-        let gsens = self.gsens_rps_per_g * (c.f_b_mps2 / G0) * dt;
+        let temp = rates.temp_rps * dt;
+        let grad = rates.grad_rps * dt;
+        let gsens = self.gsens_rps_per_g * (c.f_b_mps2 * (dt / G0));
         let pos = if self.pos_on {
-            self.position_bias_rps(&c.gyro_temp_c) * (self.position_weight(&c.up_b) * dt)
+            rates.position_rps * (self.position_weight(&c.up_b) * dt)
         } else {
             Vector3::zeros()
         };

@@ -7,6 +7,7 @@ use nalgebra::Vector3;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Quantizer {
     pulse: Vector3<f64>,
+    inv_pulse: Vector3<f64>,
     /// Accumulated but not yet output, per axis (same unit as the increments).
     pub residual: Vector3<f64>,
 }
@@ -14,7 +15,8 @@ pub struct Quantizer {
 impl Quantizer {
     /// A quantiser with pulse weights `pulse` (zero disables an axis).
     pub fn new(pulse: Vector3<f64>) -> Self {
-        Self { pulse, residual: Vector3::zeros() }
+        let inv_pulse = pulse.map(|q| if q > 0.0 { 1.0 / q } else { 0.0 });
+        Self { pulse, inv_pulse, residual: Vector3::zeros() }
     }
 
     /// Whether any axis quantises.
@@ -30,7 +32,7 @@ impl Quantizer {
             let q = self.pulse[i];
             if q > 0.0 {
                 let total = increment[i] + self.residual[i];
-                let pulses = (total / q).floor();
+                let pulses = floor_small(total * self.inv_pulse[i]);
                 out[i] = pulses * q;
                 self.residual[i] = total - out[i];
             }
@@ -39,10 +41,24 @@ impl Quantizer {
     }
 }
 
+/// floor(x) for |x| < 2⁶³ without a libm call (x86-64 baseline has no SSE4.1 `roundsd`).
+#[inline]
+fn floor_small(x: f64) -> f64 {
+    let t = x as i64 as f64;
+    if t > x { t - 1.0 } else { t }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
+
+    #[test]
+    fn floor_small_matches_floor() {
+        for x in [-2.5, -2.0, -0.1, -0.0, 0.0, 0.3, 1.0, 7.999_999, 1e12 + 0.5, -1e12 - 0.5] {
+            assert_eq!(floor_small(x), x.floor(), "{x}");
+        }
+    }
 
     #[test]
     fn quantised_sum_tracks_true_sum_within_one_pulse() {

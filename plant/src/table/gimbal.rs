@@ -52,6 +52,13 @@ pub fn body_to_nav(c_vn: &Matrix3<f64>, g: GimbalAngles) -> Matrix3<f64> {
     c_vn * rot_z(g.outer_rad) * rot_x(g.inner_rad)
 }
 
+/// R_z(outer)·R_x(inner) from the sines and cosines of the gimbal angles.
+#[inline]
+pub fn gimbal_rotation(sin_outer: f64, cos_outer: f64, sin_inner: f64, cos_inner: f64) -> Matrix3<f64> {
+    let (so, co, si, ci) = (sin_outer, cos_outer, sin_inner, cos_inner);
+    Matrix3::new(co, -so * ci, so * si, so, co * ci, -co * si, 0.0, si, ci)
+}
+
 /// Body rate of the IMU relative to the vehicle, ω_vb^b = R_x(inner)ᵀ·[0,0,ȯuter] + [ịnner,0,0].
 pub fn gimbal_body_rate(inner_rad: f64, outer_rate: f64, inner_rate: f64) -> Vector3<f64> {
     let (s, c) = inner_rad.sin_cos();

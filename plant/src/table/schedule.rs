@@ -88,6 +88,35 @@ impl Schedule {
             .collect()
     }
 
+    /// Table state at `t_s` and the time until which that state holds unchanged (the end of the
+    /// current dwell; `t_s` itself while moving). Lets callers skip evaluation during dwells.
+    pub fn eval_hold(&self, t_s: f64) -> (GimbalState, f64) {
+        let st = self.eval(t_s);
+        if st.moving {
+            return (st, t_s);
+        }
+        let tau = t_s - self.lead_s;
+        if tau < 0.0 {
+            return (st, self.lead_s);
+        }
+        if self.continuous.is_some() {
+            return (st, t_s);
+        }
+        if self.segments.is_empty() || (!self.repeat && tau >= self.cycle_s) {
+            return (st, f64::INFINITY);
+        }
+        let n = if self.repeat { (tau / self.cycle_s).floor() } else { 0.0 };
+        let end = self.lead_s + n * self.cycle_s + self.segments[st.step_index].end_s;
+        (st, end)
+    }
+
+    /// Table state at `t_end_s` with its hold time (as [`Schedule::eval_hold`]) and at the
+    /// earlier instant `t_mid_s`, sharing the segment lookup when both fall in one segment.
+    pub fn eval_end_and_mid(&self, t_end_s: f64, t_mid_s: f64) -> ((GimbalState, f64), GimbalState) {
+        let end = self.eval_hold(t_end_s);
+        (end, self.eval(t_mid_s))
+    }
+
     /// Table state at time `t_s` since the run start.
     pub fn eval(&self, t_s: f64) -> GimbalState {
         let still = |angles, step_index| GimbalState { angles, outer_rate_rps: 0.0, inner_rate_rps: 0.0, step_index, moving: false };
