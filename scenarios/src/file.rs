@@ -1,0 +1,299 @@
+//! The scenario file format: TOML, unknown keys rejected, units in key names.
+//! Every key, unit and default is listed in docs/scenario-format.md.
+
+use std::path::{Path, PathBuf};
+
+use rins_plant::config::{SensorSpec, VehicleSpec};
+use rins_plant::earth::{EarthSpec, SiteSpec};
+use rins_plant::effects::{AccelSpec, GyroSpec};
+use rins_plant::table::SchemeSpec;
+use rins_plant::thermal::ThermalSpec;
+use rins_plant::{PlantConfig, presets};
+use serde::{Deserialize, Serialize};
+
+use crate::locate::locate_key;
+
+/// `[scenario]`: what the run is.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ScenarioMeta {
+    /// Short name (used for output file names).
+    pub name: String,
+    /// One-line description, with the paper section it reproduces.
+    pub description: String,
+    /// Simulated duration, s, in (0, 1e7].
+    pub duration_s: f64,
+}
+
+impl Default for ScenarioMeta {
+    fn default() -> Self {
+        Self { name: "unnamed".into(), description: String::new(), duration_s: 3600.0 }
+    }
+}
+
+/// `[run]`: timing and seed.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RunSpec {
+    /// IMU output rate, Hz.
+    pub rate_hz: f64,
+    /// Internal integration steps per output interval.
+    pub substeps: u32,
+    /// Seed of every random stream.
+    pub seed: u64,
+}
+
+impl Default for RunSpec {
+    fn default() -> Self {
+        let p = PlantConfig::default();
+        Self { rate_hz: p.rate_hz, substeps: p.substeps, seed: p.seed }
+    }
+}
+
+/// `[sensor]`: a named preset plus per-term overrides.
+#[derive(Clone, Debug, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SensorSection {
+    /// Starting specification: `paper-table3`, `nav-grade-full` or `ideal` (default `ideal`).
+    pub preset: Option<String>,
+    /// Gyro term overrides.
+    pub gyro: GyroSpec,
+    /// Accelerometer term overrides.
+    pub accel: AccelSpec,
+}
+
+/// `[outputs]`: what `rins run` writes.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OutputSpec {
+    /// Write `imu.csv`.
+    pub csv: bool,
+    /// Samples per CSV row (increments summed over the row), ≥ 1.
+    pub decimation: u64,
+    /// Add the error-free increments.
+    pub truth: bool,
+    /// Add each enabled effect's contribution (mean rate over the row).
+    pub effects: bool,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        Self { csv: true, decimation: 1, truth: false, effects: false }
+    }
+}
+
+/// `[campaign]`: calibration runs over chamber temperatures (used by `rins campaign`).
+#[derive(Clone, Debug, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CampaignSpec {
+    /// Explicit chamber temperatures, °C; if empty, `runs` evenly spaced from `from_c` to `to_c`.
+    pub temps_c: Vec<f64>,
+    /// Lowest chamber temperature, °C.
+    pub from_c: f64,
+    /// Highest chamber temperature, °C.
+    pub to_c: f64,
+    /// Number of runs.
+    pub runs: u32,
+}
+
+impl CampaignSpec {
+    /// The chamber temperatures of the campaign, °C.
+    pub fn temperatures_c(&self) -> Vec<f64> {
+        if !self.temps_c.is_empty() {
+            return self.temps_c.clone();
+        }
+        let n = self.runs.max(1);
+        if n == 1 {
+            return vec![self.from_c];
+        }
+        (0..n).map(|k| self.from_c + (self.to_c - self.from_c) * k as f64 / (n - 1) as f64).collect()
+    }
+}
+
+/// A whole scenario file.
+#[derive(Clone, Debug, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ScenarioFile {
+    /// `[scenario]`.
+    pub scenario: ScenarioMeta,
+    /// `[run]`.
+    pub run: RunSpec,
+    /// `[site]`.
+    pub site: SiteSpec,
+    /// `[vehicle]`.
+    pub vehicle: VehicleSpec,
+    /// `[earth]`.
+    pub earth: EarthSpec,
+    /// `[scheme]`.
+    pub scheme: SchemeSpec,
+    /// `[sensor]`.
+    pub sensor: SensorSection,
+    /// `[thermal]`.
+    pub thermal: ThermalSpec,
+    /// `[outputs]`.
+    pub outputs: OutputSpec,
+    /// `[campaign]`, optional.
+    pub campaign: Option<CampaignSpec>,
+}
+
+/// A loaded, validated scenario.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scenario {
+    /// Where it came from (file path or `builtin:NAME`).
+    pub source: String,
+    /// `[scenario]`.
+    pub meta: ScenarioMeta,
+    /// The plant configuration with the preset applied.
+    pub plant: PlantConfig,
+    /// `[outputs]`.
+    pub outputs: OutputSpec,
+    /// `[campaign]`, if present.
+    pub campaign: Option<CampaignSpec>,
+}
+
+/// Why a scenario could not be loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    /// The file could not be read.
+    #[error("{path}: cannot read: {source}")]
+    Read {
+        /// File.
+        path: PathBuf,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// TOML syntax, an unknown key or a wrong type (toml's message carries line and column).
+    #[error("{source_name}: {message}")]
+    Parse {
+        /// File.
+        source_name: String,
+        /// toml's message with line, column and the offending text.
+        message: String,
+    },
+    /// Values outside their valid range.
+    #[error("{source_name}: invalid scenario:\n{}", .problems.join("\n"))]
+    Invalid {
+        /// File.
+        source_name: String,
+        /// One line per problem: `line N: key: expected …, got …`.
+        problems: Vec<String>,
+    },
+}
+
+/// The scenarios shipped with rins, by name.
+pub const BUILTIN: [(&str, &str); 5] = [
+    ("paper-16pos-week", include_str!("../files/paper-16pos-week.toml")),
+    ("paper-16pos-short", include_str!("../files/paper-16pos-short.toml")),
+    ("calibration-z-up", include_str!("../files/calibration-z-up.toml")),
+    ("calibration-z-down", include_str!("../files/calibration-z-down.toml")),
+    ("campaign-37", include_str!("../files/campaign-37.toml")),
+];
+
+impl Scenario {
+    /// Loads `path`, or a built-in scenario when `path` is `builtin:NAME` or a bare built-in name.
+    pub fn load(path: &Path) -> Result<Self, ScenarioError> {
+        let s = path.to_string_lossy();
+        let name = s.strip_prefix("builtin:").unwrap_or(&s);
+        if let Some((n, text)) = BUILTIN.iter().find(|(n, _)| *n == name) {
+            if s.starts_with("builtin:") || !path.exists() {
+                return Self::from_toml(text, &format!("builtin:{n}"));
+            }
+        }
+        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::Read { path: path.into(), source: e })?;
+        Self::from_toml(&text, &path.display().to_string())
+    }
+
+    /// Parses scenario text; `source_name` appears in every error.
+    pub fn from_toml(text: &str, source_name: &str) -> Result<Self, ScenarioError> {
+        let parse_err = |e: toml::de::Error| ScenarioError::Parse { source_name: source_name.into(), message: e.to_string() };
+        // Pass 1 on the text itself: unknown keys and wrong types get toml's line and column.
+        let raw: ScenarioFile = toml::from_str(text).map_err(parse_err)?;
+        // Pass 2: lay the user's [sensor] over the preset, key by key.
+        let mut table: toml::Table = toml::from_str(text).map_err(parse_err)?;
+        let preset_name = raw.sensor.preset.clone().unwrap_or_else(|| "ideal".into());
+        let Some(preset) = presets::preset(&preset_name) else {
+            let line = locate_key(text, "sensor.preset").map(|l| format!("line {l}: ")).unwrap_or_default();
+            return Err(ScenarioError::Invalid {
+                source_name: source_name.into(),
+                problems: vec![format!("{line}sensor.preset: expected one of {:?}, got {preset_name:?}", presets::PRESET_NAMES)],
+            });
+        };
+        let mut sensor = toml::Table::try_from(&preset).expect("presets serialise");
+        if let Some(toml::Value::Table(user)) = table.remove("sensor") {
+            let mut user = user;
+            user.remove("preset");
+            deep_merge(&mut sensor, user);
+        }
+        let sensor: SensorSpec = sensor.try_into().map_err(parse_err)?;
+        let plant = PlantConfig {
+            rate_hz: raw.run.rate_hz,
+            substeps: raw.run.substeps,
+            seed: raw.run.seed,
+            site: raw.site,
+            vehicle: raw.vehicle,
+            earth: raw.earth,
+            scheme: raw.scheme,
+            sensor,
+            thermal: raw.thermal,
+        };
+        let scenario = Scenario { source: source_name.into(), meta: raw.scenario, plant, outputs: raw.outputs, campaign: raw.campaign };
+        scenario.validate(Some(text))?;
+        Ok(scenario)
+    }
+
+    /// Range-checks everything; `text` (when given) lets errors name the line.
+    pub fn validate(&self, text: Option<&str>) -> Result<(), ScenarioError> {
+        let mut problems: Vec<(String, String)> = Vec::new();
+        if !(self.meta.duration_s > 0.0 && self.meta.duration_s <= 1e7) {
+            problems.push(("scenario.duration_s".into(), format!("expected a number in (0, 1e7], got {}", self.meta.duration_s)));
+        }
+        if self.outputs.decimation == 0 {
+            problems.push(("outputs.decimation".into(), "expected a whole number ≥ 1, got 0".into()));
+        }
+        if let Some(c) = &self.campaign {
+            for (i, t) in c.temperatures_c().iter().enumerate() {
+                if !(rins_plant::thermal::CHAMBER_MIN_C..=rins_plant::thermal::CHAMBER_MAX_C).contains(t) {
+                    problems.push((
+                        "campaign.temps_c".into(),
+                        format!(
+                            "expected chamber temperatures in [{}, {}] °C (the thermal model's range), got {t} at run {i}",
+                            rins_plant::thermal::CHAMBER_MIN_C,
+                            rins_plant::thermal::CHAMBER_MAX_C
+                        ),
+                    ));
+                }
+            }
+        }
+        if let Err(errs) = self.plant.validate() {
+            problems.extend(errs.into_iter().map(|e| (e.path, format!("expected {}, got {}", e.expected, e.got))));
+        }
+        if problems.is_empty() {
+            return Ok(());
+        }
+        let lines = problems
+            .into_iter()
+            .map(|(path, msg)| {
+                let at = text.and_then(|t| locate_key(t, &path)).map(|l| format!("line {l}: ")).unwrap_or_else(|| "(default or preset value) ".into());
+                format!("  {at}{path}: {msg}")
+            })
+            .collect();
+        Err(ScenarioError::Invalid { source_name: self.source.clone(), problems: lines })
+    }
+
+    /// Number of output samples in the scenario.
+    pub fn samples(&self) -> u64 {
+        (self.meta.duration_s * self.plant.rate_hz).round() as u64
+    }
+}
+
+/// Recursively lays `over` onto `base`: tables merge key by key, anything else replaces.
+pub fn deep_merge(base: &mut toml::Table, over: toml::Table) {
+    for (k, v) in over {
+        match (base.get_mut(&k), v) {
+            (Some(toml::Value::Table(b)), toml::Value::Table(o)) => deep_merge(b, o),
+            (_, v) => {
+                base.insert(k, v);
+            }
+        }
+    }
+}

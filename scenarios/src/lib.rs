@@ -1,0 +1,13 @@
+//! # rins-scenarios
+//!
+//! Declarative scenario files for every experiment of Seo et al. (2022), the runner that drives
+//! the plant through them, output sinks, and the `rins` command line.
+
+pub mod file;
+pub mod locate;
+pub mod progress;
+pub mod runner;
+pub mod sinks;
+
+pub use file::{Scenario, ScenarioError};
+pub use runner::{RunSummary, Sink, run};

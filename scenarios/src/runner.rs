@@ -1,0 +1,52 @@
+//! Drives the plant through a scenario and hands every sample to the sinks.
+
+use std::time::Instant;
+
+use anyhow::Result;
+use rins_plant::{ImuSample, Plant};
+
+use crate::file::Scenario;
+use crate::progress;
+
+/// Receives every output sample in order.
+pub trait Sink {
+    /// Called once per output sample, after [`Plant::step`], so `plant.truth()` matches `sample`.
+    fn sample(&mut self, sample: &ImuSample, plant: &Plant) -> Result<()>;
+    /// Called once after the last sample.
+    fn finish(&mut self) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// What a run did.
+#[derive(Clone, Copy, Debug)]
+pub struct RunSummary {
+    /// Output samples produced.
+    pub samples: u64,
+    /// Wall time, s.
+    pub wall_s: f64,
+}
+
+/// Runs `scenario` for `samples` output samples, feeding `sinks`.
+pub fn run(scenario: &Scenario, samples: u64, sinks: &mut [&mut dyn Sink]) -> Result<RunSummary> {
+    let mut plant = Plant::new(&scenario.plant).map_err(|errs| {
+        anyhow::anyhow!("{}: {}", scenario.source, errs.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("; "))
+    })?;
+    let pb = progress::bar(samples, &scenario.meta.name);
+    let t0 = Instant::now();
+    const CHUNK: u64 = 1 << 16;
+    for k in 0..samples {
+        let s = plant.step();
+        for sink in sinks.iter_mut() {
+            sink.sample(&s, &plant)?;
+        }
+        if k % CHUNK == 0 {
+            pb.set_position(k);
+        }
+    }
+    for sink in sinks.iter_mut() {
+        sink.finish()?;
+    }
+    pb.finish_and_clear();
+    Ok(RunSummary { samples, wall_s: t0.elapsed().as_secs_f64() })
+}

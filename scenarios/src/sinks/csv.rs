@@ -1,0 +1,198 @@
+//! CSV output of the IMU stream. Columns and units: docs/scenario-format.md#output-columns.
+//!
+//! With decimation N, each row covers N output samples: increments are summed (so the sum of a
+//! column over the file equals the sum over every sample), attitude and temperatures are taken
+//! at the end of the row, effect contributions are the mean rate over the row. Numbers are
+//! written in Rust's shortest round-trip form: reading them back gives the same bits.
+
+use std::fmt::Write as _;
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use nalgebra::Vector3;
+use rins_plant::effects::{AccelTerm, GyroTerm};
+use rins_plant::thermal::node;
+use rins_plant::units::{DPH, UG};
+use rins_plant::{ImuSample, Plant, Truth};
+
+use crate::file::OutputSpec;
+use crate::runner::Sink;
+
+/// Writes `imu.csv`.
+pub struct CsvSink<W: Write> {
+    out: W,
+    opts: OutputSpec,
+    gyro_terms: Vec<GyroTerm>,
+    accel_terms: Vec<AccelTerm>,
+    in_row: u64,
+    dtheta: Vector3<f64>,
+    dv: Vector3<f64>,
+    dtheta_true: Vector3<f64>,
+    dv_true: Vector3<f64>,
+    gyro_sum: Vec<Vector3<f64>>,
+    accel_sum: Vec<Vector3<f64>>,
+    line: String,
+    dt_s: f64,
+    last: Option<(ImuSample, Truth)>,
+}
+
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+/// Column names for the given options and enabled terms.
+pub fn header(opts: &OutputSpec, gyro_terms: &[GyroTerm], accel_terms: &[AccelTerm]) -> Vec<String> {
+    let mut h: Vec<String> = vec!["sample".into(), "t_s".into()];
+    h.extend(AXES.iter().map(|a| format!("dtheta_{a}_rad")));
+    h.extend(AXES.iter().map(|a| format!("dv_{a}_mps")));
+    h.extend(["outer_deg", "inner_deg", "position"].map(String::from));
+    h.extend(node::NAMES.iter().map(|n| format!("temp_{n}_c")));
+    h.push("temp_chamber_c".into());
+    if opts.truth {
+        h.extend(AXES.iter().map(|a| format!("dtheta_true_{a}_rad")));
+        h.extend(AXES.iter().map(|a| format!("dv_true_{a}_mps")));
+    }
+    if opts.effects {
+        for t in gyro_terms {
+            h.extend(AXES.iter().map(|a| format!("gyro_{}_{a}_dph", t.key())));
+        }
+        for t in accel_terms {
+            h.extend(AXES.iter().map(|a| format!("accel_{}_{a}_ug", t.key())));
+        }
+    }
+    h
+}
+
+/// Dwell label of the IMU from the gimbal angles: A/B/C/D of Eq. 5, or `moving`.
+pub fn position_label(outer_rad: f64, inner_rad: f64, moving: bool) -> &'static str {
+    if moving {
+        return "moving";
+    }
+    let near = |a: f64, b: f64| ((a - b).rem_euclid(std::f64::consts::TAU)).min((b - a).rem_euclid(std::f64::consts::TAU)) < 1e-6;
+    let pi = std::f64::consts::PI;
+    match (near(outer_rad, 0.0), near(outer_rad, pi), near(inner_rad, 0.0), near(inner_rad, pi)) {
+        (true, _, true, _) => "A",
+        (_, true, true, _) => "B",
+        (_, true, _, true) => "C",
+        (true, _, _, true) => "D",
+        _ if inner_rad.cos() > 0.0 => "z-up",
+        _ => "z-down",
+    }
+}
+
+impl CsvSink<BufWriter<File>> {
+    /// Creates `path` for the scenario's enabled terms.
+    pub fn create(path: &Path, opts: OutputSpec, plant_cfg: &rins_plant::PlantConfig) -> Result<Self> {
+        let f = File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+        CsvSink::new(BufWriter::with_capacity(1 << 20, f), opts, plant_cfg)
+    }
+}
+
+impl<W: Write> CsvSink<W> {
+    /// Wraps a writer and writes the header.
+    pub fn new(mut out: W, opts: OutputSpec, plant_cfg: &rins_plant::PlantConfig) -> Result<Self> {
+        let s = &plant_cfg.sensor;
+        let gyro_terms: Vec<GyroTerm> = GyroTerm::ALL.into_iter().filter(|t| s.gyro.is_enabled(*t)).collect();
+        let accel_terms: Vec<AccelTerm> = AccelTerm::ALL.into_iter().filter(|t| s.accel.is_enabled(*t)).collect();
+        writeln!(out, "{}", header(&opts, &gyro_terms, &accel_terms).join(","))?;
+        Ok(Self {
+            out,
+            opts,
+            gyro_sum: vec![Vector3::zeros(); gyro_terms.len()],
+            accel_sum: vec![Vector3::zeros(); accel_terms.len()],
+            gyro_terms,
+            accel_terms,
+            in_row: 0,
+            dtheta: Vector3::zeros(),
+            dv: Vector3::zeros(),
+            dtheta_true: Vector3::zeros(),
+            dv_true: Vector3::zeros(),
+            line: String::with_capacity(1024),
+            dt_s: 1.0 / plant_cfg.rate_hz,
+            last: None,
+        })
+    }
+
+    /// The underlying writer.
+    pub fn into_inner(self) -> W {
+        self.out
+    }
+
+    fn write_row(&mut self) -> Result<()> {
+        let Some((s, tr)) = self.last else { return Ok(()) };
+        let span_s = self.in_row as f64 * self.dt_s;
+        let l = &mut self.line;
+        l.clear();
+        let g = &tr.gimbal;
+        let label = position_label(g.angles.outer_rad, g.angles.inner_rad, g.moving);
+        write!(l, "{},{}", s.index, s.t_s)?;
+        for v in [&self.dtheta, &self.dv] {
+            write!(l, ",{},{},{}", v.x, v.y, v.z)?;
+        }
+        write!(l, ",{},{},{}", g.angles.outer_rad.to_degrees(), g.angles.inner_rad.to_degrees(), label)?;
+        for t in tr.temps.nodes_c {
+            write!(l, ",{t}")?;
+        }
+        write!(l, ",{}", tr.temps.chamber_c)?;
+        if self.opts.truth {
+            for v in [&self.dtheta_true, &self.dv_true] {
+                write!(l, ",{},{},{}", v.x, v.y, v.z)?;
+            }
+        }
+        if self.opts.effects {
+            for v in &self.gyro_sum {
+                let r = v / (span_s * DPH);
+                write!(l, ",{},{},{}", r.x, r.y, r.z)?;
+            }
+            for v in &self.accel_sum {
+                let r = v / (span_s * UG);
+                write!(l, ",{},{},{}", r.x, r.y, r.z)?;
+            }
+        }
+        l.push('\n');
+        self.out.write_all(l.as_bytes())?;
+        self.in_row = 0;
+        self.dtheta = Vector3::zeros();
+        self.dv = Vector3::zeros();
+        self.dtheta_true = Vector3::zeros();
+        self.dv_true = Vector3::zeros();
+        self.gyro_sum.iter_mut().for_each(|v| *v = Vector3::zeros());
+        self.accel_sum.iter_mut().for_each(|v| *v = Vector3::zeros());
+        Ok(())
+    }
+}
+
+impl<W: Write> Sink for CsvSink<W> {
+    fn sample(&mut self, s: &ImuSample, plant: &Plant) -> Result<()> {
+        let tr = plant.truth();
+        self.dtheta += s.dtheta_rad;
+        self.dv += s.dv_mps;
+        if self.opts.truth {
+            self.dtheta_true += tr.dtheta_true_rad;
+            self.dv_true += tr.dv_true_mps;
+        }
+        if self.opts.effects {
+            for (acc, t) in self.gyro_sum.iter_mut().zip(&self.gyro_terms) {
+                *acc += tr.gyro_terms_rad[*t as usize];
+            }
+            for (acc, t) in self.accel_sum.iter_mut().zip(&self.accel_terms) {
+                *acc += tr.accel_terms_mps[*t as usize];
+            }
+        }
+        self.in_row += 1;
+        self.last = Some((*s, *tr));
+        if self.in_row >= self.opts.decimation {
+            self.write_row()?;
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self) -> Result<()> {
+        // A final partial row is written too (its span is shorter): no sample is dropped.
+        if self.in_row > 0 {
+            self.write_row()?;
+        }
+        self.out.flush()?;
+        Ok(())
+    }
+}

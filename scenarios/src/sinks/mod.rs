@@ -1,0 +1,5 @@
+//! Output sinks for the runner.
+
+pub mod csv;
+
+pub use csv::CsvSink;
