@@ -19,7 +19,8 @@ pub struct Check {
 }
 
 impl Check {
-    fn at_most(name: &str, value: f64, limit: f64) -> Self {
+    /// A check that passes when `value <= limit`.
+    pub fn at_most(name: &str, value: f64, limit: f64) -> Self {
         Self { name: name.into(), value, limit, pass: value.is_finite() && value <= limit }
     }
 }

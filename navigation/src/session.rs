@@ -1,0 +1,227 @@
+//! Runs the plant and the reference navigator together: alignment, navigation, δβ compensation,
+//! and error records against the plant's truth.
+
+use nalgebra::{Vector2, Vector3};
+use rins_plant::Plant;
+use rins_plant::effects::gyro::PositionBiasSpec;
+use rins_plant::units::{DPSH, UG};
+
+use crate::alignment::{FineAlignment, coarse, correct_attitude};
+use crate::compensation::PositionBiasCompensation;
+use crate::errors::{Trms, attitude_error, position_error_m};
+use crate::strapdown::{NavState, Strapdown, VerticalChannel};
+
+/// How the navigator gets its initial attitude.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Alignment {
+    /// From the plant's truth (a perfect alignment; what a simulation study usually assumes).
+    Truth,
+    /// Self-alignment on the static IMU: coarse for `coarse_s`, then fine (Kalman) for `fine_s`.
+    SelfAlign {
+        /// Coarse-alignment averaging time, s.
+        coarse_s: f64,
+        /// Fine-alignment time, s.
+        fine_s: f64,
+    },
+}
+
+/// Options of a navigation run.
+#[derive(Clone, Debug)]
+pub struct NavRunConfig {
+    /// Initial alignment.
+    pub alignment: Alignment,
+    /// Vertical-channel handling.
+    pub vertical: VerticalChannel,
+    /// δβ compensation in the navigation computer (None: uncompensated).
+    pub compensation: Option<PositionBiasSpec>,
+    /// Interval of the error records (and of the tRMS samples of Eq. 20), s.
+    pub record_every_s: f64,
+}
+
+impl Default for NavRunConfig {
+    fn default() -> Self {
+        Self {
+            alignment: Alignment::Truth,
+            vertical: VerticalChannel::Hold { ref_height_m: 0.0 },
+            compensation: None,
+            record_every_s: 60.0,
+        }
+    }
+}
+
+/// Navigation errors at one instant.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct NavRecord {
+    /// Time since navigation start, s.
+    pub t_s: f64,
+    /// Attitude error φ (E, N, U), rad.
+    pub att_err_rad: [f64; 3],
+    /// Velocity error (E, N, U), m/s.
+    pub vel_err_mps: [f64; 3],
+    /// Latitude error as north distance, m.
+    pub north_m: f64,
+    /// Longitude error as east distance, m.
+    pub east_m: f64,
+    /// Horizontal error, m.
+    pub horizontal_m: f64,
+    /// tRMS of the horizontal error so far (Eq. 20), m.
+    pub trms_m: f64,
+}
+
+/// What the alignment achieved.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct AlignmentResult {
+    /// Attitude error after coarse alignment (E, N, U), rad.
+    pub coarse_err_rad: [f64; 3],
+    /// Attitude error after fine alignment, rad.
+    pub fine_err_rad: [f64; 3],
+    /// Filter 1σ on the attitude at the end, rad.
+    pub fine_sigma_rad: [f64; 3],
+}
+
+/// A finished navigation run.
+#[derive(Clone, Debug)]
+pub struct NavRun {
+    /// Error records every `record_every_s`.
+    pub records: Vec<NavRecord>,
+    /// Alignment outcome, if self-aligned.
+    pub alignment: Option<AlignmentResult>,
+    /// Mean of |φ_U| over the records, rad (the paper's "up-axis average attitude error").
+    pub up_att_mean_abs_rad: f64,
+}
+
+impl NavRun {
+    /// The last record.
+    pub fn end(&self) -> NavRecord {
+        self.records.last().copied().unwrap_or_default()
+    }
+}
+
+/// Why a run could not be made.
+#[derive(Debug, PartialEq, thiserror::Error)]
+pub enum SessionError {
+    /// The table moved while the navigator was aligning.
+    #[error("the table moved at t = {t_s} s during self-alignment; set scheme.lead_dwell_s >= the alignment time")]
+    TableMovedDuringAlignment {
+        /// Time of the motion, s.
+        t_s: f64,
+    },
+    /// Zero or negative times.
+    #[error("{0}")]
+    BadTimes(String),
+}
+
+/// Aligns (if asked) and navigates for `nav_s` seconds, stepping `plant` as it goes.
+pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, SessionError> {
+    if !(nav_s > 0.0 && cfg.record_every_s > 0.0) {
+        return Err(SessionError::BadTimes(format!("navigation time {nav_s} s and record interval {} s must be > 0", cfg.record_every_s)));
+    }
+    let dt = plant.dt_s();
+    let site = *plant.site();
+    let mut init = NavState {
+        q_bn: plant.attitude_q_bn(),
+        v_n: Vector3::zeros(),
+        lat_rad: site.lat_rad,
+        lon_rad: site.lon_rad,
+        height_m: site.height_m,
+    };
+    let vertical = match cfg.vertical {
+        VerticalChannel::Hold { .. } => VerticalChannel::Hold { ref_height_m: site.height_m },
+        VerticalChannel::Damped { tau_s, .. } => VerticalChannel::Damped { ref_height_m: site.height_m, tau_s },
+    };
+    let mut alignment = None;
+    if let Alignment::SelfAlign { coarse_s, fine_s } = cfg.alignment {
+        if !(coarse_s > 0.0 && fine_s >= 0.0) {
+            return Err(SessionError::BadTimes(format!("alignment times coarse {coarse_s} s, fine {fine_s} s")));
+        }
+        let (state, res) = self_align(plant, init, coarse_s, fine_s)?;
+        init = state;
+        alignment = Some(res);
+    }
+    let mut nav = Strapdown::new(init, dt, vertical);
+    let comp = cfg.compensation.as_ref().map(PositionBiasCompensation::new);
+    let samples = (nav_s / dt).round() as u64;
+    let every = ((cfg.record_every_s / dt).round() as u64).max(1);
+    let mut records = Vec::with_capacity((samples / every + 1) as usize);
+    let mut trms = Trms::default();
+    let mut up_sum = 0.0;
+    for k in 1..=samples {
+        let s = plant.step();
+        let mut dtheta = s.dtheta_rad;
+        if let Some(c) = &comp {
+            let up_b = nav.state().q_bn.inverse_transform_vector(&Vector3::z());
+            dtheta -= c.correction(dt, &up_b, &plant.truth().temps.gyro_c());
+        }
+        nav.update(&dtheta, &s.dv_mps);
+        if k % every == 0 || k == samples {
+            let st = nav.state();
+            let phi = attitude_error(&st.q_bn.to_rotation_matrix().into_inner(), &plant.attitude_c_bn());
+            let (north, east) = position_error_m(st, site.lat_rad, site.lon_rad, site.height_m);
+            let horizontal = north.hypot(east);
+            trms.push(horizontal);
+            up_sum += phi.z.abs();
+            records.push(NavRecord {
+                t_s: k as f64 * dt,
+                att_err_rad: phi.into(),
+                vel_err_mps: st.v_n.into(),
+                north_m: north,
+                east_m: east,
+                horizontal_m: horizontal,
+                trms_m: trms.value(),
+            });
+        }
+    }
+    let up_att_mean_abs_rad = up_sum / records.len().max(1) as f64;
+    Ok(NavRun { records, alignment, up_att_mean_abs_rad })
+}
+
+/// Coarse then fine alignment while the table dwells.
+fn self_align(plant: &mut Plant, init: NavState, coarse_s: f64, fine_s: f64) -> Result<(NavState, AlignmentResult), SessionError> {
+    let dt = plant.dt_s();
+    let n_coarse = (coarse_s / dt).round() as u64;
+    let (mut f_sum, mut w_sum) = (Vector3::zeros(), Vector3::zeros());
+    for _ in 0..n_coarse {
+        let s = plant.step();
+        if plant.truth().gimbal.moving {
+            return Err(SessionError::TableMovedDuringAlignment { t_s: s.t_s });
+        }
+        f_sum += s.dv_mps;
+        w_sum += s.dtheta_rad;
+    }
+    let c_bn = coarse(&f_sum, &w_sum);
+    let q0 = nalgebra::UnitQuaternion::from_matrix(&c_bn);
+    let coarse_err = attitude_error(&c_bn, &plant.attitude_c_bn());
+
+    let cfg = plant.config().sensor.clone();
+    let arw = if cfg.gyro.angle_random_walk.enabled { cfg.gyro.angle_random_walk.dpsh[0] * DPSH } else { 0.0 };
+    let vrw = if cfg.accel.velocity_random_walk.enabled { cfg.accel.velocity_random_walk.ug_per_sqrthz[0] * UG } else { 0.0 };
+    let kf_dt = 1.0;
+    let per_update = ((kf_dt / dt).round() as u64).max(1);
+    let mut kf = FineAlignment::new(init.lat_rad, per_update as f64 * dt, arw, vrw);
+    let mut nav = Strapdown::new(NavState { q_bn: q0, ..init }, dt, VerticalChannel::Hold { ref_height_m: init.height_m });
+    let n_fine = (fine_s / dt).round() as u64;
+    for k in 1..=n_fine {
+        let s = plant.step();
+        if plant.truth().gimbal.moving {
+            return Err(SessionError::TableMovedDuringAlignment { t_s: s.t_s });
+        }
+        nav.update(&s.dtheta_rad, &s.dv_mps);
+        if k % per_update == 0 {
+            let st = *nav.state();
+            let x = kf.step(&Vector2::new(st.v_n.x, st.v_n.y));
+            let q = correct_attitude(&st.q_bn, &Vector3::new(x[0], x[1], x[2]));
+            // Position is known during alignment; velocity is reset to the estimate's residual.
+            nav.set_state(NavState {
+                q_bn: q,
+                v_n: Vector3::new(st.v_n.x - x[3], st.v_n.y - x[4], 0.0),
+                lat_rad: init.lat_rad,
+                lon_rad: init.lon_rad,
+                height_m: init.height_m,
+            });
+        }
+    }
+    let st = *nav.state();
+    let fine_err = attitude_error(&st.q_bn.to_rotation_matrix().into_inner(), &plant.attitude_c_bn());
+    let aligned = NavState { q_bn: st.q_bn, v_n: Vector3::zeros(), lat_rad: init.lat_rad, lon_rad: init.lon_rad, height_m: init.height_m };
+    Ok((aligned, AlignmentResult { coarse_err_rad: coarse_err.into(), fine_err_rad: fine_err.into(), fine_sigma_rad: kf.attitude_sigma().into() }))
+}

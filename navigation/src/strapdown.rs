@@ -1,0 +1,168 @@
+//! Strapdown mechanisation in the local-level ENU frame on WGS-84, consuming Δθ/Δv increments.
+//!
+//! Attitude: q_b^n(k) = q(−ζ_k) ⊗ q_b^n(k−1) ⊗ q(φ_k), with the coning-corrected body rotation
+//! φ_k = Δθ_k + (1/12)·Δθ_{k−1} × Δθ_k (two-sample, previous interval) and the navigation-frame
+//! rotation ζ_k = ω_in^n·Δt. Velocity: the sculling-corrected specific-force increment
+//! Δv_sf = Δv_k + ½Δθ_k × Δv_k + (1/12)(Δθ_{k−1} × Δv_k + Δv_{k−1} × Δθ_k), rotated with
+//! (I − ½[ζ×])·C_b^n(k−1), plus (g^n − (2ω_ie^n + ω_en^n) × v^n)·Δt.
+//! The vertical channel of a free inertial navigator is unstable; see [`VerticalChannel`].
+
+use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity, radii_of_curvature};
+use serde::{Deserialize, Serialize};
+
+/// How the unstable vertical channel is handled.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", tag = "mode")]
+pub enum VerticalChannel {
+    /// Height held at `ref_height_m`, vertical velocity zero (the usual choice for static and
+    /// marine INS tests; accelerometer errors then do not reach the vertical).
+    Hold {
+        /// Reference height, m.
+        ref_height_m: f64,
+    },
+    /// Second-order loop to the reference height: ḣ = v_U − (2/τ)·δh, v̇_U = a_U − δh/τ²
+    /// (critically damped, time constant τ).
+    Damped {
+        /// Reference height, m.
+        ref_height_m: f64,
+        /// Loop time constant, s.
+        tau_s: f64,
+    },
+}
+
+/// Position, velocity and attitude.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NavState {
+    /// Attitude q_b^n (body to ENU).
+    pub q_bn: UnitQuaternion<f64>,
+    /// Velocity in ENU, m/s.
+    pub v_n: Vector3<f64>,
+    /// Geodetic latitude, rad.
+    pub lat_rad: f64,
+    /// Longitude, rad.
+    pub lon_rad: f64,
+    /// Height, m.
+    pub height_m: f64,
+}
+
+/// Rotation-vector to quaternion by its series, exact to O(|v|⁶) (|v| ≤ 1e-2 rad per step).
+#[inline]
+pub fn quat_from_rotvec(v: &Vector3<f64>) -> UnitQuaternion<f64> {
+    let n2 = v.norm_squared();
+    if n2 > 1e-4 {
+        return UnitQuaternion::from_scaled_axis(*v);
+    }
+    let c = 1.0 - n2 / 8.0 + n2 * n2 / 384.0;
+    let s = 0.5 - n2 / 48.0 + n2 * n2 / 3840.0;
+    UnitQuaternion::new_unchecked(Quaternion::new(c, s * v.x, s * v.y, s * v.z))
+}
+
+/// The strapdown navigator.
+#[derive(Clone, Debug)]
+pub struct Strapdown {
+    state: NavState,
+    vertical: VerticalChannel,
+    dt_s: f64,
+    prev_dtheta: Vector3<f64>,
+    prev_dv: Vector3<f64>,
+    steps: u64,
+}
+
+impl Strapdown {
+    /// Starts from `state`, consuming increments over intervals of `dt_s`.
+    pub fn new(state: NavState, dt_s: f64, vertical: VerticalChannel) -> Self {
+        let mut s = Self { state, vertical, dt_s, prev_dtheta: Vector3::zeros(), prev_dv: Vector3::zeros(), steps: 0 };
+        if let VerticalChannel::Hold { ref_height_m } = vertical {
+            s.state.height_m = ref_height_m;
+            s.state.v_n.z = 0.0;
+        }
+        s
+    }
+
+    /// Current solution.
+    pub fn state(&self) -> &NavState {
+        &self.state
+    }
+
+    /// Overwrites the solution (used by alignment feedback).
+    pub fn set_state(&mut self, state: NavState) {
+        self.state = state;
+    }
+
+    /// Increments consumed so far.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Vertical-channel handling.
+    pub fn vertical(&self) -> VerticalChannel {
+        self.vertical
+    }
+
+    /// Earth rate ω_ie^n and transport rate ω_en^n at the current solution, rad/s.
+    pub fn frame_rates(&self) -> (Vector3<f64>, Vector3<f64>) {
+        let s = &self.state;
+        let (rm, rn) = radii_of_curvature(s.lat_rad);
+        let (sl, cl) = s.lat_rad.sin_cos();
+        let w_ie = Vector3::new(0.0, OMEGA_IE_RPS * cl, OMEGA_IE_RPS * sl);
+        let rnh = rn + s.height_m;
+        let w_en = Vector3::new(-s.v_n.y / (rm + s.height_m), s.v_n.x / rnh, s.v_n.x * sl / cl / rnh);
+        (w_ie, w_en)
+    }
+
+    /// Consumes one interval's increments Δθ (rad) and Δv (m/s).
+    pub fn update(&mut self, dtheta: &Vector3<f64>, dv: &Vector3<f64>) {
+        let dt = self.dt_s;
+        let (pth, pdv) = (self.prev_dtheta, self.prev_dv);
+        let phi = dtheta + pth.cross(dtheta) / 12.0;
+        let dv_sf_b = dv + 0.5 * dtheta.cross(dv) + (pth.cross(dv) + pdv.cross(dtheta)) / 12.0;
+        self.prev_dtheta = *dtheta;
+        self.prev_dv = *dv;
+
+        let s = self.state;
+        let (w_ie, w_en) = self.frame_rates();
+        let w_in = w_ie + w_en;
+        let zeta = w_in * dt;
+        let c_bn = s.q_bn.to_rotation_matrix().into_inner();
+        let dv_sf_n = (Matrix3::identity() - 0.5 * zeta.cross_matrix()) * (c_bn * dv_sf_b);
+        let g_n = Vector3::new(0.0, 0.0, -normal_gravity(s.lat_rad, s.height_m));
+        let mut v = s.v_n + dv_sf_n + (g_n - (2.0 * w_ie + w_en).cross(&s.v_n)) * dt;
+
+        let (rm, rn) = radii_of_curvature(s.lat_rad);
+        let mut h = s.height_m;
+        match self.vertical {
+            VerticalChannel::Hold { ref_height_m } => {
+                v.z = 0.0;
+                h = ref_height_m;
+            }
+            VerticalChannel::Damped { ref_height_m, tau_s } => {
+                let dh = h - ref_height_m;
+                v.z -= dh / (tau_s * tau_s) * dt;
+                h += (0.5 * (s.v_n.z + v.z) - 2.0 * dh / tau_s) * dt;
+            }
+        }
+        let v_mid = 0.5 * (s.v_n + v);
+        let lat = s.lat_rad + v_mid.y / (rm + s.height_m) * dt;
+        let lon = s.lon_rad + v_mid.x / ((rn + s.height_m) * s.lat_rad.cos()) * dt;
+
+        let mut q = quat_from_rotvec(&(-zeta)) * s.q_bn * quat_from_rotvec(&phi);
+        q.renormalize_fast();
+        self.state = NavState { q_bn: q, v_n: v, lat_rad: lat, lon_rad: lon, height_m: h };
+        self.steps += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn series_quaternion_matches_exact() {
+        let v = Vector3::new(3e-4, -2e-4, 1e-4);
+        let a = quat_from_rotvec(&v);
+        let b = UnitQuaternion::from_scaled_axis(v);
+        assert_relative_eq!(a.coords, b.coords, epsilon = 1e-18);
+    }
+}
