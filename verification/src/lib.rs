@@ -6,6 +6,7 @@
 
 pub mod analytic;
 pub mod ins;
+pub mod paper;
 pub mod quadrature;
 pub mod report;
 pub mod table2;

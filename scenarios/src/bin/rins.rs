@@ -22,9 +22,14 @@ enum Command {
     /// Verification reports.
     #[command(subcommand)]
     Verify(VerifyCommand),
-    /// The paper's headline experiment (Section 3.1, 16-position 1-week static RINS) with its
-    /// verification report. Runs a shortened default; `--full` runs the whole week.
-    Paper(PaperArgs),
+    /// The paper's experiments. Without a subcommand: the headline job, the analytic
+    /// verification plus Table 4 with a few seeds (`--full`: 32 seeds).
+    Paper {
+        #[command(subcommand)]
+        which: Option<PaperCommand>,
+        #[command(flatten)]
+        args: PaperArgs,
+    },
     /// List the built-in scenarios, or print one.
     Scenarios {
         /// Print this built-in scenario's TOML.
@@ -58,7 +63,7 @@ struct RunArgs {
 
 #[derive(Args)]
 struct PaperArgs {
-    /// Simulate the full week (default: one day).
+    /// Headline job: run the full Monte Carlo (32 seeds) instead of 2.
     #[arg(long)]
     full: bool,
     /// Output folder.
@@ -67,7 +72,43 @@ struct PaperArgs {
 }
 
 #[derive(Subcommand)]
+enum PaperCommand {
+    /// Section 3.1 / Table 4 / Figures 2-3: 1-week static 16-position navigation, uncompensated
+    /// vs compensated, over several seeds, side by side with the paper.
+    Table4(Table4Args),
+}
+
+#[derive(Args)]
+struct Table4Args {
+    /// Seeds (each runs both cases; both cores are used).
+    #[arg(long, default_value_t = 32)]
+    runs: usize,
+    /// Navigation time in days.
+    #[arg(long, default_value_t = 7.0)]
+    days: f64,
+    /// Scenario (default: the built-in Section 3.1 scenario).
+    #[arg(long, default_value = "builtin:paper-16pos-week")]
+    scenario: PathBuf,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    json: bool,
+    /// Output folder for table4.json and the SVG figures.
+    #[arg(long, default_value = "out/table4")]
+    out: PathBuf,
+}
+
+#[derive(Subcommand)]
 enum VerifyCommand {
+    /// Closed-form static INS responses reproduced by the plant and navigator (Schuler,
+    /// Foucault, 24 h, tilt from accelerometer bias, ARW Monte Carlo).
+    Ins {
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+        /// Monte Carlo runs for the ARW check.
+        #[arg(long, default_value_t = 64)]
+        runs: usize,
+    },
     /// Eq. 8 cancellation, Eq. 11 residual and Table 2 against the plant's kinematics.
     Analytic {
         /// Print JSON instead of text.
@@ -119,16 +160,84 @@ fn cmd_run(a: &RunArgs) -> Result<()> {
 fn cmd_paper(a: &PaperArgs) -> Result<()> {
     let report = rins_verify::report::AnalyticReport::run();
     println!("== Analytic verification (Eq. 8, Eq. 11, Table 2) ==\n{}", report.to_text());
-    let run_args = RunArgs {
+    let t4 = Table4Args {
+        runs: if a.full { 32 } else { 2 },
+        days: 7.0,
         scenario: PathBuf::from("builtin:paper-16pos-week"),
+        json: false,
         out: a.out.clone(),
-        overrides: Overrides { seed: None, duration_s: if a.full { None } else { Some(86_400.0) }, rate_hz: None },
     };
-    println!("== Headline scenario: {} ==", if a.full { "1 week" } else { "1 day (use --full for the week)" });
-    cmd_run(&run_args)?;
-    println!("IMU stream written to {}/imu.csv", a.out.display());
+    println!("== Section 3.1 / Table 4 ({} seeds; --full for 32) ==", t4.runs);
+    cmd_table4(&t4)?;
     if !report.passed() {
         anyhow::bail!("analytic verification failed");
+    }
+    Ok(())
+}
+
+fn cmd_table4(a: &Table4Args) -> Result<()> {
+    if a.runs == 0 {
+        anyhow::bail!("--runs: expected at least 1 seed, got 0");
+    }
+    if !(a.days > 0.0 && a.days <= 60.0) {
+        anyhow::bail!("--days: expected a number in (0, 60], got {}", a.days);
+    }
+    let sc = Scenario::load(&a.scenario)?;
+    let opt = rins_verify::paper::Table4Options {
+        plant: sc.plant.clone(),
+        runs: a.runs,
+        duration_s: a.days * 86_400.0,
+        nav: rins_nav::NavRunConfig::default(),
+    };
+    let total = (2 * a.runs as u64 + 2) * (opt.duration_s * sc.plant.rate_hz) as u64;
+    let pb = rins_scenarios::progress::bar(total, "table4");
+    let r = rins_verify::paper::table4(&opt, &|n| pb.inc(n));
+    pb.finish_and_clear();
+    std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
+    std::fs::write(a.out.join("table4.json"), serde_json::to_string_pretty(&r)?)?;
+    write_table4_figures(&r, &a.out)?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+    } else {
+        print!("{}", r.to_text());
+        println!("  figures and table4.json in {}", a.out.display());
+    }
+    Ok(())
+}
+
+fn write_table4_figures(r: &rins_verify::paper::Table4Report, out: &std::path::Path) -> Result<()> {
+    use rins_scenarios::plots::{Line, Panel, write_svg};
+    use plotters::style::RGBColor;
+    const UNC: RGBColor = RGBColor(200, 40, 40);
+    const COMP: RGBColor = RGBColor(30, 90, 200);
+    for (series, tag, what) in [(&r.first_seed, "", "first seed"), (&r.noise_free_series, "_noise_free", "noise-free")] {
+        let pts = |recs: &[rins_nav::NavRecord], f: &dyn Fn(&rins_nav::NavRecord) -> f64| -> Vec<(f64, f64)> {
+            recs.iter().map(|x| (x.t_s / 3600.0, f(x))).collect()
+        };
+        let pair = |f: &dyn Fn(&rins_nav::NavRecord) -> f64| {
+            vec![
+                Line { label: "uncompensated", points: pts(&series.uncompensated, f), color: UNC },
+                Line { label: "compensated", points: pts(&series.compensated, f), color: COMP },
+            ]
+        };
+        let att = ["East", "North", "Up"]
+            .iter()
+            .enumerate()
+            .map(|(k, n)| Panel { title: format!("{n}-axis attitude error"), y_label: "deg", lines: pair(&|x| x.att_err_rad[k].to_degrees()) })
+            .collect::<Vec<_>>();
+        write_svg(&out.join(format!("fig2_attitude_error{tag}.svg")), &format!("Figure 2 counterpart: attitude error ({what})"), "time (h)", &att)?;
+        let nm = rins_nav::errors::nmi;
+        let pos = vec![
+            Panel { title: "Latitude error".into(), y_label: "nmi", lines: pair(&|x| nm(x.north_m)) },
+            Panel { title: "Longitude error".into(), y_label: "nmi", lines: pair(&|x| nm(x.east_m)) },
+            Panel { title: "Horizontal error and tRMS (Eq. 20)".into(), y_label: "nmi", lines: {
+                let mut l = pair(&|x| nm(x.horizontal_m));
+                l.push(Line { label: "tRMS uncompensated", points: pts(&series.uncompensated, &|x| nm(x.trms_m)), color: RGBColor(240, 150, 150) });
+                l.push(Line { label: "tRMS compensated", points: pts(&series.compensated, &|x| nm(x.trms_m)), color: RGBColor(140, 170, 240) });
+                l
+            } },
+        ];
+        write_svg(&out.join(format!("fig3_position_error{tag}.svg")), &format!("Figure 3 counterpart: position error ({what})"), "time (h)", &pos)?;
     }
     Ok(())
 }
@@ -150,7 +259,8 @@ fn main() -> std::process::ExitCode {
 fn dispatch(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Run(a) => cmd_run(&a),
-        Command::Paper(a) => cmd_paper(&a),
+        Command::Paper { which: None, args } => cmd_paper(&args),
+        Command::Paper { which: Some(PaperCommand::Table4(a)), .. } => cmd_table4(&a),
         Command::Verify(VerifyCommand::Analytic { json }) => {
             let r = rins_verify::report::AnalyticReport::run();
             if json {
@@ -160,6 +270,21 @@ fn dispatch(cli: Cli) -> Result<()> {
             }
             if !r.passed() {
                 anyhow::bail!("analytic verification failed");
+            }
+            Ok(())
+        }
+        Command::Verify(VerifyCommand::Ins { json, runs }) => {
+            if runs < 8 {
+                anyhow::bail!("--runs: expected at least 8 Monte Carlo runs, got {runs}");
+            }
+            let r = rins_verify::ins::InsReport::run(runs);
+            if json {
+                println!("{}", serde_json::to_string_pretty(&r)?);
+            } else {
+                print!("{}", r.to_text());
+            }
+            if !r.passed() {
+                anyhow::bail!("INS closed-form verification failed");
             }
             Ok(())
         }

@@ -1,0 +1,71 @@
+//! Static SVG figures with plotters (SVG needs no fonts).
+
+use std::path::Path;
+
+use anyhow::{Result, anyhow};
+use plotters::prelude::*;
+
+/// One line of a panel.
+pub struct Line<'a> {
+    /// Legend label.
+    pub label: &'a str,
+    /// (x, y) points.
+    pub points: Vec<(f64, f64)>,
+    /// Colour.
+    pub color: RGBColor,
+}
+
+/// One panel of a figure.
+pub struct Panel<'a> {
+    /// Panel title.
+    pub title: String,
+    /// y-axis label with unit.
+    pub y_label: &'a str,
+    /// Lines.
+    pub lines: Vec<Line<'a>>,
+}
+
+/// Writes panels stacked vertically, sharing an x axis labelled `x_label`.
+pub fn write_svg(path: &Path, title: &str, x_label: &str, panels: &[Panel]) -> Result<()> {
+    let height = 40 + 260 * panels.len() as u32;
+    let root = SVGBackend::new(path, (900, height)).into_drawing_area();
+    let err = |e: &dyn std::fmt::Display| anyhow!("{}: {e}", path.display());
+    root.fill(&WHITE).map_err(|e| err(&e))?;
+    let root = root.titled(title, ("sans-serif", 20)).map_err(|e| err(&e))?;
+    let areas = root.split_evenly((panels.len(), 1));
+    for (area, p) in areas.iter().zip(panels) {
+        let pts = p.lines.iter().flat_map(|l| l.points.iter());
+        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for &(x, y) in pts {
+            if x.is_finite() && y.is_finite() {
+                x0 = x0.min(x);
+                x1 = x1.max(x);
+                y0 = y0.min(y);
+                y1 = y1.max(y);
+            }
+        }
+        if x0 > x1 {
+            continue;
+        }
+        let pad = ((y1 - y0) * 0.05).max(1e-12);
+        let mut chart = ChartBuilder::on(area)
+            .caption(&p.title, ("sans-serif", 15))
+            .margin(8)
+            .x_label_area_size(35)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x0..x1.max(x0 + 1e-9), (y0 - pad)..(y1 + pad))
+            .map_err(|e| err(&e))?;
+        chart.configure_mesh().x_desc(x_label).y_desc(p.y_label).draw().map_err(|e| err(&e))?;
+        for l in &p.lines {
+            let color = l.color;
+            chart
+                .draw_series(LineSeries::new(l.points.iter().copied(), color.stroke_width(2)))
+                .map_err(|e| err(&e))?
+                .label(l.label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+        }
+        chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw().map_err(|e| err(&e))?;
+    }
+    root.present().map_err(|e| err(&e))?;
+    Ok(())
+}

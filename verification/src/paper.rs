@@ -1,0 +1,308 @@
+//! The paper's week-long simulation (Section 3.1, Table 4, Figures 2–3): uncompensated and
+//! compensated navigation of the 16-position RINS over several seeds, side by side with the paper.
+
+use rayon::prelude::*;
+use rins_nav::{NavRecord, NavRunConfig, run};
+use rins_plant::effects::GyroTerm;
+use rins_plant::{Plant, PlantConfig};
+use serde::Serialize;
+
+/// Table 4 of the paper and the up-axis mean attitude errors quoted with Figure 2.
+pub mod published {
+    /// Latitude error at the end, uncompensated / compensated, nmi.
+    pub const LAT_NM: [f64; 2] = [2.7088, 2.6382];
+    /// Longitude error at the end, uncompensated / compensated, nmi.
+    pub const LON_NM: [f64; 2] = [6.6784, 2.6241];
+    /// Up-axis mean attitude error, uncompensated / compensated, degrees.
+    pub const UP_ATT_MEAN_DEG: [f64; 2] = [0.0338, 0.0302];
+}
+
+/// Median and 5–95 % band over the seeds.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct Band {
+    /// Median.
+    pub median: f64,
+    /// 5th percentile.
+    pub p05: f64,
+    /// 95th percentile.
+    pub p95: f64,
+}
+
+impl Band {
+    /// Band of `xs` (linear interpolation between order statistics).
+    pub fn of(xs: &[f64]) -> Self {
+        let mut v = xs.to_vec();
+        v.sort_by(f64::total_cmp);
+        let q = |p: f64| {
+            if v.is_empty() {
+                return f64::NAN;
+            }
+            let x = p * (v.len() - 1) as f64;
+            let (i, f) = (x.floor() as usize, x - x.floor());
+            if i + 1 < v.len() { v[i] * (1.0 - f) + v[i + 1] * f } else { v[i] }
+        };
+        Self { median: q(0.5), p05: q(0.05), p95: q(0.95) }
+    }
+}
+
+/// End-of-run figures of one navigation run.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct EndFigures {
+    /// Latitude error at the end (signed, north positive), nmi.
+    pub lat_nm: f64,
+    /// Longitude error at the end (signed, east positive), nmi.
+    pub lon_nm: f64,
+    /// Horizontal error at the end, nmi.
+    pub horizontal_nm: f64,
+    /// tRMS at the end (Eq. 20), nmi.
+    pub trms_nm: f64,
+    /// Mean |φ_U| over the run, degrees.
+    pub up_att_mean_deg: f64,
+}
+
+impl EndFigures {
+    fn from_run(r: &rins_nav::NavRun) -> Self {
+        let e = r.end();
+        let nm = rins_nav::errors::nmi;
+        Self {
+            lat_nm: nm(e.north_m),
+            lon_nm: nm(e.east_m),
+            horizontal_nm: nm(e.horizontal_m),
+            trms_nm: nm(e.trms_m),
+            up_att_mean_deg: r.up_att_mean_abs_rad.to_degrees(),
+        }
+    }
+}
+
+/// Statistics of one case over the seeds.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct CaseStats {
+    /// Signed latitude error.
+    pub lat_nm: Band,
+    /// Signed longitude error.
+    pub lon_nm: Band,
+    /// |latitude error| (the paper prints magnitudes).
+    pub abs_lat_nm: Band,
+    /// |longitude error|.
+    pub abs_lon_nm: Band,
+    /// Horizontal error.
+    pub horizontal_nm: Band,
+    /// tRMS.
+    pub trms_nm: Band,
+    /// Mean |φ_U|.
+    pub up_att_mean_deg: Band,
+}
+
+impl CaseStats {
+    fn of(runs: &[EndFigures]) -> Self {
+        let b = |f: &dyn Fn(&EndFigures) -> f64| Band::of(&runs.iter().map(f).collect::<Vec<_>>());
+        Self {
+            lat_nm: b(&|r| r.lat_nm),
+            lon_nm: b(&|r| r.lon_nm),
+            abs_lat_nm: b(&|r| r.lat_nm.abs()),
+            abs_lon_nm: b(&|r| r.lon_nm.abs()),
+            horizontal_nm: b(&|r| r.horizontal_nm),
+            trms_nm: b(&|r| r.trms_nm),
+            up_att_mean_deg: b(&|r| r.up_att_mean_deg),
+        }
+    }
+}
+
+/// Improvement of compensated over uncompensated, 100·(1 − comp/uncomp), on medians of magnitudes.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct Improvement {
+    /// |latitude|.
+    pub lat: f64,
+    /// |longitude|.
+    pub lon: f64,
+    /// Horizontal.
+    pub horizontal: f64,
+    /// tRMS.
+    pub trms: f64,
+    /// Mean |φ_U|.
+    pub up_att_mean: f64,
+}
+
+fn improvement(u: &CaseStats, c: &CaseStats) -> Improvement {
+    let pct = |a: f64, b: f64| 100.0 * (1.0 - b / a);
+    Improvement {
+        lat: pct(u.abs_lat_nm.median, c.abs_lat_nm.median),
+        lon: pct(u.abs_lon_nm.median, c.abs_lon_nm.median),
+        horizontal: pct(u.horizontal_nm.median, c.horizontal_nm.median),
+        trms: pct(u.trms_nm.median, c.trms_nm.median),
+        up_att_mean: pct(u.up_att_mean_deg.median, c.up_att_mean_deg.median),
+    }
+}
+
+/// The noise-free pair that isolates δβ.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct NoiseFree {
+    /// Uncompensated.
+    pub uncompensated: EndFigures,
+    /// Compensated.
+    pub compensated: EndFigures,
+}
+
+/// Time series of one run, for the figures.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Series {
+    /// Uncompensated records.
+    pub uncompensated: Vec<NavRecord>,
+    /// Compensated records.
+    pub compensated: Vec<NavRecord>,
+}
+
+/// `rins paper table4`.
+#[derive(Clone, Debug, Serialize)]
+pub struct Table4Report {
+    /// Seeds.
+    pub runs: usize,
+    /// Simulated days.
+    pub days: f64,
+    /// Uncompensated statistics.
+    pub uncompensated: CaseStats,
+    /// Compensated statistics.
+    pub compensated: CaseStats,
+    /// Improvements, %.
+    pub improvement_pct: Improvement,
+    /// The deterministic pair with every stochastic term off.
+    pub noise_free: NoiseFree,
+    /// Per-seed end figures (uncompensated, compensated).
+    pub per_seed: Vec<(u64, EndFigures, EndFigures)>,
+    /// Records of the first seed (both cases).
+    #[serde(skip)]
+    pub first_seed: Series,
+    /// Records of the noise-free pair.
+    #[serde(skip)]
+    pub noise_free_series: Series,
+    /// Wall time, s.
+    pub wall_s: f64,
+}
+
+/// Options of the reproduction.
+#[derive(Clone, Debug)]
+pub struct Table4Options {
+    /// Plant configuration (the Section 3.1 scenario).
+    pub plant: PlantConfig,
+    /// Seeds run (seed = plant.seed + k).
+    pub runs: usize,
+    /// Navigation time, s.
+    pub duration_s: f64,
+    /// Navigator options (alignment, vertical channel, record interval). Compensation is set per case.
+    pub nav: NavRunConfig,
+}
+
+fn one_run(plant_cfg: &PlantConfig, nav: &NavRunConfig, compensated: bool, duration_s: f64, progress: &(dyn Fn(u64) + Sync)) -> rins_nav::NavRun {
+    let mut plant = Plant::new(plant_cfg).expect("validated scenario");
+    let mut cfg = nav.clone();
+    cfg.compensation = compensated.then_some(plant_cfg.sensor.gyro.position_bias);
+    let out = run(&mut plant, duration_s, &cfg).expect("navigation run");
+    progress((duration_s * plant_cfg.rate_hz) as u64);
+    out
+}
+
+/// Runs the reproduction on every core: `runs` seeds × {uncompensated, compensated} with common
+/// random numbers (the same seed gives the same IMU samples; only the navigator differs), plus
+/// the noise-free pair. `progress` receives samples done.
+pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Report {
+    let t0 = std::time::Instant::now();
+    let mut tasks: Vec<(Option<u64>, bool)> = Vec::new();
+    for k in 0..opt.runs as u64 {
+        tasks.push((Some(opt.plant.seed + k), false));
+        tasks.push((Some(opt.plant.seed + k), true));
+    }
+    tasks.push((None, false));
+    tasks.push((None, true));
+    let results: Vec<((Option<u64>, bool), rins_nav::NavRun)> = tasks
+        .into_par_iter()
+        .map(|(seed, comp)| {
+            let mut cfg = opt.plant.clone();
+            match seed {
+                Some(s) => cfg.seed = s,
+                None => {
+                    for t in [GyroTerm::AngleRandomWalk, GyroTerm::BiasInstability, GyroTerm::RateRandomWalk] {
+                        cfg.sensor.gyro.set_enabled(t, false);
+                    }
+                    cfg.sensor.accel.velocity_random_walk.enabled = false;
+                }
+            }
+            ((seed, comp), one_run(&cfg, &opt.nav, comp, opt.duration_s, progress))
+        })
+        .collect();
+    let mut per_seed = Vec::new();
+    let mut first = Series::default();
+    let mut nf = NoiseFree::default();
+    let mut nf_series = Series::default();
+    for k in 0..opt.runs as u64 {
+        let seed = opt.plant.seed + k;
+        let get = |c: bool| results.iter().find(|((s, cc), _)| *s == Some(seed) && *cc == c).map(|(_, r)| r).expect("task ran");
+        let (u, c) = (get(false), get(true));
+        if k == 0 {
+            first = Series { uncompensated: u.records.clone(), compensated: c.records.clone() };
+        }
+        per_seed.push((seed, EndFigures::from_run(u), EndFigures::from_run(c)));
+    }
+    for ((s, c), r) in &results {
+        if s.is_none() {
+            if *c {
+                nf.compensated = EndFigures::from_run(r);
+                nf_series.compensated = r.records.clone();
+            } else {
+                nf.uncompensated = EndFigures::from_run(r);
+                nf_series.uncompensated = r.records.clone();
+            }
+        }
+    }
+    let u: Vec<EndFigures> = per_seed.iter().map(|p| p.1).collect();
+    let c: Vec<EndFigures> = per_seed.iter().map(|p| p.2).collect();
+    let (us, cs) = (CaseStats::of(&u), CaseStats::of(&c));
+    Table4Report {
+        runs: opt.runs,
+        days: opt.duration_s / 86_400.0,
+        improvement_pct: improvement(&us, &cs),
+        uncompensated: us,
+        compensated: cs,
+        noise_free: nf,
+        per_seed,
+        first_seed: first,
+        noise_free_series: nf_series,
+        wall_s: t0.elapsed().as_secs_f64(),
+    }
+}
+
+impl Table4Report {
+    /// The side-by-side table.
+    pub fn to_text(&self) -> String {
+        let (u, c) = (&self.uncompensated, &self.compensated);
+        let row = |name: &str, paper: [f64; 2], bu: &Band, bc: &Band| {
+            format!(
+                "  {:<26} {:>9.4} {:>9.4}   {:>8.4} [{:>7.4}, {:>7.4}]   {:>8.4} [{:>7.4}, {:>7.4}]\n",
+                name, paper[0], paper[1], bu.median, bu.p05, bu.p95, bc.median, bc.p05, bc.p95
+            )
+        };
+        let na = [f64::NAN, f64::NAN];
+        let mut s = format!(
+            "Table 4: {} seeds x {:.2} days, 16-position RINS at 36.6 N 123.6 E, Table 3 sensors (wall {:.1} s)\n\
+             {:<28} {:>9} {:>9}   {:>27}   {:>27}\n",
+            self.runs, self.days, self.wall_s, "", "paper unc", "paper comp", "ours uncompensated median [5%, 95%]", "ours compensated"
+        );
+        s += &row("|latitude error| (nmi)", published::LAT_NM, &u.abs_lat_nm, &c.abs_lat_nm);
+        s += &row("|longitude error| (nmi)", published::LON_NM, &u.abs_lon_nm, &c.abs_lon_nm);
+        s += &row("latitude error (nmi)", na, &u.lat_nm, &c.lat_nm);
+        s += &row("longitude error (nmi)", na, &u.lon_nm, &c.lon_nm);
+        s += &row("horizontal error (nmi)", na, &u.horizontal_nm, &c.horizontal_nm);
+        s += &row("tRMS (nmi)", na, &u.trms_nm, &c.trms_nm);
+        s += &row("up-axis mean |att| (deg)", published::UP_ATT_MEAN_DEG, &u.up_att_mean_deg, &c.up_att_mean_deg);
+        let i = &self.improvement_pct;
+        s += &format!(
+            "  improvement (medians):    latitude {:.2} % (paper 0.53 %), longitude {:.2} % (paper 59.44 %), horizontal {:.2} %, tRMS {:.2} %, up attitude {:.2} % (paper 10.65 %)\n",
+            i.lat, i.lon, i.horizontal, i.trms, i.up_att_mean
+        );
+        let (nu, nc) = (&self.noise_free.uncompensated, &self.noise_free.compensated);
+        s += &format!(
+            "  noise-free (dbeta alone):  uncompensated lat {:+.4} lon {:+.4} nmi, up att {:.4} deg; compensated lat {:+.4} lon {:+.4} nmi, up att {:.4} deg\n",
+            nu.lat_nm, nu.lon_nm, nu.up_att_mean_deg, nc.lat_nm, nc.lon_nm, nc.up_att_mean_deg
+        );
+        s
+    }
+}
