@@ -12,7 +12,7 @@ use crate::effects::quantize::Quantizer;
 use crate::effects::{AccelModel, GyroModel, TermContext};
 use crate::table::gimbal::{rot_x, rot_y, rot_z};
 use crate::table::gimbal::gimbal_rotation;
-use crate::table::{GimbalState, Schedule, body_to_nav};
+use crate::table::{Cursor, GimbalState, Schedule, body_to_nav};
 use crate::thermal::{Temperatures, ThermalNetwork};
 use crate::units::{ARCSEC, DEG};
 
@@ -53,6 +53,18 @@ pub struct Truth {
 fn hold_tick(hold_s: f64, internal_rate_hz: f64) -> u64 {
     let t = (hold_s * internal_rate_hz).floor();
     if t.is_finite() && t >= 0.0 { t as u64 } else if t > 0.0 { u64::MAX } else { 0 }
+}
+
+/// Deterministic results of one output interval while the table dwells. Between thermal updates
+/// every input of the deterministic path is constant during a dwell, so later intervals of the
+/// same dwell reuse these bit for bit.
+#[derive(Clone, Copy, Debug)]
+struct DwellCache {
+    dtheta_true: Vector3<f64>,
+    dv_true: Vector3<f64>,
+    gyro_err: Vector3<f64>,
+    accel_err: Vector3<f64>,
+    weight: f64,
 }
 
 /// Attitude at the last evaluated midpoint, reused while the gimbal angles do not change; the
@@ -102,6 +114,12 @@ pub struct Plant {
     /// The table holds `gimbal_now` up to this internal tick (end of the current dwell).
     hold_until_tick: u64,
     mid_cache: MidCache,
+    /// Segment of the last schedule evaluation.
+    cursor: Cursor,
+    /// Reusable deterministic interval while dwelling; cleared on motion and thermal updates.
+    dwell_cache: Option<DwellCache>,
+    /// Disable the dwell cache (tests compare against the uncached path).
+    use_dwell_cache: bool,
     truth: Truth,
 }
 
@@ -157,6 +175,9 @@ impl Plant {
                 cos_inner: 1.0,
             },
             vehicle_level: c_vn == Matrix3::identity(),
+            dwell_cache: None,
+            use_dwell_cache: true,
+            cursor: Cursor::default(),
             truth: Truth {
                 gimbal: g0,
                 dtheta_true_rad: Vector3::zeros(),
@@ -230,6 +251,12 @@ impl Plant {
         UnitQuaternion::from_matrix(&self.attitude_c_bn())
     }
 
+    /// Turns the dwell cache off or on. Output is bit-identical either way; only speed differs.
+    pub fn set_dwell_cache(&mut self, on: bool) {
+        self.use_dwell_cache = on;
+        self.dwell_cache = None;
+    }
+
     /// Overrides the chamber temperature (an FMU input); `None` returns to the scenario profile.
     pub fn set_chamber_temp_c(&mut self, temp_c: Option<f64>) {
         self.chamber_override_c = temp_c;
@@ -268,31 +295,20 @@ impl Plant {
         }
         let ((g1, hold), gm) = self
             .schedule
-            .eval_end_and_mid(tick as f64 / self.internal_rate_hz, (tick as f64 - 0.5) / self.internal_rate_hz);
+            .eval_end_and_mid(tick as f64 / self.internal_rate_hz, (tick as f64 - 0.5) / self.internal_rate_hz, &mut self.cursor);
         self.hold_until_tick = hold_tick(hold, self.internal_rate_hz);
         (g1, gm)
     }
 
-    /// Advances one output interval: kinematics → thermal → sensor effects → noise → quantisation.
-    pub fn step(&mut self) -> ImuSample {
-        let index = self.samples;
-        self.samples += 1;
-        if self.slow_countdown == 0 {
-            self.slow_countdown = self.slow_every;
-            let h = self.cfg.thermal.step_s;
-            let t = self.time_s();
-            let up_b = self.attitude_c_bn().transpose() * Vector3::z();
-            let ch = self.chamber_c(t);
-            self.thermal.step(h, ch, &up_b);
-            self.noise.step_slow(h);
-            let t = self.thermal.temperatures();
-            self.gyro_thermal = self.gyro.thermal_rates(&t.gyro_c(), &t.gyro_gradient_k());
-            self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(t.accel_c());
-        }
-        self.slow_countdown -= 1;
-        let temps = self.thermal.temperatures();
-        let (gyro_temp, gradient, accel_temp) = (temps.gyro_c(), temps.gyro_gradient_k(), temps.accel_c());
-
+    /// Kinematics and deterministic sensor effects over one output interval (all substeps):
+    /// returns (Δθ_true, Δv_true, gyro error, accelerometer error, mean δβ weight) and writes
+    /// each term's contribution into the truth.
+    fn integrate_interval(
+        &mut self,
+        gyro_temp: Vector3<f64>,
+        gradient: Vector3<f64>,
+        accel_temp: f64,
+    ) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>, Vector3<f64>, f64) {
         let mut dtheta_true = Vector3::zeros();
         let mut dv_true = Vector3::zeros();
         let mut gyro_err = Vector3::zeros();
@@ -342,6 +358,52 @@ impl Plant {
             self.tick += 1;
         }
         weight /= substeps as f64;
+
+        (dtheta_true, dv_true, gyro_err, accel_err, weight)
+    }
+
+    /// Advances one output interval: kinematics → thermal → sensor effects → noise → quantisation.
+    pub fn step(&mut self) -> ImuSample {
+        let index = self.samples;
+        self.samples += 1;
+        if self.slow_countdown == 0 {
+            self.slow_countdown = self.slow_every;
+            let h = self.cfg.thermal.step_s;
+            let t = self.time_s();
+            let up_b = self.attitude_c_bn().transpose() * Vector3::z();
+            let ch = self.chamber_c(t);
+            self.thermal.step(h, ch, &up_b);
+            self.noise.step_slow(h);
+            let t = self.thermal.temperatures();
+            self.gyro_thermal = self.gyro.thermal_rates(&t.gyro_c(), &t.gyro_gradient_k());
+            self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(t.accel_c());
+            self.dwell_cache = None;
+        }
+        self.slow_countdown -= 1;
+        let temps = self.thermal.temperatures();
+        let (gyro_temp, gradient, accel_temp) = (temps.gyro_c(), temps.gyro_gradient_k(), temps.accel_c());
+
+        let substeps = self.cfg.substeps as u64;
+        let held = self.tick + substeps <= self.hold_until_tick;
+        let (dtheta_true, dv_true, gyro_err, accel_err, weight) = match self.dwell_cache {
+            Some(c) if held => {
+                // The per-term contributions in `self.truth` are those of the previous interval
+                // of this dwell: unchanged.
+                self.tick += substeps;
+                (c.dtheta_true, c.dv_true, c.gyro_err, c.accel_err, c.weight)
+            }
+            _ => {
+                let r = self.integrate_interval(gyro_temp, gradient, accel_temp);
+                self.dwell_cache = (held && self.use_dwell_cache).then_some(DwellCache {
+                    dtheta_true: r.0,
+                    dv_true: r.1,
+                    gyro_err: r.2,
+                    accel_err: r.3,
+                    weight: r.4,
+                });
+                r
+            }
+        };
 
         let dt = self.dt_s;
         use crate::effects::{AccelTerm as A, GyroTerm as G};

@@ -20,6 +20,21 @@ pub struct GimbalState {
     pub moving: bool,
 }
 
+/// Remembers the segment of the last evaluation so monotonic callers skip the lookup.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cursor {
+    start_abs_s: f64,
+    end_abs_s: f64,
+    seg: usize,
+    cycle: f64,
+}
+
+impl Default for Cursor {
+    fn default() -> Self {
+        Self { start_abs_s: f64::INFINITY, end_abs_s: f64::NEG_INFINITY, seg: 0, cycle: 0.0 }
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Segment {
     start_s: f64,
@@ -88,6 +103,39 @@ impl Schedule {
             .collect()
     }
 
+    /// [`Schedule::eval`] through a cursor: identical results, but while `t_s` stays inside the
+    /// cursor's segment (moves of repeating schemes) no lookup is done.
+    pub fn eval_cursor(&self, t_s: f64, cur: &mut Cursor) -> GimbalState {
+        if t_s >= cur.start_abs_s && t_s < cur.end_abs_s {
+            return self.eval_segment(cur.seg, cur.cycle, t_s - self.lead_s - cur.cycle * self.cycle_s);
+        }
+        let st = self.eval(t_s);
+        let tau = t_s - self.lead_s;
+        if tau >= 0.0 && self.continuous.is_none() && !self.segments.is_empty() && (self.repeat || tau < self.cycle_s) {
+            let cycle = if self.repeat { (tau / self.cycle_s).floor() } else { 0.0 };
+            let seg = &self.segments[st.step_index];
+            let base = self.lead_s + cycle * self.cycle_s;
+            *cur = Cursor { start_abs_s: base + seg.start_s, end_abs_s: base + seg.end_s, seg: st.step_index, cycle };
+        }
+        st
+    }
+
+    fn eval_segment(&self, idx: usize, cycle: f64, local: f64) -> GimbalState {
+        let seg = &self.segments[idx];
+        let from = GimbalAngles::new(
+            seg.from.outer_rad + cycle * self.cycle_delta.outer_rad,
+            seg.from.inner_rad + cycle * self.cycle_delta.inner_rad,
+        );
+        let dt = local - seg.start_s;
+        let angles = from.moved(seg.axis, seg.profile.angle_at(dt));
+        let rate = seg.profile.rate_at(dt);
+        let (o, i) = match seg.axis {
+            GimbalAxis::Outer => (rate, 0.0),
+            GimbalAxis::Inner => (0.0, rate),
+        };
+        GimbalState { angles, outer_rate_rps: o, inner_rate_rps: i, step_index: idx, moving: local < seg.move_end_s }
+    }
+
     /// Table state at `t_s` and the time until which that state holds unchanged (the end of the
     /// current dwell; `t_s` itself while moving). Lets callers skip evaluation during dwells.
     pub fn eval_hold(&self, t_s: f64) -> (GimbalState, f64) {
@@ -112,9 +160,11 @@ impl Schedule {
 
     /// Table state at `t_end_s` with its hold time (as [`Schedule::eval_hold`]) and at the
     /// earlier instant `t_mid_s`, sharing the segment lookup when both fall in one segment.
-    pub fn eval_end_and_mid(&self, t_end_s: f64, t_mid_s: f64) -> ((GimbalState, f64), GimbalState) {
-        let end = self.eval_hold(t_end_s);
-        (end, self.eval(t_mid_s))
+    pub fn eval_end_and_mid(&self, t_end_s: f64, t_mid_s: f64, cur: &mut Cursor) -> ((GimbalState, f64), GimbalState) {
+        let mid = self.eval_cursor(t_mid_s, cur);
+        let end = self.eval_cursor(t_end_s, cur);
+        let hold = if end.moving { t_end_s } else { self.eval_hold(t_end_s).1 };
+        ((end, hold), mid)
     }
 
     /// Table state at time `t_s` since the run start.
@@ -146,19 +196,7 @@ impl Schedule {
         };
         // Few segments (≤ 16 typically): binary search on end times.
         let idx = self.segments.partition_point(|s| s.end_s <= local).min(self.segments.len() - 1);
-        let seg = &self.segments[idx];
-        let from = GimbalAngles::new(
-            seg.from.outer_rad + cycle * self.cycle_delta.outer_rad,
-            seg.from.inner_rad + cycle * self.cycle_delta.inner_rad,
-        );
-        let dt = local - seg.start_s;
-        let angles = from.moved(seg.axis, seg.profile.angle_at(dt));
-        let rate = seg.profile.rate_at(dt);
-        let (o, i) = match seg.axis {
-            GimbalAxis::Outer => (rate, 0.0),
-            GimbalAxis::Inner => (0.0, rate),
-        };
-        GimbalState { angles, outer_rate_rps: o, inner_rate_rps: i, step_index: idx, moving: local < seg.move_end_s }
+        self.eval_segment(idx, cycle, local)
     }
 }
 
@@ -167,6 +205,18 @@ mod tests {
     use super::*;
     use crate::table::scheme::SchemeSpec;
     use approx::assert_relative_eq;
+
+    #[test]
+    fn cursor_evaluation_equals_lookup() {
+        for spec in [SchemeSpec::default(), SchemeSpec { lead_dwell_s: 33.3, ..SchemeSpec::default() }] {
+            let sched = Schedule::new(&spec.resolve());
+            let mut cur = Cursor::default();
+            for k in 0..1_000_000u64 {
+                let t = k as f64 * 0.01 + 0.005;
+                assert_eq!(sched.eval_cursor(t, &mut cur), sched.eval(t), "t = {t}");
+            }
+        }
+    }
 
     #[test]
     fn sixteen_position_cycle_time_and_periodicity() {
