@@ -15,6 +15,15 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 "${rins[@]}" run builtin:calibration-z-up --out "$tmp/cal" --duration-s 60
 test "$(wc -l < "$tmp/cal/imu.csv")" -eq 601
+"${rins[@]}" paper table4 --runs 1 --days 0.05 --json --out "$tmp/t4" | python3 -c '
+import json, sys
+d = json.load(sys.stdin)
+for case in ("uncompensated", "compensated"):
+    for k in ("lat_nm", "lon_nm", "up_att_mean_deg"):
+        for q in ("median", "p05", "p95"):
+            assert isinstance(d[case][k][q], float), (case, k, q)
+assert "lon_nm" in d["noise_free"]["compensated"]'
+test -s "$tmp/t4/fig2_attitude_error.svg" && test -s "$tmp/t4/fig3_position_error.svg"
 if "${rins[@]}" run "$tmp/missing.toml" --out "$tmp/x" 2> "$tmp/err"; then
   echo "a missing scenario file must fail"; exit 1
 fi

@@ -56,6 +56,9 @@ pub struct NavRecord {
     pub t_s: f64,
     /// Attitude error φ (E, N, U), rad.
     pub att_err_rad: [f64; 3],
+    /// Carrier (vehicle) attitude error (E, N, U), rad: the navigator's C_b^n with the gimbal
+    /// encoder angles removed, C_v^n = C_b^n·(C_b^v)ᵀ, against the true mount.
+    pub vehicle_att_err_rad: [f64; 3],
     /// Velocity error (E, N, U), m/s.
     pub vel_err_mps: [f64; 3],
     /// Latitude error as north distance, m.
@@ -111,6 +114,12 @@ pub enum SessionError {
     BadTimes(String),
 }
 
+/// The carrier (vehicle) attitude C_v^n from the navigator's IMU attitude and the gimbal
+/// encoder angles: C_v^n = C_b^n·(R_z(outer)·R_x(inner))ᵀ.
+pub fn vehicle_attitude(c_bn: &nalgebra::Matrix3<f64>, gimbal: rins_plant::table::GimbalAngles) -> nalgebra::Matrix3<f64> {
+    c_bn * rins_plant::table::body_to_nav(&nalgebra::Matrix3::identity(), gimbal).transpose()
+}
+
 /// Aligns (if asked) and navigates for `nav_s` seconds, stepping `plant` as it goes.
 pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, SessionError> {
     if !(nav_s > 0.0 && cfg.record_every_s > 0.0) {
@@ -155,7 +164,10 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
         nav.update(&dtheta, &s.dv_mps);
         if k % every == 0 || k == samples {
             let st = nav.state();
-            let phi = attitude_error(&st.q_bn.to_rotation_matrix().into_inner(), &plant.attitude_c_bn());
+            let c_bn_nav = st.q_bn.to_rotation_matrix().into_inner();
+            let phi = attitude_error(&c_bn_nav, &plant.attitude_c_bn());
+            let c_vn_nav = vehicle_attitude(&c_bn_nav, plant.truth().gimbal.angles);
+            let phi_v = attitude_error(&c_vn_nav, plant.vehicle_to_nav());
             let (north, east) = position_error_m(st, site.lat_rad, site.lon_rad, site.height_m);
             let horizontal = north.hypot(east);
             trms.push(horizontal);
@@ -163,6 +175,7 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
             records.push(NavRecord {
                 t_s: k as f64 * dt,
                 att_err_rad: phi.into(),
+                vehicle_att_err_rad: phi_v.into(),
                 vel_err_mps: st.v_n.into(),
                 north_m: north,
                 east_m: east,

@@ -20,6 +20,15 @@ pub struct VehicleSpec {
     pub roll_deg: f64,
 }
 
+impl VehicleSpec {
+    /// The mount rotation C_v^n.
+    pub fn c_vn(&self) -> nalgebra::Matrix3<f64> {
+        use crate::table::gimbal::{rot_x, rot_y, rot_z};
+        use crate::units::DEG;
+        rot_z(self.azimuth_deg * DEG) * rot_x(self.pitch_deg * DEG) * rot_y(self.roll_deg * DEG)
+    }
+}
+
 /// Gyro and accelerometer error terms.
 #[derive(Clone, Debug, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]

@@ -10,11 +10,10 @@ use crate::effects::gyro::{GYRO_TERMS, GyroThermalRates};
 use crate::effects::noise::NoiseState;
 use crate::effects::quantize::Quantizer;
 use crate::effects::{AccelModel, GyroModel, TermContext};
-use crate::table::gimbal::{rot_x, rot_y, rot_z};
 use crate::table::gimbal::gimbal_rotation;
 use crate::table::{Cursor, GimbalState, Schedule, body_to_nav};
 use crate::thermal::{Temperatures, ThermalNetwork};
-use crate::units::{ARCSEC, DEG};
+use crate::units::ARCSEC;
 
 /// One IMU output: increments over the interval ending at `t_s`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -128,8 +127,7 @@ impl Plant {
     pub fn new(cfg: &PlantConfig) -> Result<Self, Vec<ConfigError>> {
         cfg.validate()?;
         let site = Site::new(&cfg.site, &cfg.earth);
-        let v = &cfg.vehicle;
-        let c_vn = rot_z(v.azimuth_deg * DEG) * rot_x(v.pitch_deg * DEG) * rot_y(v.roll_deg * DEG);
+        let c_vn = cfg.vehicle.c_vn();
         let schedule = Schedule::new(&cfg.scheme.resolve());
         let g0 = schedule.eval(0.0);
         let c_bn = body_to_nav(&c_vn, g0.angles);

@@ -89,6 +89,10 @@ struct Table4Args {
     /// Scenario (default: the built-in Section 3.1 scenario).
     #[arg(long, default_value = "builtin:paper-16pos-week")]
     scenario: PathBuf,
+    /// Initial alignment: `truth` (perfect initial attitude, what the paper's figures match) or
+    /// `self` (300 s coarse + 600 s fine on the static IMU, prepended to the scheme).
+    #[arg(long, default_value = "truth", value_parser = ["self", "truth"])]
+    align: String,
     /// Print JSON instead of the table.
     #[arg(long)]
     json: bool,
@@ -164,6 +168,7 @@ fn cmd_paper(a: &PaperArgs) -> Result<()> {
         runs: if a.full { 32 } else { 2 },
         days: 7.0,
         scenario: PathBuf::from("builtin:paper-16pos-week"),
+        align: "truth".into(),
         json: false,
         out: a.out.clone(),
     };
@@ -183,11 +188,23 @@ fn cmd_table4(a: &Table4Args) -> Result<()> {
         anyhow::bail!("--days: expected a number in (0, 60], got {}", a.days);
     }
     let sc = Scenario::load(&a.scenario)?;
+    let mut plant = sc.plant.clone();
+    if a.align == "self" {
+        // The IMU sits at its initial position while aligning; the scheme starts afterwards.
+        plant.scheme.lead_dwell_s += 900.0;
+    }
     let opt = rins_verify::paper::Table4Options {
-        plant: sc.plant.clone(),
+        plant,
         runs: a.runs,
         duration_s: a.days * 86_400.0,
-        nav: rins_nav::NavRunConfig::default(),
+        nav: rins_nav::NavRunConfig {
+            alignment: if a.align == "self" {
+                rins_nav::Alignment::SelfAlign { coarse_s: 300.0, fine_s: 600.0 }
+            } else {
+                rins_nav::Alignment::Truth
+            },
+            ..rins_nav::NavRunConfig::default()
+        },
     };
     let total = (2 * a.runs as u64 + 2) * (opt.duration_s * sc.plant.rate_hz) as u64;
     let pb = rins_scenarios::progress::bar(total, "table4");

@@ -35,6 +35,7 @@ pub struct CsvSink<W: Write> {
     accel_sum: Vec<Vector3<f64>>,
     line: String,
     dt_s: f64,
+    c_vn: nalgebra::Matrix3<f64>,
     last: Option<(ImuSample, Truth)>,
 }
 
@@ -51,6 +52,7 @@ pub fn header(opts: &OutputSpec, gyro_terms: &[GyroTerm], accel_terms: &[AccelTe
     if opts.truth {
         h.extend(AXES.iter().map(|a| format!("dtheta_true_{a}_rad")));
         h.extend(AXES.iter().map(|a| format!("dv_true_{a}_mps")));
+        h.extend(["q_bn_w", "q_bn_x", "q_bn_y", "q_bn_z"].map(String::from));
     }
     if opts.effects {
         for t in gyro_terms {
@@ -109,6 +111,7 @@ impl<W: Write> CsvSink<W> {
             dv_true: Vector3::zeros(),
             line: String::with_capacity(1024),
             dt_s: 1.0 / plant_cfg.rate_hz,
+            c_vn: plant_cfg.vehicle.c_vn(),
             last: None,
         })
     }
@@ -138,6 +141,9 @@ impl<W: Write> CsvSink<W> {
             for v in [&self.dtheta_true, &self.dv_true] {
                 write!(l, ",{},{},{}", v.x, v.y, v.z)?;
             }
+            let c = rins_plant::table::body_to_nav(&self.c_vn, g.angles);
+            let q = nalgebra::UnitQuaternion::from_matrix(&c);
+            write!(l, ",{},{},{},{}", q.w, q.i, q.j, q.k)?;
         }
         if self.opts.effects {
             for v in &self.gyro_sum {
