@@ -202,7 +202,7 @@ fn regressors_times_coefficients_reproduce_each_term() {
     };
     let mut terms = [Vector3::zeros(); 13];
     gm.increment_error(&ctx, &mut terms);
-    for term in GyroTerm::DETERMINISTIC {
+    for &term in GyroTerm::DETERMINISTIC {
         for axis in 0..3 {
             let mut phi = Vec::new();
             gm.regressors(term, &ctx, axis, &mut phi);
@@ -215,7 +215,7 @@ fn regressors_times_coefficients_reproduce_each_term() {
     }
     let mut aterms = [Vector3::zeros(); 6];
     am.increment_error(&ctx, &mut aterms);
-    for term in AccelTerm::DETERMINISTIC {
+    for &term in AccelTerm::DETERMINISTIC {
         for axis in 0..3 {
             let mut phi = Vec::new();
             am.regressors(term, &ctx, axis, &mut phi);

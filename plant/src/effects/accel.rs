@@ -38,9 +38,8 @@ impl AccelTerm {
         AccelTerm::VelocityRandomWalk,
         AccelTerm::Quantization,
     ];
-    /// Deterministic terms (the diagnosis catalogue).
-    pub const DETERMINISTIC: [AccelTerm; 4] =
-        [AccelTerm::Bias, AccelTerm::ScaleFactor, AccelTerm::Misalignment, AccelTerm::TemperatureBias];
+    /// Deterministic terms (the diagnosis catalogue): the first four of [`AccelTerm::ALL`].
+    pub const DETERMINISTIC: &'static [AccelTerm] = Self::ALL.split_at(4).0;
 
     /// Key of the term in scenario files and output columns.
     pub fn key(self) -> &'static str {

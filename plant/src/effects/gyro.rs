@@ -59,18 +59,9 @@ impl GyroTerm {
         GyroTerm::RateRandomWalk,
         GyroTerm::Quantization,
     ];
-    /// Deterministic terms, linear in their coefficients (the diagnosis catalogue).
-    pub const DETERMINISTIC: [GyroTerm; 9] = [
-        GyroTerm::Bias,
-        GyroTerm::ScaleFactor,
-        GyroTerm::ScaleFactorAsymmetry,
-        GyroTerm::Misalignment,
-        GyroTerm::TemperatureBias,
-        GyroTerm::TemperatureGradientBias,
-        GyroTerm::GSensitivity,
-        GyroTerm::PositionBias,
-        GyroTerm::DitherBias,
-    ];
+    /// Deterministic terms, linear in their coefficients (the diagnosis catalogue): the first
+    /// nine of [`GyroTerm::ALL`]; the rest are stochastic or quantisation.
+    pub const DETERMINISTIC: &'static [GyroTerm] = Self::ALL.split_at(9).0;
 
     /// Key of the term in scenario files and output columns.
     pub fn key(self) -> &'static str {

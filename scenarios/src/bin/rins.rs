@@ -259,6 +259,19 @@ fn write_table4_figures(r: &rins_verify::paper::Table4Report, out: &std::path::P
     Ok(())
 }
 
+/// Prints a verification report as JSON or text and fails when a check failed.
+fn emit_report<T: serde::Serialize>(report: &T, json: bool, text: &str, passed: bool, what: &str) -> Result<()> {
+    if json {
+        println!("{}", serde_json::to_string_pretty(report)?);
+    } else {
+        print!("{text}");
+    }
+    if !passed {
+        anyhow::bail!("{what} failed");
+    }
+    Ok(())
+}
+
 fn main() -> std::process::ExitCode {
     match dispatch(Cli::parse()) {
         Ok(()) => std::process::ExitCode::SUCCESS,
@@ -280,30 +293,14 @@ fn dispatch(cli: Cli) -> Result<()> {
         Command::Paper { which: Some(PaperCommand::Table4(a)), .. } => cmd_table4(&a),
         Command::Verify(VerifyCommand::Analytic { json }) => {
             let r = rins_verify::report::AnalyticReport::run();
-            if json {
-                println!("{}", serde_json::to_string_pretty(&r)?);
-            } else {
-                print!("{}", r.to_text());
-            }
-            if !r.passed() {
-                anyhow::bail!("analytic verification failed");
-            }
-            Ok(())
+            emit_report(&r, json, &r.to_text(), r.passed(), "analytic verification")
         }
         Command::Verify(VerifyCommand::Ins { json, runs }) => {
             if runs < 8 {
                 anyhow::bail!("--runs: expected at least 8 Monte Carlo runs, got {runs}");
             }
             let r = rins_verify::ins::InsReport::run(runs);
-            if json {
-                println!("{}", serde_json::to_string_pretty(&r)?);
-            } else {
-                print!("{}", r.to_text());
-            }
-            if !r.passed() {
-                anyhow::bail!("INS closed-form verification failed");
-            }
-            Ok(())
+            emit_report(&r, json, &r.to_text(), r.passed(), "INS closed-form verification")
         }
         Command::Scenarios { name: None } => {
             for (n, text) in BUILTIN {
