@@ -6,8 +6,10 @@
 //! measures against the plant's truth (attitude φ, position, tRMS of Eq. 20).
 
 pub mod alignment;
+pub mod calibration;
 pub mod compensation;
 pub mod errors;
+pub mod fit;
 pub mod session;
 pub mod strapdown;
 
