@@ -24,6 +24,38 @@ for case in ("uncompensated", "compensated"):
             assert isinstance(d[case][k][q], float), (case, k, q)
 assert "lon_nm" in d["noise_free"]["compensated"]'
 test -s "$tmp/t4/fig2_attitude_error.svg" && test -s "$tmp/t4/fig3_position_error.svg"
+"${rins[@]}" calibrate builtin:calibration-z-down --json | python3 -c '
+import json, sys
+d = json.load(sys.stdin)
+assert len(d["delta_beta_dph"]) == 3 and len(d["delta_beta_se_dph"]) == 3
+assert d["down"]["position"] == "z-down" and len(d["up"]["segments"]) == 2'
+cat > "$tmp/camp.toml" <<'TOML'
+[scenario]
+name = "smoke-campaign"
+[scheme]
+kind = "z-up-calibration"
+lead_dwell_s = 120.0
+dwell_s = 120.0
+[sensor]
+preset = "nav-grade-full"
+[campaign]
+from_c = 10.0
+to_c = 50.0
+runs = 5
+TOML
+"${rins[@]}" campaign "$tmp/camp.toml" --out "$tmp/camp" > /dev/null
+grep -q "position_bias" "$tmp/camp/dbeta-compensation.toml" && test -s "$tmp/camp/fig8_dbeta_vs_temperature.svg"
+"${rins[@]}" paper table5 --compensation "$tmp/camp/dbeta-compensation.toml" --runs 1 --days 0.05 --json --out "$tmp/t5" | python3 -c '
+import json, sys
+d = json.load(sys.stdin)
+for case in ("uncompensated", "compensated"):
+    for k in ("lat_nm", "lon_nm", "horizontal_nm", "trms_nm"):
+        assert k in d[case], (case, k)
+for k in ("lat", "lon", "horizontal", "trms"):
+    assert k in d["improvement_pct"], k'
+printf '[scenario]\nname = "bad"\n[campaign]\ntemps_c = [20.0, 30.0, 200.0, 40.0, 50.0]\n' > "$tmp/badcamp.toml"
+if "${rins[@]}" campaign "$tmp/badcamp.toml" --out "$tmp/bc" 2> "$tmp/err"; then echo "a campaign at 200 C must fail"; exit 1; fi
+grep -q "200" "$tmp/err"
 if "${rins[@]}" run "$tmp/missing.toml" --out "$tmp/x" 2> "$tmp/err"; then
   echo "a missing scenario file must fail"; exit 1
 fi

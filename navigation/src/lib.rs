@@ -7,6 +7,7 @@
 
 pub mod alignment;
 pub mod calibration;
+pub mod campaign;
 pub mod compensation;
 pub mod errors;
 pub mod fit;

@@ -181,12 +181,13 @@ pub enum ScenarioError {
 }
 
 /// The scenarios shipped with rins, by name.
-pub const BUILTIN: [(&str, &str); 5] = [
+pub const BUILTIN: [(&str, &str); 6] = [
     ("paper-16pos-week", include_str!("../files/paper-16pos-week.toml")),
     ("paper-16pos-short", include_str!("../files/paper-16pos-short.toml")),
     ("calibration-z-up", include_str!("../files/calibration-z-up.toml")),
     ("calibration-z-down", include_str!("../files/calibration-z-down.toml")),
     ("campaign-37", include_str!("../files/campaign-37.toml")),
+    ("paper-static-week", include_str!("../files/paper-static-week.toml")),
 ];
 
 impl Scenario {

@@ -13,6 +13,9 @@ pub struct Line<'a> {
     pub points: Vec<(f64, f64)>,
     /// Colour.
     pub color: RGBColor,
+    /// Draw as separate error bars: `points` holds (x, y − e), (x, y + e) pairs, one pair per
+    /// bar, each with a dot at its centre.
+    pub error_bars: bool,
 }
 
 /// One panel of a figure.
@@ -58,11 +61,17 @@ pub fn write_svg(path: &Path, title: &str, x_label: &str, panels: &[Panel]) -> R
         chart.configure_mesh().x_desc(x_label).y_desc(p.y_label).draw().map_err(|e| err(&e))?;
         for l in &p.lines {
             let color = l.color;
-            chart
-                .draw_series(LineSeries::new(l.points.iter().copied(), color.stroke_width(2)))
-                .map_err(|e| err(&e))?
-                .label(l.label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+            let series = if l.error_bars {
+                let bars = l.points.chunks(2).filter(|c| c.len() == 2).map(move |c| PathElement::new(vec![c[0], c[1]], color.stroke_width(1)));
+                chart.draw_series(bars).map_err(|e| err(&e))?;
+                let dots = l.points.chunks(2).filter(|c| c.len() == 2).map(move |c| Circle::new((c[0].0, 0.5 * (c[0].1 + c[1].1)), 3, color.filled()));
+                chart.draw_series(dots).map_err(|e| err(&e))?
+            } else {
+                chart.draw_series(LineSeries::new(l.points.iter().copied(), color.stroke_width(2))).map_err(|e| err(&e))?
+            };
+            if !l.label.is_empty() {
+                series.label(l.label).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+            }
         }
         chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw().map_err(|e| err(&e))?;
     }

@@ -18,7 +18,7 @@ fn main() {
     v.scheme.lead_dwell_s = 900.0;
     variants.push(("self-alignment 300 s coarse + 600 s fine", v, NavRunConfig { alignment: Alignment::SelfAlign { coarse_s: 300.0, fine_s: 600.0 }, ..NavRunConfig::default() }));
     for (name, plant, nav) in variants {
-        let r = table4(&Table4Options { plant, runs: 0, duration_s: days * 86_400.0, nav }, &|_| {});
+        let r = table4(&Table4Options { plant, runs: 0, duration_s: days * 86_400.0, nav, compensation: None }, &|_| {});
         let (u, c) = (r.noise_free.uncompensated, r.noise_free.compensated);
         println!("{name:<44} unc lat {:+.3} lon {:+.3} nmi up {:.4} deg | comp lat {:+.3} lon {:+.3} nmi up {:.4} deg", u.lat_nm, u.lon_nm, u.up_att_mean_deg, c.lat_nm, c.lon_nm, c.up_att_mean_deg);
     }

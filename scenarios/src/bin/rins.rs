@@ -30,6 +30,12 @@ enum Command {
         #[command(flatten)]
         args: PaperArgs,
     },
+    /// Section 3.2: Z-up and Z-down system-level indirect calibration (Fig. 4-5, Eq. 16-19),
+    /// estimating beta at each position and delta-beta = beta_down - beta_up.
+    Calibrate(CalibrateArgs),
+    /// Section 4.1 / Figure 8: calibrations over the scenario's [campaign] temperatures, a
+    /// third-order fit of delta-beta(T) per axis, saved as a compensation file.
+    Campaign(CampaignArgs),
     /// List the built-in scenarios, or print one.
     Scenarios {
         /// Print this built-in scenario's TOML.
@@ -71,11 +77,65 @@ struct PaperArgs {
     out: PathBuf,
 }
 
+#[derive(Args)]
+struct CalibrateArgs {
+    /// Scenario (its plant is calibrated; scheme.lead_dwell_s is the alignment time and
+    /// scheme.dwell_s the navigation time in each position).
+    scenario: PathBuf,
+    /// Drift estimator: `coupled` (Schuler, Earth-rate and Coriolis couplings removed) or
+    /// `paper` (Eq. 13-15 as printed).
+    #[arg(long, default_value = "coupled", value_parser = ["coupled", "paper"])]
+    estimator: String,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Args)]
+struct CampaignArgs {
+    /// Scenario with a [campaign] section.
+    scenario: PathBuf,
+    /// Reference temperature of the fitted polynomial, deg C.
+    #[arg(long, default_value_t = 25.0)]
+    ref_temp_c: f64,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+    /// Output folder: campaign.json, dbeta-compensation.toml, fig8_dbeta_vs_temperature.svg.
+    #[arg(long, default_value = "out/campaign")]
+    out: PathBuf,
+}
+
 #[derive(Subcommand)]
 enum PaperCommand {
     /// Section 3.1 / Table 4 / Figures 2-3: 1-week static 16-position navigation, uncompensated
     /// vs compensated, over several seeds, side by side with the paper.
     Table4(Table4Args),
+    /// Section 4.2 / Table 5 / Figures 9-10: 7-day static navigation with the fitted
+    /// delta-beta(T) compensated in real time, against the same run uncompensated.
+    Table5(Table5Args),
+}
+
+#[derive(Args)]
+struct Table5Args {
+    /// Compensation file from `rins campaign` (default: run the 37-run campaign first).
+    #[arg(long)]
+    compensation: Option<PathBuf>,
+    /// Seeds (both cases each, common random numbers).
+    #[arg(long, default_value_t = 4)]
+    runs: usize,
+    /// Navigation time in days.
+    #[arg(long, default_value_t = 7.0)]
+    days: f64,
+    /// Scenario of the static test.
+    #[arg(long, default_value = "builtin:paper-static-week")]
+    scenario: PathBuf,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+    /// Output folder.
+    #[arg(long, default_value = "out/table5")]
+    out: PathBuf,
 }
 
 #[derive(Args)]
@@ -197,6 +257,7 @@ fn cmd_table4(a: &Table4Args) -> Result<()> {
         plant,
         runs: a.runs,
         duration_s: a.days * 86_400.0,
+        compensation: None,
         nav: rins_nav::NavRunConfig {
             alignment: if a.align == "self" {
                 rins_nav::Alignment::SelfAlign { coarse_s: 300.0, fine_s: 600.0 }
@@ -233,8 +294,8 @@ fn write_table4_figures(r: &rins_verify::paper::Table4Report, out: &std::path::P
         };
         let pair = |f: &dyn Fn(&rins_nav::NavRecord) -> f64| {
             vec![
-                Line { label: "uncompensated", points: pts(&series.uncompensated, f), color: UNC },
-                Line { label: "compensated", points: pts(&series.compensated, f), color: COMP },
+                Line { label: "uncompensated", points: pts(&series.uncompensated, f), color: UNC, error_bars: false },
+                Line { label: "compensated", points: pts(&series.compensated, f), color: COMP, error_bars: false },
             ]
         };
         let att = ["East", "North", "Up"]
@@ -249,12 +310,175 @@ fn write_table4_figures(r: &rins_verify::paper::Table4Report, out: &std::path::P
             Panel { title: "Longitude error".into(), y_label: "nmi", lines: pair(&|x| nm(x.east_m)) },
             Panel { title: "Horizontal error and tRMS (Eq. 20)".into(), y_label: "nmi", lines: {
                 let mut l = pair(&|x| nm(x.horizontal_m));
-                l.push(Line { label: "tRMS uncompensated", points: pts(&series.uncompensated, &|x| nm(x.trms_m)), color: RGBColor(240, 150, 150) });
-                l.push(Line { label: "tRMS compensated", points: pts(&series.compensated, &|x| nm(x.trms_m)), color: RGBColor(140, 170, 240) });
+                l.push(Line { label: "tRMS uncompensated", points: pts(&series.uncompensated, &|x| nm(x.trms_m)), color: RGBColor(240, 150, 150), error_bars: false });
+                l.push(Line { label: "tRMS compensated", points: pts(&series.compensated, &|x| nm(x.trms_m)), color: RGBColor(140, 170, 240), error_bars: false });
                 l
             } },
         ];
         write_svg(&out.join(format!("fig3_position_error{tag}.svg")), &format!("Figure 3 counterpart: position error ({what})"), "time (h)", &pos)?;
+    }
+    Ok(())
+}
+
+/// Calibration timing from a scenario: lead dwell = alignment, dwell = time in each position.
+fn calibration_config(sc: &Scenario, estimator: &str) -> rins_nav::calibration::CalibrationConfig {
+    use rins_nav::calibration::{CalibrationConfig, Estimator};
+    let lead = sc.plant.scheme.lead_dwell_s;
+    let alignment = if lead > 0.0 {
+        let coarse = (lead / 4.0).min(120.0);
+        rins_nav::Alignment::SelfAlign { coarse_s: coarse, fine_s: lead - coarse }
+    } else {
+        rins_nav::Alignment::Truth
+    };
+    CalibrationConfig {
+        estimator: if estimator == "paper" { Estimator::Paper } else { Estimator::Coupled },
+        alignment,
+        segment_s: sc.plant.scheme.dwell_s,
+        ..CalibrationConfig::default()
+    }
+}
+
+fn cmd_calibrate(a: &CalibrateArgs) -> Result<()> {
+    let sc = Scenario::load(&a.scenario)?;
+    let cfg = calibration_config(&sc, &a.estimator);
+    let r = rins_nav::calibration::calibrate(&sc.plant, &cfg)?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+        return Ok(());
+    }
+    println!("System-level indirect calibration ({} estimator), {} s per position", a.estimator, cfg.segment_s);
+    for (name, e) in [("Z-up   (Eq. 17)", &r.up), ("Z-down (Eq. 19)", &r.down)] {
+        println!(
+            "  {name}: beta = [{:+.5}, {:+.5}, {:+.5}] +- [{:.5}, {:.5}, {:.5}] deg/h",
+            e.beta_dph[0], e.beta_dph[1], e.beta_dph[2], e.se_dph[0], e.se_dph[1], e.se_dph[2]
+        );
+        for (k, f) in e.segments.iter().enumerate() {
+            println!(
+                "      segment {}: dVdd_E {:+.3e} +- {:.1e}, dVdd_N {:+.3e} +- {:.1e} m/s^3, dphi_U {:+.3e} +- {:.1e} rad/s (chi2/dof {:.2} {:.2} {:.2})",
+                k + 1, f.dvdd_e.slope, f.dvdd_e.se, f.dvdd_n.slope, f.dvdd_n.se, f.phi_u_rate.slope, f.phi_u_rate.se,
+                f.dvdd_e.chi2_per_dof, f.dvdd_n.chi2_per_dof, f.phi_u_rate.chi2_per_dof
+            );
+        }
+    }
+    let (d, e) = (r.delta_beta_dph, r.delta_beta_se_dph);
+    println!("  delta-beta = beta_down - beta_up = [{:+.5}, {:+.5}, {:+.5}] +- [{:.5}, {:.5}, {:.5}] deg/h", d[0], d[1], d[2], e[0], e[1], e[2]);
+    Ok(())
+}
+
+fn run_campaign_from(sc: &Scenario, ref_temp_c: f64) -> Result<rins_nav::campaign::Campaign> {
+    let camp = sc.campaign.as_ref().with_context(|| format!("{}: no [campaign] section (temps_c, or from_c/to_c/runs)", sc.source))?;
+    let cfg = calibration_config(sc, "coupled");
+    Ok(rins_nav::campaign::run_campaign(&sc.plant, &camp.temperatures_c(), &cfg, ref_temp_c)?)
+}
+
+fn write_campaign(c: &rins_nav::campaign::Campaign, out: &std::path::Path) -> Result<()> {
+    use plotters::style::RGBColor;
+    use rins_scenarios::plots::{Line, Panel, write_svg};
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    std::fs::write(out.join("campaign.json"), serde_json::to_string_pretty(c)?)?;
+    let mut t = toml::Table::new();
+    t.insert("position_bias".into(), toml::Value::try_from(c.compensation())?);
+    let header = "# Fitted position-dependent gyro bias delta-beta(T) from `rins campaign`.\n# Use as [sensor.gyro.position_bias] in a scenario, or with `rins paper table5 --compensation`.\n";
+    std::fs::write(out.join("dbeta-compensation.toml"), format!("{header}{}", toml::to_string_pretty(&t)?))?;
+    let panels: Vec<Panel> = ["X", "Y", "Z"]
+        .iter()
+        .enumerate()
+        .map(|(i, axis)| {
+            let pts: Vec<(f64, f64)> = c.runs.iter().map(|r| (r.block_temp_c[i], r.calibration.delta_beta_dph[i])).collect();
+            let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.0), b.max(p.0)));
+            let curve = |k: f64| -> Vec<(f64, f64)> {
+                (0..=100).map(|j| {
+                    let t = lo + (hi - lo) * j as f64 / 100.0;
+                    let (v, sd) = c.fits[i].eval(t - c.ref_temp_c);
+                    (t, v + k * 1.96 * sd)
+                }).collect()
+            };
+            let mut bars = Vec::new();
+            for r in &c.runs {
+                let (x, y, e) = (r.block_temp_c[i], r.calibration.delta_beta_dph[i], r.calibration.delta_beta_se_dph[i]);
+                bars.push((x, y - e));
+                bars.push((x, y + e));
+            }
+            Panel {
+                title: format!("{axis}-axis gyro: delta-beta = beta(Z-down) - beta(Z-up)"),
+                y_label: "deg/h",
+                lines: vec![
+                    Line { label: "estimate +- 1 SE", points: bars, color: RGBColor(90, 90, 90), error_bars: true },
+                    Line { label: "cubic fit", points: curve(0.0), color: RGBColor(30, 90, 200), error_bars: false },
+                    Line { label: "95 % band", points: curve(1.0), color: RGBColor(140, 170, 240), error_bars: false },
+                    Line { label: "", points: curve(-1.0), color: RGBColor(140, 170, 240), error_bars: false },
+                ],
+            }
+        })
+        .collect();
+    write_svg(&out.join("fig8_dbeta_vs_temperature.svg"), "Figure 8 counterpart: identified position-dependent gyro bias", "gyro block temperature at Z-down (deg C)", &panels)
+}
+
+fn cmd_campaign(a: &CampaignArgs) -> Result<()> {
+    let sc = Scenario::load(&a.scenario)?;
+    let c = run_campaign_from(&sc, a.ref_temp_c)?;
+    write_campaign(&c, &a.out)?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&c)?);
+        return Ok(());
+    }
+    println!("Temperature campaign: {} runs ({:.1} s wall)", c.runs.len(), c.wall_s);
+    println!("  {:>9} {:>27} {:>27} {:>27}", "chamber", "dbeta_x +- SE (deg/h)", "dbeta_y", "dbeta_z");
+    for r in &c.runs {
+        let (d, e) = (r.calibration.delta_beta_dph, r.calibration.delta_beta_se_dph);
+        println!("  {:>7.2} C {:>+12.5} +- {:>9.5} {:>+12.5} +- {:>9.5} {:>+12.5} +- {:>9.5}", r.chamber_c, d[0], e[0], d[1], e[1], d[2], e[2]);
+    }
+    for (i, f) in c.fits.iter().enumerate() {
+        println!("  fit {}: c0..c3 = [{:+.3e}, {:+.3e}, {:+.3e}, {:+.3e}] (T - {} C), chi2/dof {:.2}", ["x", "y", "z"][i], f.coef[0], f.coef[1], f.coef[2], f.coef[3], c.ref_temp_c, f.chi2_per_dof);
+    }
+    println!("  compensation file: {}", a.out.join("dbeta-compensation.toml").display());
+    Ok(())
+}
+
+fn cmd_table5(a: &Table5Args) -> Result<()> {
+    if a.runs == 0 {
+        anyhow::bail!("--runs: expected at least 1 seed, got 0");
+    }
+    if !(a.days > 0.0 && a.days <= 60.0) {
+        anyhow::bail!("--days: expected a number in (0, 60], got {}", a.days);
+    }
+    let comp = match &a.compensation {
+        Some(path) => {
+            let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+            #[derive(serde::Deserialize)]
+            #[serde(deny_unknown_fields)]
+            struct File {
+                position_bias: rins_plant::effects::gyro::PositionBiasSpec,
+            }
+            toml::from_str::<File>(&text).with_context(|| format!("{}: expected a [position_bias] table from `rins campaign`", path.display()))?.position_bias
+        }
+        None => {
+            eprintln!("no --compensation given: running the 37-run campaign first");
+            let c = run_campaign_from(&Scenario::load(std::path::Path::new("builtin:campaign-37"))?, 25.0)?;
+            write_campaign(&c, &a.out.join("campaign"))?;
+            c.compensation()
+        }
+    };
+    let sc = Scenario::load(&a.scenario)?;
+    let opt = rins_verify::paper::Table4Options {
+        plant: sc.plant.clone(),
+        runs: a.runs,
+        duration_s: a.days * 86_400.0,
+        nav: rins_nav::NavRunConfig::default(),
+        compensation: Some(comp),
+    };
+    let total = (2 * a.runs as u64 + 2) * (opt.duration_s * sc.plant.rate_hz) as u64;
+    let pb = rins_scenarios::progress::bar(total, "table5");
+    let r = rins_verify::paper::table4(&opt, &|n| pb.inc(n));
+    pb.finish_and_clear();
+    std::fs::create_dir_all(&a.out)?;
+    std::fs::write(a.out.join("table5.json"), serde_json::to_string_pretty(&r)?)?;
+    write_table4_figures(&r, &a.out)?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+    } else {
+        print!("{}", r.to_text_table5());
+        println!("  figures (Figures 9-10 counterparts: fig3_position_error*.svg) and table5.json in {}", a.out.display());
     }
     Ok(())
 }
@@ -291,6 +515,9 @@ fn dispatch(cli: Cli) -> Result<()> {
         Command::Run(a) => cmd_run(&a),
         Command::Paper { which: None, args } => cmd_paper(&args),
         Command::Paper { which: Some(PaperCommand::Table4(a)), .. } => cmd_table4(&a),
+        Command::Paper { which: Some(PaperCommand::Table5(a)), .. } => cmd_table5(&a),
+        Command::Calibrate(a) => cmd_calibrate(&a),
+        Command::Campaign(a) => cmd_campaign(&a),
         Command::Verify(VerifyCommand::Analytic { json }) => {
             let r = rins_verify::report::AnalyticReport::run();
             emit_report(&r, json, &r.to_text(), r.passed(), "analytic verification")
