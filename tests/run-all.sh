@@ -44,7 +44,9 @@ to_c = 50.0
 runs = 5
 TOML
 "${rins[@]}" campaign "$tmp/camp.toml" --out "$tmp/camp" > /dev/null
-grep -q "position_bias" "$tmp/camp/dbeta-compensation.toml" && test -s "$tmp/camp/fig8_dbeta_vs_temperature.svg"
+grep -q "sensor.gyro.position_bias" "$tmp/camp/dbeta-compensation.toml" && test -s "$tmp/camp/fig8_dbeta_vs_temperature.svg"
+# The compensation file is a scenario fragment the plant loads too.
+"${rins[@]}" run "$tmp/camp/dbeta-compensation.toml" --out "$tmp/fragment" --duration-s 1
 "${rins[@]}" paper table5 --compensation "$tmp/camp/dbeta-compensation.toml" --runs 1 --days 0.05 --json --out "$tmp/t5" | python3 -c '
 import json, sys
 d = json.load(sys.stdin)

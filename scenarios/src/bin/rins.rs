@@ -376,9 +376,15 @@ fn write_campaign(c: &rins_nav::campaign::Campaign, out: &std::path::Path) -> Re
     use rins_scenarios::plots::{Line, Panel, write_svg};
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     std::fs::write(out.join("campaign.json"), serde_json::to_string_pretty(c)?)?;
+    // Written as a scenario fragment: the plant loads it as a scenario (or paste the table into
+    // one), the navigator with `rins paper table5 --compensation`.
+    let mut gyro = toml::Table::new();
+    gyro.insert("position_bias".into(), toml::Value::try_from(c.compensation())?);
+    let mut sensor = toml::Table::new();
+    sensor.insert("gyro".into(), toml::Value::Table(gyro));
     let mut t = toml::Table::new();
-    t.insert("position_bias".into(), toml::Value::try_from(c.compensation())?);
-    let header = "# Fitted position-dependent gyro bias delta-beta(T) from `rins campaign`.\n# Use as [sensor.gyro.position_bias] in a scenario, or with `rins paper table5 --compensation`.\n";
+    t.insert("sensor".into(), toml::Value::Table(sensor));
+    let header = "# Fitted position-dependent gyro bias delta-beta(T) from `rins campaign`: a scenario fragment.\n# The plant reads it as [sensor.gyro.position_bias]; `rins paper table5 --compensation FILE` compensates with it.\n";
     std::fs::write(out.join("dbeta-compensation.toml"), format!("{header}{}", toml::to_string_pretty(&t)?))?;
     let panels: Vec<Panel> = ["X", "Y", "Z"]
         .iter()
@@ -445,12 +451,13 @@ fn cmd_table5(a: &Table5Args) -> Result<()> {
     let comp = match &a.compensation {
         Some(path) => {
             let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-            #[derive(serde::Deserialize)]
-            #[serde(deny_unknown_fields)]
-            struct File {
-                position_bias: rins_plant::effects::gyro::PositionBiasSpec,
+            // The file is a scenario fragment: its [sensor.gyro.position_bias] is the compensation.
+            let sc = Scenario::from_toml(&text, &path.display().to_string())?;
+            let pb = sc.plant.sensor.gyro.position_bias;
+            if !pb.enabled {
+                anyhow::bail!("{}: expected an enabled [sensor.gyro.position_bias] table (from `rins campaign`)", path.display());
             }
-            toml::from_str::<File>(&text).with_context(|| format!("{}: expected a [position_bias] table from `rins campaign`", path.display()))?.position_bias
+            pb
         }
         None => {
             eprintln!("no --compensation given: running the 37-run campaign first");
@@ -496,7 +503,19 @@ fn emit_report<T: serde::Serialize>(report: &T, json: bool, text: &str, passed: 
     Ok(())
 }
 
+/// Restores the default SIGPIPE action so `rins … | head` ends quietly, as Unix tools do,
+/// instead of panicking on the closed pipe (Rust ignores SIGPIPE by default).
+#[allow(unsafe_code)]
+fn default_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called once at start-up, before any other thread exists; SIG_DFL is a valid action.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() -> std::process::ExitCode {
+    default_sigpipe();
     match dispatch(Cli::parse()) {
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(e) => {
