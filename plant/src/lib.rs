@@ -14,6 +14,7 @@ pub mod config;
 pub mod earth;
 pub mod effects;
 pub mod plant;
+pub mod params;
 pub mod presets;
 pub mod table;
 pub mod thermal;

@@ -1,0 +1,296 @@
+//! The flat parameter table: every scalar of a [`PlantConfig`] under its scenario-file key path
+//! (`site.lat_deg`, `sensor.gyro.bias.dph[2]`, …) with its unit and valid range. One table serves
+//! scenario validation, FMU parameter lists (name, unit, min, max) and tools that sweep
+//! parameters: a key's range is written once, here.
+
+use serde_json::Value;
+
+use crate::config::PlantConfig;
+
+/// A scalar parameter value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ParamValue {
+    /// A real number.
+    Real(f64),
+    /// A whole number (`run.seed`, `run.substeps`).
+    Integer(u64),
+    /// A switch.
+    Bool(bool),
+    /// An enumeration, by name (`scheme.kind`, `sensor.gyro.position_bias.transition`, …).
+    Enum(String),
+}
+
+/// One row of the table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Param {
+    /// Scenario-file key path, with `[i]` for array elements.
+    pub path: String,
+    /// Current value.
+    pub value: ParamValue,
+    /// Unit (SI-like symbols; `1` when dimensionless).
+    pub unit: &'static str,
+    /// Valid range for numbers.
+    pub range: Option<(f64, f64)>,
+}
+
+/// Valid ranges by key path (array indices stripped). Keys not listed here are switches,
+/// enumerations or structural (checked by [`PlantConfig::validate`] directly).
+pub const RANGES: &[(&str, f64, f64)] = &[
+    ("run.rate_hz", 1.0, 10_000.0),
+    ("run.substeps", 1.0, 1000.0),
+    ("run.seed", 0.0, u64::MAX as f64),
+    ("site.lat_deg", -89.0, 89.0),
+    ("site.lon_deg", -180.0, 360.0),
+    ("site.height_m", -1000.0, 20_000.0),
+    ("vehicle.azimuth_deg", -360.0, 360.0),
+    ("vehicle.pitch_deg", -89.0, 89.0),
+    ("vehicle.roll_deg", -180.0, 180.0),
+    ("scheme.rate_dps", 1e-6, 100.0),
+    ("scheme.accel_dps2", 1e-9, f64::INFINITY),
+    ("scheme.dwell_s", 0.0, 1e7),
+    ("scheme.lead_dwell_s", 0.0, 1e8),
+    ("scheme.initial_outer_deg", -360.0, 360.0),
+    ("scheme.initial_inner_deg", -360.0, 360.0),
+    ("scheme.steps.angle_deg", -3600.0, 3600.0),
+    ("scheme.steps.rate_dps", 1e-6, 100.0),
+    ("scheme.steps.dwell_s", 0.0, 1e7),
+    ("sensor.gyro.bias.dph", -100.0, 100.0),
+    ("sensor.gyro.scale_factor.ppm", -1e5, 1e5),
+    ("sensor.gyro.scale_factor_asymmetry.ppm", -1e5, 1e5),
+    ("sensor.gyro.misalignment.arcsec", -3600.0, 3600.0),
+    ("sensor.gyro.temperature_bias.ref_temp_c", -60.0, 130.0),
+    ("sensor.gyro.temperature_bias.per_k", -10.0, 10.0),
+    ("sensor.gyro.temperature_bias.per_k2", -1.0, 1.0),
+    ("sensor.gyro.temperature_bias.per_k3", -0.1, 0.1),
+    ("sensor.gyro.temperature_gradient_bias.dph_per_k", -10.0, 10.0),
+    ("sensor.gyro.g_sensitivity.dph_per_g", -100.0, 100.0),
+    ("sensor.gyro.position_bias.dph", -100.0, 100.0),
+    ("sensor.gyro.position_bias.ref_temp_c", -60.0, 130.0),
+    ("sensor.gyro.position_bias.dph_per_k", -10.0, 10.0),
+    ("sensor.gyro.position_bias.dph_per_k2", -1.0, 1.0),
+    ("sensor.gyro.position_bias.dph_per_k3", -0.1, 0.1),
+    ("sensor.gyro.dither_bias.amplitude_change", -1.0, 1.0),
+    ("sensor.gyro.dither_bias.dph_per_amplitude", -100.0, 100.0),
+    ("sensor.gyro.angle_random_walk.dpsh", 0.0, 10.0),
+    ("sensor.gyro.bias_instability.sigma_dph", 0.0, 100.0),
+    ("sensor.gyro.bias_instability.tau_s", 1e-3, 1e9),
+    ("sensor.gyro.rate_random_walk.dph_per_sqrth", 0.0, 100.0),
+    ("sensor.gyro.quantization.pulse", 0.0, 3600.0),
+    ("sensor.accel.bias.ug", -1e5, 1e5),
+    ("sensor.accel.scale_factor.ppm", -1e5, 1e5),
+    ("sensor.accel.misalignment.arcsec", -3600.0, 3600.0),
+    ("sensor.accel.temperature_bias.ref_temp_c", -60.0, 130.0),
+    ("sensor.accel.temperature_bias.per_k", -1e4, 1e4),
+    ("sensor.accel.temperature_bias.per_k2", -1e3, 1e3),
+    ("sensor.accel.temperature_bias.per_k3", -1e2, 1e2),
+    ("sensor.accel.velocity_random_walk.ug_per_sqrthz", 0.0, 1e4),
+    ("sensor.accel.quantization.pulse", 0.0, 10.0),
+    ("thermal.step_s", 1e-3, 3600.0),
+    ("thermal.chamber.temp_c", crate::thermal::CHAMBER_MIN_C, crate::thermal::CHAMBER_MAX_C),
+    ("thermal.chamber.profile", f64::NEG_INFINITY, f64::INFINITY),
+    ("thermal.capacitance_j_per_k", 1e-3, 1e9),
+    ("thermal.power_w", 0.0, 1e4),
+    ("thermal.g_board_housing_w_per_k", 0.0, 1e6),
+    ("thermal.g_gyro_housing_w_per_k", 0.0, 1e6),
+    ("thermal.g_accel_housing_w_per_k", 0.0, 1e6),
+    ("thermal.g_housing_chamber_w_per_k", 1e-6, 1e6),
+    ("thermal.g_gyro_gyro_w_per_k", 0.0, 1e6),
+    ("thermal.g_board_gyro_w_per_k", 0.0, 1e6),
+    ("thermal.g_board_gyro_convection_w_per_k", 0.0, 1e6),
+    ("thermal.board_to_block_dir_body", -1.0, 1.0),
+];
+
+/// Strips array indices: `sensor.gyro.bias.dph[2]` → `sensor.gyro.bias.dph`.
+pub fn key_of(path: &str) -> String {
+    let mut out = String::with_capacity(path.len());
+    let mut depth = 0;
+    for ch in path.chars() {
+        match ch {
+            '[' => depth += 1,
+            ']' => depth -= 1,
+            _ if depth == 0 => out.push(ch),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The valid range of `path`, if it is a ranged number.
+pub fn range_for(path: &str) -> Option<(f64, f64)> {
+    let key = key_of(path);
+    RANGES.iter().find(|(k, _, _)| *k == key).map(|&(_, lo, hi)| (lo, hi))
+}
+
+/// The unit of `path`, from the unit in its key name (and, for the bare polynomial and pulse
+/// keys, from the sensor they belong to).
+pub fn unit_for(path: &str) -> &'static str {
+    let key = key_of(path);
+    let last = key.rsplit('.').next().unwrap_or("");
+    let accel = key.starts_with("sensor.accel");
+    match last {
+        "per_k" => if accel { "ug/K" } else { "deg/h/K" },
+        "per_k2" => if accel { "ug/K2" } else { "deg/h/K2" },
+        "per_k3" => if accel { "ug/K3" } else { "deg/h/K3" },
+        "pulse" => if accel { "m/s" } else { "arcsec" },
+        "profile" => "s|degC",
+        _ => [
+            ("_dph_per_sqrth", "deg/h/sqrt(h)"),
+            ("_dph_per_amplitude", "deg/h"),
+            ("_dph_per_g", "deg/h/g"),
+            ("_dph_per_k3", "deg/h/K3"),
+            ("_dph_per_k2", "deg/h/K2"),
+            ("_dph_per_k", "deg/h/K"),
+            ("_dph", "deg/h"),
+            ("dph", "deg/h"),
+            ("dpsh", "deg/sqrt(h)"),
+            ("ppm", "ppm"),
+            ("arcsec", "arcsec"),
+            ("ug_per_sqrthz", "ug/sqrt(Hz)"),
+            ("ug", "ug"),
+            ("_dps2", "deg/s2"),
+            ("_dps", "deg/s"),
+            ("_deg", "deg"),
+            ("_hz", "Hz"),
+            ("_s", "s"),
+            ("_c", "degC"),
+            ("_m", "m"),
+            ("_w_per_k", "W/K"),
+            ("_j_per_k", "J/K"),
+            ("_w", "W"),
+        ]
+        .iter()
+        .find(|(suffix, _)| last == suffix.trim_start_matches('_') || last.ends_with(suffix))
+        .map(|(_, u)| *u)
+        .unwrap_or("1"),
+    }
+}
+
+/// Scenario-file path of a top-level `PlantConfig` field (`rate_hz` lives in `[run]`).
+fn section_of(field: &str) -> String {
+    match field {
+        "rate_hz" | "substeps" | "seed" => format!("run.{field}"),
+        _ => field.to_string(),
+    }
+}
+
+fn walk(prefix: &str, v: &Value, out: &mut Vec<Param>) {
+    match v {
+        Value::Object(m) => {
+            for (k, v) in m {
+                let p = if prefix.is_empty() { section_of(k) } else { format!("{prefix}.{k}") };
+                walk(&p, v, out);
+            }
+        }
+        Value::Array(a) => {
+            for (i, v) in a.iter().enumerate() {
+                walk(&format!("{prefix}[{i}]"), v, out);
+            }
+        }
+        Value::Bool(b) => out.push(Param { path: prefix.into(), value: ParamValue::Bool(*b), unit: "1", range: None }),
+        Value::String(s) => out.push(Param { path: prefix.into(), value: ParamValue::Enum(s.clone()), unit: "1", range: None }),
+        Value::Number(n) => {
+            let value = match (n.as_u64(), prefix == "run.seed" || prefix == "run.substeps") {
+                (Some(u), true) => ParamValue::Integer(u),
+                _ => ParamValue::Real(n.as_f64().unwrap_or(f64::NAN)),
+            };
+            out.push(Param { path: prefix.into(), value, unit: unit_for(prefix), range: range_for(prefix) });
+        }
+        // Non-finite numbers (accel_dps2 = inf) serialise as null.
+        Value::Null => out.push(Param { path: prefix.into(), value: ParamValue::Real(f64::INFINITY), unit: unit_for(prefix), range: range_for(prefix) }),
+    }
+}
+
+/// Every scalar parameter of `cfg`, in a stable order.
+pub fn flatten(cfg: &PlantConfig) -> Vec<Param> {
+    let v = serde_json::to_value(cfg).expect("PlantConfig serialises");
+    let mut out = Vec::new();
+    walk("", &v, &mut out);
+    out
+}
+
+/// Why a parameter could not be set.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ParamError {
+    /// No such key path.
+    #[error("unknown parameter {0:?}")]
+    Unknown(String),
+    /// The value has the wrong kind or is not accepted (e.g. an unknown enumeration name).
+    #[error("parameter {path}: {message}")]
+    Invalid {
+        /// Key path.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// `cfg` with the parameter at `path` set to `value` (range-checked by [`PlantConfig::validate`]).
+pub fn set(cfg: &PlantConfig, path: &str, value: ParamValue) -> Result<PlantConfig, ParamError> {
+    let mut v = serde_json::to_value(cfg).expect("PlantConfig serialises");
+    let inner = path.strip_prefix("run.").filter(|p| ["rate_hz", "substeps", "seed"].contains(p)).unwrap_or(path);
+    let mut node = &mut v;
+    for part in inner.split('.') {
+        let (name, idx) = match part.find('[') {
+            Some(i) => (&part[..i], &part[i..]),
+            None => (part, ""),
+        };
+        node = node.get_mut(name).ok_or_else(|| ParamError::Unknown(path.into()))?;
+        for ix in idx.split(']').filter(|s| !s.is_empty()) {
+            let i: usize = ix.trim_start_matches('[').parse().map_err(|_| ParamError::Unknown(path.into()))?;
+            node = node.get_mut(i).ok_or_else(|| ParamError::Unknown(path.into()))?;
+        }
+    }
+    let kind_ok = matches!(
+        (&*node, &value),
+        (Value::Number(_) | Value::Null, ParamValue::Real(_) | ParamValue::Integer(_)) | (Value::Bool(_), ParamValue::Bool(_)) | (Value::String(_), ParamValue::Enum(_))
+    );
+    if !kind_ok {
+        return Err(ParamError::Invalid { path: path.into(), message: format!("expected a value like {node}, got {value:?}") });
+    }
+    *node = match value {
+        ParamValue::Real(x) => serde_json::Number::from_f64(x).map(Value::Number).unwrap_or(Value::Null),
+        ParamValue::Integer(u) => Value::from(u),
+        ParamValue::Bool(b) => Value::Bool(b),
+        ParamValue::Enum(s) => Value::String(s),
+    };
+    serde_json::from_value(v).map_err(|e| ParamError::Invalid { path: path.into(), message: e.to_string() })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_number_has_a_unit_and_a_range() {
+        let mut cfg = PlantConfig { sensor: crate::presets::nav_grade_full(), ..PlantConfig::default() };
+        cfg.thermal.chamber.profile = vec![[0.0, 20.0], [10.0, 30.0]];
+        let params = flatten(&cfg);
+        assert!(params.len() > 150, "{}", params.len());
+        for p in &params {
+            if matches!(p.value, ParamValue::Real(_) | ParamValue::Integer(_)) {
+                assert!(p.range.is_some(), "{} has no range in RANGES", p.path);
+                let dimensionless = ["run.", "amplitude_change", "board_to_block_dir_body"].iter().any(|k| p.path.contains(k));
+                if !dimensionless {
+                    assert_ne!(p.unit, "1", "{} has no unit", p.path);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn set_then_flatten_round_trips_and_errors_name_the_key() {
+        let cfg = PlantConfig::default();
+        let c2 = set(&cfg, "sensor.gyro.bias.dph[2]", ParamValue::Real(0.02)).unwrap();
+        assert_eq!(c2.sensor.gyro.bias.dph, [0.0, 0.0, 0.02]);
+        let c3 = set(&c2, "run.seed", ParamValue::Integer(42)).unwrap();
+        assert_eq!(c3.seed, 42);
+        let c4 = set(&c3, "scheme.kind", ParamValue::Enum("eight-position".into())).unwrap();
+        assert_eq!(c4.scheme.kind, crate::table::SchemeKind::EightPosition);
+        let p = flatten(&c4).into_iter().find(|p| p.path == "sensor.gyro.bias.dph[2]").unwrap();
+        assert_eq!((p.value, p.unit), (ParamValue::Real(0.02), "deg/h"));
+        assert!(matches!(set(&cfg, "sensor.gyro.bias.dph[7]", ParamValue::Real(1.0)), Err(ParamError::Unknown(_))));
+        assert!(matches!(set(&cfg, "sensor.gyro.bias.enabled", ParamValue::Real(1.0)), Err(ParamError::Invalid { .. })));
+        let e = set(&cfg, "scheme.kind", ParamValue::Enum("spiral".into())).unwrap_err();
+        assert!(e.to_string().contains("scheme.kind"), "{e}");
+    }
+}
