@@ -16,6 +16,7 @@ pub mod effects;
 pub mod plant;
 pub mod params;
 pub mod presets;
+pub mod state;
 pub mod table;
 pub mod thermal;
 pub mod units;

@@ -255,6 +255,81 @@ impl Plant {
         self.dwell_cache = None;
     }
 
+    /// Writes every evolving field (caches excluded) for [`crate::state`].
+    pub(crate) fn write_state(&self, w: &mut crate::state::Writer) {
+        w.u64(self.tick);
+        w.u64(self.samples);
+        w.u64(self.slow_countdown);
+        w.u64(self.chamber_override_c.is_some() as u64);
+        w.f64(self.chamber_override_c.unwrap_or(0.0));
+        let t = self.thermal.temperatures();
+        t.nodes_c.iter().for_each(|x| w.f64(*x));
+        w.f64(t.chamber_c);
+        w.v3(&self.noise.gm_bias_rps);
+        w.v3(&self.noise.rrw_bias_rps);
+        for s in [&self.noise.arw, &self.noise.gm, &self.noise.rrw, &self.noise.vrw] {
+            w.u128(s.word_pos());
+        }
+        w.v3(&self.gyro_quant.residual);
+        w.v3(&self.accel_quant.residual);
+        let tr = &self.truth;
+        w.v3(&tr.dtheta_true_rad);
+        w.v3(&tr.dv_true_mps);
+        tr.temps.nodes_c.iter().for_each(|x| w.f64(*x));
+        w.f64(tr.temps.chamber_c);
+        tr.gyro_terms_rad.iter().for_each(|v| w.v3(v));
+        tr.accel_terms_mps.iter().for_each(|v| w.v3(v));
+        w.f64(tr.position_weight);
+    }
+
+    /// Reads what [`Plant::write_state`] wrote into a freshly built plant of the same
+    /// configuration, then rebuilds the derived quantities.
+    pub(crate) fn read_state(&mut self, r: &mut crate::state::Reader<'_>) -> Result<(), crate::state::StateError> {
+        self.tick = r.u64()?;
+        self.samples = r.u64()?;
+        self.slow_countdown = r.u64()?;
+        let has_override = r.u64()? != 0;
+        let ov = r.f64()?;
+        self.chamber_override_c = has_override.then_some(ov);
+        let mut nodes = [0.0; 6];
+        for n in nodes.iter_mut() {
+            *n = r.f64()?;
+        }
+        let chamber = r.f64()?;
+        self.thermal.set_state(nodes, chamber);
+        self.noise.gm_bias_rps = r.v3()?;
+        self.noise.rrw_bias_rps = r.v3()?;
+        for s in [&mut self.noise.arw, &mut self.noise.gm, &mut self.noise.rrw, &mut self.noise.vrw] {
+            s.set_word_pos(r.u128()?);
+        }
+        self.gyro_quant.residual = r.v3()?;
+        self.accel_quant.residual = r.v3()?;
+        self.truth.dtheta_true_rad = r.v3()?;
+        self.truth.dv_true_mps = r.v3()?;
+        for n in self.truth.temps.nodes_c.iter_mut() {
+            *n = r.f64()?;
+        }
+        self.truth.temps.chamber_c = r.f64()?;
+        for v in self.truth.gyro_terms_rad.iter_mut() {
+            *v = r.v3()?;
+        }
+        for v in self.truth.accel_terms_mps.iter_mut() {
+            *v = r.v3()?;
+        }
+        self.truth.position_weight = r.f64()?;
+        // Derived: table state at the current tick, temperature-dependent rates; caches reset.
+        let t = self.time_s();
+        self.gimbal_now = self.schedule.eval(t);
+        self.truth.gimbal = self.gimbal_now;
+        self.hold_until_tick = 0;
+        self.dwell_cache = None;
+        self.cursor = Cursor::default();
+        let temps = self.thermal.temperatures();
+        self.gyro_thermal = self.gyro.thermal_rates(&temps.gyro_c(), &temps.gyro_gradient_k());
+        self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(temps.accel_c());
+        Ok(())
+    }
+
     /// Overrides the chamber temperature (an FMU input); `None` returns to the scenario profile.
     pub fn set_chamber_temp_c(&mut self, temp_c: Option<f64>) {
         self.chamber_override_c = temp_c;
