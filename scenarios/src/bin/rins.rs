@@ -240,13 +240,32 @@ fn cmd_paper(a: &PaperArgs) -> Result<()> {
     Ok(())
 }
 
-fn cmd_table4(a: &Table4Args) -> Result<()> {
-    if a.runs == 0 {
+/// Checks `--runs` and `--days` of the paired paper runs.
+fn check_runs_days(runs: usize, days: f64) -> Result<()> {
+    if runs == 0 {
         anyhow::bail!("--runs: expected at least 1 seed, got 0");
     }
-    if !(a.days > 0.0 && a.days <= 60.0) {
-        anyhow::bail!("--days: expected a number in (0, 60], got {}", a.days);
+    if !(days > 0.0 && days <= 60.0) {
+        anyhow::bail!("--days: expected a number in (0, 60], got {days}");
     }
+    Ok(())
+}
+
+/// Runs the paired uncompensated/compensated study with a progress bar and writes
+/// `<name>.json` and the figures to `out`.
+fn run_paired(opt: &rins_verify::paper::Table4Options, name: &str, out: &std::path::Path) -> Result<rins_verify::paper::Table4Report> {
+    let total = (2 * opt.runs as u64 + 2) * (opt.duration_s * opt.plant.rate_hz) as u64;
+    let pb = rins_scenarios::progress::bar(total, name);
+    let r = rins_verify::paper::table4(opt, &|n| pb.inc(n));
+    pb.finish_and_clear();
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    std::fs::write(out.join(format!("{name}.json")), serde_json::to_string_pretty(&r)?)?;
+    write_table4_figures(&r, out)?;
+    Ok(r)
+}
+
+fn cmd_table4(a: &Table4Args) -> Result<()> {
+    check_runs_days(a.runs, a.days)?;
     let sc = Scenario::load(&a.scenario)?;
     let mut plant = sc.plant.clone();
     if a.align == "self" {
@@ -267,13 +286,7 @@ fn cmd_table4(a: &Table4Args) -> Result<()> {
             ..rins_nav::NavRunConfig::default()
         },
     };
-    let total = (2 * a.runs as u64 + 2) * (opt.duration_s * sc.plant.rate_hz) as u64;
-    let pb = rins_scenarios::progress::bar(total, "table4");
-    let r = rins_verify::paper::table4(&opt, &|n| pb.inc(n));
-    pb.finish_and_clear();
-    std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
-    std::fs::write(a.out.join("table4.json"), serde_json::to_string_pretty(&r)?)?;
-    write_table4_figures(&r, &a.out)?;
+    let r = run_paired(&opt, "table4", &a.out)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
@@ -442,12 +455,7 @@ fn cmd_campaign(a: &CampaignArgs) -> Result<()> {
 }
 
 fn cmd_table5(a: &Table5Args) -> Result<()> {
-    if a.runs == 0 {
-        anyhow::bail!("--runs: expected at least 1 seed, got 0");
-    }
-    if !(a.days > 0.0 && a.days <= 60.0) {
-        anyhow::bail!("--days: expected a number in (0, 60], got {}", a.days);
-    }
+    check_runs_days(a.runs, a.days)?;
     let comp = match &a.compensation {
         Some(path) => {
             let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
@@ -474,13 +482,7 @@ fn cmd_table5(a: &Table5Args) -> Result<()> {
         nav: rins_nav::NavRunConfig::default(),
         compensation: Some(comp),
     };
-    let total = (2 * a.runs as u64 + 2) * (opt.duration_s * sc.plant.rate_hz) as u64;
-    let pb = rins_scenarios::progress::bar(total, "table5");
-    let r = rins_verify::paper::table4(&opt, &|n| pb.inc(n));
-    pb.finish_and_clear();
-    std::fs::create_dir_all(&a.out)?;
-    std::fs::write(a.out.join("table5.json"), serde_json::to_string_pretty(&r)?)?;
-    write_table4_figures(&r, &a.out)?;
+    let r = run_paired(&opt, "table5", &a.out)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
