@@ -328,14 +328,16 @@ impl Table4Report {
     pub fn to_text(&self) -> String {
         let (u, c) = (&self.uncompensated, &self.compensated);
         let row = |name: &str, paper: [f64; 2], bu: &Band, bc: &Band| {
+            let p = |x: f64| if x.is_nan() { "-".to_string() } else { format!("{x:.4}") };
             format!(
-                "  {:<26} {:>9.4} {:>9.4}   {:>8.4} [{:>7.4}, {:>7.4}]   {:>8.4} [{:>7.4}, {:>7.4}]\n",
-                name, paper[0], paper[1], bu.median, bu.p05, bu.p95, bc.median, bc.p05, bc.p95
+                "  {:<26} {:>9} {:>9}   {:>8.4} [{:>7.4}, {:>7.4}]   {:>8.4} [{:>7.4}, {:>7.4}]\n",
+                name, p(paper[0]), p(paper[1]), bu.median, bu.p05, bu.p95, bc.median, bc.p05, bc.p95
             )
         };
         let na = [f64::NAN, f64::NAN];
         let mut s = format!(
             "Table 4: {} seeds x {:.2} days, 16-position RINS at 36.6 N 123.6 E, Table 3 sensors (wall {:.1} s)\n\
+             (navigator vertical channel held at the site height; paper values where the paper gives them)\n\
              {:<28} {:>9} {:>9}   {:>27}   {:>27}\n",
             self.runs, self.days, self.wall_s, "", "paper unc", "paper comp", "ours uncompensated median [5%, 95%]", "ours compensated"
         );
