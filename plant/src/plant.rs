@@ -95,6 +95,7 @@ pub struct Plant {
     accel_quant: Quantizer,
     internal_rate_hz: f64,
     dt_s: f64,
+    sqrt_dt: f64,
     h_s: f64,
     slow_every: u64,
     /// Internal ticks since start (substeps × output samples).
@@ -154,6 +155,7 @@ impl Plant {
             accel_quant: quant(s.accel.quantization.enabled, s.accel.quantization.pulse, 1.0),
             internal_rate_hz: cfg.rate_hz * cfg.substeps as f64,
             dt_s: dt,
+            sqrt_dt: dt.sqrt(),
             h_s: dt / cfg.substeps as f64,
             slow_every: (cfg.thermal.step_s * cfg.rate_hz).round() as u64,
             tick: 0,
@@ -480,10 +482,10 @@ impl Plant {
 
         let dt = self.dt_s;
         use crate::effects::{AccelTerm as A, GyroTerm as G};
-        let arw = if self.noise.has_arw() { self.noise.arw_increment(dt) } else { Vector3::zeros() };
+        let arw = if self.noise.has_arw() { self.noise.arw_increment(self.sqrt_dt) } else { Vector3::zeros() };
         let gm = self.noise.gm_bias_rps * dt;
         let rrw = self.noise.rrw_bias_rps * dt;
-        let vrw = if self.noise.has_vrw() { self.noise.vrw_increment(dt) } else { Vector3::zeros() };
+        let vrw = if self.noise.has_vrw() { self.noise.vrw_increment(self.sqrt_dt) } else { Vector3::zeros() };
         let tr = &mut self.truth;
         tr.gyro_terms_rad[G::AngleRandomWalk as usize] = arw;
         tr.gyro_terms_rad[G::BiasInstability as usize] = gm;

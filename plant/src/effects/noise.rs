@@ -60,6 +60,8 @@ impl NormalStream {
 pub struct NoiseState {
     arw_sigma: Vector3<f64>,
     vrw_sigma: Vector3<f64>,
+    arw_on: bool,
+    vrw_on: bool,
     gm_sigma: Vector3<f64>,
     gm_tau: Vector3<f64>,
     rrw_sigma: Vector3<f64>,
@@ -84,9 +86,13 @@ impl NoiseState {
         let gm_sigma = on(gyro.bias_instability.enabled, gyro.bias_instability.sigma_dph, DPH);
         let mut gm = NormalStream::new(seed, stream::GYRO_BIAS_INSTABILITY);
         let gm0 = if gyro.bias_instability.enabled { gm_sigma.component_mul(&gm.vec3()) } else { Vector3::zeros() };
+        let arw_sigma = on(gyro.angle_random_walk.enabled, gyro.angle_random_walk.dpsh, DPSH);
+        let vrw_sigma = on(accel.velocity_random_walk.enabled, accel.velocity_random_walk.ug_per_sqrthz, UG);
         Self {
-            arw_sigma: on(gyro.angle_random_walk.enabled, gyro.angle_random_walk.dpsh, DPSH),
-            vrw_sigma: on(accel.velocity_random_walk.enabled, accel.velocity_random_walk.ug_per_sqrthz, UG),
+            arw_on: arw_sigma != Vector3::zeros(),
+            vrw_on: vrw_sigma != Vector3::zeros(),
+            arw_sigma,
+            vrw_sigma,
             gm_sigma,
             gm_tau: Vector3::from(gyro.bias_instability.tau_s),
             rrw_sigma: on(gyro.rate_random_walk.enabled, gyro.rate_random_walk.dph_per_sqrth, DPH_PER_SQRTH),
@@ -101,24 +107,24 @@ impl NoiseState {
 
     /// Whether the angle random walk is on (skip drawing when off).
     pub fn has_arw(&self) -> bool {
-        self.arw_sigma != Vector3::zeros()
+        self.arw_on
     }
 
     /// Whether the velocity random walk is on.
     pub fn has_vrw(&self) -> bool {
-        self.vrw_sigma != Vector3::zeros()
+        self.vrw_on
     }
 
-    /// Angle-random-walk increment over `dt_s`: N·√dt·w, rad.
+    /// Angle-random-walk increment over an interval of √dt = `sqrt_dt`: N·√dt·w, rad.
     #[inline]
-    pub fn arw_increment(&mut self, dt_s: f64) -> Vector3<f64> {
-        self.arw_sigma.component_mul(&self.arw.vec3()) * dt_s.sqrt()
+    pub fn arw_increment(&mut self, sqrt_dt: f64) -> Vector3<f64> {
+        self.arw_sigma.component_mul(&self.arw.vec3()) * sqrt_dt
     }
 
-    /// Velocity-random-walk increment over `dt_s`, m/s.
+    /// Velocity-random-walk increment over an interval of √dt = `sqrt_dt`, m/s.
     #[inline]
-    pub fn vrw_increment(&mut self, dt_s: f64) -> Vector3<f64> {
-        self.vrw_sigma.component_mul(&self.vrw.vec3()) * dt_s.sqrt()
+    pub fn vrw_increment(&mut self, sqrt_dt: f64) -> Vector3<f64> {
+        self.vrw_sigma.component_mul(&self.vrw.vec3()) * sqrt_dt
     }
 
     /// Advances the slow processes by `h_s`: exact discrete Gauss–Markov,
