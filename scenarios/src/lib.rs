@@ -5,6 +5,7 @@
 
 pub mod file;
 pub mod locate;
+pub mod measurement;
 pub mod plots;
 pub mod progress;
 pub mod runner;
