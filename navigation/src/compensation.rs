@@ -16,9 +16,7 @@ pub struct PositionBiasCompensation {
 impl PositionBiasCompensation {
     /// Compensates with `spec` (its `enabled` flag is forced on).
     pub fn new(spec: &PositionBiasSpec) -> Self {
-        let mut g = GyroSpec::default();
-        g.position_bias = *spec;
-        g.position_bias.enabled = true;
+        let g = GyroSpec { position_bias: PositionBiasSpec { enabled: true, ..*spec }, ..GyroSpec::default() };
         Self { model: GyroModel::new(&g) }
     }
 

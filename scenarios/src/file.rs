@@ -195,10 +195,13 @@ impl Scenario {
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
         let s = path.to_string_lossy();
         let name = s.strip_prefix("builtin:").unwrap_or(&s);
-        if let Some((n, text)) = BUILTIN.iter().find(|(n, _)| *n == name) {
-            if s.starts_with("builtin:") || !path.exists() {
-                return Self::from_toml(text, &format!("builtin:{n}"));
-            }
+        let explicit = s.starts_with("builtin:");
+        if let Some((n, text)) = BUILTIN.iter().find(|(n, _)| *n == name).filter(|_| explicit || !path.exists()) {
+            return Self::from_toml(text, &format!("builtin:{n}"));
+        }
+        if explicit {
+            let names: Vec<&str> = BUILTIN.iter().map(|(n, _)| *n).collect();
+            return Err(ScenarioError::Parse { source_name: s.to_string(), message: format!("no such built-in scenario; built-ins are {names:?}") });
         }
         let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::Read { path: path.into(), source: e })?;
         Self::from_toml(&text, &path.display().to_string())

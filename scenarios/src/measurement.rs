@@ -73,10 +73,8 @@ fn classify(name: &str) -> Result<bool, String> {
     // A known quantity in a wrong unit?
     for want in REQUIRED.iter().chain(&GIMBAL).chain(&OPTIONAL[1..]) {
         let base = want.rsplit_once('_').map(|(b, _)| b).unwrap_or(want);
-        if let Some(unit) = name.strip_prefix(base) {
-            if WRONG_UNITS.contains(&unit) || unit.starts_with('_') {
-                return Err(format!("unit not accepted; expected {want}"));
-            }
+        if let Some(unit) = name.strip_prefix(base).filter(|u| WRONG_UNITS.contains(u) || u.starts_with('_')) {
+            return Err(format!("unit {unit:?} not accepted; expected {want}"));
         }
     }
     Err(format!(
@@ -157,7 +155,7 @@ pub fn parse(text: &str, source_name: &str) -> Result<Measurement, MeasurementEr
         }
         let mut d: Vec<f64> = t[a..b].windows(2).map(|w| w[1] - w[0]).collect();
         for (k, dt) in d.iter().enumerate() {
-            if !(*dt > 0.0) {
+            if *dt <= 0.0 {
                 return Err(err(a + k + 2, "t_s", format!("time not increasing: {} after {}", t[a + k + 1], t[a + k])));
             }
         }

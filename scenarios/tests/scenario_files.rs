@@ -70,6 +70,8 @@ fn wrong_type_and_bad_preset_and_bad_campaign() {
     let e = err_text("[campaign]\ntemps_c = [20.0, 300.0]\n");
     assert!(e.contains("campaign.temps_c") && e.contains("300"), "{e}");
     assert!(matches!(Scenario::load(std::path::Path::new("/nonexistent/x.toml")), Err(ScenarioError::Read { .. })));
+    let e = Scenario::load(std::path::Path::new("builtin:paper-table9")).unwrap_err().to_string();
+    assert!(e.contains("paper-table9") && e.contains("paper-16pos-week"), "{e}");
 }
 
 fn csv_bytes(sc: &Scenario, decimation: u64) -> Vec<u8> {
