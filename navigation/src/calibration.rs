@@ -79,7 +79,7 @@ impl Default for CalibrationConfig {
 #[derive(Debug, thiserror::Error)]
 pub enum CalibrationError {
     /// Segment too short for a drift fit.
-    #[error("calibration segment of {segment_s} s at {rate_hz} Hz gives {samples} samples; a second-derivative fit needs at least 30 (use segment_s ≥ {min_s} s)")]
+    #[error("calibration segment (scheme.dwell_s) of {segment_s} s at {rate_hz} Hz gives {samples} samples; a second-derivative fit needs at least 30 (set scheme.dwell_s ≥ {min_s} s)")]
     SegmentTooShort {
         /// Segment length, s.
         segment_s: f64,

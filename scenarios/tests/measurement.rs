@@ -38,8 +38,10 @@ fn bad_files_name_row_and_column() {
     assert_eq!((r, c.as_str()), (0, "dtheta_y_deg"));
     assert!(msg.contains("expected dtheta_y_rad"), "{msg}");
     let (r, c, _) = error(&g.replace(",dv_z_mps", ",foo_mps"));
-    assert_eq!(r, 0);
-    assert!(c == "foo_mps" || c == "dv_z_mps", "{c}");
+    assert_eq!((r, c.as_str()), (0, "foo_mps"));
+    let (r, c, msg) = error(&g.replace(",dv_z_mps", ""));
+    assert_eq!((r, c.as_str()), (0, "dv_z_mps"));
+    assert!(msg.contains("missing"), "{msg}");
     let (r, c, _) = error(&g.replace("0.2,1e-6,2e-6", "0.2,NaN,2e-6"));
     assert_eq!((r, c.as_str()), (2, "dtheta_x_rad"));
     let (r, c, _) = error(&g.replace("0.3,1e-6", "0.15,1e-6"));
@@ -54,10 +56,16 @@ fn bad_files_name_row_and_column() {
     let (r, _, msg) = error(&g.replace(",r1,zup\n0.2", ",r1\n0.2"));
     assert!(r == 1 && msg.contains("fields"), "{r} {msg}");
     let (r, c, _) = error(&g.replace(",outer_deg,inner_deg", ",outer_deg,x_inner"));
-    assert_eq!(r, 0);
-    assert!(c == "x_inner" || c == "outer_deg");
-    let (_, c, msg) = error(&g.replace("temp_gyro_x_c", "gyro_temperature"));
-    assert!(c == "gyro_temperature" || msg.contains("temperature"), "{c} {msg}");
+    assert_eq!((r, c.as_str()), (0, "x_inner"));
+    let (r, c, _) = error(&g.replace("temp_gyro_x_c", "gyro_temperature"));
+    assert_eq!((r, c.as_str()), (0, "gyro_temperature"));
+    // Attitude and temperature are required as groups.
+    let no_att = g.replace(",outer_deg,inner_deg", "").replace(",0,0,30", ",30").replace(",180,180,30", ",30");
+    let (_, c, msg) = error(&no_att);
+    assert!(c == "outer_deg" && msg.contains("q_bn_w"), "{c} {msg}");
+    let no_temp = g.replace(",temp_gyro_x_c", "").replace(",30.1,", ",").replace(",30.2,", ",").replace(",30.3,", ",");
+    let (_, c, _) = error(&no_temp);
+    assert_eq!(c, "temp_*_c");
 }
 
 #[test]
