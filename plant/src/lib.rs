@@ -22,4 +22,4 @@ pub mod thermal;
 pub mod units;
 
 pub use config::{ConfigError, PlantConfig, SensorSpec, VehicleSpec};
-pub use plant::{ImuSample, Plant, Truth};
+pub use plant::{GimbalCommand, ImuSample, Plant, Truth};

@@ -100,6 +100,19 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("thermal.board_to_block_dir_body", -1.0, 1.0),
 ];
 
+/// Names accepted by each enumeration parameter, in the order FMUs number them (1-based).
+pub const ENUMS: &[(&str, &[&str])] = &[
+    ("scheme.kind", &["sixteen-position", "eight-position", "continuous", "static", "z-up-calibration", "z-down-calibration", "steps"]),
+    ("scheme.axis", &["outer", "inner"]),
+    ("sensor.gyro.position_bias.transition", &["cosine", "step"]),
+];
+
+/// The names `path` accepts, if it is an enumeration.
+pub fn enum_choices(path: &str) -> Option<&'static [&'static str]> {
+    let key = key_of(path);
+    ENUMS.iter().find(|(k, _)| *k == key).map(|(_, c)| *c)
+}
+
 /// Strips array indices: `sensor.gyro.bias.dph[2]` → `sensor.gyro.bias.dph`.
 pub fn key_of(path: &str) -> String {
     let mut out = String::with_capacity(path.len());
@@ -226,9 +239,23 @@ pub enum ParamError {
 
 /// `cfg` with the parameter at `path` set to `value` (range-checked by [`PlantConfig::validate`]).
 pub fn set(cfg: &PlantConfig, path: &str, value: ParamValue) -> Result<PlantConfig, ParamError> {
+    apply(cfg, std::iter::once((path, value)))
+}
+
+/// `cfg` with every `(path, value)` set, in one pass (an FMU sets all its parameters at once).
+pub fn apply<'a>(cfg: &PlantConfig, values: impl IntoIterator<Item = (&'a str, ParamValue)>) -> Result<PlantConfig, ParamError> {
     let mut v = serde_json::to_value(cfg).expect("PlantConfig serialises");
+    let mut last = String::new();
+    for (path, value) in values {
+        set_node(&mut v, path, value)?;
+        last = path.to_string();
+    }
+    serde_json::from_value(v).map_err(|e| ParamError::Invalid { path: last, message: e.to_string() })
+}
+
+fn set_node(v: &mut Value, path: &str, value: ParamValue) -> Result<(), ParamError> {
     let inner = path.strip_prefix("run.").filter(|p| ["rate_hz", "substeps", "seed"].contains(p)).unwrap_or(path);
-    let mut node = &mut v;
+    let mut node = v;
     for part in inner.split('.') {
         let (name, idx) = match part.find('[') {
             Some(i) => (&part[..i], &part[i..]),
@@ -247,13 +274,18 @@ pub fn set(cfg: &PlantConfig, path: &str, value: ParamValue) -> Result<PlantConf
     if !kind_ok {
         return Err(ParamError::Invalid { path: path.into(), message: format!("expected a value like {node}, got {value:?}") });
     }
+    if let (ParamValue::Enum(name), Some(choices)) = (&value, enum_choices(path))
+        && !choices.contains(&name.as_str())
+    {
+        return Err(ParamError::Invalid { path: path.into(), message: format!("unknown variant {name:?}, expected one of {choices:?}") });
+    }
     *node = match value {
         ParamValue::Real(x) => serde_json::Number::from_f64(x).map(Value::Number).unwrap_or(Value::Null),
         ParamValue::Integer(u) => Value::from(u),
         ParamValue::Bool(b) => Value::Bool(b),
         ParamValue::Enum(s) => Value::String(s),
     };
-    serde_json::from_value(v).map_err(|e| ParamError::Invalid { path: path.into(), message: e.to_string() })
+    Ok(())
 }
 
 #[cfg(test)]
@@ -292,5 +324,20 @@ mod tests {
         assert!(matches!(set(&cfg, "sensor.gyro.bias.enabled", ParamValue::Real(1.0)), Err(ParamError::Invalid { .. })));
         let e = set(&cfg, "scheme.kind", ParamValue::Enum("spiral".into())).unwrap_err();
         assert!(e.to_string().contains("scheme.kind"), "{e}");
+    }
+
+    #[test]
+    fn every_enumeration_lists_exactly_the_names_serde_accepts() {
+        let cfg = PlantConfig::default();
+        let enums: Vec<Param> = flatten(&cfg).into_iter().filter(|p| matches!(p.value, ParamValue::Enum(_))).collect();
+        assert_eq!(enums.len(), ENUMS.len(), "{enums:?}");
+        for p in enums {
+            let choices = enum_choices(&p.path).unwrap_or_else(|| panic!("{} has no choices", p.path));
+            for c in choices {
+                let c2 = set(&cfg, &p.path, ParamValue::Enum(c.to_string())).unwrap();
+                let back = flatten(&c2).into_iter().find(|q| q.path == p.path).unwrap();
+                assert_eq!(back.value, ParamValue::Enum(c.to_string()));
+            }
+        }
     }
 }

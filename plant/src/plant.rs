@@ -11,7 +11,8 @@ use crate::effects::noise::NoiseState;
 use crate::effects::quantize::Quantizer;
 use crate::effects::{AccelModel, GyroModel, TermContext};
 use crate::table::gimbal::gimbal_rotation;
-use crate::table::{Cursor, GimbalState, Schedule, body_to_nav};
+use crate::table::scheme::{GimbalAxis, ResolvedScheme, ResolvedStep};
+use crate::table::{Cursor, GimbalAngles, GimbalState, Schedule, body_to_nav};
 use crate::thermal::{Temperatures, ThermalNetwork};
 use crate::units::ARCSEC;
 
@@ -45,6 +46,38 @@ pub struct Truth {
     pub accel_terms_mps: [Vector3<f64>; ACCEL_TERMS],
     /// Weight of δβ at the interval midpoint (0 Z-up, 1 Z-down).
     pub position_weight: f64,
+}
+
+/// A table command from the navigation computer (a real RINS navigation computer drives its own
+/// table). It takes effect at the start of the next output interval: the table leaves its
+/// current angles at rest and follows the commanded moves with the scheme's acceleration limit.
+#[derive(Clone, Debug, PartialEq)]
+pub enum GimbalCommand {
+    /// Move to these angles, outer gimbal first, then inner, at `rate_rps`; then hold.
+    MoveTo {
+        /// Target outer (azimuth) angle, rad.
+        outer_rad: f64,
+        /// Target inner angle, rad.
+        inner_rad: f64,
+        /// Cruise rate, rad/s.
+        rate_rps: f64,
+    },
+    /// Run these moves from the current angles, then hold the last attitude (or repeat them).
+    Steps {
+        /// Moves and dwells.
+        steps: Vec<ResolvedStep>,
+        /// Repeat the list forever.
+        repeat: bool,
+    },
+}
+
+/// The commanded motion that replaced the configured scheme, kept so a saved state can rebuild it.
+#[derive(Clone, Debug, PartialEq)]
+struct ActiveCommand {
+    start_tick: u64,
+    initial: GimbalAngles,
+    steps: Vec<ResolvedStep>,
+    repeat: bool,
 }
 
 /// Last internal tick at or before `hold_s` (a dwell end); whether the boundary tick itself is
@@ -120,6 +153,8 @@ pub struct Plant {
     dwell_cache: Option<DwellCache>,
     /// Disable the dwell cache (tests compare against the uncached path).
     use_dwell_cache: bool,
+    /// Motion commanded by the navigation side, replacing the scheme from its start tick.
+    command: Option<ActiveCommand>,
     truth: Truth,
 }
 
@@ -177,6 +212,7 @@ impl Plant {
             vehicle_level: c_vn == Matrix3::identity(),
             dwell_cache: None,
             use_dwell_cache: true,
+            command: None,
             cursor: Cursor::default(),
             truth: Truth {
                 gimbal: g0,
@@ -282,6 +318,20 @@ impl Plant {
         tr.gyro_terms_rad.iter().for_each(|v| w.v3(v));
         tr.accel_terms_mps.iter().for_each(|v| w.v3(v));
         w.f64(tr.position_weight);
+        w.u64(self.command.is_some() as u64);
+        if let Some(c) = &self.command {
+            w.u64(c.start_tick);
+            w.f64(c.initial.outer_rad);
+            w.f64(c.initial.inner_rad);
+            w.u64(c.repeat as u64);
+            w.u64(c.steps.len() as u64);
+            for s in &c.steps {
+                w.u64(matches!(s.axis, GimbalAxis::Inner) as u64);
+                w.f64(s.angle_rad);
+                w.f64(s.rate_rps);
+                w.f64(s.dwell_s);
+            }
+        }
     }
 
     /// Reads what [`Plant::write_state`] wrote into a freshly built plant of the same
@@ -319,6 +369,18 @@ impl Plant {
             *v = r.v3()?;
         }
         self.truth.position_weight = r.f64()?;
+        if r.u64()? != 0 {
+            let start_tick = r.u64()?;
+            let initial = GimbalAngles::new(r.f64()?, r.f64()?);
+            let repeat = r.u64()? != 0;
+            let n = r.u64()?;
+            let mut steps = Vec::new();
+            for _ in 0..n {
+                let axis = if r.u64()? != 0 { GimbalAxis::Inner } else { GimbalAxis::Outer };
+                steps.push(ResolvedStep { axis, angle_rad: r.f64()?, rate_rps: r.f64()?, dwell_s: r.f64()? });
+            }
+            self.install_command(ActiveCommand { start_tick, initial, steps, repeat });
+        }
         // Derived: table state at the current tick, temperature-dependent rates; caches reset.
         let t = self.time_s();
         self.gimbal_now = self.schedule.eval(t);
@@ -335,6 +397,63 @@ impl Plant {
     /// Overrides the chamber temperature (an FMU input); `None` returns to the scenario profile.
     pub fn set_chamber_temp_c(&mut self, temp_c: Option<f64>) {
         self.chamber_override_c = temp_c;
+    }
+
+    /// Applies a table command from the next output interval on (see [`GimbalCommand`]).
+    /// Rejects non-finite or out-of-range angles and rates with the reason.
+    pub fn command_gimbal(&mut self, cmd: &GimbalCommand) -> Result<(), String> {
+        let now = self.gimbal_now.angles;
+        let rate_ok = |r: f64| r.is_finite() && r > 0.0 && r <= 100f64.to_radians();
+        let (steps, repeat) = match cmd {
+            GimbalCommand::MoveTo { outer_rad, inner_rad, rate_rps } => {
+                if !outer_rad.is_finite() || !inner_rad.is_finite() {
+                    return Err(format!("gimbal target must be finite, got outer {outer_rad} rad, inner {inner_rad} rad"));
+                }
+                if !rate_ok(*rate_rps) {
+                    return Err(format!("gimbal rate must be in (0, 100] deg/s, got {} deg/s", rate_rps.to_degrees()));
+                }
+                let moves = [(GimbalAxis::Outer, outer_rad - now.outer_rad), (GimbalAxis::Inner, inner_rad - now.inner_rad)];
+                let steps = moves
+                    .into_iter()
+                    .filter(|(_, d)| *d != 0.0)
+                    .map(|(axis, angle_rad)| ResolvedStep { axis, angle_rad, rate_rps: *rate_rps, dwell_s: 0.0 })
+                    .collect();
+                (steps, false)
+            }
+            GimbalCommand::Steps { steps, repeat } => {
+                for (i, s) in steps.iter().enumerate() {
+                    if !s.angle_rad.is_finite() || s.angle_rad.abs() > 3600f64.to_radians() || !rate_ok(s.rate_rps) || !(s.dwell_s >= 0.0 && s.dwell_s.is_finite()) {
+                        return Err(format!(
+                            "gimbal step {i}: angle must be finite within ±3600 deg, rate in (0, 100] deg/s, dwell ≥ 0 s; got {} deg, {} deg/s, {} s",
+                            s.angle_rad.to_degrees(),
+                            s.rate_rps.to_degrees(),
+                            s.dwell_s
+                        ));
+                    }
+                }
+                if *repeat && steps.iter().all(|s| s.angle_rad == 0.0 && s.dwell_s == 0.0) {
+                    return Err("a repeating gimbal step list needs a non-zero duration".into());
+                }
+                (steps.clone(), *repeat)
+            }
+        };
+        self.install_command(ActiveCommand { start_tick: self.tick, initial: now, steps, repeat });
+        Ok(())
+    }
+
+    fn install_command(&mut self, c: ActiveCommand) {
+        self.schedule = Schedule::new(&ResolvedScheme {
+            initial: c.initial,
+            lead_dwell_s: c.start_tick as f64 / self.internal_rate_hz,
+            steps: c.steps.clone(),
+            repeat: c.repeat,
+            continuous: None,
+            accel_rps2: self.cfg.scheme.accel_dps2.to_radians(),
+        });
+        self.command = Some(c);
+        self.cursor = Cursor::default();
+        self.hold_until_tick = 0;
+        self.dwell_cache = None;
     }
 
     fn chamber_c(&self, t_s: f64) -> f64 {

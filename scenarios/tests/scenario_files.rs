@@ -143,3 +143,11 @@ fn every_key_is_documented() {
         assert!(docs.contains(&format!("`{k}`")), "docs/scenario-format.md does not mention `{k}`");
     }
 }
+
+#[test]
+fn the_headline_scenario_is_the_fmu_default_plant() {
+    // The FMU's start values come from `presets::paper_16pos_config`; the scenario file is the
+    // user-facing definition. They must not drift apart.
+    let s = rins_scenarios::file::Scenario::load(std::path::Path::new("builtin:paper-16pos-week")).unwrap();
+    assert_eq!(s.plant, rins_plant::presets::paper_16pos_config());
+}
