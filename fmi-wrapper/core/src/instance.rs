@@ -1,0 +1,253 @@
+//! The FMI instance state machine, generic over the [`Model`]: instantiated → initialization
+//! mode → step mode → terminated. Calls in the wrong state, unknown value references and bad
+//! values are rejected with an [`FmiError`] that the C glue logs; nothing here touches C.
+
+use crate::model::Model;
+use crate::vars::{Causality, Value, VariableTable};
+
+/// FMI status codes (the same numbers in FMI 2 and 3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+#[repr(i32)]
+pub enum Status {
+    /// Success.
+    Ok = 0,
+    /// Success with a remark.
+    Warning = 1,
+    /// The call was ignored; the instance is unchanged.
+    Discard = 2,
+    /// The call failed; the instance may be reset.
+    Error = 3,
+    /// The instance is unusable.
+    Fatal = 4,
+}
+
+/// A refused call: status, log category and the reason.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FmiError {
+    /// Status to return.
+    pub status: Status,
+    /// Log category (`logStatusError`, …).
+    pub category: &'static str,
+    /// Why.
+    pub message: String,
+}
+
+impl FmiError {
+    /// An error-status refusal.
+    pub fn error(message: impl Into<String>) -> Self {
+        Self { status: Status::Error, category: "logStatusError", message: message.into() }
+    }
+}
+
+/// Log categories the FMUs declare.
+pub const LOG_CATEGORIES: [(&str, &str); 3] = [
+    ("logStatusError", "Calls that fail, with the reason (always reported)"),
+    ("logStatusWarning", "Calls that succeed with a remark (always reported)"),
+    ("logEvents", "Mode changes and steps (only with loggingOn)"),
+];
+
+/// Where the instance is in its life.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// After instantiate: parameters may be set.
+    Instantiated,
+    /// Between enter/exit initialization mode.
+    Initialization,
+    /// Stepping.
+    Step,
+    /// After terminate.
+    Terminated,
+    /// After a failed call; only reset, free, get and state restore are allowed.
+    Error,
+}
+
+/// One FMU instance.
+#[derive(Clone, Debug)]
+pub struct Instance<M: Model> {
+    model: M,
+    mode: Mode,
+    start_time_s: f64,
+}
+
+/// Tolerance, relative to the step, for "whole number of internal steps" and "at the current time".
+const STEP_TOL: f64 = 1e-9;
+
+impl<M: Model> Default for Instance<M> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<M: Model> Instance<M> {
+    /// A fresh instance in [`Mode::Instantiated`].
+    pub fn new() -> Self {
+        Self { model: M::new(), mode: Mode::Instantiated, start_time_s: 0.0 }
+    }
+
+    /// The variable table.
+    pub fn table(&self) -> &'static VariableTable {
+        M::table()
+    }
+
+    /// Current mode.
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+
+    /// The wrapped model.
+    pub fn model(&self) -> &M {
+        &self.model
+    }
+
+    /// Current communication time, s.
+    pub fn time_s(&self) -> f64 {
+        self.start_time_s + if matches!(self.mode, Mode::Step | Mode::Terminated | Mode::Error) { self.model.time_s() } else { 0.0 }
+    }
+
+    fn expect(&self, allowed: &[Mode], what: &str) -> Result<(), FmiError> {
+        if allowed.contains(&self.mode) {
+            Ok(())
+        } else {
+            Err(FmiError::error(format!("{what} is not allowed in {:?} mode (allowed: {allowed:?})", self.mode)))
+        }
+    }
+
+    /// Records the start time (FMI 2 setupExperiment / FMI 3 enterInitializationMode).
+    pub fn setup(&mut self, start_time_s: f64) -> Result<(), FmiError> {
+        self.expect(&[Mode::Instantiated, Mode::Initialization], "setting the start time")?;
+        if !start_time_s.is_finite() {
+            return Err(FmiError::error(format!("start time must be finite, got {start_time_s}")));
+        }
+        self.start_time_s = start_time_s;
+        Ok(())
+    }
+
+    /// Enters initialization mode.
+    pub fn enter_initialization(&mut self) -> Result<(), FmiError> {
+        self.expect(&[Mode::Instantiated], "entering initialization mode")?;
+        self.mode = Mode::Initialization;
+        Ok(())
+    }
+
+    /// Leaves initialization mode: the model is built from its parameters.
+    pub fn exit_initialization(&mut self) -> Result<(), FmiError> {
+        self.expect(&[Mode::Initialization], "exiting initialization mode")?;
+        match self.model.initialize() {
+            Ok(()) => {
+                self.mode = Mode::Step;
+                Ok(())
+            }
+            Err(e) => {
+                self.mode = Mode::Error;
+                Err(FmiError::error(format!("initialization failed: {e}")))
+            }
+        }
+    }
+
+    /// Terminates.
+    pub fn terminate(&mut self) -> Result<(), FmiError> {
+        self.expect(&[Mode::Step, Mode::Initialization], "terminate")?;
+        self.mode = Mode::Terminated;
+        Ok(())
+    }
+
+    /// Back to a fresh instance with start values.
+    pub fn reset(&mut self) {
+        *self = Self::new();
+    }
+
+    fn slot_of(&self, vr: u32) -> Result<usize, FmiError> {
+        let n = M::table().scalars.len();
+        let slot = vr as usize;
+        if slot < n { Ok(slot) } else { Err(FmiError::error(format!("unknown value reference {vr} (valid: 0…{})", n - 1))) }
+    }
+
+    /// Sets the scalar at value reference `vr` (its slot).
+    pub fn set(&mut self, vr: u32, v: Value) -> Result<(), FmiError> {
+        let slot = self.slot_of(vr)?;
+        self.set_slot(slot, v)
+    }
+
+    /// Sets slot `slot`, checking causality against the mode, then type and range.
+    pub fn set_slot(&mut self, slot: usize, v: Value) -> Result<(), FmiError> {
+        let s = &M::table().scalars[slot];
+        match s.causality {
+            Causality::Output => return Err(FmiError::error(format!("{} is an output and cannot be set", s.name))),
+            Causality::Parameter => {
+                self.expect(&[Mode::Instantiated, Mode::Initialization], &format!("setting parameter {}", s.name))?
+            }
+            Causality::Input => self.expect(&[Mode::Instantiated, Mode::Initialization, Mode::Step], &format!("setting input {}", s.name))?,
+        }
+        M::table().check(slot, v).map_err(FmiError::error)?;
+        self.model.set(slot, v).map_err(FmiError::error)
+    }
+
+    /// Value at value reference `vr`.
+    pub fn get(&self, vr: u32) -> Result<Value, FmiError> {
+        let slot = self.slot_of(vr)?;
+        Ok(self.get_slot(slot))
+    }
+
+    /// Value of slot `slot`.
+    pub fn get_slot(&self, slot: usize) -> Value {
+        self.model.get(slot)
+    }
+
+    /// Advances from `t_s` by `h_s`, which must be a whole number of internal steps.
+    pub fn do_step(&mut self, t_s: f64, h_s: f64) -> Result<(), FmiError> {
+        self.expect(&[Mode::Step], "doStep")?;
+        let now = self.time_s();
+        let dt = self.model.internal_step_s();
+        if !(t_s.is_finite() && (t_s - now).abs() <= STEP_TOL * dt.max(now.abs() * 1e-6)) {
+            return Err(FmiError::error(format!("doStep from t = {t_s} s, but the FMU is at t = {now} s")));
+        }
+        let n = h_s / dt;
+        let whole = n.round();
+        if !(h_s.is_finite() && whole >= 1.0 && (n - whole).abs() <= STEP_TOL * whole.max(1.0)) {
+            return Err(FmiError::error(format!(
+                "communication step {h_s} s is not a whole positive number of internal steps of {dt} s (ratio {n})"
+            )));
+        }
+        self.model.advance(whole as u64).map_err(|e| {
+            self.mode = Mode::Error;
+            FmiError::error(e)
+        })
+    }
+
+    /// A copy of the whole instance (FMU state by value).
+    pub fn snapshot(&self) -> Self {
+        self.clone()
+    }
+
+    /// Restores a snapshot.
+    pub fn restore_snapshot(&mut self, s: &Self) {
+        *self = s.clone();
+    }
+
+    /// The state as bytes: magic, mode, start time, then the model's own bytes.
+    pub fn serialize(&self) -> Vec<u8> {
+        let mut out = b"RINSFMU1".to_vec();
+        out.extend_from_slice(&(self.mode as u8 as u64).to_le_bytes());
+        out.extend_from_slice(&self.start_time_s.to_le_bytes());
+        out.extend(self.model.save());
+        out
+    }
+
+    /// An instance from [`Instance::serialize`] bytes.
+    pub fn deserialize(bytes: &[u8]) -> Result<Self, FmiError> {
+        if bytes.len() < 24 || &bytes[..8] != b"RINSFMU1" {
+            return Err(FmiError::error("not a serialized state of this FMU (bad header)"));
+        }
+        let mode = match u64::from_le_bytes(bytes[8..16].try_into().expect("8 bytes")) {
+            0 => Mode::Instantiated,
+            1 => Mode::Initialization,
+            2 => Mode::Step,
+            3 => Mode::Terminated,
+            _ => Mode::Error,
+        };
+        let start_time_s = f64::from_le_bytes(bytes[16..24].try_into().expect("8 bytes"));
+        let mut model = M::new();
+        model.restore(&bytes[24..]).map_err(|e| FmiError::error(format!("cannot restore the serialized state: {e}")))?;
+        Ok(Self { model, mode, start_time_s })
+    }
+}

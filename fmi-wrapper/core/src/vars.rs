@@ -1,0 +1,177 @@
+//! The FMU's variable table: one row per scalar ("slot"). FMI 2 gives every slot its own value
+//! reference; FMI 3 groups the slots of one array (`sensor.gyro.bias.dph[0..3]`) into one
+//! Float64 array variable. Both modelDescriptions and both C APIs are generated from this table.
+
+use std::ops::Range;
+
+/// Type of a scalar.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Kind {
+    /// 64-bit float (FMI 2 Real, FMI 3 Float64).
+    Real,
+    /// Non-negative whole number (FMI 2 Integer 0…2³¹−1, FMI 3 UInt64).
+    Integer,
+    /// Switch (FMI 2/3 Boolean).
+    Boolean,
+    /// One of named items, numbered from 1 (FMI 2 Integer-valued, FMI 3 Int64-valued).
+    Enumeration {
+        /// Type name in TypeDefinitions.
+        type_name: &'static str,
+        /// Item names, value i+1 for item i.
+        items: &'static [&'static str],
+    },
+}
+
+/// Role of a scalar.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Causality {
+    /// Fixed before initialisation ends.
+    Parameter,
+    /// Set by the master at any communication point.
+    Input,
+    /// Computed by the FMU.
+    Output,
+}
+
+/// A value of any [`Kind`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Value {
+    /// Real.
+    Real(f64),
+    /// Integer.
+    Integer(u64),
+    /// Boolean.
+    Boolean(bool),
+    /// Enumeration item, 0-based index into the items (FMI value − 1).
+    Enumeration(usize),
+}
+
+/// One scalar.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScalarVar {
+    /// FMI 2 name, structured: `sensor.gyro.bias.dph[2]`.
+    pub name: String,
+    /// Name of the FMI 3 variable holding it (the array name without index).
+    pub array: String,
+    /// Type.
+    pub kind: Kind,
+    /// Role.
+    pub causality: Causality,
+    /// Unit symbol (`None` when dimensionless).
+    pub unit: Option<&'static str>,
+    /// Start value (parameters and inputs; outputs report it before the first step).
+    pub start: Value,
+    /// Valid range of numbers, inclusive (±∞ for open ends).
+    pub range: Option<(f64, f64)>,
+    /// One line for the user.
+    pub description: String,
+}
+
+/// An FMI 3 variable: a scalar or a 1-D array of consecutive slots.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ArrayVar {
+    /// Name.
+    pub name: String,
+    /// Slots it covers.
+    pub slots: Range<usize>,
+    /// Whether it is declared as an array (with a Dimension), even of length 1.
+    pub is_array: bool,
+    /// Array dimensions, row-major (empty for scalars).
+    pub dims: Vec<usize>,
+}
+
+/// Indices of a structured name: `a.b[1,2]` → `[1, 2]`.
+fn indices(name: &str) -> Vec<usize> {
+    name.rfind('[').map_or_else(Vec::new, |i| name[i + 1..name.len() - 1].split(',').filter_map(|x| x.trim().parse().ok()).collect())
+}
+
+/// All scalars, with their FMI 3 grouping.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VariableTable {
+    /// Scalars in value-reference order (FMI 2 value reference = index).
+    pub scalars: Vec<ScalarVar>,
+    /// FMI 3 variables in order (FMI 3 value reference = index + 1; 0 is `time`).
+    pub arrays: Vec<ArrayVar>,
+}
+
+impl VariableTable {
+    /// Builds the table and its FMI 3 grouping: consecutive scalars sharing an array name form
+    /// one array variable.
+    pub fn new(scalars: Vec<ScalarVar>) -> Self {
+        let mut arrays: Vec<ArrayVar> = Vec::new();
+        for (i, s) in scalars.iter().enumerate() {
+            match arrays.last_mut() {
+                Some(a) if a.name == s.array && a.slots.end == i && a.is_array => a.slots.end = i + 1,
+                _ => arrays.push(ArrayVar { name: s.array.clone(), slots: i..i + 1, is_array: s.name != s.array, dims: Vec::new() }),
+            }
+        }
+        for a in arrays.iter_mut().filter(|a| a.is_array) {
+            a.dims = indices(&scalars[a.slots.end - 1].name).iter().map(|i| i + 1).collect();
+            assert_eq!(a.dims.iter().product::<usize>(), a.slots.len(), "{}: elements must be complete and row-major", a.name);
+        }
+        Self { scalars, arrays }
+    }
+
+    /// Slot of the scalar called `name`.
+    pub fn slot(&self, name: &str) -> Option<usize> {
+        self.scalars.iter().position(|s| s.name == name)
+    }
+
+    /// Checks `v` against slot `slot`'s kind and range; the error says what was expected.
+    pub fn check(&self, slot: usize, v: Value) -> Result<(), String> {
+        let s = &self.scalars[slot];
+        let range = |x: f64| match s.range {
+            Some((lo, hi)) if !(x >= lo && x <= hi) => Err(format!("{} = {x} is outside its range [{lo}, {hi}]", s.name)),
+            _ => Ok(()),
+        };
+        match (s.kind, v) {
+            (Kind::Real, Value::Real(x)) if x.is_nan() => Err(format!("{} = NaN is not a number", s.name)),
+            (Kind::Real, Value::Real(x)) => range(x),
+            (Kind::Integer, Value::Integer(u)) => range(u as f64),
+            (Kind::Boolean, Value::Boolean(_)) => Ok(()),
+            (Kind::Enumeration { items, type_name }, Value::Enumeration(i)) if i >= items.len() => Err(format!(
+                "{} = {} is not an item of {type_name} (1…{}: {})",
+                s.name,
+                i + 1,
+                items.len(),
+                items.join(", ")
+            )),
+            (Kind::Enumeration { .. }, Value::Enumeration(_)) => Ok(()),
+            (k, v) => Err(format!("{} is {k:?}, got {v:?}", s.name)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn real(name: &str, array: &str) -> ScalarVar {
+        ScalarVar {
+            name: name.into(),
+            array: array.into(),
+            kind: Kind::Real,
+            causality: Causality::Parameter,
+            unit: None,
+            start: Value::Real(0.0),
+            range: Some((-1.0, 1.0)),
+            description: String::new(),
+        }
+    }
+
+    #[test]
+    fn consecutive_elements_group_into_arrays_and_checks_name_the_variable() {
+        let t = VariableTable::new(vec![real("a[0]", "a"), real("a[1]", "a"), real("b", "b"), real("c[0]", "c")]);
+        let m = VariableTable::new((0..6).map(|k| real(&format!("m[{},{}]", k / 3, k % 3), "m")).collect());
+        assert_eq!(m.arrays[0].dims, [2, 3]);
+        assert_eq!(t.arrays.iter().map(|a| (a.name.as_str(), a.slots.clone(), a.is_array)).collect::<Vec<_>>(), [
+            ("a", 0..2, true),
+            ("b", 2..3, false),
+            ("c", 3..4, true)
+        ]);
+        assert!(t.check(1, Value::Real(2.0)).unwrap_err().contains("a[1] = 2 is outside its range [-1, 1]"));
+        assert!(t.check(1, Value::Real(f64::NAN)).unwrap_err().contains("NaN"));
+        assert!(t.check(2, Value::Boolean(true)).is_err());
+        assert!(t.check(2, Value::Real(-1.0)).is_ok());
+    }
+}
