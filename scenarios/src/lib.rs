@@ -4,6 +4,7 @@
 //! the plant through them, output sinks, and the `rins` command line.
 
 pub mod file;
+pub mod fmu;
 pub mod locate;
 pub mod measurement;
 pub mod plots;

@@ -3,15 +3,16 @@
 use std::time::Instant;
 
 use anyhow::Result;
-use rins_plant::{ImuSample, Plant};
+use rins_plant::{ImuSample, Plant, Truth};
 
 use crate::file::Scenario;
 use crate::progress;
 
 /// Receives every output sample in order.
 pub trait Sink {
-    /// Called once per output sample, after [`Plant::step`], so `plant.truth()` matches `sample`.
-    fn sample(&mut self, sample: &ImuSample, plant: &Plant) -> Result<()>;
+    /// Called once per output sample with what really happened over it (from the in-process
+    /// plant's [`Plant::truth`], or rebuilt from an FMU's outputs).
+    fn sample(&mut self, sample: &ImuSample, truth: &Truth) -> Result<()>;
     /// Called once after the last sample.
     fn finish(&mut self) -> Result<()> {
         Ok(())
@@ -38,7 +39,7 @@ pub fn run(scenario: &Scenario, samples: u64, sinks: &mut [&mut dyn Sink]) -> Re
     for k in 0..samples {
         let s = plant.step();
         for sink in sinks.iter_mut() {
-            sink.sample(&s, &plant)?;
+            sink.sample(&s, plant.truth())?;
         }
         if k % CHUNK == 0 {
             pb.set_position(k);

@@ -14,3 +14,4 @@ pub mod fmu;
 pub mod xml;
 pub mod zip;
 pub mod package;
+pub mod importer;

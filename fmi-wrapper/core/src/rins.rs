@@ -31,10 +31,12 @@ enum Output {
     Dtheta(usize),
     Dv(usize),
     SampleCount,
+    TimeS,
     GimbalOuter,
     GimbalInner,
     GimbalOuterRate,
     GimbalInnerRate,
+    GimbalMoving,
     Quaternion(usize),
     Node(usize),
     Chamber,
@@ -162,10 +164,24 @@ fn build_table() -> Table {
         },
         Role::Output(Output::SampleCount),
     );
+    push(o("imu.time_s".into(), "imu.time_s", "s", "end of the last IMU sample interval (integer tick × internal step)"), Role::Output(Output::TimeS));
     push(o("gimbal.outer_rad".into(), "gimbal.outer_rad", "rad", "outer (azimuth) gimbal angle"), Role::Output(Output::GimbalOuter));
     push(o("gimbal.inner_rad".into(), "gimbal.inner_rad", "rad", "inner gimbal angle"), Role::Output(Output::GimbalInner));
     push(o("gimbal.outer_rate_rps".into(), "gimbal.outer_rate_rps", "rad/s", "outer gimbal rate"), Role::Output(Output::GimbalOuterRate));
     push(o("gimbal.inner_rate_rps".into(), "gimbal.inner_rate_rps", "rad/s", "inner gimbal rate"), Role::Output(Output::GimbalInnerRate));
+    push(
+        ScalarVar {
+            name: "gimbal.moving".into(),
+            array: "gimbal.moving".into(),
+            kind: Kind::Boolean,
+            causality: out,
+            unit: None,
+            start: Value::Boolean(false),
+            range: None,
+            description: "the table is moving (false while dwelling)".into(),
+        },
+        Role::Output(Output::GimbalMoving),
+    );
     for i in 0..4 {
         push(
             real(format!("truth.q_bn[{i}]"), "truth.q_bn", out, None, if i == 0 { 1.0 } else { 0.0 }, None, "true attitude quaternion body→ENU navigation frame (w, x, y, z)"),
@@ -262,7 +278,12 @@ impl RinsModel {
 
     fn output(&self, o: Output) -> Value {
         let Some(p) = &self.plant else {
-            return Value::Real(if o == Output::Quaternion(0) { 1.0 } else { 0.0 });
+            return match o {
+                Output::SampleCount => Value::Integer(0),
+                Output::GimbalMoving => Value::Boolean(false),
+                Output::Quaternion(0) => Value::Real(1.0),
+                _ => Value::Real(0.0),
+            };
         };
         let tr = p.truth();
         let g = &tr.gimbal;
@@ -270,6 +291,8 @@ impl RinsModel {
             Output::Dtheta(i) => self.dtheta_rad[i],
             Output::Dv(i) => self.dv_mps[i],
             Output::SampleCount => return Value::Integer(p.samples_done()),
+            Output::GimbalMoving => return Value::Boolean(g.moving),
+            Output::TimeS => p.time_s(),
             Output::GimbalOuter => g.angles.outer_rad,
             Output::GimbalInner => g.angles.inner_rad,
             Output::GimbalOuterRate => g.outer_rate_rps,

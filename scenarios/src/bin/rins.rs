@@ -36,6 +36,9 @@ enum Command {
     /// Section 4.1 / Figure 8: calibrations over the scenario's [campaign] temperatures, a
     /// third-order fit of delta-beta(T) per axis, saved as a compensation file.
     Campaign(CampaignArgs),
+    /// The plant as FMI 2.0 / 3.0 co-simulation FMUs: package them, or run one through a scenario.
+    #[command(subcommand)]
+    Fmu(FmuCommand),
     /// List the built-in scenarios, or print one.
     Scenarios {
         /// Print this built-in scenario's TOML.
@@ -104,6 +107,32 @@ struct CampaignArgs {
     /// Output folder: campaign.json, dbeta-compensation.toml, fig8_dbeta_vs_temperature.svg.
     #[arg(long, default_value = "out/campaign")]
     out: PathBuf,
+}
+
+#[derive(Subcommand)]
+enum FmuCommand {
+    /// Write RinsImu.fmu (FMI 2.0) and RinsImu3.fmu (FMI 3.0).
+    Build {
+        /// Output folder.
+        #[arg(long, default_value = "out/fmu")]
+        out: PathBuf,
+        /// Folder holding librins_fmi2.so and librins_fmi3.so (default: next to this executable).
+        #[arg(long)]
+        lib_dir: Option<PathBuf>,
+    },
+    /// Run an FMI 2.0 FMU through a scenario, one communication step per IMU sample, writing
+    /// the same imu.csv as `rins run`.
+    Run {
+        /// The .fmu file.
+        fmu: PathBuf,
+        /// Scenario file, or `builtin:NAME`.
+        scenario: PathBuf,
+        /// Output folder.
+        #[arg(long, default_value = "out/fmu-run")]
+        out: PathBuf,
+        #[command(flatten)]
+        overrides: Overrides,
+    },
 }
 
 #[derive(Subcommand)]
@@ -217,6 +246,23 @@ fn cmd_run(a: &RunArgs) -> Result<()> {
         summary.wall_s,
         summary.wall_s * 1e9 / summary.samples.max(1) as f64,
         a.out.display()
+    );
+    Ok(())
+}
+
+fn cmd_fmu_run(fmu: &std::path::Path, scenario: &std::path::Path, out: &std::path::Path, overrides: &Overrides) -> Result<()> {
+    let sc = load(scenario, overrides)?;
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let mut csv = CsvSink::create(&out.join("imu.csv"), sc.outputs, &sc.plant)?;
+    let summary = rins_scenarios::fmu::run(fmu, &sc, sc.samples(), &mut [&mut csv])?;
+    eprintln!(
+        "{} via {}: {} samples in {:.2} s, {:.1} ns/sample -> {}",
+        sc.meta.name,
+        fmu.display(),
+        summary.samples,
+        summary.wall_s,
+        summary.wall_s * 1e9 / summary.samples.max(1) as f64,
+        out.display()
     );
     Ok(())
 }
@@ -550,6 +596,14 @@ fn dispatch(cli: Cli) -> Result<()> {
             let r = rins_verify::ins::InsReport::run(runs);
             emit_report(&r, json, &r.to_text(), r.passed(), "INS closed-form verification")
         }
+        Command::Fmu(FmuCommand::Build { out, lib_dir }) => {
+            let lib_dir = lib_dir.unwrap_or_else(rins_scenarios::fmu::default_lib_dir);
+            for p in rins_scenarios::fmu::build(&out, &lib_dir)? {
+                println!("{}", p.display());
+            }
+            Ok(())
+        }
+        Command::Fmu(FmuCommand::Run { fmu, scenario, out, overrides }) => cmd_fmu_run(&fmu, &scenario, &out, &overrides),
         Command::Scenarios { name: None } => {
             for (n, text) in BUILTIN {
                 let sc = Scenario::from_toml(text, n)?;

@@ -15,7 +15,7 @@ use nalgebra::Vector3;
 use rins_plant::effects::{AccelTerm, GyroTerm};
 use rins_plant::thermal::node;
 use rins_plant::units::{DPH, UG};
-use rins_plant::{ImuSample, Plant, Truth};
+use rins_plant::{ImuSample, Truth};
 
 use crate::file::OutputSpec;
 use crate::runner::Sink;
@@ -169,8 +169,7 @@ impl<W: Write> CsvSink<W> {
 }
 
 impl<W: Write> Sink for CsvSink<W> {
-    fn sample(&mut self, s: &ImuSample, plant: &Plant) -> Result<()> {
-        let tr = plant.truth();
+    fn sample(&mut self, s: &ImuSample, tr: &Truth) -> Result<()> {
         self.dtheta += s.dtheta_rad;
         self.dv += s.dv_mps;
         if self.opts.truth {
