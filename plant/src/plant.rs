@@ -155,6 +155,8 @@ pub struct Plant {
     use_dwell_cache: bool,
     /// Motion commanded by the navigation side, replacing the scheme from its start tick.
     command: Option<ActiveCommand>,
+    /// Seed of the noise streams (the configured seed until [`Plant::reseed_noise`]).
+    noise_seed: u64,
     truth: Truth,
 }
 
@@ -213,6 +215,7 @@ impl Plant {
             dwell_cache: None,
             use_dwell_cache: true,
             command: None,
+            noise_seed: cfg.seed,
             cursor: Cursor::default(),
             truth: Truth {
                 gimbal: g0,
@@ -332,6 +335,7 @@ impl Plant {
                 w.f64(s.dwell_s);
             }
         }
+        w.u64(self.noise_seed);
     }
 
     /// Reads what [`Plant::write_state`] wrote into a freshly built plant of the same
@@ -351,8 +355,9 @@ impl Plant {
         self.thermal.set_state(nodes, chamber);
         self.noise.gm_bias_rps = r.v3()?;
         self.noise.rrw_bias_rps = r.v3()?;
-        for s in [&mut self.noise.arw, &mut self.noise.gm, &mut self.noise.rrw, &mut self.noise.vrw] {
-            s.set_word_pos(r.u128()?);
+        let mut word_pos = [0u128; 4];
+        for w in word_pos.iter_mut() {
+            *w = r.u128()?;
         }
         self.gyro_quant.residual = r.v3()?;
         self.accel_quant.residual = r.v3()?;
@@ -380,6 +385,14 @@ impl Plant {
                 steps.push(ResolvedStep { axis, angle_rad: r.f64()?, rate_rps: r.f64()?, dwell_s: r.f64()? });
             }
             self.install_command(ActiveCommand { start_tick, initial, steps, repeat });
+        }
+        let noise_seed = r.u64()?;
+        if noise_seed != self.noise_seed {
+            self.noise.reseed(noise_seed);
+            self.noise_seed = noise_seed;
+        }
+        for (s, w) in [&mut self.noise.arw, &mut self.noise.gm, &mut self.noise.rrw, &mut self.noise.vrw].into_iter().zip(word_pos) {
+            s.set_word_pos(w);
         }
         // Derived: table state at the current tick, temperature-dependent rates; caches reset.
         let t = self.time_s();
@@ -439,6 +452,19 @@ impl Plant {
         };
         self.install_command(ActiveCommand { start_tick: self.tick, initial: now, steps, repeat });
         Ok(())
+    }
+
+    /// Restarts every noise stream from `seed` at the current tick, keeping the current
+    /// bias-instability and rate-random-walk values. A Monte Carlo can warm the plant up once,
+    /// save the state, and give each run its own noise from there.
+    pub fn reseed_noise(&mut self, seed: u64) {
+        self.noise.reseed(seed);
+        self.noise_seed = seed;
+    }
+
+    /// Seed of the noise streams in use.
+    pub fn noise_seed(&self) -> u64 {
+        self.noise_seed
     }
 
     fn install_command(&mut self, c: ActiveCommand) {

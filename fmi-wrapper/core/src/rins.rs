@@ -23,6 +23,7 @@ enum Input {
     GimbalOuter,
     GimbalInner,
     GimbalRate,
+    NoiseSeed,
 }
 
 /// Outputs, in table order after the inputs.
@@ -142,6 +143,19 @@ fn build_table() -> Table {
         real("input.gimbal_rate_dps".into(), "input.gimbal_rate_dps", inp, Some("deg/s"), defaults.scheme.rate_dps, Some((1e-6, 100.0)), "cruise rate of commanded moves"),
         Role::Input(Input::GimbalRate),
     );
+    push(
+        ScalarVar {
+            name: "input.noise_seed".into(),
+            array: "input.noise_seed".into(),
+            kind: Kind::Integer,
+            causality: inp,
+            unit: None,
+            start: Value::Integer(0),
+            range: Some((0.0, i32::MAX as f64)),
+            description: "a new non-zero value restarts every noise stream from this seed at the next step (Monte Carlo from a saved warm state)".into(),
+        },
+        Role::Input(Input::NoiseSeed),
+    );
 
     let out = Causality::Output;
     let o = |name: String, array: &str, unit: &'static str, d: &str| real(name, array, out, Some(unit), 0.0, None, d);
@@ -236,6 +250,8 @@ pub struct RinsModel {
     dv_true_mps: Vector3<f64>,
     /// Last gimbal command sent to the plant (outer, inner, rate in degrees).
     applied_command: Option<[f64; 3]>,
+    /// Last noise seed applied through `input.noise_seed` (0: none).
+    applied_noise_seed: u64,
 }
 
 impl RinsModel {
@@ -265,8 +281,13 @@ impl RinsModel {
         let chamber = on(self.input(Input::ChamberOverride)).then(|| real(self.input(Input::ChamberTemp)));
         let command = on(self.input(Input::GimbalEnable))
             .then(|| [real(self.input(Input::GimbalOuter)), real(self.input(Input::GimbalInner)), real(self.input(Input::GimbalRate))]);
+        let noise_seed = if let Value::Integer(u) = self.input(Input::NoiseSeed) { u } else { 0 };
         let plant = self.plant.as_mut().ok_or("the plant is not initialised")?;
         plant.set_chamber_temp_c(chamber);
+        if noise_seed != 0 && noise_seed != self.applied_noise_seed {
+            plant.reseed_noise(noise_seed);
+            self.applied_noise_seed = noise_seed;
+        }
         if let Some(c) = command
             && self.applied_command != Some(c)
         {
@@ -338,6 +359,7 @@ impl Model for RinsModel {
             dtheta_true_rad: Vector3::zeros(),
             dv_true_mps: Vector3::zeros(),
             applied_command: None,
+            applied_noise_seed: 0,
         }
     }
 
@@ -408,6 +430,7 @@ impl Model for RinsModel {
         for x in self.applied_command.unwrap_or_default() {
             u64w(&mut w, x.to_bits());
         }
+        u64w(&mut w, self.applied_noise_seed);
         if let Some(p) = &self.plant {
             w.extend(p.serialize_state());
         }
@@ -441,12 +464,14 @@ impl Model for RinsModel {
         }
         let has_cmd = next()? != 0;
         let cmd = [f64::from_bits(next()?), f64::from_bits(next()?), f64::from_bits(next()?)];
+        let applied_noise_seed = next()?;
         self.values = values;
         self.dtheta_rad = Vector3::new(sums[0], sums[1], sums[2]);
         self.dv_mps = Vector3::new(sums[3], sums[4], sums[5]);
         self.dtheta_true_rad = Vector3::new(sums[6], sums[7], sums[8]);
         self.dv_true_mps = Vector3::new(sums[9], sums[10], sums[11]);
         self.applied_command = has_cmd.then_some(cmd);
+        self.applied_noise_seed = applied_noise_seed;
         let rest = &bytes[pos..];
         self.plant = if rest.is_empty() {
             None

@@ -80,6 +80,14 @@ pub struct NoiseState {
 }
 
 impl NoiseState {
+    /// Restarts the four named streams from `seed` (stream positions 0); process states kept.
+    pub fn reseed(&mut self, seed: u64) {
+        self.arw = NormalStream::new(seed, stream::GYRO_ARW);
+        self.gm = NormalStream::new(seed, stream::GYRO_BIAS_INSTABILITY);
+        self.rrw = NormalStream::new(seed, stream::GYRO_RRW);
+        self.vrw = NormalStream::new(seed, stream::ACCEL_VRW);
+    }
+
     /// Builds the noise state. The Gauss–Markov bias starts from its stationary distribution.
     pub fn new(gyro: &GyroSpec, accel: &AccelSpec, seed: u64) -> Self {
         let on = |flag: bool, v: [f64; 3], unit: f64| if flag { Vector3::from(v) * unit } else { Vector3::zeros() };
