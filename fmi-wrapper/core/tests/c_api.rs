@@ -1,0 +1,190 @@
+//! The FMI 2.0 binary tested from the outside through its C API (the importer loads the built
+//! `librins_fmi2.so`): independence of instances, state save/restore and serialisation (also
+//! across processes), and every kind of refused call with its logged reason.
+//!
+//! Needs the cdylib: `cargo build --release -p rins-fmi2` (tests/run-all.sh does it first).
+
+use std::path::PathBuf;
+
+use rins_fmi::fmu;
+use rins_fmi::importer::{Fmu2, Instance2, parse_model_description};
+use rins_fmi::xml::FmiVersion;
+
+fn library() -> Fmu2 {
+    let exe = std::env::current_exe().unwrap();
+    let dir = exe.parent().and_then(|d| d.parent()).unwrap();
+    let so: PathBuf = dir.join("librins_fmi2.so");
+    assert!(so.exists(), "{} missing: run `cargo build --release -p rins-fmi2` before the tests", so.display());
+    let (guid, _, vars) = parse_model_description(&fmu::description(FmiVersion::V2).0).unwrap();
+    Fmu2::load(&so, guid, vars).unwrap()
+}
+
+const DTHETA: [&str; 3] = ["imu.dtheta_rad[0]", "imu.dtheta_rad[1]", "imu.dtheta_rad[2]"];
+
+fn start<'a>(fmu: &'a Fmu2, seed: i32) -> Instance2<'a> {
+    let inst = fmu.instantiate("t", false).unwrap();
+    inst.setup_experiment(0.0, None).unwrap();
+    inst.set_integer(&[fmu.vr("run.seed").unwrap()], &[seed]).unwrap();
+    // Turn on every stochastic term so that any cross-talk between instances shows.
+    inst.set_boolean(&[fmu.vr("sensor.gyro.bias_instability.enabled").unwrap()], &[true]).unwrap();
+    inst.set_real(&[fmu.vr("sensor.gyro.bias_instability.sigma_dph[0]").unwrap()], &[0.01]).unwrap();
+    inst.enter_initialization_mode().unwrap();
+    inst.exit_initialization_mode().unwrap();
+    inst
+}
+
+fn step_n(fmu: &Fmu2, inst: &Instance2<'_>, t0: f64, n: usize) -> Vec<[f64; 3]> {
+    let vrs: Vec<u32> = DTHETA.iter().map(|n| fmu.vr(n).unwrap()).collect();
+    let mut out = Vec::with_capacity(n);
+    let mut t = t0;
+    for _ in 0..n {
+        inst.do_step(t, 0.01).unwrap();
+        let mut v = [0.0; 3];
+        inst.get_real(&vrs, &mut v).unwrap();
+        out.push(v);
+        let mut ts = [0.0];
+        inst.get_real(&[fmu.vr("imu.time_s").unwrap()], &mut ts).unwrap();
+        t = ts[0];
+    }
+    out
+}
+
+#[test]
+fn two_instances_stepping_interleaved_equal_two_separate_runs() {
+    let fmu = library();
+    let separate_a = step_n(&fmu, &start(&fmu, 1), 0.0, 500);
+    let separate_b = step_n(&fmu, &start(&fmu, 2), 0.0, 500);
+    assert_ne!(separate_a, separate_b);
+    let (a, b) = (start(&fmu, 1), start(&fmu, 2));
+    let (mut ia, mut ib) = (Vec::new(), Vec::new());
+    for k in 0..500 {
+        let t = k as f64 * 0.01;
+        ia.extend(step_n(&fmu, &a, t, 1));
+        ib.extend(step_n(&fmu, &b, t, 1));
+    }
+    assert_eq!(ia, separate_a);
+    assert_eq!(ib, separate_b);
+}
+
+#[test]
+fn state_save_and_restore_replays_bit_identically() {
+    let fmu = library();
+    let inst = start(&fmu, 5);
+    let _ = step_n(&fmu, &inst, 0.0, 1234);
+    let saved = inst.get_state().unwrap();
+    let first = step_n(&fmu, &inst, 12.34, 800);
+    inst.set_state(&saved).unwrap();
+    let again = step_n(&fmu, &inst, 12.34, 800);
+    assert_eq!(first, again);
+    // Serialised and deserialised in the same process: the same again.
+    let bytes = inst.serialize_state(&saved).unwrap();
+    let restored = inst.deserialize_state(&bytes).unwrap();
+    inst.set_state(&restored).unwrap();
+    assert_eq!(step_n(&fmu, &inst, 12.34, 800), first);
+    inst.free_state(saved).unwrap();
+    inst.free_state(restored).unwrap();
+}
+
+/// Child half of the cross-process test: restores the state given in a file and prints the
+/// next outputs. Does nothing unless the parent set the variable.
+#[test]
+fn child_restores_serialized_state() {
+    let Ok(path) = std::env::var("RINS_FMU_STATE_FILE") else { return };
+    let fmu = library();
+    let inst = fmu.instantiate("child", false).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    let s = inst.deserialize_state(&bytes).unwrap();
+    inst.set_state(&s).unwrap();
+    let out = step_n(&fmu, &inst, 12.34, 300);
+    std::fs::write(format!("{path}.out"), format!("{out:?}")).unwrap();
+}
+
+#[test]
+fn serialized_state_restores_in_a_new_process() {
+    let fmu = library();
+    let inst = start(&fmu, 9);
+    let _ = step_n(&fmu, &inst, 0.0, 1234);
+    let s = inst.get_state().unwrap();
+    let bytes = inst.serialize_state(&s).unwrap();
+    let expected = step_n(&fmu, &inst, 12.34, 300);
+    let path = std::env::temp_dir().join(format!("rins-fmu-state-{}", std::process::id()));
+    std::fs::write(&path, &bytes).unwrap();
+    let status = std::process::Command::new(std::env::current_exe().unwrap())
+        .args(["--exact", "child_restores_serialized_state", "--test-threads=1"])
+        .env("RINS_FMU_STATE_FILE", &path)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let got = std::fs::read_to_string(format!("{}.out", path.display())).unwrap();
+    assert_eq!(got, format!("{expected:?}"));
+    let _ = std::fs::remove_file(&path);
+    let _ = std::fs::remove_file(format!("{}.out", path.display()));
+}
+
+fn refused(r: Result<(), rins_fmi::importer::CallError>, reason: &str) {
+    let e = r.expect_err("the call must be refused");
+    assert_eq!(e.status, 3, "{e}");
+    assert!(e.log.iter().any(|l| l.contains(reason)), "log {:?} lacks {reason:?}", e.log);
+}
+
+#[test]
+fn bad_calls_return_errors_with_a_logged_reason_and_no_crash() {
+    let fmu = library();
+    // Wrong GUID: NULL instance, reason logged.
+    let e = fmu.instantiate_with_guid("g", "{not-the-guid}", false).err().expect("refused");
+    assert!(e.log.iter().any(|l| l.contains("does not match")), "{:?}", e.log);
+
+    let inst = fmu.instantiate("bad", false).unwrap();
+    // Wrong state: stepping before initialisation.
+    refused(inst.do_step(0.0, 0.01), "not allowed in Instantiated mode");
+    // Unknown value reference.
+    refused(inst.set_real(&[999_999], &[1.0]), "unknown value reference 999999");
+    let bias = fmu.vr("sensor.gyro.bias.dph[0]").unwrap();
+    // NaN and out-of-range parameters name the variable and range.
+    refused(inst.set_real(&[bias], &[f64::NAN]), "NaN");
+    refused(inst.set_real(&[bias], &[1e6]), "sensor.gyro.bias.dph[0] = 1000000 is outside its range [-100, 100]");
+    // Type mismatch.
+    refused(inst.set_real(&[fmu.vr("run.seed").unwrap()], &[1.0]), "is Integer, not a Real");
+    // Enumeration out of its items.
+    refused(inst.set_integer(&[fmu.vr("scheme.kind").unwrap()], &[99]), "not an item of SchemeKind");
+    inst.setup_experiment(0.0, None).unwrap();
+    inst.enter_initialization_mode().unwrap();
+    inst.exit_initialization_mode().unwrap();
+    // Parameters are fixed after initialisation.
+    refused(inst.set_real(&[bias], &[0.02]), "setting parameter sensor.gyro.bias.dph[0] is not allowed in Step mode");
+    // Outputs cannot be set.
+    refused(inst.set_real(&[fmu.vr("imu.dtheta_rad[0]").unwrap()], &[0.0]), "is an output");
+    // A communication step that is not a whole number of 10 ms steps.
+    refused(inst.do_step(0.0, 0.015), "not a whole positive number of internal steps");
+    // A step from the wrong time.
+    refused(inst.do_step(5.0, 0.01), "but the FMU is at t = 0 s");
+    // Still usable after all that.
+    inst.do_step(0.0, 0.05).unwrap();
+    let mut n = [0];
+    inst.get_integer(&[fmu.vr("imu.sample_count").unwrap()], &mut n).unwrap();
+    assert_eq!(n[0], 5);
+    // A configuration that fails whole-plant validation is refused at exit-initialisation.
+    let inst2 = fmu.instantiate("bad2", false).unwrap();
+    inst2.set_real(&[fmu.vr("thermal.step_s").unwrap()], &[0.015]).unwrap();
+    inst2.enter_initialization_mode().unwrap();
+    let e = inst2.exit_initialization_mode().expect_err("refused");
+    assert!(e.log.iter().any(|l| l.contains("thermal.step_s")), "{:?}", e.log);
+}
+
+#[test]
+fn gimbal_command_inputs_drive_the_table() {
+    let fmu = library();
+    let inst = fmu.instantiate("cmd", false).unwrap();
+    inst.set_integer(&[fmu.vr("scheme.kind").unwrap()], &[4]).unwrap(); // static
+    inst.enter_initialization_mode().unwrap();
+    inst.exit_initialization_mode().unwrap();
+    inst.set_boolean(&[fmu.vr("input.gimbal_command").unwrap()], &[true]).unwrap();
+    inst.set_real(&[fmu.vr("input.gimbal_inner_deg").unwrap(), fmu.vr("input.gimbal_rate_dps").unwrap()], &[180.0, 10.0]).unwrap();
+    // 18 s cruise plus 0.5 s for the 20 °/s² ramps.
+    inst.do_step(0.0, 20.0).unwrap();
+    let mut g = [0.0; 2];
+    inst.get_real(&[fmu.vr("gimbal.inner_rad").unwrap(), fmu.vr("effect.position_weight").unwrap()], &mut g).unwrap();
+    assert_eq!(g[0], std::f64::consts::PI);
+    // Z-down after the flip: full position-dependent bias weight (Eq. 9).
+    assert!((g[1] - 1.0).abs() < 1e-12, "{}", g[1]);
+}
