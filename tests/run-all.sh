@@ -4,8 +4,22 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+echo "== cargo build (the FMI shared libraries are loaded by the tests) =="
+cargo build --workspace --release
+target_dir="${CARGO_TARGET_DIR:-target}"
+bin="$target_dir/release"
+
 echo "== cargo test (release: the tests integrate hours to weeks of 100 Hz samples) =="
 cargo test --workspace --release --no-fail-fast
+
+echo "== Python clients (pinned, in a venv this script creates) =="
+venv="${RINS_VENV:-${HOME:-/root}/.cache/rins-venv}"
+[ -x "$venv/bin/python" ] || python3 -m venv "$venv"
+"$venv/bin/pip" install -q --disable-pip-version-check fmpy==0.3.32 'dask[distributed]==2026.8.0' iceoryx2==0.10.0 rerun-sdk==0.36.3
+pytmp=$(mktemp -d)
+"$bin/rins" fmu build --out "$pytmp/fmu" > /dev/null
+"$venv/bin/python" tests/python/test_fmu.py "$pytmp/fmu" "$bin/rins" "$pytmp"
+rm -rf "$pytmp"
 
 echo "== rins command line =="
 rins=(cargo run --release -q -p rins-scenarios --bin rins --)

@@ -144,8 +144,22 @@ unsafe extern "C" fn logger_cb(env: *mut c_void, _name: *const c_char, status: c
     }
 }
 
+type DoStepFn = unsafe extern "C" fn(Component, f64, f64, c_int) -> c_int;
+type GetRealFn = unsafe extern "C" fn(Component, *const Vr, usize, *mut f64) -> c_int;
+type SetRealFn = unsafe extern "C" fn(Component, *const Vr, usize, *const f64) -> c_int;
+
+/// Functions called once per communication step, resolved once at load (a symbol lookup per
+/// call would cost more than the step itself).
+#[derive(Clone, Copy)]
+struct HotFns {
+    do_step: DoStepFn,
+    get_real: GetRealFn,
+    set_real: SetRealFn,
+}
+
 /// An unpacked, loaded FMI 2.0 co-simulation FMU.
 pub struct Fmu2 {
+    hot: HotFns,
     lib: Library,
     /// GUID from the modelDescription.
     pub guid: String,
@@ -184,7 +198,17 @@ impl Fmu2 {
         // SAFETY: loading runs the library's initialisers; ours has none beyond Rust's.
         let lib = unsafe { Library::new(so) }.map_err(|e| format!("{}: {e}", so.display()))?;
         let model_identifier = so.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-        Ok(Self { lib, guid, model_identifier, variables, dir: PathBuf::new() })
+        // SAFETY: the types are the FMI 2.0 header's; the pointers live as long as `lib`, which
+        // this struct owns and drops last.
+        let hot = unsafe {
+            let get = |name: &str| lib.get::<*const c_void>(name.as_bytes()).map(|s| *s).map_err(|e| format!("{name}: {e}"));
+            HotFns {
+                do_step: std::mem::transmute::<*const c_void, DoStepFn>(get("fmi2DoStep")?),
+                get_real: std::mem::transmute::<*const c_void, GetRealFn>(get("fmi2GetReal")?),
+                set_real: std::mem::transmute::<*const c_void, SetRealFn>(get("fmi2SetReal")?),
+            }
+        };
+        Ok(Self { hot, lib, guid, model_identifier, variables, dir: PathBuf::new() })
     }
 
     /// Value reference of the variable `name`.
@@ -302,17 +326,17 @@ impl Instance2<'_> {
 
     /// fmi2DoStep.
     pub fn do_step(&self, t_s: f64, h_s: f64) -> Result<(), CallError> {
-        let f = self.call::<unsafe extern "C" fn(Component, f64, f64, c_int) -> c_int>("fmi2DoStep")?;
         // SAFETY: FMI 2.0 signature, live instance.
-        self.check("fmi2DoStep", unsafe { f(self.c, t_s, h_s, 1) })
+        let status = unsafe { (self.fmu.hot.do_step)(self.c, t_s, h_s, 1) };
+        if status == 0 { Ok(()) } else { self.check("fmi2DoStep", status) }
     }
 
     /// fmi2GetReal.
     pub fn get_real(&self, vrs: &[Vr], out: &mut [f64]) -> Result<(), CallError> {
         assert_eq!(vrs.len(), out.len());
-        let f = self.call::<unsafe extern "C" fn(Component, *const Vr, usize, *mut f64) -> c_int>("fmi2GetReal")?;
         // SAFETY: arrays of equal length.
-        self.check("fmi2GetReal", unsafe { f(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) })
+        let status = unsafe { (self.fmu.hot.get_real)(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) };
+        if status == 0 { Ok(()) } else { self.check("fmi2GetReal", status) }
     }
 
     /// fmi2GetInteger.
@@ -334,9 +358,9 @@ impl Instance2<'_> {
     /// fmi2SetReal.
     pub fn set_real(&self, vrs: &[Vr], values: &[f64]) -> Result<(), CallError> {
         assert_eq!(vrs.len(), values.len());
-        let f = self.call::<unsafe extern "C" fn(Component, *const Vr, usize, *const f64) -> c_int>("fmi2SetReal")?;
         // SAFETY: arrays of equal length.
-        self.check("fmi2SetReal", unsafe { f(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) })
+        let status = unsafe { (self.fmu.hot.set_real)(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) };
+        if status == 0 { Ok(()) } else { self.check("fmi2SetReal", status) }
     }
 
     /// fmi2SetInteger.

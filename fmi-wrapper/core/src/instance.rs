@@ -67,6 +67,10 @@ pub struct Instance<M: Model> {
     model: M,
     mode: Mode,
     start_time_s: f64,
+    /// Internal steps per second, fixed at the end of initialisation.
+    rate_hz: f64,
+    /// Internal steps done since initialisation: the FMU's time is `start + steps / rate`.
+    steps_done: u64,
 }
 
 /// Tolerance, relative to the step, for "whole number of internal steps" and "at the current time".
@@ -81,7 +85,7 @@ impl<M: Model> Default for Instance<M> {
 impl<M: Model> Instance<M> {
     /// A fresh instance in [`Mode::Instantiated`].
     pub fn new() -> Self {
-        Self { model: M::new(), mode: Mode::Instantiated, start_time_s: 0.0 }
+        Self { model: M::new(), mode: Mode::Instantiated, start_time_s: 0.0, rate_hz: 1.0, steps_done: 0 }
     }
 
     /// The variable table.
@@ -101,7 +105,7 @@ impl<M: Model> Instance<M> {
 
     /// Current communication time, s.
     pub fn time_s(&self) -> f64 {
-        self.start_time_s + if matches!(self.mode, Mode::Step | Mode::Terminated | Mode::Error) { self.model.time_s() } else { 0.0 }
+        self.start_time_s + self.steps_done as f64 / self.rate_hz
     }
 
     fn expect(&self, allowed: &[Mode], what: &str) -> Result<(), FmiError> {
@@ -135,6 +139,8 @@ impl<M: Model> Instance<M> {
         match self.model.initialize() {
             Ok(()) => {
                 self.mode = Mode::Step;
+                self.rate_hz = self.model.internal_rate_hz();
+                self.steps_done = 0;
                 Ok(())
             }
             Err(e) => {
@@ -194,24 +200,47 @@ impl<M: Model> Instance<M> {
     }
 
     /// Advances from `t_s` by `h_s`, which must be a whole number of internal steps.
+    ///
+    /// This runs once per communication step, so the accepted path is kept to a few compares;
+    /// the refusals are built out of line.
     pub fn do_step(&mut self, t_s: f64, h_s: f64) -> Result<(), FmiError> {
-        self.expect(&[Mode::Step], "doStep")?;
-        let now = self.time_s();
-        let dt = self.model.internal_step_s();
-        if !(t_s.is_finite() && (t_s - now).abs() <= STEP_TOL * dt.max(now.abs() * 1e-6)) {
-            return Err(FmiError::error(format!("doStep from t = {t_s} s, but the FMU is at t = {now} s")));
+        if self.mode != Mode::Step {
+            return Err(self.do_step_refused_mode());
         }
-        let n = h_s / dt;
-        let whole = n.round();
-        if !(h_s.is_finite() && whole >= 1.0 && (n - whole).abs() <= STEP_TOL * whole.max(1.0)) {
-            return Err(FmiError::error(format!(
-                "communication step {h_s} s is not a whole positive number of internal steps of {dt} s (ratio {n})"
-            )));
+        let rate = self.rate_hz;
+        let now = self.start_time_s + self.steps_done as f64 / rate;
+        // Within a millionth of an internal step, or 1e-9 relative: masters that accumulate
+        // `t += h` drift by rounding over a week of steps; a skipped step is still refused.
+        if !((t_s - now).abs() <= (1e-6 / rate).max(now.abs() * 1e-9)) {
+            return Err(Self::do_step_refused_time(t_s, now));
         }
-        self.model.advance(whole as u64).map_err(|e| {
+        let n = h_s * rate;
+        // Truncation after +0.5 is round-half-up for positive n without a libm call.
+        let whole = if n >= 0.5 && n < 1e15 { (n + 0.5) as u64 } else { 0 };
+        if whole == 0 || !((n - whole as f64).abs() <= STEP_TOL * whole as f64) {
+            return Err(Self::do_step_refused_size(h_s, n, rate));
+        }
+        if let Err(e) = self.model.advance(whole) {
             self.mode = Mode::Error;
-            FmiError::error(e)
-        })
+            return Err(FmiError::error(e));
+        }
+        self.steps_done += whole;
+        Ok(())
+    }
+
+    #[cold]
+    fn do_step_refused_mode(&self) -> FmiError {
+        self.expect(&[Mode::Step], "doStep").expect_err("not in step mode")
+    }
+
+    #[cold]
+    fn do_step_refused_time(t_s: f64, now: f64) -> FmiError {
+        FmiError::error(format!("doStep from t = {t_s} s, but the FMU is at t = {now} s"))
+    }
+
+    #[cold]
+    fn do_step_refused_size(h_s: f64, n: f64, rate: f64) -> FmiError {
+        FmiError::error(format!("communication step {h_s} s is not a whole positive number of internal steps of {} s (ratio {n})", 1.0 / rate))
     }
 
     /// A copy of the whole instance (FMU state by value).
@@ -229,13 +258,15 @@ impl<M: Model> Instance<M> {
         let mut out = b"RINSFMU1".to_vec();
         out.extend_from_slice(&(self.mode as u8 as u64).to_le_bytes());
         out.extend_from_slice(&self.start_time_s.to_le_bytes());
+        out.extend_from_slice(&self.rate_hz.to_le_bytes());
+        out.extend_from_slice(&self.steps_done.to_le_bytes());
         out.extend(self.model.save());
         out
     }
 
     /// An instance from [`Instance::serialize`] bytes.
     pub fn deserialize(bytes: &[u8]) -> Result<Self, FmiError> {
-        if bytes.len() < 24 || &bytes[..8] != b"RINSFMU1" {
+        if bytes.len() < 40 || &bytes[..8] != b"RINSFMU1" {
             return Err(FmiError::error("not a serialized state of this FMU (bad header)"));
         }
         let mode = match u64::from_le_bytes(bytes[8..16].try_into().expect("8 bytes")) {
@@ -245,9 +276,12 @@ impl<M: Model> Instance<M> {
             3 => Mode::Terminated,
             _ => Mode::Error,
         };
-        let start_time_s = f64::from_le_bytes(bytes[16..24].try_into().expect("8 bytes"));
+        let word = |k: usize| <[u8; 8]>::try_from(&bytes[8 * k..8 * k + 8]).expect("8 bytes");
+        let start_time_s = f64::from_le_bytes(word(2));
+        let rate_hz = f64::from_le_bytes(word(3));
+        let steps_done = u64::from_le_bytes(word(4));
         let mut model = M::new();
-        model.restore(&bytes[24..]).map_err(|e| FmiError::error(format!("cannot restore the serialized state: {e}")))?;
-        Ok(Self { model, mode, start_time_s })
+        model.restore(&bytes[40..]).map_err(|e| FmiError::error(format!("cannot restore the serialized state: {e}")))?;
+        Ok(Self { model, mode, start_time_s, rate_hz, steps_done })
     }
 }

@@ -24,14 +24,11 @@ pub trait Model: Clone + Send + 'static {
     /// Ends initialisation: builds the simulation from the parameters, or says what is wrong.
     fn initialize(&mut self) -> Result<(), String>;
 
-    /// The internal step, s: communication steps must be whole multiples of it.
-    fn internal_step_s(&self) -> f64;
+    /// Internal steps per second: communication steps must be whole multiples of its inverse.
+    fn internal_rate_hz(&self) -> f64;
 
     /// Advances `n` internal steps (inputs as last set).
     fn advance(&mut self, n: u64) -> Result<(), String>;
-
-    /// Simulated time since initialisation, s (from an integer step counter).
-    fn time_s(&self) -> f64;
 
     /// Everything needed to resume, by value.
     fn save(&self) -> Vec<u8>;

@@ -98,3 +98,13 @@ pub fn build_fmu(version: FmiVersion, lib: &Path, out_dir: &Path) -> std::io::Re
     std::fs::write(&path, crate::zip::write(&entries)?)?;
     Ok(path)
 }
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn docs_fmu_md_lists_the_current_variables() {
+        let doc = include_str!("../../../docs/fmu.md");
+        let list = super::variable_list(crate::xml::FmiVersion::V3);
+        assert!(doc.contains(&list), "docs/fmu.md is out of date: regenerate with `cargo run -p rins-fmi --example variable_list`");
+    }
+}

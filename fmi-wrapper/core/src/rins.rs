@@ -26,6 +26,10 @@ enum Input {
     NoiseSeed,
 }
 
+impl Input {
+    const COUNT: usize = 7;
+}
+
 /// Outputs, in table order after the inputs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Output {
@@ -60,6 +64,8 @@ struct Table {
     vars: VariableTable,
     roles: Vec<Role>,
     defaults: PlantConfig,
+    /// Slot of each input, indexed by `Input as usize` (doStep reads them every step).
+    input_slots: Vec<usize>,
 }
 
 /// Parameters that are lists of any length cannot be fixed FMU variables: the chamber profile
@@ -228,7 +234,13 @@ fn build_table() -> Table {
         real("effect.position_weight".into(), "effect.position_weight", out, None, 0.0, None, "weight of the position-dependent bias (0 Z-up, 1 Z-down, Eq. 9)"),
         Role::Output(Output::PositionWeight),
     );
-    Table { vars: VariableTable::new(scalars), roles, defaults }
+    let mut input_slots = vec![usize::MAX; Input::COUNT];
+    for (slot, r) in roles.iter().enumerate() {
+        if let Role::Input(i) = r {
+            input_slots[*i as usize] = slot;
+        }
+    }
+    Table { vars: VariableTable::new(scalars), roles, defaults, input_slots }
 }
 
 fn table() -> &'static Table {
@@ -252,12 +264,16 @@ pub struct RinsModel {
     applied_command: Option<[f64; 3]>,
     /// Last noise seed applied through `input.noise_seed` (0: none).
     applied_noise_seed: u64,
+    /// IMU samples in the last communication step (the true increments are summed when > 1).
+    steps_in_last: u64,
+    /// An input changed since the last step: apply the inputs before stepping (skipping this
+    /// when nothing changed keeps doStep within a few ns of the in-process plant).
+    inputs_dirty: bool,
 }
 
 impl RinsModel {
     fn input(&self, which: Input) -> Value {
-        let slot = table().roles.iter().position(|r| *r == Role::Input(which)).expect("every input has a slot");
-        self.values[slot]
+        self.values[table().input_slots[which as usize]]
     }
 
     /// The plant configuration the parameters describe.
@@ -294,6 +310,7 @@ impl RinsModel {
             plant.command_gimbal(&GimbalCommand::MoveTo { outer_rad: c[0].to_radians(), inner_rad: c[1].to_radians(), rate_rps: c[2].to_radians() })?;
             self.applied_command = Some(c);
         }
+        self.inputs_dirty = false;
         Ok(())
     }
 
@@ -324,8 +341,8 @@ impl RinsModel {
             }
             Output::Node(n) => tr.temps.nodes_c[n],
             Output::Chamber => tr.temps.chamber_c,
-            Output::DthetaTrue(i) => self.dtheta_true_rad[i],
-            Output::DvTrue(i) => self.dv_true_mps[i],
+            Output::DthetaTrue(i) => if self.steps_in_last > 1 { self.dtheta_true_rad[i] } else { tr.dtheta_true_rad[i] },
+            Output::DvTrue(i) => if self.steps_in_last > 1 { self.dv_true_mps[i] } else { tr.dv_true_mps[i] },
             Output::Gyro(t, i) => tr.gyro_terms_rad[t][i],
             Output::Accel(t, i) => tr.accel_terms_mps[t][i],
             Output::PositionWeight => tr.position_weight,
@@ -360,11 +377,14 @@ impl Model for RinsModel {
             dv_true_mps: Vector3::zeros(),
             applied_command: None,
             applied_noise_seed: 0,
+            inputs_dirty: true,
+            steps_in_last: 1,
         }
     }
 
     fn set(&mut self, slot: usize, v: Value) -> Result<(), String> {
         self.values[slot] = v;
+        self.inputs_dirty |= matches!(table().roles[slot], Role::Input(_));
         Ok(())
     }
 
@@ -382,31 +402,32 @@ impl Model for RinsModel {
         self.apply_inputs()
     }
 
-    fn internal_step_s(&self) -> f64 {
-        self.plant.as_ref().map_or(0.01, Plant::dt_s)
+    fn internal_rate_hz(&self) -> f64 {
+        self.plant.as_ref().map_or(100.0, |p| p.config().rate_hz)
     }
 
     fn advance(&mut self, n: u64) -> Result<(), String> {
-        self.apply_inputs()?;
+        if self.inputs_dirty {
+            self.apply_inputs()?;
+        }
         let plant = self.plant.as_mut().ok_or("the plant is not initialised")?;
         let s = plant.step();
-        let (mut dth, mut dv) = (s.dtheta_rad, s.dv_mps);
-        let mut dth_true = plant.truth().dtheta_true_rad;
-        let mut dv_true = plant.truth().dv_true_mps;
-        for _ in 1..n {
-            let s = plant.step();
-            dth += s.dtheta_rad;
-            dv += s.dv_mps;
-            dth_true += plant.truth().dtheta_true_rad;
-            dv_true += plant.truth().dv_true_mps;
+        (self.dtheta_rad, self.dv_mps) = (s.dtheta_rad, s.dv_mps);
+        self.steps_in_last = n;
+        if n > 1 {
+            // Sums over the communication step; with one sample the truth is read directly.
+            let mut dth_true = plant.truth().dtheta_true_rad;
+            let mut dv_true = plant.truth().dv_true_mps;
+            for _ in 1..n {
+                let s = plant.step();
+                self.dtheta_rad += s.dtheta_rad;
+                self.dv_mps += s.dv_mps;
+                dth_true += plant.truth().dtheta_true_rad;
+                dv_true += plant.truth().dv_true_mps;
+            }
+            (self.dtheta_true_rad, self.dv_true_mps) = (dth_true, dv_true);
         }
-        (self.dtheta_rad, self.dv_mps, self.dtheta_true_rad, self.dv_true_mps) = (dth, dv, dth_true, dv_true);
         Ok(())
-    }
-
-    fn time_s(&self) -> f64 {
-        // Integer sample count times the step: no accumulated rounding.
-        self.plant.as_ref().map_or(0.0, Plant::time_s)
     }
 
     fn save(&self) -> Vec<u8> {
@@ -431,6 +452,7 @@ impl Model for RinsModel {
             u64w(&mut w, x.to_bits());
         }
         u64w(&mut w, self.applied_noise_seed);
+        u64w(&mut w, self.steps_in_last);
         if let Some(p) = &self.plant {
             w.extend(p.serialize_state());
         }
@@ -465,6 +487,7 @@ impl Model for RinsModel {
         let has_cmd = next()? != 0;
         let cmd = [f64::from_bits(next()?), f64::from_bits(next()?), f64::from_bits(next()?)];
         let applied_noise_seed = next()?;
+        let steps_in_last = next()?;
         self.values = values;
         self.dtheta_rad = Vector3::new(sums[0], sums[1], sums[2]);
         self.dv_mps = Vector3::new(sums[3], sums[4], sums[5]);
@@ -472,6 +495,8 @@ impl Model for RinsModel {
         self.dv_true_mps = Vector3::new(sums[9], sums[10], sums[11]);
         self.applied_command = has_cmd.then_some(cmd);
         self.applied_noise_seed = applied_noise_seed;
+        self.steps_in_last = steps_in_last;
+        self.inputs_dirty = true;
         let rest = &bytes[pos..];
         self.plant = if rest.is_empty() {
             None
