@@ -375,3 +375,47 @@ fn dwell_cache_is_bit_identical_to_recomputing() {
         assert_eq!(a.truth(), b.truth(), "truth {k}");
     }
 }
+
+#[test]
+fn coefficient_keys_round_trip_every_deterministic_coefficient() {
+    // Writing each SI coefficient back through its scenario key (value / unit) and compiling
+    // the spec again gives the same coefficients: the diagnosis can add fitted effects to files.
+    use rins_plant::effects::{AccelModel, AccelTerm, GyroModel, GyroTerm, accel, gyro};
+    use rins_plant::params::{ParamValue, apply, flatten};
+    let cfg = PlantConfig { sensor: rins_plant::presets::nav_grade_full(), ..PlantConfig::default() };
+    let (gm, am) = (GyroModel::new(&cfg.sensor.gyro), AccelModel::new(&cfg.sensor.accel));
+    let mut pairs: Vec<(String, ParamValue)> = Vec::new();
+    for axis in 0..3 {
+        for t in GyroTerm::DETERMINISTIC.iter().filter(|t| **t != GyroTerm::DitherBias) {
+            let keys = gyro::coefficient_keys(*t, axis);
+            let coefs = gm.coefficients(*t, axis);
+            assert_eq!(keys.len(), coefs.len(), "{t:?}");
+            for ((k, unit), c) in keys.into_iter().zip(coefs) {
+                pairs.push((k, ParamValue::Real(c / unit * 2.0)));
+            }
+        }
+        for t in AccelTerm::DETERMINISTIC {
+            for ((k, unit), c) in accel::coefficient_keys(*t, axis).into_iter().zip(am.coefficients(*t, axis)) {
+                pairs.push((k, ParamValue::Real(c / unit * 2.0)));
+            }
+        }
+    }
+    let known: Vec<String> = flatten(&cfg).into_iter().map(|p| p.path).collect();
+    for (k, _) in &pairs {
+        assert!(known.contains(k), "{k} is not a scenario key");
+    }
+    let doubled = apply(&cfg, pairs.iter().map(|(k, v)| (k.as_str(), v.clone()))).unwrap();
+    let (g2, a2) = (GyroModel::new(&doubled.sensor.gyro), AccelModel::new(&doubled.sensor.accel));
+    for axis in 0..3 {
+        for t in GyroTerm::DETERMINISTIC.iter().filter(|t| **t != GyroTerm::DitherBias) {
+            for (a, b) in gm.coefficients(*t, axis).iter().zip(g2.coefficients(*t, axis)) {
+                approx::assert_relative_eq!(2.0 * a, b, max_relative = 1e-12);
+            }
+        }
+        for t in AccelTerm::DETERMINISTIC {
+            for (a, b) in am.coefficients(*t, axis).iter().zip(a2.coefficients(*t, axis)) {
+                approx::assert_relative_eq!(2.0 * a, b, max_relative = 1e-12);
+            }
+        }
+    }
+}

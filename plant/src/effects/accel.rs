@@ -223,3 +223,21 @@ impl AccelModel {
         }
     }
 }
+
+/// Scenario-file keys of the coefficients [`AccelModel::coefficients`] returns for `term` on
+/// `axis`, in order, with the SI value of one file unit (see the gyro counterpart).
+pub fn coefficient_keys(term: AccelTerm, axis: usize) -> Vec<(String, f64)> {
+    let k = |name: &str, unit: f64| (format!("sensor.accel.{}.{name}[{axis}]", term.key()), unit);
+    match term {
+        AccelTerm::Bias => vec![k("ug", UG)],
+        AccelTerm::ScaleFactor => vec![k("ppm", PPM)],
+        AccelTerm::Misalignment => super::MISALIGNMENT_PAIRS
+            .iter()
+            .enumerate()
+            .filter(|(_, (i, _))| *i == axis)
+            .map(|(n, _)| (format!("sensor.accel.misalignment.arcsec[{n}]"), ARCSEC))
+            .collect(),
+        AccelTerm::TemperatureBias => vec![k("per_k", UG), k("per_k2", UG), k("per_k3", UG)],
+        _ => Vec::new(),
+    }
+}

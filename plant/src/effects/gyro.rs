@@ -511,3 +511,27 @@ impl GyroModel {
         }
     }
 }
+
+/// Scenario-file keys of the coefficients [`GyroModel::coefficients`] returns for `term` on
+/// `axis`, in the same order, each with the SI value of one file unit (a fitted SI coefficient
+/// θ is written as θ / unit). The diagnosis writes fitted effects back to model files with it.
+pub fn coefficient_keys(term: GyroTerm, axis: usize) -> Vec<(String, f64)> {
+    let k = |name: &str, unit: f64| (format!("sensor.gyro.{}.{name}[{axis}]", term.key()), unit);
+    match term {
+        GyroTerm::Bias => vec![k("dph", DPH)],
+        GyroTerm::ScaleFactor | GyroTerm::ScaleFactorAsymmetry => vec![k("ppm", PPM)],
+        GyroTerm::Misalignment => super::MISALIGNMENT_PAIRS
+            .iter()
+            .enumerate()
+            .filter(|(_, (i, _))| *i == axis)
+            .map(|(n, _)| (format!("sensor.gyro.misalignment.arcsec[{n}]"), ARCSEC))
+            .collect(),
+        GyroTerm::TemperatureBias => vec![k("per_k", DPH), k("per_k2", DPH), k("per_k3", DPH)],
+        GyroTerm::TemperatureGradientBias => vec![k("dph_per_k", DPH)],
+        GyroTerm::GSensitivity => (0..3).map(|j| (format!("sensor.gyro.g_sensitivity.dph_per_g[{axis}][{j}]"), DPH)).collect(),
+        GyroTerm::PositionBias => vec![k("dph", DPH), k("dph_per_k", DPH), k("dph_per_k2", DPH), k("dph_per_k3", DPH)],
+        // Written with amplitude_change = 1, so dph_per_amplitude carries the whole coefficient.
+        GyroTerm::DitherBias => vec![k("dph_per_amplitude", DPH)],
+        _ => Vec::new(),
+    }
+}
