@@ -3,6 +3,7 @@
 //! Declarative scenario files for every experiment of Seo et al. (2022), the runner that drives
 //! the plant through them, output sinks, and the `rins` command line.
 
+pub mod diagnose;
 pub mod file;
 pub mod fmu;
 pub mod locate;

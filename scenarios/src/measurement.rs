@@ -107,33 +107,48 @@ pub fn parse(text: &str, source_name: &str) -> Result<Measurement, MeasurementEr
     if !header.iter().any(|h| h.starts_with("temp_") && h.ends_with("_c")) {
         return Err(err(0, "temp_*_c", "missing temperature: at least one temp_<name>_c column".into()));
     }
-    let mut m = Measurement::default();
-    for (h, &num) in header.iter().zip(&numeric) {
-        if num {
-            m.columns.insert(h.clone(), Vec::new());
-        } else {
-            m.labels.insert(h.clone(), Vec::new());
-        }
-    }
+    // Parse into vectors by column index; the maps are filled once at the end (a map lookup
+    // per field would dominate on million-row files).
+    let mut nums: Vec<Vec<f64>> = vec![Vec::new(); header.len()];
+    let mut labs: Vec<Vec<String>> = vec![Vec::new(); header.len()];
+    let mut rows = 0;
     for (r, line) in lines.enumerate() {
         let row = r + 1;
-        let fields: Vec<&str> = line.split(',').collect();
-        if fields.len() != header.len() {
-            return Err(err(row, "", format!("{} fields, header has {}", fields.len(), header.len())));
-        }
-        for ((h, &num), f) in header.iter().zip(&numeric).zip(&fields) {
+        let mut count = 0;
+        for (i, f) in line.split(',').enumerate() {
+            count += 1;
+            if i >= header.len() {
+                continue;
+            }
             let f = f.trim();
-            if num {
-                let v: f64 = f.parse().map_err(|_| err(row, h, format!("not a number: {f:?}")))?;
+            if numeric[i] {
+                let v: f64 = f.parse().map_err(|_| err(row, &header[i], format!("not a number: {f:?}")))?;
                 if !v.is_finite() {
-                    return Err(err(row, h, format!("{v} is not a finite number")));
+                    return Err(err(row, &header[i], format!("{v} is not a finite number")));
                 }
-                m.columns.get_mut(h).expect("inserted").push(v);
+                nums[i].push(v);
             } else {
-                m.labels.get_mut(h).expect("inserted").push(f.to_string());
+                match labs[i].last() {
+                    Some(last) if last == f => {
+                        let l = last.clone();
+                        labs[i].push(l)
+                    }
+                    _ => labs[i].push(f.to_string()),
+                }
             }
         }
-        m.rows = row;
+        if count != header.len() {
+            return Err(err(row, "", format!("{count} fields, header has {}", header.len())));
+        }
+        rows = row;
+    }
+    let mut m = Measurement { rows, ..Measurement::default() };
+    for ((h, &num), (n, l)) in header.iter().zip(&numeric).zip(nums.into_iter().zip(labs)) {
+        if num {
+            m.columns.insert(h.clone(), n);
+        } else {
+            m.labels.insert(h.clone(), l);
+        }
     }
     if m.rows < 2 {
         return Err(err(m.rows, "t_s", "need at least two data rows".into()));

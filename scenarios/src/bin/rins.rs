@@ -39,6 +39,15 @@ enum Command {
     /// The plant as FMI 2.0 / 3.0 co-simulation FMUs: package them, or run one through a scenario.
     #[command(subcommand)]
     Fmu(FmuCommand),
+    /// Model vs measurements: replay MODEL on the measured history and show where it fails (a
+    /// map of channel x position x temperature x time, each cell in units of its noise floor).
+    Compare(CompareArgs),
+    /// Rank the plant's candidate effects that explain the residual of MODEL on DATA; with
+    /// --apply EFFECT, write MODEL with that effect added and fitted.
+    Diagnose(DiagnoseArgs),
+    /// Simulate a measurement log from a scenario (one run per [campaign] temperature when the
+    /// scenario has one), in the measurement format: test data with known effects.
+    Measure(MeasureArgs),
     /// List the built-in scenarios, or print one.
     Scenarios {
         /// Print this built-in scenario's TOML.
@@ -107,6 +116,60 @@ struct CampaignArgs {
     /// Output folder: campaign.json, dbeta-compensation.toml, fig8_dbeta_vs_temperature.svg.
     #[arg(long, default_value = "out/campaign")]
     out: PathBuf,
+}
+
+#[derive(Args)]
+struct DataArgs {
+    /// Model: a scenario file (or builtin:NAME) whose plant is the model.
+    #[arg(long)]
+    model: PathBuf,
+    /// Measurement file (docs/measurement-format.md).
+    #[arg(long)]
+    data: PathBuf,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+    /// Write SVG figures into this folder.
+    #[arg(long)]
+    report: Option<PathBuf>,
+    /// Longest window the rows are summed over, s.
+    #[arg(long, default_value_t = 30.0)]
+    window_s: f64,
+    /// Temperature bin of the cell map, K.
+    #[arg(long, default_value_t = 5.0)]
+    temp_bin_k: f64,
+    /// Time window of the cell map, s.
+    #[arg(long, default_value_t = 3600.0)]
+    time_window_s: f64,
+}
+
+#[derive(Args)]
+struct CompareArgs {
+    #[command(flatten)]
+    data: DataArgs,
+}
+
+#[derive(Args)]
+struct DiagnoseArgs {
+    #[command(flatten)]
+    data: DataArgs,
+    /// Add this effect (e.g. gyro.temperature_gradient_bias), fitted on every axis, to the model.
+    #[arg(long)]
+    apply: Option<String>,
+    /// Where --apply writes the new model (default: MODEL with -fitted before the extension).
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+#[derive(Args)]
+struct MeasureArgs {
+    /// Scenario to simulate.
+    scenario: PathBuf,
+    /// Output CSV.
+    #[arg(long)]
+    out: PathBuf,
+    #[command(flatten)]
+    overrides: Overrides,
 }
 
 #[derive(Subcommand)]
@@ -264,6 +327,143 @@ fn cmd_fmu_run(fmu: &std::path::Path, scenario: &std::path::Path, out: &std::pat
         summary.wall_s * 1e9 / summary.samples.max(1) as f64,
         out.display()
     );
+    Ok(())
+}
+
+fn load_data(a: &DataArgs) -> Result<(Scenario, rins_plant::PlantConfig, rins_verify::diagnosis::history::History, rins_verify::diagnosis::Options)> {
+    let sc = Scenario::load(&a.model)?;
+    let m = rins_scenarios::measurement::read(&a.data)?;
+    let (model, note) = rins_scenarios::diagnose::with_data_site(&sc.plant, &m);
+    if let Some(n) = note {
+        eprintln!("{}", n);
+    }
+    let h = rins_scenarios::diagnose::to_history(&m, &a.data.display().to_string())?;
+    for (name, v) in [("--window-s", a.window_s), ("--temp-bin-k", a.temp_bin_k), ("--time-window-s", a.time_window_s)] {
+        if !(v > 0.0 && v.is_finite()) {
+            anyhow::bail!("{name} must be a positive number, got {v}");
+        }
+    }
+    let opts = rins_verify::diagnosis::Options { window_s: a.window_s, temp_bin_k: a.temp_bin_k, time_window_s: a.time_window_s, ..Default::default() };
+    Ok((sc, model, h, opts))
+}
+
+fn cmd_compare(a: &CompareArgs) -> Result<()> {
+    let (_, model, h, opts) = load_data(&a.data)?;
+    let an = rins_verify::diagnosis::analyse(&model, &h, opts);
+    let report = an.compare_report(&h.source, &an.zero_pred());
+    if let Some(dir) = &a.data.report {
+        for f in rins_scenarios::diagnose::write_report(dir, &an, None, &report, None)? {
+            eprintln!("wrote {f}");
+        }
+    }
+    if a.data.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+        return Ok(());
+    }
+    println!("{}: {} rows, {} windows, {} runs", report.source, report.rows, report.windows, report.runs);
+    println!("{:<8} {:>12} {:>12} {:>12}  unit", "channel", "resid RMS", "noise RMS", "resid mean");
+    for c in &report.channels {
+        println!("{:<8} {:>12.5} {:>12.5} {:>12.5}  {}", c.channel, c.residual_rms, c.noise_floor_rms, c.residual_mean, c.unit);
+    }
+    for n in &report.noise {
+        println!("noise {}: {}", n.channel, n.source);
+    }
+    println!("{} of {} cells flagged (|z| > {:.2})", report.flagged_cells.len(), report.cells.len(), report.z_critical);
+    for c in report.flagged_cells.iter().take(20) {
+        println!(
+            "  {:<8} {:<7} {:>5.1}-{:<5.1} C  {:>7.0}-{:<7.0} s  residual {:>10.5} ± {:.5}  z = {:>6.1}",
+            c.channel, c.position, c.temp_bin_c[0], c.temp_bin_c[1], c.time_window_s[0], c.time_window_s[1], c.residual, c.noise_floor, c.z
+        );
+    }
+    for c in report.correlations.iter().filter(|c| c.significant) {
+        println!("  {}: residual correlates with {} (|rho| = {:.2} > {:.2}, lag {})", c.channel, c.with, c.max_abs_rho, c.band99, c.lag);
+    }
+    Ok(())
+}
+
+fn cmd_diagnose(a: &DiagnoseArgs) -> Result<()> {
+    let (_, model, h, opts) = load_data(&a.data)?;
+    let (report, an, selected) = rins_verify::diagnosis::diagnose(&model, &h, opts);
+    if let Some(effect) = &a.apply {
+        let e = rins_verify::diagnosis::replay::Effect::parse(effect).with_context(|| {
+            let names: Vec<String> = rins_verify::diagnosis::replay::Effect::all().iter().map(|e| e.name()).collect();
+            format!("--apply {effect:?}: not an effect of the catalogue; one of {names:?}")
+        })?;
+        let (cfg2, set) = rins_verify::diagnosis::apply(&model, &an, &[e]).map_err(anyhow::Error::msg)?;
+        let out = a.out.clone().unwrap_or_else(|| {
+            let stem = a.data.model.file_stem().map_or("model".into(), |s| s.to_string_lossy().replace("builtin:", ""));
+            a.data.model.with_file_name(format!("{stem}-fitted.toml"))
+        });
+        let text = rins_scenarios::diagnose::model_with_sensor(&rins_scenarios::diagnose::model_text(&a.data.model)?, &cfg2, &format!("{} with {effect} fitted on {}", a.data.model.display(), h.source))?;
+        std::fs::write(&out, text).with_context(|| format!("cannot write {}", out.display()))?;
+        eprintln!("wrote {} ({} coefficients)", out.display(), set.len());
+        for (k, v) in &set {
+            eprintln!("  {k} = {v}");
+        }
+    }
+    if let Some(dir) = &a.data.report {
+        let pred: Vec<Vec<f64>> = (0..6)
+            .map(|c| {
+                if selected[c].is_empty() {
+                    vec![0.0; an.replay.windows.len()]
+                } else {
+                    let x = rins_verify::diagnosis::fit::design(&an.replay.windows, &selected[c]);
+                    let f = rins_verify::diagnosis::fit::wls(&x, &an.data[c], None).expect("accepted fits");
+                    (0..x.nrows()).map(|r| (0..x.ncols()).map(|k| x[(r, k)] * f.theta[k]).sum()).collect()
+                }
+            })
+            .collect();
+        let before = an.compare_report(&h.source, &an.zero_pred());
+        let after = an.compare_report(&h.source, &pred);
+        for f in rins_scenarios::diagnose::write_report(dir, &an, Some(&pred), &before, Some(&after))? {
+            eprintln!("wrote {f}");
+        }
+    }
+    if a.data.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+        return Ok(());
+    }
+    println!("{}: candidates ranked by delta-BIC (gate: delta-BIC < -10, Bonferroni p < 0.01, CV gain > 0)", report.source);
+    println!("{:<36} {:<8} {:>10} {:>10} {:>8}  gate  coefficient (95 % CI)", "effect", "channel", "dBIC", "p", "CV %");
+    for r in report.ranking.iter().take(15) {
+        let coef: Vec<String> = r.coefficient.iter().zip(&r.ci95).zip(&r.keys).map(|((c, ci), k)| format!("{}={c:.4} [{:.4}, {:.4}]", k.rsplit('.').next().unwrap_or(k), ci[0], ci[1])).collect();
+        println!("{:<36} {:<8} {:>10.1} {:>10.2e} {:>8.2}  {}  {}", r.effect, r.channel, r.delta_bic, r.p_value, r.cv_rmse_gain_pct, if r.passes_gate { "PASS" } else { "-   " }, coef.join(" "));
+        for c in &r.confusable_with {
+            println!("    confusable with {} (gap {:.1}, rho {:.2}, VIF {:.0}): separate by {}", c.effect, c.delta_bic_gap, c.correlation, c.vif, c.separate_by);
+        }
+    }
+    println!("accepted: {}", if report.accepted.is_empty() { "none".to_string() } else { report.accepted.iter().map(|r| format!("{} on {}", r.effect, r.channel)).collect::<Vec<_>>().join(", ") });
+    for (ch, b) in &report.residual_rms_before {
+        println!("  {ch}: residual RMS {b:.5} -> {:.5} (noise floor {:.5})", report.residual_rms_after[ch], report.noise_floor_rms[ch]);
+    }
+    println!("flagged cells: {} before, {} after", report.flagged_cells.len(), report.flagged_cells_after.len());
+    for u in &report.unexplained {
+        println!("  {u}");
+    }
+    Ok(())
+}
+
+fn cmd_measure(a: &MeasureArgs) -> Result<()> {
+    let sc = load(&a.scenario, &a.overrides)?;
+    let n = sc.samples();
+    let runs: Vec<(String, rins_plant::PlantConfig, u64)> = match &sc.campaign {
+        Some(c) => c
+            .temperatures_c()
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                let mut cfg = sc.plant.clone();
+                cfg.thermal.chamber.temp_c = *t;
+                cfg.thermal.chamber.profile.clear();
+                cfg.seed = sc.plant.seed.wrapping_add(i as u64);
+                (format!("run{:02}-{t:.2}C", i + 1), cfg, n)
+            })
+            .collect(),
+        None => vec![(sc.meta.name.clone(), sc.plant.clone(), n)],
+    };
+    let t0 = std::time::Instant::now();
+    rins_scenarios::diagnose::write_measurements(&a.out, &runs)?;
+    eprintln!("{}: {} runs x {} samples in {:.1} s -> {}", sc.meta.name, runs.len(), n, t0.elapsed().as_secs_f64(), a.out.display());
     Ok(())
 }
 
@@ -604,6 +804,9 @@ fn dispatch(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Fmu(FmuCommand::Run { fmu, scenario, out, overrides }) => cmd_fmu_run(&fmu, &scenario, &out, &overrides),
+        Command::Compare(a) => cmd_compare(&a),
+        Command::Diagnose(a) => cmd_diagnose(&a),
+        Command::Measure(a) => cmd_measure(&a),
         Command::Scenarios { name: None } => {
             for (n, text) in BUILTIN {
                 let sc = Scenario::from_toml(text, n)?;

@@ -37,6 +37,8 @@ pub struct CsvSink<W: Write> {
     dt_s: f64,
     c_vn: nalgebra::Matrix3<f64>,
     last: Option<(ImuSample, Truth)>,
+    /// Run label written as a leading `run` column (measurement files with several runs).
+    run: Option<String>,
 }
 
 const AXES: [&str; 3] = ["x", "y", "z"];
@@ -92,11 +94,23 @@ impl CsvSink<BufWriter<File>> {
 
 impl<W: Write> CsvSink<W> {
     /// Wraps a writer and writes the header.
-    pub fn new(mut out: W, opts: OutputSpec, plant_cfg: &rins_plant::PlantConfig) -> Result<Self> {
+    pub fn new(out: W, opts: OutputSpec, plant_cfg: &rins_plant::PlantConfig) -> Result<Self> {
+        Self::for_run(out, opts, plant_cfg, None, true)
+    }
+
+    /// A sink whose rows start with a `run` label column (one file holding several runs, as the
+    /// measurement format allows); `write_header` is false when appending a further run.
+    pub fn for_run(mut out: W, opts: OutputSpec, plant_cfg: &rins_plant::PlantConfig, run: Option<&str>, write_header: bool) -> Result<Self> {
         let s = &plant_cfg.sensor;
         let gyro_terms: Vec<GyroTerm> = GyroTerm::ALL.into_iter().filter(|t| s.gyro.is_enabled(*t)).collect();
         let accel_terms: Vec<AccelTerm> = AccelTerm::ALL.into_iter().filter(|t| s.accel.is_enabled(*t)).collect();
-        writeln!(out, "{}", header(&opts, &gyro_terms, &accel_terms).join(","))?;
+        if write_header {
+            let mut h = header(&opts, &gyro_terms, &accel_terms);
+            if run.is_some() {
+                h.insert(0, "run".into());
+            }
+            writeln!(out, "{}", h.join(","))?;
+        }
         Ok(Self {
             out,
             opts,
@@ -113,6 +127,7 @@ impl<W: Write> CsvSink<W> {
             dt_s: 1.0 / plant_cfg.rate_hz,
             c_vn: plant_cfg.vehicle.c_vn(),
             last: None,
+            run: run.map(str::to_string),
         })
     }
 
@@ -128,6 +143,9 @@ impl<W: Write> CsvSink<W> {
         l.clear();
         let g = &tr.gimbal;
         let label = position_label(g.angles.outer_rad, g.angles.inner_rad, g.moving);
+        if let Some(r) = &self.run {
+            write!(l, "{r},")?;
+        }
         write!(l, "{},{}", s.index, s.t_s)?;
         for v in [&self.dtheta, &self.dv] {
             write!(l, ",{},{},{}", v.x, v.y, v.z)?;

@@ -1,0 +1,216 @@
+//! Glue between measurement files, model files and the diagnosis in `rins_verify::diagnosis`:
+//! measured columns to a [`History`], simulated measurement logs (datasets with hidden
+//! effects), model files written back with fitted effects, and the static report figures.
+
+use std::io::Write;
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use plotters::style::RGBColor;
+use rins_plant::PlantConfig;
+use rins_verify::diagnosis::history::{Attitude, History};
+use rins_verify::diagnosis::replay::CHANNELS;
+use rins_verify::diagnosis::{Analysis, CompareReport};
+
+use crate::file::{BUILTIN, OutputSpec};
+use crate::measurement::Measurement;
+use crate::plots::{Line, Panel, write_svg};
+use crate::sinks::CsvSink;
+
+/// The measured rows in SI, with the temperatures mapped to the model's inputs: per-gyro
+/// columns `temp_gyro_{x,y,z}_c` when present (else the first temperature column on every
+/// axis), the gradient as gyro − `temp_housing_c` when a housing temperature is present, and
+/// `temp_accel_c` (else the gyro mean) for the accelerometers.
+pub fn to_history(m: &Measurement, source: &str) -> Result<History> {
+    let col = |n: &str| m.col(n).with_context(|| format!("{source}: column {n} missing"));
+    let t_s = col("t_s")?.to_vec();
+    let n = t_s.len();
+    let v3 = |p: &str, unit: &str| -> Result<Vec<[f64; 3]>> {
+        let (x, y, z) = (col(&format!("{p}_x_{unit}"))?, col(&format!("{p}_y_{unit}"))?, col(&format!("{p}_z_{unit}"))?);
+        Ok((0..n).map(|k| [x[k], y[k], z[k]]).collect())
+    };
+    let attitude = if let (Some(o), Some(i)) = (m.col("outer_deg"), m.col("inner_deg")) {
+        Attitude::Gimbal { outer_rad: o.iter().map(|d| d.to_radians()).collect(), inner_rad: i.iter().map(|d| d.to_radians()).collect() }
+    } else {
+        let q: Vec<&[f64]> = ["q_bn_w", "q_bn_x", "q_bn_y", "q_bn_z"].iter().map(|c| col(c)).collect::<Result<_>>()?;
+        Attitude::Quaternion((0..n).map(|k| [q[0][k], q[1][k], q[2][k], q[3][k]]).collect())
+    };
+    let temps = m.temperature_columns();
+    let first = *temps.first().context("no temperature column")?;
+    let gyro_temp_c: Vec<[f64; 3]> = match (m.col("temp_gyro_x_c"), m.col("temp_gyro_y_c"), m.col("temp_gyro_z_c")) {
+        (Some(x), Some(y), Some(z)) => (0..n).map(|k| [x[k], y[k], z[k]]).collect(),
+        _ => {
+            let t = col(first)?;
+            (0..n).map(|k| [t[k]; 3]).collect()
+        }
+    };
+    let gyro_gradient_k = m.col("temp_housing_c").filter(|_| m.col("temp_gyro_x_c").is_some()).map(|h| (0..n).map(|k| gyro_temp_c[k].map(|g| g - h[k])).collect());
+    let accel_temp_c = m.col("temp_accel_c").map_or_else(|| gyro_temp_c.iter().map(|g| (g[0] + g[1] + g[2]) / 3.0).collect(), <[f64]>::to_vec);
+    let mut run_names: Vec<String> = Vec::new();
+    let mut run = vec![0u32; n];
+    let mut segments = Vec::new();
+    for (r, _, a, b) in &m.segments {
+        let idx = run_names.iter().position(|x| x == r).unwrap_or_else(|| {
+            run_names.push(r.clone());
+            run_names.len() - 1
+        });
+        run[*a..*b].iter_mut().for_each(|x| *x = idx as u32);
+        segments.push(*a..*b);
+    }
+    Ok(History {
+        t_s,
+        dtheta_rad: v3("dtheta", "rad")?,
+        dv_mps: v3("dv", "mps")?,
+        attitude,
+        gyro_temp_c,
+        gyro_gradient_k,
+        accel_temp_c,
+        run,
+        run_names,
+        segments,
+        source: source.into(),
+    })
+}
+
+/// The model with the site the data give (lat/lon/height columns), if any; returns a note.
+pub fn with_data_site(model: &PlantConfig, m: &Measurement) -> (PlantConfig, Option<String>) {
+    let mut cfg = model.clone();
+    let get = |c: &str| m.col(c).and_then(|v| v.first().copied());
+    let mut note = None;
+    if let (Some(lat), Some(lon)) = (get("lat_deg"), get("lon_deg")) {
+        cfg.site.lat_deg = lat;
+        cfg.site.lon_deg = lon;
+        if let Some(h) = get("height_m") {
+            cfg.site.height_m = h;
+        }
+        if cfg.site != model.site {
+            note = Some(format!("site from the data: {lat} deg, {lon} deg"));
+        }
+    }
+    (cfg, note)
+}
+
+/// Simulates a measurement log: each `(run label, plant, samples)` is run and appended to one
+/// CSV in the measurement format (IMU-rate rows, gimbal angles, node temperatures, `run` label).
+pub fn write_measurements(path: &Path, runs: &[(String, PlantConfig, u64)]) -> Result<()> {
+    let f = std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+    let mut out = std::io::BufWriter::with_capacity(1 << 20, f);
+    let opts = OutputSpec { csv: true, decimation: 1, truth: false, effects: false };
+    for (i, (label, cfg, samples)) in runs.iter().enumerate() {
+        let mut sink = CsvSink::for_run(&mut out, opts, cfg, Some(label), i == 0)?;
+        let mut plant = rins_plant::Plant::new(cfg).map_err(|e| anyhow::anyhow!("{label}: {}", e.iter().map(|x| x.to_string()).collect::<Vec<_>>().join("; ")))?;
+        for _ in 0..*samples {
+            let s = plant.step();
+            crate::runner::Sink::sample(&mut sink, &s, plant.truth())?;
+        }
+        crate::runner::Sink::finish(&mut sink)?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
+/// Text of a model file (or a built-in scenario).
+pub fn model_text(path: &Path) -> Result<String> {
+    let s = path.to_string_lossy();
+    let name = s.strip_prefix("builtin:").unwrap_or(&s);
+    if let Some((_, t)) = BUILTIN.iter().find(|(n, _)| *n == name).filter(|_| s.starts_with("builtin:") || !path.exists()) {
+        return Ok(t.to_string());
+    }
+    std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
+}
+
+/// The model file `original` with its `[sensor]` replaced by `cfg`'s full sensor specification.
+pub fn model_with_sensor(original: &str, cfg: &PlantConfig, note: &str) -> Result<String> {
+    let mut table: toml::Table = toml::from_str(original).context("model file is not TOML")?;
+    let mut sensor = toml::Table::try_from(&cfg.sensor).context("serialising the sensor specification")?;
+    sensor.insert("preset".into(), toml::Value::String("ideal".into()));
+    table.insert("sensor".into(), toml::Value::Table(sensor));
+    Ok(format!("# {note}\n# Written by rins diagnose --apply; [sensor] is the complete specification.\n{}", toml::to_string_pretty(&table)?))
+}
+
+const BLUE: RGBColor = RGBColor(31, 119, 180);
+const RED: RGBColor = RGBColor(214, 39, 40);
+const GREEN: RGBColor = RGBColor(44, 160, 44);
+const GREY: RGBColor = RGBColor(127, 127, 127);
+
+fn unit(c: usize) -> (&'static str, f64) {
+    if c < 3 { ("deg/h", rins_plant::units::DPH) } else { ("ug", rins_plant::units::UG) }
+}
+
+/// Writes the comparison figures into `dir`: residual vs temperature by position, bias by
+/// position (before and after `pred`), Allan deviation of the residual.
+pub fn write_report(dir: &Path, a: &Analysis, pred: Option<&[Vec<f64>]>, before: &CompareReport, after: Option<&CompareReport>) -> Result<Vec<String>> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let ws = &a.replay.windows;
+    let mut files = Vec::new();
+    // Residual vs temperature, coloured by Z-up / Z-down, with the fitted effect.
+    let mut panels = Vec::new();
+    for c in 0..6 {
+        let (u, scale) = unit(c);
+        let temp = |i: usize| if c < 3 { ws[i].gyro_temp_c[c] } else { ws[i].accel_temp_c };
+        let dot = |pick: &dyn Fn(usize) -> bool, val: &dyn Fn(usize) -> f64| -> Vec<(f64, f64)> {
+            (0..ws.len()).filter(|&i| pick(i)).flat_map(|i| [(temp(i), val(i)), (temp(i), val(i))]).collect()
+        };
+        let rate = |i: usize| a.data[c].y[i] / ws[i].duration_s / scale;
+        let mut lines = vec![
+            Line { label: "Z-up", points: dot(&|i| !ws[i].moving && ws[i].up_z > 0.5, &rate), color: BLUE, error_bars: true },
+            Line { label: "Z-down", points: dot(&|i| !ws[i].moving && ws[i].up_z < -0.5, &rate), color: RED, error_bars: true },
+        ];
+        if let Some(p) = pred {
+            lines.push(Line { label: "fitted effects", points: dot(&|i| !ws[i].moving, &|i| p[c][i] / ws[i].duration_s / scale), color: GREEN, error_bars: true });
+        }
+        panels.push(Panel { title: format!("{}: residual (measured - model) per window", CHANNELS[c]), y_label: u, lines });
+    }
+    let f = dir.join("residual_vs_temperature.svg");
+    write_svg(&f, "Residual vs temperature, coloured by table position", "temperature [deg C]", &panels)?;
+    files.push(f.display().to_string());
+
+    // Bias by position with the noise floor as error bars, before and after.
+    let positions = ["z-up", "z-down", "tilted", "moving"];
+    let mut panels = Vec::new();
+    for c in 0..6 {
+        let (u, _) = unit(c);
+        let bars = |r: &CompareReport, shift: f64| -> Vec<(f64, f64)> {
+            positions
+                .iter()
+                .enumerate()
+                .filter_map(|(k, p)| {
+                    let cells: Vec<_> = r.cells.iter().filter(|x| x.channel == CHANNELS[c] && x.position == *p).collect();
+                    if cells.is_empty() {
+                        return None;
+                    }
+                    // Combine cells by inverse-variance weighting.
+                    let w: f64 = cells.iter().map(|x| 1.0 / x.noise_floor.powi(2)).sum();
+                    let m = cells.iter().map(|x| x.residual / x.noise_floor.powi(2)).sum::<f64>() / w;
+                    let e = 1.96 / w.sqrt();
+                    Some([(k as f64 + shift, m - e), (k as f64 + shift, m + e)])
+                })
+                .flatten()
+                .collect()
+        };
+        let mut lines = vec![Line { label: "model as given (95 %)", points: bars(before, -0.1), color: GREY, error_bars: true }];
+        if let Some(r) = after {
+            lines.push(Line { label: "with fitted effects (95 %)", points: bars(r, 0.1), color: GREEN, error_bars: true });
+        }
+        panels.push(Panel { title: format!("{}: mean residual at 0 z-up, 1 z-down, 2 tilted, 3 moving", CHANNELS[c]), y_label: u, lines });
+    }
+    let f = dir.join("bias_by_position.svg");
+    write_svg(&f, "Residual bias per table position", "position", &panels)?;
+    files.push(f.display().to_string());
+
+    // Allan deviation of the residual (log10 axes).
+    let mut panels = Vec::new();
+    for c in 0..6 {
+        let (u, _) = unit(c);
+        let curve = |r: &CompareReport| r.allan.get(CHANNELS[c]).map_or_else(Vec::new, |v| v.iter().filter(|(_, a)| *a > 0.0).map(|(t, a)| (t.log10(), a.log10())).collect());
+        let mut lines = vec![Line { label: "model as given", points: curve(before), color: GREY, error_bars: false }];
+        if let Some(r) = after {
+            lines.push(Line { label: "with fitted effects", points: curve(r), color: GREEN, error_bars: false });
+        }
+        panels.push(Panel { title: format!("{}: log10 Allan deviation of the residual [{u}]", CHANNELS[c]), y_label: "log10 ADEV", lines });
+    }
+    let f = dir.join("allan_residual.svg");
+    write_svg(&f, "Allan deviation of the residual", "log10 tau [s]", &panels)?;
+    files.push(f.display().to_string());
+    Ok(files)
+}

@@ -1,0 +1,273 @@
+//! Weighted least squares on window sums, forward selection of candidate effects with a gate
+//! (ΔBIC, nested F test, cross-validated error), confidence intervals and collinearity
+//! diagnostics (VIF, condition number).
+
+use nalgebra::{DMatrix, DVector};
+
+use super::replay::{Group, Window};
+use super::stats::f_sf;
+
+/// One channel's windows: residual sums, their noise variances, durations and fold labels.
+#[derive(Clone, Debug)]
+pub struct ChannelData {
+    /// Channel index 0–5.
+    pub channel: usize,
+    /// Residual sums.
+    pub y: Vec<f64>,
+    /// Noise variance of each sum.
+    pub v: Vec<f64>,
+    /// Window durations, s.
+    pub dur: Vec<f64>,
+    /// Cross-validation fold of each window.
+    pub fold: Vec<usize>,
+    /// Number of folds.
+    pub folds: usize,
+}
+
+/// A weighted least-squares fit.
+#[derive(Clone, Debug)]
+pub struct Fit {
+    /// Coefficients (SI), in group order.
+    pub theta: Vec<f64>,
+    /// Covariance, scaled by max(1, χ²/dof).
+    pub cov: DMatrix<f64>,
+    /// Weighted residual sum of squares.
+    pub chi2: f64,
+    /// Windows.
+    pub n: usize,
+    /// Condition number of the column-normalised weighted design.
+    pub condition: f64,
+}
+
+impl Fit {
+    /// Reduced χ².
+    pub fn chi2_red(&self) -> f64 {
+        self.chi2 / (self.n.saturating_sub(self.theta.len())).max(1) as f64
+    }
+}
+
+/// Design columns of `groups` over the windows.
+pub fn design(windows: &[Window], groups: &[Group]) -> DMatrix<f64> {
+    let p: usize = groups.iter().map(|g| g.len).sum();
+    DMatrix::from_fn(windows.len(), p, |r, c| {
+        let mut c = c;
+        for g in groups {
+            if c < g.len {
+                return windows[r].x[g.offset + c];
+            }
+            c -= g.len;
+        }
+        0.0
+    })
+}
+
+/// WLS of `d.y` on the columns `x` (rows with `mask` false are left out).
+pub fn wls(x: &DMatrix<f64>, d: &ChannelData, mask: Option<&[bool]>) -> Option<Fit> {
+    let rows: Vec<usize> = (0..d.y.len()).filter(|&r| mask.is_none_or(|m| m[r])).collect();
+    let p = x.ncols();
+    let n = rows.len();
+    if p == 0 {
+        let chi2 = rows.iter().map(|&r| d.y[r] * d.y[r] / d.v[r]).sum();
+        return Some(Fit { theta: Vec::new(), cov: DMatrix::zeros(0, 0), chi2, n, condition: 1.0 });
+    }
+    if n <= p {
+        return None;
+    }
+    let mut a = DMatrix::zeros(n, p);
+    let mut b = DVector::zeros(n);
+    for (i, &r) in rows.iter().enumerate() {
+        let w = 1.0 / d.v[r].sqrt();
+        for c in 0..p {
+            a[(i, c)] = x[(r, c)] * w;
+        }
+        b[i] = d.y[r] * w;
+    }
+    // Normalise columns: the regressors span many orders of magnitude. A column that is zero
+    // on this data (e.g. g-sensitivity to x when x is never vertical) is not estimated: its
+    // coefficient is reported as 0 with an unbounded interval.
+    let scale: Vec<f64> = (0..p).map(|c| a.column(c).norm()).collect();
+    let live: Vec<usize> = (0..p).filter(|&c| scale[c] > 0.0 && scale[c].is_finite()).collect();
+    if live.is_empty() {
+        return None;
+    }
+    if live.len() < p {
+        let sub = DMatrix::from_fn(x.nrows(), live.len(), |r, c| x[(r, live[c])]);
+        let f = wls(&sub, d, mask)?;
+        let mut theta = vec![0.0; p];
+        let mut cov = DMatrix::from_element(p, p, 0.0);
+        for (i, &li) in live.iter().enumerate() {
+            theta[li] = f.theta[i];
+            for (j, &lj) in live.iter().enumerate() {
+                cov[(li, lj)] = f.cov[(i, j)];
+            }
+        }
+        for c in (0..p).filter(|c| !live.contains(c)) {
+            cov[(c, c)] = f64::INFINITY;
+        }
+        return Some(Fit { theta, cov, chi2: f.chi2, n: f.n, condition: f.condition });
+    }
+    for c in 0..p {
+        a.column_mut(c).unscale_mut(scale[c]);
+    }
+    let svd = a.clone().svd(true, true);
+    let smax = svd.singular_values.max();
+    let smin = svd.singular_values.min();
+    if !(smin > smax * 1e-13) {
+        return None;
+    }
+    if !(smin > smax * 1e-10) {
+        return None;
+    }
+    let sol = svd.solve(&b, 0.0).ok()?;
+    let resid = &b - &a * &sol;
+    let chi2 = resid.norm_squared();
+    let mut cov = (a.transpose() * &a).try_inverse()?;
+    let red = (chi2 / (n - p) as f64).max(1.0);
+    for i in 0..p {
+        for j in 0..p {
+            cov[(i, j)] *= red / (scale[i] * scale[j]);
+        }
+    }
+    let theta = (0..p).map(|c| sol[c] / scale[c]).collect();
+    Some(Fit { theta, cov, chi2, n, condition: smax / smin })
+}
+
+/// Cross-validated RMS of the residual rate (rate units) with the columns `x`.
+pub fn cv_rmse(x: &DMatrix<f64>, d: &ChannelData) -> f64 {
+    let mut sse = 0.0;
+    let mut count = 0usize;
+    for f in 0..d.folds {
+        let train: Vec<bool> = d.fold.iter().map(|&k| k != f).collect();
+        let Some(fit) = wls(x, d, Some(&train)) else { continue };
+        for r in (0..d.y.len()).filter(|&r| d.fold[r] == f) {
+            let pred: f64 = (0..x.ncols()).map(|c| x[(r, c)] * fit.theta[c]).sum();
+            let e = (d.y[r] - pred) / d.dur[r];
+            sse += e * e;
+            count += 1;
+        }
+    }
+    (sse / count.max(1) as f64).sqrt()
+}
+
+/// A candidate tested against the current model of its channel.
+#[derive(Clone, Debug)]
+pub struct Candidate {
+    /// The group tested.
+    pub group: Group,
+    /// The fit with it added.
+    pub fit: Fit,
+    /// χ² drop.
+    pub delta_chi2: f64,
+    /// BIC change (negative favours adding it).
+    pub delta_bic: f64,
+    /// Nested F-test p-value.
+    pub p_value: f64,
+    /// Cross-validated RMSE gain, %.
+    pub cv_gain_pct: f64,
+    /// CV RMSE with it, rate units.
+    pub cv_rmse: f64,
+    /// Index of its coefficients within `fit.theta`.
+    pub theta_offset: usize,
+}
+
+/// Tests every group of `pool` added to `selected`.
+pub fn test_candidates(windows: &[Window], d: &ChannelData, selected: &[Group], pool: &[Group]) -> (Fit, f64, Vec<Candidate>) {
+    let x0 = design(windows, selected);
+    let base = wls(&x0, d, None).expect("the selected model is identifiable");
+    let cv0 = cv_rmse(&x0, d);
+    let ln_n = (d.y.len() as f64).ln();
+    let mut out = Vec::new();
+    for g in pool {
+        let mut groups = selected.to_vec();
+        groups.push(*g);
+        let x = design(windows, &groups);
+        let Some(fit) = wls(&x, d, None) else { continue };
+        let k = g.len as f64;
+        let delta_chi2 = base.chi2 - fit.chi2;
+        let dof = (fit.n - fit.theta.len()).max(1) as f64;
+        // Nested F test, with the noise floor as the variance unless the data say it is larger.
+        let s2 = (fit.chi2 / dof).max(1.0);
+        let p_value = f_sf(delta_chi2 / k / s2, k, dof);
+        let delta_bic = -delta_chi2 / s2 + k * ln_n;
+        let cv = cv_rmse(&x, d);
+        out.push(Candidate {
+            group: *g,
+            theta_offset: x0.ncols(),
+            fit,
+            delta_chi2,
+            delta_bic,
+            p_value,
+            cv_gain_pct: if cv0 > 0.0 { 100.0 * (1.0 - cv / cv0) } else { 0.0 },
+            cv_rmse: cv,
+        });
+    }
+    out.sort_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic));
+    (base, cv0, out)
+}
+
+/// The gate a candidate must pass to be claimed.
+#[derive(Clone, Copy, Debug)]
+pub struct Gate {
+    /// ΔBIC must be below this (−10: "very strong" evidence).
+    pub max_delta_bic: f64,
+    /// Family-wise significance, split over the candidates (Bonferroni).
+    pub alpha: f64,
+    /// Number of candidates tested.
+    pub tests: usize,
+    /// The cross-validated error must fall by at least this, %.
+    pub min_cv_gain_pct: f64,
+}
+
+impl Gate {
+    /// Whether `c` passes.
+    pub fn passes(&self, c: &Candidate) -> bool {
+        c.delta_bic < self.max_delta_bic && c.p_value < self.alpha / self.tests.max(1) as f64 && c.cv_gain_pct > self.min_cv_gain_pct
+    }
+}
+
+/// ΔBIC (against `selected` alone) of adding `groups` together, or `None` if not identifiable.
+pub fn delta_bic_of(windows: &[Window], d: &ChannelData, selected: &[Group], groups: &[Group]) -> Option<(f64, Fit)> {
+    let base = wls(&design(windows, selected), d, None)?;
+    let mut all = selected.to_vec();
+    all.extend_from_slice(groups);
+    let fit = wls(&design(windows, &all), d, None)?;
+    let k: usize = groups.iter().map(|g| g.len).sum();
+    let s2 = fit.chi2_red().max(1.0);
+    Some((-(base.chi2 - fit.chi2) / s2 + k as f64 * (d.y.len() as f64).ln(), fit))
+}
+
+/// Whitened contribution Σ x·θ / σ of `groups` with coefficients `theta` (in group order).
+pub fn contribution(windows: &[Window], d: &ChannelData, groups: &[Group], theta: &[f64]) -> Vec<f64> {
+    let x = design(windows, groups);
+    (0..x.nrows()).map(|r| (0..x.ncols()).map(|k| x[(r, k)] * theta[k]).sum::<f64>() / d.v[r].sqrt()).collect()
+}
+
+/// Pearson correlation of two whitened contributions, and the variance inflation of the first
+/// when regressed on `other_cols` (with an intercept).
+pub fn collinearity(a: &[f64], b: &[f64], windows: &[Window], d: &ChannelData, other: &[Group]) -> (f64, f64) {
+    let n = a.len().max(1) as f64;
+    let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
+    let (mut sab, mut saa, mut sbb) = (0.0, 0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        sab += (x - ma) * (y - mb);
+        saa += (x - ma) * (x - ma);
+        sbb += (y - mb) * (y - mb);
+    }
+    let rho = if saa > 0.0 && sbb > 0.0 { sab / (saa * sbb).sqrt() } else { 0.0 };
+    let xb = design(windows, other);
+    let mut m = DMatrix::zeros(a.len(), xb.ncols() + 1);
+    for r in 0..a.len() {
+        let w = 1.0 / d.v[r].sqrt();
+        for k in 0..xb.ncols() {
+            m[(r, k)] = xb[(r, k)] * w;
+        }
+        m[(r, xb.ncols())] = 1.0;
+    }
+    let y = DVector::from_iterator(a.len(), a.iter().map(|x| x - ma));
+    let r2 = m.clone().svd(true, true).solve(&y, 1e-12).map_or(0.0, |s| {
+        let fitted = &m * s;
+        let tot = y.norm_squared();
+        if tot > 0.0 { (1.0 - (&y - fitted).norm_squared() / tot).clamp(0.0, 1.0) } else { 0.0 }
+    });
+    (rho, 1.0 / (1.0 - r2).max(1e-12))
+}

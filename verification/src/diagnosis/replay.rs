@@ -1,0 +1,325 @@
+//! Replays a model on a measured history: for every row, the increments the model expects from
+//! the measured attitude, temperatures and site (true kinematics plus the model's deterministic
+//! effects), the residual against the measurement, and every candidate effect's regressors
+//! (from the plant's own effect catalogue, [`GyroModel::regressors`]). Rows are summed into
+//! windows (the effects are linear in their coefficients, so sums lose nothing), and the
+//! residual's Allan variance is accumulated on the way.
+
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use rayon::prelude::*;
+use rins_plant::PlantConfig;
+use rins_plant::earth::Site;
+use rins_plant::effects::{AccelModel, AccelTerm, GyroModel, GyroTerm, TermContext};
+use rins_plant::table::{GimbalAngles, body_to_nav};
+
+use super::history::{Attitude, History};
+use super::stats::AllanAcc;
+
+/// The six measured channels.
+pub const CHANNELS: [&str; 6] = ["gyro_x", "gyro_y", "gyro_z", "accel_x", "accel_y", "accel_z"];
+
+/// A candidate effect from the plant's catalogue.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Effect {
+    /// A deterministic gyro term.
+    Gyro(GyroTerm),
+    /// A deterministic accelerometer term.
+    Accel(AccelTerm),
+}
+
+impl Effect {
+    /// Every candidate, gyro first.
+    pub fn all() -> Vec<Effect> {
+        GyroTerm::DETERMINISTIC.iter().map(|t| Effect::Gyro(*t)).chain(AccelTerm::DETERMINISTIC.iter().map(|t| Effect::Accel(*t))).collect()
+    }
+
+    /// `gyro.<term>` / `accel.<term>`, as in scenario files.
+    pub fn name(self) -> String {
+        match self {
+            Effect::Gyro(t) => format!("gyro.{}", t.key()),
+            Effect::Accel(t) => format!("accel.{}", t.key()),
+        }
+    }
+
+    /// Parses [`Effect::name`].
+    pub fn parse(s: &str) -> Option<Effect> {
+        Effect::all().into_iter().find(|e| e.name() == s)
+    }
+
+    /// Whether the effect acts on `channel` (0–2 gyro, 3–5 accelerometer).
+    pub fn acts_on(self, channel: usize) -> bool {
+        matches!((self, channel), (Effect::Gyro(_), 0..=2) | (Effect::Accel(_), 3..=5))
+    }
+}
+
+/// One candidate's regressors on one channel, at `offset..offset+len` of [`Window::x`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Group {
+    /// Channel 0–5.
+    pub channel: usize,
+    /// Effect.
+    pub effect: Effect,
+    /// Offset into the regressor sums.
+    pub offset: usize,
+    /// Number of coefficients.
+    pub len: usize,
+}
+
+/// Rows summed over a stretch of constant table state (a dwell or part of a move).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Window {
+    /// Run index.
+    pub run: u32,
+    /// Mid time of the window, s.
+    pub t_mid_s: f64,
+    /// Time since the start of its run, s.
+    pub t_run_s: f64,
+    /// Duration, s.
+    pub duration_s: f64,
+    /// Rows.
+    pub rows: u32,
+    /// The table moved.
+    pub moving: bool,
+    /// Mean z component of the up direction in body axes (+1 Z-up, −1 Z-down).
+    pub up_z: f64,
+    /// Mean specific force in body axes, g.
+    pub f_b_g: [f64; 3],
+    /// Mean gyro block temperatures, °C.
+    pub gyro_temp_c: [f64; 3],
+    /// Mean accelerometer temperature, °C.
+    pub accel_temp_c: f64,
+    /// Mean |ω| of the true body rate, rad/s.
+    pub rotation_rps: f64,
+    /// Residual sums (measured − model) per channel: rad for gyros, m/s for accelerometers.
+    pub y: [f64; 6],
+    /// Regressor sums of every group (layout in [`Replay::groups`]).
+    pub x: Vec<f64>,
+}
+
+/// What a replay produced.
+#[derive(Clone, Debug)]
+pub struct Replay {
+    /// Windows in history order.
+    pub windows: Vec<Window>,
+    /// Candidate groups (all channels).
+    pub groups: Vec<Group>,
+    /// Candidates left out, with the reason.
+    pub unavailable: Vec<(String, String)>,
+    /// Residual Allan accumulators per channel (rate units: rad/s, m/s²).
+    pub allan: Vec<AllanAcc>,
+    /// Median row interval, s.
+    pub row_dt_s: f64,
+    /// Rows replayed.
+    pub rows: usize,
+}
+
+/// Builds the group layout for the candidates available with this history.
+fn layout(gyro: &GyroModel, accel: &AccelModel, has_gradient: bool) -> (Vec<Group>, Vec<(String, String)>) {
+    let mut groups = Vec::new();
+    let mut unavailable = Vec::new();
+    let mut offset = 0;
+    let ctx = TermContext {
+        dt_s: 1.0,
+        dtheta_rad: Vector3::zeros(),
+        dv_mps: Vector3::zeros(),
+        f_b_mps2: Vector3::zeros(),
+        up_b: Vector3::z(),
+        gyro_temp_c: Vector3::zeros(),
+        gyro_gradient_k: Vector3::zeros(),
+        accel_temp_c: 0.0,
+    };
+    for e in Effect::all() {
+        if e == Effect::Gyro(GyroTerm::TemperatureGradientBias) && !has_gradient {
+            unavailable.push((e.name(), "needs a housing temperature (temp_housing_c) to form the gradient".into()));
+            continue;
+        }
+        for channel in 0..6 {
+            if !e.acts_on(channel) {
+                continue;
+            }
+            let mut buf = Vec::new();
+            match e {
+                Effect::Gyro(t) => gyro.regressors(t, &ctx, channel, &mut buf),
+                Effect::Accel(t) => accel.regressors(t, &ctx, channel - 3, &mut buf),
+            }
+            groups.push(Group { channel, effect: e, offset, len: buf.len() });
+            offset += buf.len();
+        }
+    }
+    (groups, unavailable)
+}
+
+struct Kinematics {
+    c_vn: Matrix3<f64>,
+    omega_ie_n: Vector3<f64>,
+    f_n: Vector3<f64>,
+}
+
+impl Kinematics {
+    /// True increments over row k and the mid attitude C_n^b.
+    fn row(&self, h: &History, k: usize, dt: f64) -> (Vector3<f64>, Vector3<f64>, Matrix3<f64>, bool) {
+        let j = k - 1;
+        let (gimbal_inc, c_nb, moving) = match &h.attitude {
+            Attitude::Gimbal { outer_rad, inner_rad } => {
+                let (o0, i0, o1, i1) = (outer_rad[j], inner_rad[j], outer_rad[k], inner_rad[k]);
+                let mid = GimbalAngles::new(0.5 * (o0 + o1), 0.5 * (i0 + i1));
+                let (d_outer, d_inner) = (o1 - o0, i1 - i0);
+                let (s, c) = mid.inner_rad.sin_cos();
+                let inc = Vector3::new(d_inner, s * d_outer, c * d_outer);
+                (inc, body_to_nav(&self.c_vn, mid).transpose(), d_outer != 0.0 || d_inner != 0.0)
+            }
+            Attitude::Quaternion(q) => {
+                let qa = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[j][0], q[j][1], q[j][2], q[j][3]));
+                let qb = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[k][0], q[k][1], q[k][2], q[k][3]));
+                let rel = qa.inverse() * qb;
+                let mid = qa.slerp(&qb, 0.5);
+                (rel.scaled_axis(), mid.to_rotation_matrix().matrix().transpose(), rel.angle() > 1e-12)
+            }
+        };
+        let dtheta = gimbal_inc + c_nb * self.omega_ie_n * dt;
+        let dv = c_nb * self.f_n * dt;
+        (dtheta, dv, c_nb, moving)
+    }
+}
+
+fn median_dt(h: &History) -> f64 {
+    let mut d: Vec<f64> = h.segments.iter().flat_map(|s| (s.start + 1..s.end).map(|k| h.t_s[k] - h.t_s[k - 1])).collect();
+    if d.is_empty() {
+        return 1.0;
+    }
+    let m = d.len() / 2;
+    *d.select_nth_unstable_by(m, f64::total_cmp).1
+}
+
+/// Replays `model` on `h`, summing rows into windows of at most `window_s` seconds.
+pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
+    let gyro = GyroModel::new(&model.sensor.gyro);
+    let accel = AccelModel::new(&model.sensor.accel);
+    let site = Site::new(&model.site, &model.earth);
+    let kin = Kinematics { c_vn: model.vehicle.c_vn(), omega_ie_n: site.omega_ie_n, f_n: Vector3::new(0.0, 0.0, site.gravity_mps2) };
+    let (groups, unavailable) = layout(&gyro, &accel, h.gyro_gradient_k.is_some());
+    let nx = groups.iter().map(|g| g.len).sum::<usize>();
+    let row_dt_s = median_dt(h);
+
+    let per_segment: Vec<(Vec<Window>, Vec<AllanAcc>)> = h
+        .segments
+        .par_iter()
+        .map(|seg| {
+            let mut windows = Vec::new();
+            let mut allan: Vec<AllanAcc> = (0..6).map(|_| AllanAcc::new()).collect();
+            let run_start = h.t_s[seg.start];
+            let mut cur: Option<Window> = None;
+            let mut buf = Vec::with_capacity(8);
+            let mut gterms = [Vector3::zeros(); rins_plant::effects::gyro::GYRO_TERMS];
+            let mut aterms = [Vector3::zeros(); rins_plant::effects::accel::ACCEL_TERMS];
+            // The first row of a segment only gives the start attitude: its own start attitude
+            // is unknown (the table may already be moving), so it is not compared.
+            for k in seg.start + 1..seg.end {
+                let dt = h.t_s[k] - h.t_s[k - 1];
+                let (dtheta, dv, c_nb, moving) = kin.row(h, k, dt);
+                let up_b = c_nb.column(2).into_owned();
+                let f_b = c_nb * kin.f_n;
+                let gt = Vector3::from(h.gyro_temp_c[k]);
+                let ctx = TermContext {
+                    dt_s: dt,
+                    dtheta_rad: dtheta,
+                    dv_mps: dv,
+                    f_b_mps2: f_b,
+                    up_b,
+                    gyro_temp_c: gt,
+                    gyro_gradient_k: h.gyro_gradient_k.as_ref().map_or(Vector3::zeros(), |g| Vector3::from(g[k])),
+                    accel_temp_c: h.accel_temp_c[k],
+                };
+                let ge = gyro.increment_error(&ctx, &mut gterms);
+                let ae = accel.increment_error(&ctx, &mut aterms);
+                let mut r = [0.0; 6];
+                for i in 0..3 {
+                    r[i] = h.dtheta_rad[k][i] - (dtheta[i] + ge[i]);
+                    r[i + 3] = h.dv_mps[k][i] - (dv[i] + ae[i]);
+                }
+                for (c, acc) in allan.iter_mut().enumerate() {
+                    acc.push(r[c] / dt);
+                }
+                let t_mid = h.t_s[k] - 0.5 * dt;
+                let split = match &cur {
+                    Some(w) => w.moving != moving || (w.up_z - up_b.z).abs() > 1e-6 && !moving || w.duration_s + dt > window_s * (1.0 + 1e-9),
+                    None => true,
+                };
+                if split {
+                    if let Some(w) = cur.take() {
+                        windows.push(finish(w));
+                    }
+                    cur = Some(Window {
+                        run: h.run[k],
+                        t_mid_s: 0.0,
+                        t_run_s: t_mid - run_start,
+                        duration_s: 0.0,
+                        rows: 0,
+                        moving,
+                        up_z: up_b.z,
+                        f_b_g: [0.0; 3],
+                        gyro_temp_c: [0.0; 3],
+                        accel_temp_c: 0.0,
+                        rotation_rps: 0.0,
+                        y: [0.0; 6],
+                        x: vec![0.0; nx],
+                    });
+                }
+                let w = cur.as_mut().expect("window open");
+                w.rows += 1;
+                w.duration_s += dt;
+                w.t_mid_s += t_mid * dt;
+                for i in 0..3 {
+                    w.f_b_g[i] += f_b[i] / rins_plant::units::G0 * dt;
+                    w.gyro_temp_c[i] += gt[i] * dt;
+                }
+                w.accel_temp_c += h.accel_temp_c[k] * dt;
+                w.rotation_rps += dtheta.norm();
+                if !moving {
+                    w.up_z = up_b.z;
+                }
+                for c in 0..6 {
+                    w.y[c] += r[c];
+                }
+                for g in &groups {
+                    buf.clear();
+                    match g.effect {
+                        Effect::Gyro(t) => gyro.regressors(t, &ctx, g.channel, &mut buf),
+                        Effect::Accel(t) => accel.regressors(t, &ctx, g.channel - 3, &mut buf),
+                    }
+                    for (x, b) in w.x[g.offset..g.offset + g.len].iter_mut().zip(&buf) {
+                        *x += b;
+                    }
+                }
+            }
+            if let Some(w) = cur.take() {
+                windows.push(finish(w));
+            }
+            (windows, allan)
+        })
+        .collect();
+
+    let mut windows = Vec::new();
+    let mut allan: Vec<AllanAcc> = (0..6).map(|_| AllanAcc::new()).collect();
+    for (w, a) in per_segment {
+        windows.extend(w);
+        for (acc, part) in allan.iter_mut().zip(a) {
+            acc.merge(&part);
+        }
+    }
+    Replay { windows, groups, unavailable, allan, row_dt_s, rows: h.len() }
+}
+
+/// Turns time-weighted sums into means.
+fn finish(mut w: Window) -> Window {
+    let d = w.duration_s.max(f64::MIN_POSITIVE);
+    w.t_mid_s /= d;
+    for i in 0..3 {
+        w.f_b_g[i] /= d;
+        w.gyro_temp_c[i] /= d;
+    }
+    w.accel_temp_c /= d;
+    w.rotation_rps /= d;
+    w.t_run_s += 0.5 * w.duration_s;
+    w
+}
