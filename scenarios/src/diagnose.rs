@@ -20,36 +20,43 @@ use crate::sinks::CsvSink;
 /// The measured rows in SI, with the temperatures mapped to the model's inputs: per-gyro
 /// columns `temp_gyro_{x,y,z}_c` when present (else the first temperature column on every
 /// axis), the gradient as gyro − `temp_housing_c` when a housing temperature is present, and
-/// `temp_accel_c` (else the gyro mean) for the accelerometers.
-pub fn to_history(m: &Measurement, source: &str) -> Result<History> {
-    let col = |n: &str| m.col(n).with_context(|| format!("{source}: column {n} missing"));
-    let t_s = col("t_s")?.to_vec();
-    let n = t_s.len();
-    let v3 = |p: &str, unit: &str| -> Result<Vec<[f64; 3]>> {
-        let (x, y, z) = (col(&format!("{p}_x_{unit}"))?, col(&format!("{p}_y_{unit}"))?, col(&format!("{p}_z_{unit}"))?);
-        Ok((0..n).map(|k| [x[k], y[k], z[k]]).collect())
-    };
-    let attitude = if let (Some(o), Some(i)) = (m.col("outer_deg"), m.col("inner_deg")) {
-        Attitude::Gimbal { outer_rad: o.iter().map(|d| d.to_radians()).collect(), inner_rad: i.iter().map(|d| d.to_radians()).collect() }
+/// `temp_accel_c` (else the first gyro column) for the accelerometers. The columns are moved
+/// out of the measurement, not copied.
+pub fn to_history(mut m: Measurement, source: &str) -> Result<History> {
+    let n = m.rows;
+    fn take(m: &mut Measurement, c: &str, source: &str) -> Result<Vec<f64>> {
+        m.columns.remove(c).with_context(|| format!("{source}: column {c} missing"))
+    }
+    let has_gimbal = m.columns.contains_key("outer_deg") && m.columns.contains_key("inner_deg");
+    let per_axis = ["temp_gyro_x_c", "temp_gyro_y_c", "temp_gyro_z_c"].iter().all(|c| m.columns.contains_key(*c));
+    let first_temp = m.temperature_columns().first().map(|s| s.to_string()).context("no temperature column")?;
+    let common_temp = if per_axis { None } else { m.columns.get(&first_temp).cloned() };
+    let housing = if per_axis { m.columns.remove("temp_housing_c") } else { None };
+    let accel = m.columns.remove("temp_accel_c");
+    let segs = std::mem::take(&mut m.segments);
+    let mut take = |c: &str| take(&mut m, c, source);
+    let t_s = take("t_s")?;
+    let dtheta_rad = [take("dtheta_x_rad")?, take("dtheta_y_rad")?, take("dtheta_z_rad")?];
+    let dv_mps = [take("dv_x_mps")?, take("dv_y_mps")?, take("dv_z_mps")?];
+    let attitude = if has_gimbal {
+        let mut o = take("outer_deg")?;
+        let mut i = take("inner_deg")?;
+        o.iter_mut().chain(i.iter_mut()).for_each(|d| *d = d.to_radians());
+        Attitude::Gimbal { outer_rad: o, inner_rad: i }
     } else {
-        let q: Vec<&[f64]> = ["q_bn_w", "q_bn_x", "q_bn_y", "q_bn_z"].iter().map(|c| col(c)).collect::<Result<_>>()?;
+        let q: Vec<Vec<f64>> = ["q_bn_w", "q_bn_x", "q_bn_y", "q_bn_z"].iter().map(|c| take(c)).collect::<Result<_>>()?;
         Attitude::Quaternion((0..n).map(|k| [q[0][k], q[1][k], q[2][k], q[3][k]]).collect())
     };
-    let temps = m.temperature_columns();
-    let first = *temps.first().context("no temperature column")?;
-    let gyro_temp_c: Vec<[f64; 3]> = match (m.col("temp_gyro_x_c"), m.col("temp_gyro_y_c"), m.col("temp_gyro_z_c")) {
-        (Some(x), Some(y), Some(z)) => (0..n).map(|k| [x[k], y[k], z[k]]).collect(),
-        _ => {
-            let t = col(first)?;
-            (0..n).map(|k| [t[k]; 3]).collect()
-        }
+    let gyro_temp_c: [Vec<f64>; 3] = match common_temp {
+        None => [take("temp_gyro_x_c")?, take("temp_gyro_y_c")?, take("temp_gyro_z_c")?],
+        Some(t) => [t.clone(), t.clone(), t],
     };
-    let gyro_gradient_k = m.col("temp_housing_c").filter(|_| m.col("temp_gyro_x_c").is_some()).map(|h| (0..n).map(|k| gyro_temp_c[k].map(|g| g - h[k])).collect());
-    let accel_temp_c = m.col("temp_accel_c").map_or_else(|| gyro_temp_c.iter().map(|g| (g[0] + g[1] + g[2]) / 3.0).collect(), <[f64]>::to_vec);
+    let housing_temp_c = housing;
+    let accel_temp_c = accel.unwrap_or_else(|| gyro_temp_c[0].clone());
     let mut run_names: Vec<String> = Vec::new();
     let mut run = vec![0u32; n];
     let mut segments = Vec::new();
-    for (r, _, a, b) in &m.segments {
+    for (r, _, a, b) in &segs {
         let idx = run_names.iter().position(|x| x == r).unwrap_or_else(|| {
             run_names.push(r.clone());
             run_names.len() - 1
@@ -57,19 +64,7 @@ pub fn to_history(m: &Measurement, source: &str) -> Result<History> {
         run[*a..*b].iter_mut().for_each(|x| *x = idx as u32);
         segments.push(*a..*b);
     }
-    Ok(History {
-        t_s,
-        dtheta_rad: v3("dtheta", "rad")?,
-        dv_mps: v3("dv", "mps")?,
-        attitude,
-        gyro_temp_c,
-        gyro_gradient_k,
-        accel_temp_c,
-        run,
-        run_names,
-        segments,
-        source: source.into(),
-    })
+    Ok(History { t_s, dtheta_rad, dv_mps, attitude, gyro_temp_c, housing_temp_c, accel_temp_c, run, run_names, segments, source: source.into() })
 }
 
 /// The model with the site the data give (lat/lon/height columns), if any; returns a note.

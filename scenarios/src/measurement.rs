@@ -27,11 +27,48 @@ pub struct Measurement {
     /// Numeric columns by name.
     pub columns: BTreeMap<String, Vec<f64>>,
     /// Label columns by name.
-    pub labels: BTreeMap<String, Vec<String>>,
+    pub labels: BTreeMap<String, LabelColumn>,
     /// Data rows.
     pub rows: usize,
     /// Row ranges [start, end) of each (run, segment).
     pub segments: Vec<(String, String, usize, usize)>,
+}
+
+/// A label column: the distinct labels and, per row, the index of its label (labels repeat
+/// over millions of rows; one string each is enough).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LabelColumn {
+    /// Distinct labels in order of first appearance.
+    pub names: Vec<String>,
+    /// Per row, the index into `names`.
+    pub index: Vec<u32>,
+}
+
+impl LabelColumn {
+    /// Label of row `i`.
+    pub fn get(&self, i: usize) -> &str {
+        &self.names[self.index[i] as usize]
+    }
+
+    fn push(&mut self, label: &str) {
+        let k = match self.index.last() {
+            Some(&k) if self.names[k as usize] == label => k,
+            _ => match self.names.iter().position(|n| n == label) {
+                Some(k) => k as u32,
+                None => {
+                    self.names.push(label.to_string());
+                    (self.names.len() - 1) as u32
+                }
+            },
+        };
+        self.index.push(k);
+    }
+
+    fn append(&mut self, other: LabelColumn) {
+        for i in other.index {
+            self.push(&other.names[i as usize]);
+        }
+    }
 }
 
 impl Measurement {
@@ -83,67 +120,162 @@ fn classify(name: &str) -> Result<bool, String> {
     ))
 }
 
-/// Parses measurement CSV text; `source_name` appears in every error.
-pub fn parse(text: &str, source_name: &str) -> Result<Measurement, MeasurementError> {
+/// Whether a line is data (not blank, not a `#` comment).
+fn is_data(line: &str) -> bool {
+    let t = line.trim_start();
+    !t.is_empty() && !t.starts_with('#')
+}
+
+/// Data rows in `part`.
+fn count_rows(part: &str) -> usize {
+    part.lines().filter(|l| is_data(l)).count()
+}
+
+type Columns = (Vec<Vec<f64>>, Vec<LabelColumn>, usize);
+
+/// Parses the data rows of `part`; row numbers start after `row0`.
+fn parse_rows(part: &str, row0: usize, header: &[String], numeric: &[bool], source_name: &str) -> Result<Columns, MeasurementError> {
     let err = |row: usize, column: &str, message: String| MeasurementError { source_name: source_name.into(), row, column: column.into(), message };
-    let mut lines = text.lines().filter(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty());
-    let header: Vec<String> = lines.next().ok_or_else(|| err(0, "", "empty file: expected a header row".into()))?.split(',').map(|s| s.trim().to_string()).collect();
-    let mut numeric = Vec::with_capacity(header.len());
-    for (i, h) in header.iter().enumerate() {
-        if header[..i].contains(h) {
-            return Err(err(0, h, "duplicate column".into()));
+    // Columns are filled by index (a map lookup per field would dominate on million-row files).
+    let estimate = part.len() / 200;
+    let mut nums: Vec<Vec<f64>> = numeric.iter().map(|&n| if n { Vec::with_capacity(estimate) } else { Vec::new() }).collect();
+    let mut labs: Vec<LabelColumn> = vec![LabelColumn::default(); header.len()];
+    let mut row = row0;
+    for line in part.lines() {
+        if !is_data(line) {
+            continue;
         }
-        numeric.push(classify(h).map_err(|m| err(0, h, m))?);
-    }
-    for need in REQUIRED {
-        if !header.iter().any(|h| h == need) {
-            return Err(err(0, need, "missing required column".into()));
-        }
-    }
-    let has = |set: &[&str]| set.iter().all(|c| header.iter().any(|h| h == c));
-    if !has(&GIMBAL) && !has(&QUATERNION) {
-        return Err(err(0, "outer_deg", "missing attitude: give outer_deg and inner_deg, or q_bn_w, q_bn_x, q_bn_y, q_bn_z".into()));
-    }
-    if !header.iter().any(|h| h.starts_with("temp_") && h.ends_with("_c")) {
-        return Err(err(0, "temp_*_c", "missing temperature: at least one temp_<name>_c column".into()));
-    }
-    // Parse into vectors by column index; the maps are filled once at the end (a map lookup
-    // per field would dominate on million-row files).
-    let mut nums: Vec<Vec<f64>> = vec![Vec::new(); header.len()];
-    let mut labs: Vec<Vec<String>> = vec![Vec::new(); header.len()];
-    let mut rows = 0;
-    for (r, line) in lines.enumerate() {
-        let row = r + 1;
+        row += 1;
         let mut count = 0;
-        for (i, f) in line.split(',').enumerate() {
+        // Fields by byte scan (',' is ASCII, so every slice is on a char boundary).
+        let bytes = line.as_bytes();
+        let mut a = 0;
+        while a <= bytes.len() {
+            let b = bytes[a..].iter().position(|c| *c == b',').map_or(bytes.len(), |k| a + k);
+            let i = count;
             count += 1;
-            if i >= header.len() {
-                continue;
-            }
-            let f = f.trim();
-            if numeric[i] {
-                let v: f64 = f.parse().map_err(|_| err(row, &header[i], format!("not a number: {f:?}")))?;
-                if !v.is_finite() {
-                    return Err(err(row, &header[i], format!("{v} is not a finite number")));
+            if i < header.len() {
+                let mut f = &line[a..b];
+                if f.starts_with(' ') || f.ends_with(' ') || f.ends_with('\r') {
+                    f = f.trim();
                 }
-                nums[i].push(v);
-            } else {
-                match labs[i].last() {
-                    Some(last) if last == f => {
-                        let l = last.clone();
-                        labs[i].push(l)
+                if numeric[i] {
+                    let v: f64 = f.parse().map_err(|_| err(row, &header[i], format!("not a number: {f:?}")))?;
+                    if !v.is_finite() {
+                        return Err(err(row, &header[i], format!("{v} is not a finite number")));
                     }
-                    _ => labs[i].push(f.to_string()),
+                    nums[i].push(v);
+                } else {
+                    labs[i].push(f);
                 }
             }
+            a = b + 1;
         }
         if count != header.len() {
             return Err(err(row, "", format!("{count} fields, header has {}", header.len())));
         }
-        rows = row;
     }
-    let mut m = Measurement { rows, ..Measurement::default() };
-    for ((h, &num), (n, l)) in header.iter().zip(&numeric).zip(nums.into_iter().zip(labs)) {
+    Ok((nums, labs, row - row0))
+}
+
+/// The header of a file, checked.
+struct Layout {
+    header: Vec<String>,
+    numeric: Vec<bool>,
+    source: String,
+}
+
+impl Layout {
+    fn err(&self, row: usize, column: &str, message: String) -> MeasurementError {
+        MeasurementError { source_name: self.source.clone(), row, column: column.into(), message }
+    }
+
+    fn new(header_line: &str, source: &str) -> Result<Self, MeasurementError> {
+        let err = |column: &str, message: String| MeasurementError { source_name: source.into(), row: 0, column: column.into(), message };
+        let header: Vec<String> = header_line.split(',').map(|s| s.trim().to_string()).collect();
+        let mut numeric = Vec::with_capacity(header.len());
+        for (i, h) in header.iter().enumerate() {
+            if header[..i].contains(h) {
+                return Err(err(h, "duplicate column".into()));
+            }
+            numeric.push(classify(h).map_err(|m| err(h, m))?);
+        }
+        for need in REQUIRED {
+            if !header.iter().any(|h| h == need) {
+                return Err(err(need, "missing required column".into()));
+            }
+        }
+        let has = |set: &[&str]| set.iter().all(|c| header.iter().any(|h| h == c));
+        if !has(&GIMBAL) && !has(&QUATERNION) {
+            return Err(err("outer_deg", "missing attitude: give outer_deg and inner_deg, or q_bn_w, q_bn_x, q_bn_y, q_bn_z".into()));
+        }
+        if !header.iter().any(|h| h.starts_with("temp_") && h.ends_with("_c")) {
+            return Err(err("temp_*_c", "missing temperature: at least one temp_<name>_c column".into()));
+        }
+        Ok(Self { header, numeric, source: source.into() })
+    }
+}
+
+/// Columns filled so far.
+struct Acc {
+    nums: Vec<Vec<f64>>,
+    labs: Vec<LabelColumn>,
+    rows: usize,
+}
+
+impl Acc {
+    fn new(l: &Layout) -> Self {
+        Self { nums: vec![Vec::new(); l.header.len()], labs: vec![LabelColumn::default(); l.header.len()], rows: 0 }
+    }
+
+    /// Parses the complete lines of `chunk`, in two halves on both cores.
+    fn add(&mut self, l: &Layout, chunk: &str) -> Result<(), MeasurementError> {
+        let mid = chunk.len() / 2;
+        let cut = chunk[mid..].find('\n').map_or(chunk.len(), |k| mid + k + 1);
+        let (first, second) = chunk.split_at(cut);
+        let row0 = self.rows;
+        let (a, b) = rayon::join(
+            || parse_rows(first, row0, &l.header, &l.numeric, &l.source),
+            // Row numbers of the second half continue the first half's.
+            || parse_rows(second, row0 + count_rows(first), &l.header, &l.numeric, &l.source),
+        );
+        for (nums, labs, rows) in [a?, b?] {
+            for (x, y) in self.nums.iter_mut().zip(nums) {
+                x.extend(y);
+            }
+            for (x, y) in self.labs.iter_mut().zip(labs) {
+                x.append(y);
+            }
+            self.rows += rows;
+        }
+        Ok(())
+    }
+}
+
+/// Parses measurement CSV text; `source_name` appears in every error.
+pub fn parse(text: &str, source_name: &str) -> Result<Measurement, MeasurementError> {
+    // The header is the first data line; everything after it is rows.
+    let mut offset = 0;
+    let mut header_line = None;
+    for line in text.split_inclusive('\n') {
+        offset += line.len();
+        if is_data(line) {
+            header_line = Some(line);
+            break;
+        }
+    }
+    let header_line = header_line.ok_or_else(|| MeasurementError { source_name: source_name.into(), row: 0, column: String::new(), message: "empty file: expected a header row".into() })?;
+    let layout = Layout::new(header_line, source_name)?;
+    let mut acc = Acc::new(&layout);
+    acc.add(&layout, &text[offset..])?;
+    finish(layout, acc)
+}
+
+/// Builds the measurement from the parsed columns and checks segments and time.
+fn finish(layout: Layout, acc: Acc) -> Result<Measurement, MeasurementError> {
+    let err = |row: usize, column: &str, message: String| layout.err(row, column, message);
+    let mut m = Measurement { rows: acc.rows, ..Measurement::default() };
+    for ((h, &num), (n, l)) in layout.header.iter().zip(&layout.numeric).zip(acc.nums.into_iter().zip(acc.labs)) {
         if num {
             m.columns.insert(h.clone(), n);
         } else {
@@ -154,14 +286,17 @@ pub fn parse(text: &str, source_name: &str) -> Result<Measurement, MeasurementEr
         return Err(err(m.rows, "t_s", "need at least two data rows".into()));
     }
     // Segments: consecutive rows with the same (run, segment) labels.
-    let label = |name: &str, i: usize| m.labels.get(name).map(|v| v[i].clone()).unwrap_or_default();
+    let label = |name: &str, i: usize| m.labels.get(name).map_or(u32::MAX, |c| c.index[i]);
+    let name = |col: &str, i: usize| m.labels.get(col).map_or(String::new(), |c| c.get(i).to_string());
     let mut start = 0;
+    let mut segments = Vec::new();
     for i in 1..=m.rows {
         if i == m.rows || label("run", i) != label("run", start) || label("segment", i) != label("segment", start) {
-            m.segments.push((label("run", start), label("segment", start), start, i));
+            segments.push((name("run", start), name("segment", start), start, i));
             start = i;
         }
     }
+    m.segments = segments;
     // Time strictly increasing within a segment, and evenly spaced (a gap means lost samples).
     let t = m.columns["t_s"].clone();
     for &(_, _, a, b) in &m.segments {
@@ -187,13 +322,57 @@ pub fn parse(text: &str, source_name: &str) -> Result<Measurement, MeasurementEr
     Ok(m)
 }
 
-/// Reads and parses a measurement file.
+/// Reads and parses a measurement file, streaming it in 64 MB pieces (a multi-GB file is never
+/// held in memory as text).
 pub fn read(path: &Path) -> Result<Measurement, MeasurementError> {
-    let text = std::fs::read_to_string(path).map_err(|e| MeasurementError {
-        source_name: path.display().to_string(),
-        row: 0,
-        column: String::new(),
-        message: format!("cannot read: {e}"),
-    })?;
-    parse(&text, &path.display().to_string())
+    use std::io::Read;
+    let source = path.display().to_string();
+    let io_err = |e: std::io::Error| MeasurementError { source_name: source.clone(), row: 0, column: String::new(), message: format!("cannot read: {e}") };
+    let mut f = std::fs::File::open(path).map_err(io_err)?;
+    const PIECE: usize = 64 << 20;
+    let mut buf: Vec<u8> = Vec::with_capacity(PIECE + (1 << 16));
+    let mut layout: Option<Layout> = None;
+    let mut acc: Option<Acc> = None;
+    loop {
+        let have = buf.len();
+        buf.resize(have + PIECE, 0);
+        let n = f.read(&mut buf[have..]).map_err(io_err)?;
+        buf.truncate(have + n);
+        let eof = n == 0;
+        // Parse every complete line; keep the partial last line for the next piece.
+        let end = if eof { buf.len() } else { buf.iter().rposition(|b| *b == b'\n').map_or(0, |k| k + 1) };
+        if end > 0 {
+            let row = acc.as_ref().map_or(0, |a| a.rows) + 1;
+            let text = std::str::from_utf8(&buf[..end]).map_err(|e| MeasurementError {
+                source_name: source.clone(),
+                row,
+                column: String::new(),
+                message: format!("not UTF-8 text (byte {} of this piece): {e}", e.valid_up_to()),
+            })?;
+            let mut body = text;
+            if layout.is_none() {
+                let mut offset = 0;
+                for line in text.split_inclusive('\n') {
+                    offset += line.len();
+                    if is_data(line) {
+                        let l = Layout::new(line, &source)?;
+                        acc = Some(Acc::new(&l));
+                        layout = Some(l);
+                        break;
+                    }
+                }
+                body = &text[offset..];
+            }
+            if let (Some(l), Some(a)) = (&layout, &mut acc) {
+                a.add(l, body)?;
+            }
+            buf.drain(..end);
+        }
+        if eof {
+            break;
+        }
+    }
+    let layout = layout.ok_or_else(|| MeasurementError { source_name: source.clone(), row: 0, column: String::new(), message: "empty file: expected a header row".into() })?;
+    let acc = acc.expect("created with the layout");
+    finish(layout, acc)
 }

@@ -78,7 +78,7 @@ fn dataset(truth: &PlantConfig, temps: &[f64], profile: Option<&dyn Fn(f64) -> V
     let text = std::fs::read_to_string(&path).unwrap();
     let _ = std::fs::remove_file(&path);
     let m = measurement::parse(&text, "dataset").unwrap();
-    to_history(&m, "dataset").unwrap()
+    to_history(m, "dataset").unwrap()
 }
 
 fn rand_tag(c: &PlantConfig, temps: &[f64]) -> u64 {
@@ -142,7 +142,7 @@ fn temperature_gradient_bias_is_found() {
     // A chamber step in every run drives the gradient across the blocks.
     let step = |t: f64| vec![[0.0, t], [300.0, t], [330.0, t + 15.0]];
     let h = dataset(&truth, &TEMPS, Some(&step));
-    assert!(h.gyro_gradient_k.is_some());
+    assert!(h.housing_temp_c.is_some());
     hidden_effect_found(&truth, &h, Effect::Gyro(GyroTerm::TemperatureGradientBias));
 }
 
@@ -200,7 +200,7 @@ fn an_effect_outside_the_catalogue_is_not_claimed_but_localised() {
         let dt = h.t_s[k] - h.t_s[k - 1];
         if dt > 0.0 {
             let l = 0.5 * (inner[k] + inner[k - 1]);
-            h.dtheta_rad[k][0] += a * (l.sin().powi(2) - 1.0 / 3.0) * dt;
+            h.dtheta_rad[0][k] += a * (l.sin().powi(2) - 1.0 / 3.0) * dt;
         }
     }
     let (report, _, _) = diagnose(&model(), &h, Options::default());

@@ -337,7 +337,7 @@ fn load_data(a: &DataArgs) -> Result<(Scenario, rins_plant::PlantConfig, rins_ve
     if let Some(n) = note {
         eprintln!("{}", n);
     }
-    let h = rins_scenarios::diagnose::to_history(&m, &a.data.display().to_string())?;
+    let h = rins_scenarios::diagnose::to_history(m, &a.data.display().to_string())?;
     for (name, v) in [("--window-s", a.window_s), ("--temp-bin-k", a.temp_bin_k), ("--time-window-s", a.time_window_s)] {
         if !(v > 0.0 && v.is_finite()) {
             anyhow::bail!("{name} must be a positive number, got {v}");

@@ -16,23 +16,24 @@ pub enum Attitude {
     Quaternion(Vec<[f64; 4]>),
 }
 
-/// Measured rows (row k covers (t_{k-1}, t_k]).
+/// Measured rows (row k covers (t_{k-1}, t_k]), one vector per quantity and axis (the columns
+/// of the file, moved rather than copied).
 #[derive(Clone, Debug, PartialEq)]
 pub struct History {
     /// End time of each row, s.
     pub t_s: Vec<f64>,
-    /// Angular increments, rad.
-    pub dtheta_rad: Vec<[f64; 3]>,
-    /// Velocity increments, m/s.
-    pub dv_mps: Vec<[f64; 3]>,
+    /// Angular increments per axis, rad.
+    pub dtheta_rad: [Vec<f64>; 3],
+    /// Velocity increments per axis, m/s.
+    pub dv_mps: [Vec<f64>; 3],
     /// Attitude at the end of each row.
     pub attitude: Attitude,
-    /// Gyro block temperatures, °C (the one measured temperature on every axis when the file
-    /// has no per-gyro columns).
-    pub gyro_temp_c: Vec<[f64; 3]>,
-    /// Gradient across each gyro block (block − housing), K, when the file has a housing
-    /// temperature.
-    pub gyro_gradient_k: Option<Vec<[f64; 3]>>,
+    /// Gyro block temperatures per axis, °C (the one measured temperature on every axis when
+    /// the file has no per-gyro columns).
+    pub gyro_temp_c: [Vec<f64>; 3],
+    /// Housing temperature, °C, when measured: the gradient across gyro block i is
+    /// `gyro_temp_c[i] − housing_temp_c`.
+    pub housing_temp_c: Option<Vec<f64>>,
     /// Accelerometer temperature, °C.
     pub accel_temp_c: Vec<f64>,
     /// Run index of each row (into `run_names`).

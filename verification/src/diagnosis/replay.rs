@@ -197,7 +197,7 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
     let accel = AccelModel::new(&model.sensor.accel);
     let site = Site::new(&model.site, &model.earth);
     let kin = Kinematics { c_vn: model.vehicle.c_vn(), omega_ie_n: site.omega_ie_n, f_n: Vector3::new(0.0, 0.0, site.gravity_mps2) };
-    let (groups, unavailable) = layout(&gyro, &accel, h.gyro_gradient_k.is_some());
+    let (groups, unavailable) = layout(&gyro, &accel, h.housing_temp_c.is_some());
     let nx = groups.iter().map(|g| g.len).sum::<usize>();
     let row_dt_s = median_dt(h);
 
@@ -219,7 +219,7 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                 let (dtheta, dv, c_nb, moving) = kin.row(h, k, dt);
                 let up_b = c_nb.column(2).into_owned();
                 let f_b = c_nb * kin.f_n;
-                let gt = Vector3::from(h.gyro_temp_c[k]);
+                let gt = Vector3::new(h.gyro_temp_c[0][k], h.gyro_temp_c[1][k], h.gyro_temp_c[2][k]);
                 let ctx = TermContext {
                     dt_s: dt,
                     dtheta_rad: dtheta,
@@ -227,15 +227,15 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                     f_b_mps2: f_b,
                     up_b,
                     gyro_temp_c: gt,
-                    gyro_gradient_k: h.gyro_gradient_k.as_ref().map_or(Vector3::zeros(), |g| Vector3::from(g[k])),
+                    gyro_gradient_k: h.housing_temp_c.as_ref().map_or(Vector3::zeros(), |t| gt.add_scalar(-t[k])),
                     accel_temp_c: h.accel_temp_c[k],
                 };
                 let ge = gyro.increment_error(&ctx, &mut gterms);
                 let ae = accel.increment_error(&ctx, &mut aterms);
                 let mut r = [0.0; 6];
                 for i in 0..3 {
-                    r[i] = h.dtheta_rad[k][i] - (dtheta[i] + ge[i]);
-                    r[i + 3] = h.dv_mps[k][i] - (dv[i] + ae[i]);
+                    r[i] = h.dtheta_rad[i][k] - (dtheta[i] + ge[i]);
+                    r[i + 3] = h.dv_mps[i][k] - (dv[i] + ae[i]);
                 }
                 for (c, acc) in allan.iter_mut().enumerate() {
                     acc.push(r[c] / dt);
