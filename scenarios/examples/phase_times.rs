@@ -1,4 +1,5 @@
-//! Times the phases of `rins compare` on a measurement file: read, parse, replay.
+//! Times the phases of `rins compare` / `rins diagnose` on a measurement file (the ≤ 10 s
+//! target on the 37-run campaign): `phase_times MODEL DATA`.
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let t0 = std::time::Instant::now();

@@ -46,7 +46,7 @@ steps = [
 preset = "ideal"
 gyro.bias = { enabled = true, dph = [0.01, -0.02, 0.015] }
 gyro.scale_factor = { enabled = true, ppm = [5.0, -3.0, 4.0] }
-gyro.angle_random_walk = { enabled = true, dpsh = [0.001, 0.001, 0.001] }
+gyro.angle_random_walk = { enabled = true, dpsh = [0.0005, 0.0005, 0.0005] }
 accel.bias = { enabled = true, ug = [50.0, -30.0, 40.0] }
 accel.velocity_random_walk = { enabled = true, ug_per_sqrthz = [20.0, 20.0, 20.0] }
 [thermal]
@@ -73,7 +73,9 @@ fn dataset(truth: &PlantConfig, temps: &[f64], profile: Option<&dyn Fn(f64) -> V
             (format!("run{i}"), c, 94_800)
         })
         .collect();
-    let path = std::env::temp_dir().join(format!("rins-dx-{}-{:x}.csv", std::process::id(), rand_tag(truth, temps)));
+    static N: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let path = std::env::temp_dir().join(format!("rins-dx-{}-{n}-{:x}.csv", std::process::id(), rand_tag(truth, temps)));
     rins_scenarios::diagnose::write_measurements(&path, &runs).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     let _ = std::fs::remove_file(&path);

@@ -176,10 +176,10 @@ pub fn test_candidates(windows: &[Window], d: &ChannelData, selected: &[Group], 
     let base = wls(&x0, d, None).expect("the selected model is identifiable");
     let cv0 = cv_rmse(&x0, d);
     let ln_n = (d.y.len() as f64).ln();
-    let mut out = Vec::new();
-    for g in pool {
+    let mut out: Vec<Candidate> = Vec::new();
+    for g in pool.iter().flat_map(|g| g.orders()) {
         let mut groups = selected.to_vec();
-        groups.push(*g);
+        groups.push(g);
         let x = design(windows, &groups);
         let Some(fit) = wls(&x, d, None) else { continue };
         let k = g.len as f64;
@@ -190,8 +190,8 @@ pub fn test_candidates(windows: &[Window], d: &ChannelData, selected: &[Group], 
         let p_value = f_sf(delta_chi2 / k / s2, k, dof);
         let delta_bic = -delta_chi2 / s2 + k * ln_n;
         let cv = cv_rmse(&x, d);
-        out.push(Candidate {
-            group: *g,
+        let cand = Candidate {
+            group: g,
             theta_offset: x0.ncols(),
             fit,
             delta_chi2,
@@ -199,10 +199,28 @@ pub fn test_candidates(windows: &[Window], d: &ChannelData, selected: &[Group], 
             p_value,
             cv_gain_pct: if cv0 > 0.0 { 100.0 * (1.0 - cv / cv0) } else { 0.0 },
             cv_rmse: cv,
-        });
+        };
+        // Of a polynomial's orders (tried from the lowest), a higher one replaces a lower one
+        // only if its extra terms are significant (nested F test, p < 0.001, as the orders are
+        // tried in turn): a chance quadratic
+        // term would bias the linear one.
+        match out.iter_mut().find(|c| c.group.effect == g.effect) {
+            Some(c) if higher_order_significant(&c.fit, &cand.fit) => *c = cand,
+            Some(_) => {}
+            None => out.push(cand),
+        }
     }
     out.sort_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic));
     (base, cv0, out)
+}
+
+/// Whether the fit with more polynomial terms (`high`) is significantly better than `low`
+/// (nested F test on their χ², p < 0.001 since the orders are tried in turn).
+pub fn higher_order_significant(low: &Fit, high: &Fit) -> bool {
+    let extra = high.theta.len().saturating_sub(low.theta.len()).max(1) as f64;
+    let dof = (high.n.saturating_sub(high.theta.len())).max(1) as f64;
+    let f = (low.chi2 - high.chi2) / extra / high.chi2_red().max(1.0);
+    f_sf(f, extra, dof) < 0.001
 }
 
 /// The gate a candidate must pass to be claimed.

@@ -443,7 +443,8 @@ pub fn separating_experiment(a: &str, b: &str) -> String {
 
 fn ranked(a: &Analysis, c: &fit::Candidate, others: &[fit::Candidate], gate: &Gate) -> RankedEffect {
     let ch = c.group.channel;
-    let keys = keys_of(c.group.effect, ch);
+    let mut keys = keys_of(c.group.effect, ch);
+    keys.truncate(c.group.len);
     let (coefficient, ci95): (Vec<f64>, Vec<[f64; 2]>) = keys
         .iter()
         .enumerate()
@@ -603,7 +604,24 @@ pub fn apply(model: &PlantConfig, a: &Analysis, effects: &[Effect]) -> Result<(P
     }
     let (gm, am) = (rins_plant::effects::GyroModel::new(&model.sensor.gyro), rins_plant::effects::AccelModel::new(&model.sensor.accel));
     for c in 0..6 {
-        let groups: Vec<Group> = effects.iter().filter_map(|e| a.replay.groups.iter().find(|g| g.channel == c && g.effect == *e)).copied().collect();
+        // Each effect at the polynomial order BIC prefers on this channel.
+        let groups: Vec<Group> = effects
+            .iter()
+            .filter_map(|e| a.replay.groups.iter().find(|g| g.channel == c && g.effect == *e))
+            .filter_map(|g| {
+                // Lowest order first; a higher one only if its extra terms are significant (as in the ranking).
+                let mut best: Option<(fit::Fit, Group)> = None;
+                for o in g.orders() {
+                    if let Some((_, f)) = delta_bic_of(&a.replay.windows, &a.data[c], &[], &[o]) {
+                        match &best {
+                            Some((lo, _)) if !fit::higher_order_significant(lo, &f) => {}
+                            _ => best = Some((f, o)),
+                        }
+                    }
+                }
+                best.map(|(_, o)| o)
+            })
+            .collect();
         if groups.is_empty() {
             continue;
         }
@@ -617,7 +635,7 @@ pub fn apply(model: &PlantConfig, a: &Analysis, effects: &[Effect]) -> Result<(P
                 Effect::Gyro(t) => gm.coefficients(t, c),
                 Effect::Accel(t) => am.coefficients(t, c - 3),
             };
-            for (j, (name, unit)) in keys_of(g.effect, c).into_iter().enumerate() {
+            for (j, (name, unit)) in keys_of(g.effect, c).into_iter().take(g.len).enumerate() {
                 let v = (current.get(j).copied().unwrap_or(0.0) + fit.theta[k]) / unit;
                 k += 1;
                 set.push((name.clone(), v));

@@ -65,6 +65,19 @@ pub struct Group {
     pub len: usize,
 }
 
+impl Group {
+    /// The group at each polynomial order it admits: temperature polynomials are tried from
+    /// the constant (or linear) term up, so a cubic is not forced on two temperatures.
+    pub fn orders(&self) -> Vec<Group> {
+        let min = match self.effect {
+            Effect::Gyro(GyroTerm::PositionBias) => 1,
+            Effect::Gyro(GyroTerm::TemperatureBias) | Effect::Accel(AccelTerm::TemperatureBias) => 1,
+            _ => self.len,
+        };
+        (min..=self.len).map(|len| Group { len, ..*self }).collect()
+    }
+}
+
 /// Rows summed over a stretch of constant table state (a dwell or part of a move).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Window {
