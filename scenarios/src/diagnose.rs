@@ -207,5 +207,24 @@ pub fn write_report(dir: &Path, a: &Analysis, pred: Option<&[Vec<f64>]>, before:
     let f = dir.join("allan_residual.svg");
     write_svg(&f, "Allan deviation of the residual", "log10 tau [s]", &panels)?;
     files.push(f.display().to_string());
+
+    // Navigation on measured vs modelled increments (the first segments).
+    let mut panels = Vec::new();
+    for t in a.replay.nav.iter().filter(|t| !t.t_s.is_empty()).take(4) {
+        let run = a.run_names.get(t.run as usize).cloned().unwrap_or_default();
+        panels.push(Panel {
+            title: format!("{run}: horizontal position error of static navigation"),
+            y_label: "m",
+            lines: vec![
+                Line { label: "on the measured increments", points: t.t_s.iter().copied().zip(t.measured_m.iter().copied()).collect(), color: GREY, error_bars: false },
+                Line { label: "on the model's increments", points: t.t_s.iter().copied().zip(t.model_m.iter().copied()).collect(), color: BLUE, error_bars: false },
+            ],
+        });
+    }
+    if !panels.is_empty() {
+        let f = dir.join("navigation_error.svg");
+        write_svg(&f, "Navigation: measured vs model", "time since segment start [s]", &panels)?;
+        files.push(f.display().to_string());
+    }
     Ok(files)
 }

@@ -378,6 +378,10 @@ fn cmd_compare(a: &CompareArgs) -> Result<()> {
     for c in report.correlations.iter().filter(|c| c.significant) {
         println!("  {}: residual correlates with {} (|rho| = {:.2} > {:.2}, lag {})", c.channel, c.with, c.max_abs_rho, c.band99, c.lag);
     }
+    println!("navigation (static, horizontal error at the end of each segment):");
+    for n in report.navigation.iter().take(12) {
+        println!("  {:<16} {:>7.0} s  measured {:>9.2} m  model {:>9.2} m  (difference RMS {:.2} m)", n.run, n.duration_s, n.measured_final_m, n.model_final_m, n.difference_rms_m);
+    }
     Ok(())
 }
 

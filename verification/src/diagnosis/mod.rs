@@ -116,6 +116,21 @@ pub struct ChannelSummary {
     pub residual_mean: f64,
 }
 
+/// Navigation on measured vs modelled increments over one segment.
+#[derive(Clone, Debug, Serialize)]
+pub struct NavComparison {
+    /// Run name.
+    pub run: String,
+    /// Duration navigated, s.
+    pub duration_s: f64,
+    /// Final horizontal error navigating on the measurements, m.
+    pub measured_final_m: f64,
+    /// Final horizontal error navigating on the model's increments, m.
+    pub model_final_m: f64,
+    /// RMS over the segment of the difference of the two error tracks, m.
+    pub difference_rms_m: f64,
+}
+
 /// What `rins compare` reports.
 #[derive(Clone, Debug, Serialize)]
 pub struct CompareReport {
@@ -143,10 +158,14 @@ pub struct CompareReport {
     pub allan: BTreeMap<String, Vec<(f64, f64)>>,
     /// Candidates that cannot be tested with this data.
     pub unavailable: Vec<(String, String)>,
+    /// Navigation level: static navigation on the measured and on the modelled increments.
+    pub navigation: Vec<NavComparison>,
 }
 
 /// Replays `model` on `h` and prepares per-channel data.
 pub struct Analysis {
+    /// Run names.
+    pub run_names: Vec<String>,
     /// The replay.
     pub replay: Replay,
     /// Noise floors.
@@ -209,7 +228,7 @@ pub fn analyse(model: &PlantConfig, h: &History, opts: Options) -> Analysis {
             folds,
         });
     }
-    Analysis { replay: rep, noise, data, opts, runs }
+    Analysis { run_names: h.run_names.clone(), replay: rep, noise, data, opts, runs }
 }
 
 fn position_of(w: &Window) -> &'static str {
@@ -332,6 +351,22 @@ impl Analysis {
             correlations: self.correlations(pred),
             allan: self.allan(),
             unavailable: self.replay.unavailable.clone(),
+            navigation: self
+                .replay
+                .nav
+                .iter()
+                .filter(|t| !t.t_s.is_empty())
+                .map(|t| {
+                    let n = t.t_s.len() as f64;
+                    NavComparison {
+                        run: self.run_names.get(t.run as usize).cloned().unwrap_or_default(),
+                        duration_s: *t.t_s.last().expect("non-empty"),
+                        measured_final_m: *t.measured_m.last().expect("non-empty"),
+                        model_final_m: *t.model_m.last().expect("non-empty"),
+                        difference_rms_m: (t.measured_m.iter().zip(&t.model_m).map(|(a, b)| (a - b).powi(2)).sum::<f64>() / n).sqrt(),
+                    }
+                })
+                .collect(),
         }
     }
 

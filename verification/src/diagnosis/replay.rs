@@ -109,6 +109,20 @@ pub struct Window {
     pub x: Vec<f64>,
 }
 
+/// Static navigation over one segment with the measured increments and with the increments
+/// the model expects, from the measured start attitude at the site (horizontal errors, m).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct NavTrack {
+    /// Run index.
+    pub run: u32,
+    /// Time since the segment start at each window end, s.
+    pub t_s: Vec<f64>,
+    /// Horizontal position error navigating on the measurements, m.
+    pub measured_m: Vec<f64>,
+    /// Horizontal position error navigating on the model's increments, m.
+    pub model_m: Vec<f64>,
+}
+
 /// What a replay produced.
 #[derive(Clone, Debug)]
 pub struct Replay {
@@ -122,6 +136,8 @@ pub struct Replay {
     pub allan: Vec<AllanAcc>,
     /// Median row interval, s.
     pub row_dt_s: f64,
+    /// Navigation on measured vs modelled increments, per segment.
+    pub nav: Vec<NavTrack>,
     /// Rows replayed.
     pub rows: usize,
 }
@@ -214,7 +230,15 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
     let nx = groups.iter().map(|g| g.len).sum::<usize>();
     let row_dt_s = median_dt(h);
 
-    let per_segment: Vec<(Vec<Window>, Vec<AllanAcc>)> = h
+    let site_state = |c_bn: Matrix3<f64>| rins_nav::strapdown::NavState {
+        q_bn: UnitQuaternion::from_matrix(&c_bn),
+        v_n: Vector3::zeros(),
+        lat_rad: model.site.lat_deg.to_radians(),
+        lon_rad: model.site.lon_deg.to_radians(),
+        height_m: model.site.height_m,
+    };
+    let vertical = rins_nav::strapdown::VerticalChannel::Hold { ref_height_m: model.site.height_m };
+    let per_segment: Vec<(Vec<Window>, Vec<AllanAcc>, NavTrack)> = h
         .segments
         .par_iter()
         .map(|seg| {
@@ -225,6 +249,20 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
             let mut buf = Vec::with_capacity(8);
             let mut gterms = [Vector3::zeros(); rins_plant::effects::gyro::GYRO_TERMS];
             let mut aterms = [Vector3::zeros(); rins_plant::effects::accel::ACCEL_TERMS];
+            // Both navigators start from the attitude at the end of the first row.
+            let c_bn0 = match &h.attitude {
+                Attitude::Gimbal { outer_rad, inner_rad } => body_to_nav(&kin.c_vn, GimbalAngles::new(outer_rad[seg.start], inner_rad[seg.start])),
+                Attitude::Quaternion(q) => UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[seg.start][0], q[seg.start][1], q[seg.start][2], q[seg.start][3]))
+                    .to_rotation_matrix()
+                    .into_inner(),
+            };
+            let mut nav_meas = rins_nav::strapdown::Strapdown::new(site_state(c_bn0), row_dt_s, vertical);
+            let mut nav_model = nav_meas.clone();
+            let mut track = NavTrack { run: h.run[seg.start], ..NavTrack::default() };
+            let horizontal = |n: &rins_nav::strapdown::Strapdown| {
+                let (north, east) = rins_nav::errors::position_error_m(n.state(), model.site.lat_deg.to_radians(), model.site.lon_deg.to_radians(), model.site.height_m);
+                north.hypot(east)
+            };
             // The first row of a segment only gives the start attitude: its own start attitude
             // is unknown (the table may already be moving), so it is not compared.
             for k in seg.start + 1..seg.end {
@@ -250,6 +288,9 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                     r[i] = h.dtheta_rad[i][k] - (dtheta[i] + ge[i]);
                     r[i + 3] = h.dv_mps[i][k] - (dv[i] + ae[i]);
                 }
+                let measured = (Vector3::new(h.dtheta_rad[0][k], h.dtheta_rad[1][k], h.dtheta_rad[2][k]), Vector3::new(h.dv_mps[0][k], h.dv_mps[1][k], h.dv_mps[2][k]));
+                nav_meas.update(&measured.0, &measured.1);
+                nav_model.update(&(dtheta + ge), &(dv + ae));
                 for (c, acc) in allan.iter_mut().enumerate() {
                     acc.push(r[c] / dt);
                 }
@@ -260,6 +301,9 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                 };
                 if split {
                     if let Some(w) = cur.take() {
+                        track.t_s.push(w.t_run_s + 0.5 * w.duration_s);
+                        track.measured_m.push(horizontal(&nav_meas));
+                        track.model_m.push(horizontal(&nav_model));
                         windows.push(finish(w));
                     }
                     cur = Some(Window {
@@ -306,21 +350,26 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                 }
             }
             if let Some(w) = cur.take() {
+                track.t_s.push(w.t_run_s + 0.5 * w.duration_s);
+                track.measured_m.push(horizontal(&nav_meas));
+                track.model_m.push(horizontal(&nav_model));
                 windows.push(finish(w));
             }
-            (windows, allan)
+            (windows, allan, track)
         })
         .collect();
 
     let mut windows = Vec::new();
+    let mut nav = Vec::new();
     let mut allan: Vec<AllanAcc> = (0..6).map(|_| AllanAcc::new()).collect();
-    for (w, a) in per_segment {
+    for (w, a, t) in per_segment {
         windows.extend(w);
+        nav.push(t);
         for (acc, part) in allan.iter_mut().zip(a) {
             acc.merge(&part);
         }
     }
-    Replay { windows, groups, unavailable, allan, row_dt_s, rows: h.len() }
+    Replay { windows, groups, unavailable, allan, row_dt_s, nav, rows: h.len() }
 }
 
 /// Turns time-weighted sums into means.
