@@ -76,4 +76,25 @@ if "${rins[@]}" run "$tmp/missing.toml" --out "$tmp/x" 2> "$tmp/err"; then
   echo "a missing scenario file must fail"; exit 1
 fi
 grep -q "missing.toml" "$tmp/err"
+# Model vs measurements: simulate a unit with a hidden Z-down bias, diagnose, apply, compare.
+"${rins[@]}" measure docs/examples/diagnosis-truth.toml --out "$tmp/unit.csv"
+"${rins[@]}" diagnose --model docs/examples/diagnosis-model.toml --data "$tmp/unit.csv" --json \
+  --apply gyro.position_bias --out "$tmp/fitted.toml" --report "$tmp/diag" | python3 -c '
+import json, sys
+d = json.load(sys.stdin)
+top = d["ranking"][0]
+for k in ("effect", "channel", "delta_bic", "p_value", "cv_rmse_gain_pct", "coefficient", "ci95", "confusable_with"):
+    assert k in top, k
+assert top["effect"] == "gyro.position_bias" and top["passes_gate"], top
+assert d["flagged_cells"] and "gyro_x" in d["residual_rms_before"] and "gyro_x" in d["residual_rms_after"]'
+test -s "$tmp/diag/residual_vs_temperature.svg" && test -s "$tmp/diag/navigation_error.svg"
+"${rins[@]}" compare --model "$tmp/fitted.toml" --data "$tmp/unit.csv" --json | python3 -c '
+import json, sys
+d = json.load(sys.stdin)
+assert not [c for c in d["flagged_cells"] if c["channel"].startswith("gyro")], d["flagged_cells"]
+assert d["navigation"] and d["correlations"]'
+if "${rins[@]}" diagnose --model docs/examples/diagnosis-model.toml --data "$tmp/unit.csv" --apply gyro.spin 2> "$tmp/err"; then
+  echo "an unknown effect must fail"; exit 1
+fi
+grep -q "gyro.position_bias" "$tmp/err"
 echo "1 passed, 0 failed: command-line smoke checks"
