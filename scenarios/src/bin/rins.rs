@@ -48,6 +48,12 @@ enum Command {
     /// Simulate a measurement log from a scenario (one run per [campaign] temperature when the
     /// scenario has one), in the measurement format: test data with known effects.
     Measure(MeasureArgs),
+    /// Serve the plant over iceoryx2 shared memory to navigation software (docs/transport.md).
+    #[cfg(feature = "transport")]
+    Serve(ServeArgs),
+    /// The reference navigator as a separate process, consuming a served IMU stream.
+    #[cfg(feature = "transport")]
+    Nav(NavArgs),
     /// List the built-in scenarios, or print one.
     Scenarios {
         /// Print this built-in scenario's TOML.
@@ -168,6 +174,54 @@ struct MeasureArgs {
     /// Output CSV.
     #[arg(long)]
     out: PathBuf,
+    #[command(flatten)]
+    overrides: Overrides,
+}
+
+#[cfg(feature = "transport")]
+#[derive(Args)]
+struct ServeArgs {
+    /// Scenario to serve.
+    scenario: PathBuf,
+    /// Session name (letters, digits, '-', '_'): services rins/<session>/imu, cmd, nav.
+    #[arg(long, default_value = "default")]
+    session: String,
+    /// `lockstep` (deterministic) or `free` (as fast as the navigator consumes, or paced).
+    #[arg(long, default_value = "lockstep", value_parser = ["lockstep", "free"])]
+    mode: String,
+    /// Free-running only: real-time factor (1 = real time).
+    #[arg(long)]
+    pace: Option<f64>,
+    /// Records per message, 1-64.
+    #[arg(long, default_value_t = 64)]
+    batch: usize,
+    /// Seconds to wait for a navigator.
+    #[arg(long, default_value_t = 30.0)]
+    peer_timeout_s: f64,
+    /// When the navigator dies, wait for a new one and resend from the first unacknowledged batch.
+    #[arg(long)]
+    wait_for_restart: bool,
+    #[command(flatten)]
+    overrides: Overrides,
+}
+
+#[cfg(feature = "transport")]
+#[derive(Args)]
+struct NavArgs {
+    /// Session to connect to.
+    #[arg(long)]
+    connect: String,
+    /// The scenario being served (site, mount and rate of the plant).
+    scenario: PathBuf,
+    /// Do not acknowledge batches (for a free-running plant).
+    #[arg(long)]
+    no_ack: bool,
+    /// Command the table after batch SEQ: SEQ:OUTER_DEG:INNER_DEG:RATE_DPS (repeatable).
+    #[arg(long)]
+    command_after: Vec<String>,
+    /// Seconds without a plant before giving up.
+    #[arg(long, default_value_t = 30.0)]
+    peer_timeout_s: f64,
     #[command(flatten)]
     overrides: Overrides,
 }
@@ -468,6 +522,83 @@ fn cmd_measure(a: &MeasureArgs) -> Result<()> {
     let t0 = std::time::Instant::now();
     rins_scenarios::diagnose::write_measurements(&a.out, &runs)?;
     eprintln!("{}: {} runs x {} samples in {:.1} s -> {}", sc.meta.name, runs.len(), n, t0.elapsed().as_secs_f64(), a.out.display());
+    Ok(())
+}
+
+#[cfg(feature = "transport")]
+fn positive_timeout(s: f64) -> Result<std::time::Duration> {
+    if !(s > 0.0 && s.is_finite()) {
+        anyhow::bail!("--peer-timeout-s must be a positive number, got {s}");
+    }
+    Ok(std::time::Duration::from_secs_f64(s))
+}
+
+#[cfg(feature = "transport")]
+fn cmd_serve(a: &ServeArgs) -> Result<()> {
+    use rins_transport::{Mode, ServeOptions};
+    let sc = load(&a.scenario, &a.overrides)?;
+    if !(1..=rins_transport::layout::BATCH_CAPACITY).contains(&a.batch) {
+        anyhow::bail!("--batch must be in 1..={}, got {}", rins_transport::layout::BATCH_CAPACITY, a.batch);
+    }
+    let mode = match (a.mode.as_str(), a.pace) {
+        ("lockstep", None) => Mode::Lockstep,
+        ("lockstep", Some(_)) => anyhow::bail!("--pace applies to --mode free only"),
+        (_, Some(k)) if !(k > 0.0 && k.is_finite()) => anyhow::bail!("--pace must be a positive real-time factor, got {k}"),
+        (_, pace) => Mode::FreeRunning { pace },
+    };
+    let opts = ServeOptions { mode, batch: a.batch, peer_timeout: positive_timeout(a.peer_timeout_s)?, wait_for_restart: a.wait_for_restart };
+    let mut plant = rins_plant::Plant::new(&sc.plant).map_err(|e| anyhow::anyhow!("{}: {}", sc.source, e.iter().map(|x| x.to_string()).collect::<Vec<_>>().join("; ")))?;
+    let summary = rins_transport::serve(&a.session, &mut plant, sc.samples(), &opts)?;
+    for e in &summary.events {
+        eprintln!("{e}");
+    }
+    eprintln!(
+        "{}: served {} samples in {} batches in {:.2} s ({:.2} M samples/s), {} commands, {} navigator restarts{}",
+        sc.meta.name,
+        summary.samples,
+        summary.batches,
+        summary.wall_s,
+        summary.samples as f64 / summary.wall_s.max(1e-9) / 1e6,
+        summary.commands.len(),
+        summary.restarts,
+        if summary.interrupted { ", interrupted" } else { "" }
+    );
+    Ok(())
+}
+
+#[cfg(feature = "transport")]
+fn cmd_nav(a: &NavArgs) -> Result<()> {
+    let sc = load(&a.scenario, &a.overrides)?;
+    let commands = a
+        .command_after
+        .iter()
+        .map(|c| {
+            let p: Vec<&str> = c.split(':').collect();
+            let bad = || anyhow::anyhow!("--command-after {c:?}: expected SEQ:OUTER_DEG:INNER_DEG:RATE_DPS");
+            if p.len() != 4 {
+                return Err(bad());
+            }
+            let f = |s: &str| s.parse::<f64>().map_err(|_| bad());
+            Ok(rins_transport::ScheduledCommand { after_seq: p[0].parse().map_err(|_| bad())?, outer_rad: f(p[1])?.to_radians(), inner_rad: f(p[2])?.to_radians(), rate_rps: f(p[3])?.to_radians() })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let opts = rins_transport::NavOptions { acknowledge: !a.no_ack, commands, peer_timeout: positive_timeout(a.peer_timeout_s)? };
+    let s = rins_transport::navigate(&a.connect, &sc.plant, &opts)?;
+    let st = s.nav.state().copied();
+    let q = st.map(|s| s.q_bn.into_inner());
+    let out = serde_json::json!({
+        "samples": s.nav.samples,
+        "batches": s.batches,
+        "first_tick": s.nav.first_tick,
+        "last_tick": s.nav.last_tick,
+        "digest": format!("{:016x}", s.nav.digest),
+        "interrupted": s.interrupted,
+        "lat_rad": st.map(|s| s.lat_rad),
+        "lon_rad": st.map(|s| s.lon_rad),
+        "v_n": st.map(|s| [s.v_n.x, s.v_n.y, s.v_n.z]),
+        "q_bn": q.map(|q| [q.w, q.i, q.j, q.k]),
+    });
+    println!("{out}");
     Ok(())
 }
 
@@ -808,6 +939,10 @@ fn dispatch(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Fmu(FmuCommand::Run { fmu, scenario, out, overrides }) => cmd_fmu_run(&fmu, &scenario, &out, &overrides),
+        #[cfg(feature = "transport")]
+        Command::Serve(a) => cmd_serve(&a),
+        #[cfg(feature = "transport")]
+        Command::Nav(a) => cmd_nav(&a),
         Command::Compare(a) => cmd_compare(&a),
         Command::Diagnose(a) => cmd_diagnose(&a),
         Command::Measure(a) => cmd_measure(&a),

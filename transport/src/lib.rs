@@ -1,0 +1,52 @@
+//! # rins-transport
+//!
+//! The plant and external navigation software in separate processes over iceoryx2 shared memory
+//! (docs/transport.md). The plant publishes [`layout::ImuBatch`] messages on `rins/<session>/imu`;
+//! the navigator acknowledges them and may command the table on `rins/<session>/cmd`, and
+//! publishes its solution on `rins/<session>/nav`. No sample is lost: safe overflow is off,
+//! publishers wait for space (backpressure), the plant waits for a subscriber before the first
+//! message, and receivers check sequence numbers. Lockstep makes results independent of the
+//! processes' speeds.
+
+pub mod layout;
+pub mod nav_side;
+pub mod plant_side;
+pub mod session;
+
+pub use nav_side::{NavOptions, NavProcessor, NavSummary, ScheduledCommand, navigate};
+pub use plant_side::{Mode, ServeOptions, ServeSummary, serve};
+pub use session::{Session, TransportError};
+
+/// The in-process reference: the same plant and navigator without the transport, with the same
+/// commands applied at the same ticks (the first tick of the batch after `after_seq`).
+pub fn reference(cfg: &rins_plant::PlantConfig, samples: u64, batch: usize, commands: &[ScheduledCommand]) -> NavProcessor {
+    let mut plant = rins_plant::Plant::new(cfg).expect("valid configuration");
+    let mut nav = NavProcessor::new(cfg);
+    let batch = batch.clamp(1, layout::BATCH_CAPACITY) as u64;
+    let mut done = 0;
+    let mut seq = 0;
+    while done < samples {
+        let n = (samples - done).min(batch);
+        for _ in 0..n {
+            let s = plant.step();
+            let tr = plant.truth();
+            nav.push(&layout::ImuRecord {
+                tick: s.index,
+                t_s: s.t_s,
+                dtheta_rad: s.dtheta_rad.into(),
+                dv_mps: s.dv_mps.into(),
+                outer_rad: tr.gimbal.angles.outer_rad,
+                inner_rad: tr.gimbal.angles.inner_rad,
+                temps_c: tr.temps.nodes_c,
+            });
+        }
+        done += n;
+        if let Some(c) = commands.iter().find(|c| c.after_seq == seq) {
+            plant
+                .command_gimbal(&rins_plant::GimbalCommand::MoveTo { outer_rad: c.outer_rad, inner_rad: c.inner_rad, rate_rps: c.rate_rps })
+                .expect("valid command");
+        }
+        seq += 1;
+    }
+    nav
+}

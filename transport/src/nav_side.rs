@@ -1,0 +1,190 @@
+//! The navigation side: consumes the IMU stream, navigates (the reference strapdown), publishes
+//! its solution, acknowledges batches (lockstep) and may command the table. The same
+//! [`NavProcessor`] runs in-process for the reference result.
+
+use std::time::{Duration, Instant};
+
+use nalgebra::{UnitQuaternion, Vector3};
+use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
+use rins_plant::PlantConfig;
+use rins_plant::table::{GimbalAngles, body_to_nav};
+
+use crate::layout::{FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, LAYOUT_VERSION, NavCommand, NavSolution, kind};
+use crate::session::{Session, TransportError, ipc};
+
+/// Static navigation over the stream, with a digest of every state it passes through.
+#[derive(Debug)]
+pub struct NavProcessor {
+    strapdown: Option<Strapdown>,
+    cfg: PlantConfig,
+    /// Samples consumed.
+    pub samples: u64,
+    /// First tick consumed.
+    pub first_tick: Option<u64>,
+    /// Last tick consumed.
+    pub last_tick: u64,
+    /// FNV-1a over the bits of every navigation state: equal digests, equal trajectories.
+    pub digest: u64,
+}
+
+impl NavProcessor {
+    /// A navigator for the plant of `cfg`: starts at the site, at rest, with the table's attitude
+    /// at the first sample's start (t = 0), or at the end of the first record received after
+    /// a restart.
+    pub fn new(cfg: &PlantConfig) -> Self {
+        Self { strapdown: None, cfg: cfg.clone(), samples: 0, first_tick: None, last_tick: 0, digest: 0xcbf2_9ce4_8422_2325 }
+    }
+
+    fn start(&self, r: &ImuRecord) -> Strapdown {
+        let c_bn = if r.tick == 0 {
+            rins_plant::Plant::new(&self.cfg).map(|p| p.attitude_c_bn()).unwrap_or_else(|_| body_to_nav(&self.cfg.vehicle.c_vn(), GimbalAngles::new(0.0, 0.0)))
+        } else {
+            body_to_nav(&self.cfg.vehicle.c_vn(), GimbalAngles::new(r.outer_rad, r.inner_rad))
+        };
+        let s = &self.cfg.site;
+        let state = NavState { q_bn: UnitQuaternion::from_matrix(&c_bn), v_n: Vector3::zeros(), lat_rad: s.lat_deg.to_radians(), lon_rad: s.lon_deg.to_radians(), height_m: s.height_m };
+        Strapdown::new(state, 1.0 / self.cfg.rate_hz, VerticalChannel::Hold { ref_height_m: s.height_m })
+    }
+
+    /// Consumes one record.
+    pub fn push(&mut self, r: &ImuRecord) {
+        if self.strapdown.is_none() {
+            self.strapdown = Some(self.start(r));
+            self.first_tick = Some(r.tick);
+        }
+        let sd = self.strapdown.as_mut().expect("started");
+        sd.update(&Vector3::from(r.dtheta_rad), &Vector3::from(r.dv_mps));
+        let s = sd.state();
+        let q = s.q_bn.quaternion();
+        for x in [s.lat_rad, s.lon_rad, s.height_m, s.v_n.x, s.v_n.y, s.v_n.z, q.w, q.i, q.j, q.k] {
+            for b in x.to_bits().to_le_bytes() {
+                self.digest = (self.digest ^ b as u64).wrapping_mul(0x0100_0000_01b3);
+            }
+        }
+        self.samples += 1;
+        self.last_tick = r.tick;
+    }
+
+    /// The current solution.
+    pub fn state(&self) -> Option<&NavState> {
+        self.strapdown.as_ref().map(Strapdown::state)
+    }
+
+    /// The solution as a message.
+    pub fn solution(&self, seq: u64) -> NavSolution {
+        let mut out = NavSolution { seq, tick: self.last_tick, ..NavSolution::default() };
+        if let Some(s) = self.state() {
+            let q = s.q_bn.quaternion();
+            out.lat_rad = s.lat_rad;
+            out.lon_rad = s.lon_rad;
+            out.height_m = s.height_m;
+            out.v_n = [s.v_n.x, s.v_n.y, s.v_n.z];
+            out.q_bn = [q.w, q.i, q.j, q.k];
+        }
+        out
+    }
+}
+
+/// A table command the navigator sends after a given batch.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScheduledCommand {
+    /// Sent with the acknowledgement of this batch; the plant applies it from the next batch.
+    pub after_seq: u64,
+    /// Target outer angle, rad.
+    pub outer_rad: f64,
+    /// Target inner angle, rad.
+    pub inner_rad: f64,
+    /// Cruise rate, rad/s.
+    pub rate_rps: f64,
+}
+
+/// How the navigator runs.
+#[derive(Clone, Debug)]
+pub struct NavOptions {
+    /// Acknowledge every batch (the plant waits for it in lockstep).
+    pub acknowledge: bool,
+    /// Table commands to send.
+    pub commands: Vec<ScheduledCommand>,
+    /// Give up when nothing arrives for this long and no plant is connected.
+    pub peer_timeout: Duration,
+}
+
+/// What the navigator saw.
+#[derive(Debug)]
+pub struct NavSummary {
+    /// The navigation.
+    pub nav: NavProcessor,
+    /// Batches received.
+    pub batches: u64,
+    /// The plant ended the run early.
+    pub interrupted: bool,
+}
+
+/// Runs the navigator of session `name` for the plant `cfg` until the plant ends the run.
+pub fn navigate(name: &str, cfg: &PlantConfig, opts: &NavOptions) -> Result<NavSummary, TransportError> {
+    let session = Session::open(name, "navigator")?;
+    let sub = session.imu.subscriber_builder().create().map_err(|e| ipc("creating the IMU subscriber")(&e))?;
+    let cmd = session.cmd.publisher_builder().backpressure_strategy(iceoryx2::prelude::BackpressureStrategy::RetryUntilDelivered).create().map_err(|e| ipc("creating the command publisher")(&e))?;
+    let sol = session.nav.publisher_builder().create().map_err(|e| ipc("creating the solution publisher")(&e))?;
+    let mut nav = NavProcessor::new(cfg);
+    let mut expected: Option<u64> = None;
+    let mut batches = 0;
+    let mut last_message = Instant::now();
+    let mut last_check = Instant::now();
+    let mut polls: u32 = 0;
+    loop {
+        let Some(sample) = sub.receive().map_err(|e| ipc("receiving")(&e))? else {
+            polls = polls.wrapping_add(1);
+            if polls % 64 == 0 {
+                std::thread::yield_now();
+            }
+            if last_check.elapsed() > Duration::from_millis(50) {
+                last_check = Instant::now();
+                if session.interrupted() {
+                    return Err(TransportError::Interrupted);
+                }
+                if session.peer_died() {
+                    return Err(TransportError::PeerDied { peer: "plant", after_ms: last_message.elapsed().as_millis() as u64 });
+                }
+                if session.imu_publishers() == 0 && last_message.elapsed() > opts.peer_timeout {
+                    return Err(TransportError::NoPeer { peer: "plant", timeout_s: opts.peer_timeout.as_secs_f64() });
+                }
+            }
+            continue;
+        };
+        last_message = Instant::now();
+        let b: &ImuBatch = sample.payload();
+        if b.layout_version != LAYOUT_VERSION || b.record_size as usize != std::mem::size_of::<ImuRecord>() {
+            return Err(TransportError::Layout {
+                got_version: b.layout_version,
+                got_record: b.record_size,
+                want_version: LAYOUT_VERSION,
+                want_record: std::mem::size_of::<ImuRecord>() as u32,
+            });
+        }
+        // The first batch after (re)start defines the restart point; after it, no gap.
+        match expected {
+            Some(e) if e != b.seq => return Err(TransportError::Gap { expected: e, got: b.seq }),
+            _ => {}
+        }
+        expected = Some(b.seq + 1);
+        batches += 1;
+        for r in &b.records[..b.count as usize] {
+            nav.push(r);
+        }
+        let (seq, flags) = (b.seq, b.flags);
+        drop(sample);
+        let _ = sol.send_copy(nav.solution(seq));
+        if opts.acknowledge || flags & FLAG_END != 0 {
+            let mut c = NavCommand { layout_version: LAYOUT_VERSION, kind: kind::ACK, ack_seq: seq, ..NavCommand::default() };
+            if let Some(sc) = opts.commands.iter().find(|c| c.after_seq == seq) {
+                c.kind = kind::MOVE_TO;
+                (c.outer_rad, c.inner_rad, c.rate_rps) = (sc.outer_rad, sc.inner_rad, sc.rate_rps);
+            }
+            cmd.send_copy(c).map_err(|e| ipc("sending the acknowledgement")(&e))?;
+        }
+        if flags & FLAG_END != 0 {
+            return Ok(NavSummary { nav, batches, interrupted: flags & FLAG_INTERRUPTED != 0 });
+        }
+    }
+}
