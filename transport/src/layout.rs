@@ -80,6 +80,9 @@ pub mod kind {
     pub const MOVE_TO: u32 = 1;
     /// Ask the plant to end the run after this batch.
     pub const STOP: u32 = 2;
+    /// A navigator has (re)joined: the plant resends the batch it is waiting on. Covers a
+    /// restarted navigator that cleaned up its dead predecessor before the plant noticed.
+    pub const HELLO: u32 = 3;
 }
 
 /// From the navigation side to the plant.

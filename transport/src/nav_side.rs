@@ -116,6 +116,8 @@ pub struct NavSummary {
     pub nav: NavProcessor,
     /// Batches received.
     pub batches: u64,
+    /// Resent batches dropped as already seen.
+    pub duplicates: u64,
     /// The plant ended the run early.
     pub interrupted: bool,
 }
@@ -126,7 +128,10 @@ pub fn navigate(name: &str, cfg: &PlantConfig, opts: &NavOptions) -> Result<NavS
     let sub = session.imu.subscriber_builder().create().map_err(|e| ipc("creating the IMU subscriber")(&e))?;
     let cmd = session.cmd.publisher_builder().backpressure_strategy(iceoryx2::prelude::BackpressureStrategy::RetryUntilDelivered).create().map_err(|e| ipc("creating the command publisher")(&e))?;
     let sol = session.nav.publisher_builder().create().map_err(|e| ipc("creating the solution publisher")(&e))?;
+    // Announce ourselves: a plant waiting on a batch our dead predecessor took resends it.
+    cmd.send_copy(NavCommand { layout_version: LAYOUT_VERSION, kind: kind::HELLO, ..NavCommand::default() }).map_err(|e| ipc("sending hello")(&e))?;
     let mut nav = NavProcessor::new(cfg);
+    let mut duplicates = 0u64;
     let mut expected: Option<u64> = None;
     let mut batches = 0;
     let mut last_message = Instant::now();
@@ -162,8 +167,13 @@ pub fn navigate(name: &str, cfg: &PlantConfig, opts: &NavOptions) -> Result<NavS
                 want_record: std::mem::size_of::<ImuRecord>() as u32,
             });
         }
-        // The first batch after (re)start defines the restart point; after it, no gap.
+        // The first batch after (re)start defines the restart point; after it, no gap. A batch
+        // seen already (resent after a hello) is dropped here, once.
         match expected {
+            Some(e) if b.seq < e => {
+                duplicates += 1;
+                continue;
+            }
             Some(e) if e != b.seq => return Err(TransportError::Gap { expected: e, got: b.seq }),
             _ => {}
         }
@@ -184,7 +194,7 @@ pub fn navigate(name: &str, cfg: &PlantConfig, opts: &NavOptions) -> Result<NavS
             cmd.send_copy(c).map_err(|e| ipc("sending the acknowledgement")(&e))?;
         }
         if flags & FLAG_END != 0 {
-            return Ok(NavSummary { nav, batches, interrupted: flags & FLAG_INTERRUPTED != 0 });
+            return Ok(NavSummary { nav, batches, duplicates, interrupted: flags & FLAG_INTERRUPTED != 0 });
         }
     }
 }

@@ -15,12 +15,9 @@ pub enum Mode {
     /// The plant advances only when the navigator has acknowledged the previous batch:
     /// deterministic whatever the speeds. Commands apply at the first tick of the next batch.
     Lockstep,
-    /// As fast as the navigator consumes (backpressure, no loss), or paced at real time × `pace`.
-    /// Commands apply at the first tick of the next batch sent after they arrive.
-    FreeRunning {
-        /// Real-time factor; `None` runs as fast as possible.
-        pace: Option<f64>,
-    },
+    /// As fast as the navigator consumes (backpressure, no loss). Commands apply at the first
+    /// tick of the next batch sent after they arrive.
+    FreeRunning,
 }
 
 /// How the plant serves.
@@ -30,6 +27,8 @@ pub struct ServeOptions {
     pub mode: Mode,
     /// Records per message, 1 … 64.
     pub batch: usize,
+    /// Real-time factor (simulated seconds per wall second); `None` runs as fast as possible.
+    pub pace: Option<f64>,
     /// How long to wait for a navigator to connect (also after it dies).
     pub peer_timeout: Duration,
     /// After the navigator dies, wait for a new one and resend from the first unacknowledged
@@ -150,6 +149,13 @@ pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -
             let acked = loop {
                 if let Some(c) = commands.receive().map_err(|e| ipc("receiving commands")(&e))? {
                     let c = *c.payload();
+                    if c.kind == kind::HELLO {
+                        if seq > 0 {
+                            summary.events.push(format!("a navigator joined while batch {seq} was unacknowledged; resending it"));
+                            summary.restarts += 1;
+                        }
+                        break false;
+                    }
                     if c.ack_seq == seq {
                         apply(plant, &c, &mut summary)?;
                         stop |= c.kind == kind::STOP;
@@ -185,17 +191,17 @@ pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -
         }
         summary.batches += 1;
         summary.samples += n as u64;
-        if let Mode::FreeRunning { pace } = opts.mode {
+        if opts.mode == Mode::FreeRunning {
             while let Some(c) = commands.receive().map_err(|e| ipc("receiving commands")(&e))? {
                 let c = *c.payload();
                 apply(plant, &c, &mut summary)?;
                 stop |= c.kind == kind::STOP;
             }
-            if let Some(k) = pace {
-                let ahead = plant.time_s() / k - t0.elapsed().as_secs_f64();
-                if ahead > 0.0 {
-                    std::thread::sleep(Duration::from_secs_f64(ahead));
-                }
+        }
+        if let Some(k) = opts.pace {
+            let ahead = plant.time_s() / k - t0.elapsed().as_secs_f64();
+            if ahead > 0.0 {
+                std::thread::sleep(Duration::from_secs_f64(ahead));
             }
         }
         seq += 1;

@@ -24,7 +24,7 @@ fn lockstep_in_threads_equals_the_reference_with_a_table_command() {
     let n2 = name.clone();
     let nav = std::thread::spawn(move || navigate(&n2, &cfg(), &NavOptions { acknowledge: true, commands: nav_cmds, peer_timeout: Duration::from_secs(20) }));
     let mut plant = rins_plant::Plant::new(&cfg()).unwrap();
-    let summary = serve(&name, &mut plant, 20_000, &ServeOptions { mode: Mode::Lockstep, batch: 37, peer_timeout: Duration::from_secs(20), wait_for_restart: false }).unwrap();
+    let summary = serve(&name, &mut plant, 20_000, &ServeOptions { mode: Mode::Lockstep, batch: 37, pace: None, peer_timeout: Duration::from_secs(20), wait_for_restart: false }).unwrap();
     let got = nav.join().unwrap().unwrap();
     let want = reference(&cfg(), 20_000, 37, &commands);
     assert_eq!(summary.commands.len(), 1);

@@ -189,7 +189,7 @@ struct ServeArgs {
     /// `lockstep` (deterministic) or `free` (as fast as the navigator consumes, or paced).
     #[arg(long, default_value = "lockstep", value_parser = ["lockstep", "free"])]
     mode: String,
-    /// Free-running only: real-time factor (1 = real time).
+    /// Pace at this real-time factor (1 = real time, 10 = ten times faster than real time).
     #[arg(long)]
     pace: Option<f64>,
     /// Records per message, 1-64.
@@ -540,13 +540,11 @@ fn cmd_serve(a: &ServeArgs) -> Result<()> {
     if !(1..=rins_transport::layout::BATCH_CAPACITY).contains(&a.batch) {
         anyhow::bail!("--batch must be in 1..={}, got {}", rins_transport::layout::BATCH_CAPACITY, a.batch);
     }
-    let mode = match (a.mode.as_str(), a.pace) {
-        ("lockstep", None) => Mode::Lockstep,
-        ("lockstep", Some(_)) => anyhow::bail!("--pace applies to --mode free only"),
-        (_, Some(k)) if !(k > 0.0 && k.is_finite()) => anyhow::bail!("--pace must be a positive real-time factor, got {k}"),
-        (_, pace) => Mode::FreeRunning { pace },
-    };
-    let opts = ServeOptions { mode, batch: a.batch, peer_timeout: positive_timeout(a.peer_timeout_s)?, wait_for_restart: a.wait_for_restart };
+    let mode = if a.mode == "lockstep" { Mode::Lockstep } else { Mode::FreeRunning };
+    if let Some(k) = a.pace.filter(|k| !(*k > 0.0 && k.is_finite())) {
+        anyhow::bail!("--pace must be a positive real-time factor, got {k}");
+    }
+    let opts = ServeOptions { mode, batch: a.batch, pace: a.pace, peer_timeout: positive_timeout(a.peer_timeout_s)?, wait_for_restart: a.wait_for_restart };
     let mut plant = rins_plant::Plant::new(&sc.plant).map_err(|e| anyhow::anyhow!("{}: {}", sc.source, e.iter().map(|x| x.to_string()).collect::<Vec<_>>().join("; ")))?;
     let summary = rins_transport::serve(&a.session, &mut plant, sc.samples(), &opts)?;
     for e in &summary.events {
@@ -589,6 +587,7 @@ fn cmd_nav(a: &NavArgs) -> Result<()> {
     let out = serde_json::json!({
         "samples": s.nav.samples,
         "batches": s.batches,
+        "duplicates": s.duplicates,
         "first_tick": s.nav.first_tick,
         "last_tick": s.nav.last_tick,
         "digest": format!("{:016x}", s.nav.digest),
