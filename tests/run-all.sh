@@ -19,6 +19,7 @@ venv="${RINS_VENV:-${HOME:-/root}/.cache/rins-venv}"
 pytmp=$(mktemp -d)
 "$bin/rins" fmu build --out "$pytmp/fmu" > /dev/null
 "$venv/bin/python" tests/python/test_fmu.py "$pytmp/fmu" "$bin/rins" "$pytmp"
+"$venv/bin/python" tests/python/test_transport.py "$bin/rins" "$pytmp"
 rm -rf "$pytmp"
 
 echo "== rins command line =="

@@ -169,6 +169,12 @@ pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -
                 }
                 if last_check.elapsed() > Duration::from_millis(50) {
                     last_check = Instant::now();
+                    // Free-running: a subscriber that does not acknowledge is done once it has
+                    // read the end marker and left.
+                    if opts.mode == Mode::FreeRunning && session.imu_subscribers() == 0 {
+                        session.peer_died();
+                        break true;
+                    }
                     if session.peer_died() || session.imu_subscribers() == 0 {
                         let after_ms = sent.elapsed().as_millis() as u64;
                         if !opts.wait_for_restart {

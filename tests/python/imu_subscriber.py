@@ -1,0 +1,132 @@
+"""Example navigation-side client in Python: subscribes to a served rins IMU stream with the PyPI
+iceoryx2 package, checks the layout and sequence numbers, and prints the mean z angular rate per
+dwell position (A/B/C/D of Eq. 5) as JSON.
+
+Usage: python imu_subscriber.py SESSION
+The plant: rins serve builtin:paper-16pos-week --session SESSION --mode free --duration-s 4320
+"""
+
+import ctypes
+import json
+import math
+import sys
+import time
+
+import iceoryx2 as iox2
+
+LAYOUT_VERSION = 1
+FLAG_END = 1
+
+
+class ImuRecord(ctypes.Structure):
+    """rins::ImuRecord, 128 bytes (docs/transport.md)."""
+
+    _fields_ = [
+        ("tick", ctypes.c_uint64),
+        ("t_s", ctypes.c_double),
+        ("dtheta_rad", ctypes.c_double * 3),
+        ("dv_mps", ctypes.c_double * 3),
+        ("outer_rad", ctypes.c_double),
+        ("inner_rad", ctypes.c_double),
+        ("temps_c", ctypes.c_double * 6),
+    ]
+
+    @staticmethod
+    def type_name() -> str:
+        return "rins::ImuRecord"
+
+
+class ImuBatch(ctypes.Structure):
+    """rins::ImuBatch: 24-byte header and 64 records."""
+
+    _fields_ = [
+        ("layout_version", ctypes.c_uint32),
+        ("record_size", ctypes.c_uint32),
+        ("seq", ctypes.c_uint64),
+        ("count", ctypes.c_uint32),
+        ("flags", ctypes.c_uint32),
+        ("records", ImuRecord * 64),
+    ]
+
+    @staticmethod
+    def type_name() -> str:
+        return "rins::ImuBatch"
+
+
+def position(outer: float, inner: float) -> str:
+    """A/B/C/D of Eq. 5 from the gimbal angles at a dwell."""
+    def near(a, b):
+        d = (a - b) % (2 * math.pi)
+        return min(d, 2 * math.pi - d) < 1e-6
+    if near(outer, 0) and near(inner, 0):
+        return "A"
+    if near(outer, math.pi) and near(inner, 0):
+        return "B"
+    if near(outer, math.pi) and near(inner, math.pi):
+        return "C"
+    if near(outer, 0) and near(inner, math.pi):
+        return "D"
+    return "other"
+
+
+class DwellMeans:
+    """Mean z rate per position over dwelling samples (angles unchanged since the previous one)."""
+
+    def __init__(self):
+        self.sum = {}
+        self.n = {}
+        self.prev = None
+
+    def push(self, outer, inner, dtheta_z, dt):
+        # Angles compared at 1e-9 rad, so that a log with angles in degrees classifies alike.
+        outer, inner = round(outer, 9), round(inner, 9)
+        if self.prev is not None and self.prev == (outer, inner):
+            p = position(outer, inner)
+            self.sum[p] = self.sum.get(p, 0.0) + dtheta_z / dt
+            self.n[p] = self.n.get(p, 0) + 1
+        self.prev = (outer, inner)
+
+    def result(self):
+        return {p: self.sum[p] / self.n[p] for p in sorted(self.sum)}
+
+
+def main(session: str) -> None:
+    cfg = iox2.config.default()
+    cfg.global_cfg.prefix = iox2.FileName.new(f"rins_{session}_")
+    node = iox2.NodeBuilder.new().config(cfg).create(iox2.ServiceType.Ipc)
+    name = iox2.ServiceName.new(f"rins/{session}/imu")
+    deadline = time.time() + 30
+    while True:
+        try:
+            service = node.service_builder(name).publish_subscribe(ImuBatch).open()
+            break
+        except Exception:  # the plant has not created the service yet
+            if time.time() > deadline:
+                raise
+            time.sleep(0.05)
+    subscriber = service.subscriber_builder().create()
+    means = DwellMeans()
+    expected = None
+    samples = 0
+    while True:
+        sample = subscriber.receive()
+        if sample is None:
+            time.sleep(0.0002)
+            continue
+        b = sample.payload().contents
+        if b.layout_version != LAYOUT_VERSION or b.record_size != ctypes.sizeof(ImuRecord):
+            raise SystemExit(f"layout version {b.layout_version} / record size {b.record_size} not supported")
+        if expected is not None and b.seq != expected:
+            raise SystemExit(f"sequence gap: expected {expected}, got {b.seq}")
+        expected = b.seq + 1
+        for k in range(b.count):
+            r = b.records[k]
+            means.push(r.outer_rad, r.inner_rad, r.dtheta_rad[2], 0.01)
+            samples += 1
+        if b.flags & FLAG_END:
+            break
+    print(json.dumps({"samples": samples, "batches": expected, "mean_rate_z_rps": means.result()}))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])
