@@ -435,7 +435,7 @@ impl Plant {
             }
             GimbalCommand::Steps { steps, repeat } => {
                 for (i, s) in steps.iter().enumerate() {
-                    if !s.angle_rad.is_finite() || s.angle_rad.abs() > 3600f64.to_radians() || !rate_ok(s.rate_rps) || !(s.dwell_s >= 0.0 && s.dwell_s.is_finite()) {
+                    if !(s.angle_rad.is_finite() && s.angle_rad.abs() <= 3600f64.to_radians() && rate_ok(s.rate_rps) && s.dwell_s >= 0.0 && s.dwell_s.is_finite()) {
                         return Err(format!(
                             "gimbal step {i}: angle must be finite within ±3600 deg, rate in (0, 100] deg/s, dwell ≥ 0 s; got {} deg, {} deg/s, {} s",
                             s.angle_rad.to_degrees(),

@@ -311,8 +311,7 @@ fn rate_random_walk_variance_grows_linearly() {
 
 #[test]
 fn same_seed_is_bit_identical_and_another_seed_differs() {
-    let mut cfg = PlantConfig::default();
-    cfg.sensor = rins_plant::presets::nav_grade_full();
+    let mut cfg = PlantConfig { sensor: rins_plant::presets::nav_grade_full(), ..PlantConfig::default() };
     let sample_bits = |cfg: &PlantConfig| {
         let mut p = Plant::new(cfg).unwrap();
         (0..30_000)
@@ -331,8 +330,7 @@ fn same_seed_is_bit_identical_and_another_seed_differs() {
 
 #[test]
 fn switching_one_noise_term_off_leaves_the_others_realisation() {
-    let mut cfg = PlantConfig::default();
-    cfg.sensor = rins_plant::presets::nav_grade_full();
+    let mut cfg = PlantConfig { sensor: rins_plant::presets::nav_grade_full(), ..PlantConfig::default() };
     let arw = |cfg: &PlantConfig| {
         let mut p = Plant::new(cfg).unwrap();
         (0..1000).map(|_| { p.step(); p.truth().gyro_terms_rad[GyroTerm::AngleRandomWalk as usize] }).collect::<Vec<_>>()

@@ -2,6 +2,9 @@
 //! measured columns to a [`History`], simulated measurement logs (datasets with hidden
 //! effects), model files written back with fitted effects, and the static report figures.
 
+// Six channels indexed in parallel arrays: index loops read best.
+#![allow(clippy::needless_range_loop)]
+
 use std::io::Write;
 use std::path::Path;
 

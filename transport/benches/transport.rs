@@ -69,10 +69,10 @@ fn round_trips(name: &str, n: usize) -> Vec<f64> {
         let t0 = Instant::now();
         publisher.send_copy(batch).unwrap();
         loop {
-            if let Some(a) = acks.receive().unwrap() {
-                if a.payload().ack_seq == seq {
-                    break;
-                }
+            if let Some(a) = acks.receive().unwrap()
+                && a.payload().ack_seq == seq
+            {
+                break;
             }
         }
         out.push(t0.elapsed().as_secs_f64() * 1e6);

@@ -140,7 +140,7 @@ pub fn navigate(name: &str, cfg: &PlantConfig, opts: &NavOptions) -> Result<NavS
     loop {
         let Some(sample) = sub.receive().map_err(|e| ipc("receiving")(&e))? else {
             polls = polls.wrapping_add(1);
-            if polls % 64 == 0 {
+            if polls.is_multiple_of(64) {
                 std::thread::yield_now();
             }
             if last_check.elapsed() > Duration::from_millis(50) {

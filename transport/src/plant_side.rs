@@ -118,7 +118,7 @@ pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -
         }
         batch.count = n as u32;
         done += n as u64;
-        let interrupted = seq % 256 == 0 && session.interrupted();
+        let interrupted = seq.is_multiple_of(256) && session.interrupted();
         if done >= samples || stop || interrupted {
             batch.flags |= FLAG_END;
         }
@@ -164,7 +164,7 @@ pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -
                     continue;
                 }
                 polls = polls.wrapping_add(1);
-                if polls % 64 == 0 {
+                if polls.is_multiple_of(64) {
                     std::thread::yield_now();
                 }
                 if last_check.elapsed() > Duration::from_millis(50) {

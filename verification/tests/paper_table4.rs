@@ -49,8 +49,7 @@ fn known_dbeta_compensation_removes_it_entirely() {
 
 #[test]
 fn paired_cases_share_random_numbers_and_bands_are_ordered() {
-    let mut plant = PlantConfig::default();
-    plant.sensor = rins_plant::presets::paper_table3();
+    let plant = PlantConfig { sensor: rins_plant::presets::paper_table3(), ..PlantConfig::default() };
     let opt = Table4Options { plant, runs: 3, duration_s: 6.0 * 3600.0, nav: NavRunConfig::default(), compensation: None };
     let r = table4(&opt, &|_| {});
     // Common random numbers: both cases of a seed see the same noise, and the errors superpose,

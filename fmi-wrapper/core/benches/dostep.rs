@@ -2,7 +2,12 @@
 //! a 10 ms communication step (one IMU sample at 100 Hz) of the paper's plant (the FMU default).
 //! Needs `cargo build --release -p rins-fmi2`.
 
-use criterion::{Criterion, black_box, criterion_group, criterion_main};
+// criterion_group! generates an undocumented function.
+#![allow(missing_docs)]
+
+use std::hint::black_box;
+
+use criterion::{Criterion, criterion_group, criterion_main};
 use rins_fmi::fmu;
 use rins_fmi::importer::{Fmu2, parse_model_description};
 use rins_fmi::xml::FmiVersion;

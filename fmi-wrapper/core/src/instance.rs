@@ -216,7 +216,7 @@ impl<M: Model> Instance<M> {
         }
         let n = h_s * rate;
         // Truncation after +0.5 is round-half-up for positive n without a libm call.
-        let whole = if n >= 0.5 && n < 1e15 { (n + 0.5) as u64 } else { 0 };
+        let whole = if (0.5..1e15).contains(&n) { (n + 0.5) as u64 } else { 0 };
         if whole == 0 || !((n - whole as f64).abs() <= STEP_TOL * whole as f64) {
             return Err(Self::do_step_refused_size(h_s, n, rate));
         }

@@ -9,6 +9,8 @@
 #![allow(non_snake_case, non_camel_case_types)]
 // The exported functions are documented by the FMI 2.0 standard, section by section.
 #![allow(missing_docs)]
+// Each pointer's contract (valid for n elements, or NULL where allowed) is the standard's.
+#![allow(clippy::missing_safety_doc)]
 
 use std::ffi::{CStr, CString, c_char, c_int, c_uint, c_void};
 use std::panic::{AssertUnwindSafe, catch_unwind};

@@ -7,6 +7,9 @@
 //! test distributions). This module turns them into the reports `rins compare` and
 //! `rins diagnose` print.
 
+// Six channels indexed in parallel arrays (data, predictions, units): index loops read best.
+#![allow(clippy::needless_range_loop)]
+
 pub mod fit;
 pub mod history;
 pub mod replay;
@@ -251,7 +254,9 @@ impl Analysis {
     /// Residual sums per channel after removing `pred` (per-channel predictions).
     fn cells(&self, pred: &[Vec<f64>]) -> (Vec<Cell>, f64) {
         let o = &self.opts;
-        let mut map: BTreeMap<(usize, &str, i64, i64), (f64, f64, f64, usize)> = BTreeMap::new();
+        // (channel, position, temperature bin, time window) -> (residual sum, variance, duration, windows)
+        type Key<'a> = (usize, &'a str, i64, i64);
+        let mut map: BTreeMap<Key, (f64, f64, f64, usize)> = BTreeMap::new();
         for (i, w) in self.replay.windows.iter().enumerate() {
             for c in 0..6 {
                 let tb = (temp_of(w, c) / o.temp_bin_k).floor() as i64;
