@@ -188,3 +188,37 @@ fn gimbal_command_inputs_drive_the_table() {
     // Z-down after the flip: full position-dependent bias weight (Eq. 9).
     assert!((g[1] - 1.0).abs() < 1e-12, "{}", g[1]);
 }
+
+/// The 34 functions of fmi2Functions.h a co-simulation FMU exports (FMI 2.0.4).
+const FMI2_FUNCTIONS: [&str; 34] = [
+    "fmi2GetTypesPlatform", "fmi2GetVersion", "fmi2SetDebugLogging", "fmi2Instantiate", "fmi2FreeInstance",
+    "fmi2SetupExperiment", "fmi2EnterInitializationMode", "fmi2ExitInitializationMode", "fmi2Terminate", "fmi2Reset",
+    "fmi2GetReal", "fmi2GetInteger", "fmi2GetBoolean", "fmi2GetString", "fmi2SetReal", "fmi2SetInteger",
+    "fmi2SetBoolean", "fmi2SetString", "fmi2GetFMUstate", "fmi2SetFMUstate", "fmi2FreeFMUstate",
+    "fmi2SerializedFMUstateSize", "fmi2SerializeFMUstate", "fmi2DeSerializeFMUstate", "fmi2GetDirectionalDerivative",
+    "fmi2SetRealInputDerivatives", "fmi2GetRealOutputDerivatives", "fmi2DoStep", "fmi2CancelStep", "fmi2GetStatus",
+    "fmi2GetRealStatus", "fmi2GetIntegerStatus", "fmi2GetBooleanStatus", "fmi2GetStringStatus",
+];
+
+fn exported(lib: &str) -> Vec<String> {
+    let exe = std::env::current_exe().unwrap();
+    let so = exe.parent().and_then(|d| d.parent()).unwrap().join(lib);
+    let out = std::process::Command::new("nm").args(["-D", "--defined-only"]).arg(&so).output().expect("nm (binutils) is installed");
+    assert!(out.status.success(), "nm {}: {}", so.display(), String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stdout).lines().filter_map(|l| l.split_whitespace().nth(2).map(str::to_string)).collect()
+}
+
+#[test]
+fn the_libraries_export_exactly_the_fmi_functions() {
+    let mut fmi2 = exported("librins_fmi2.so");
+    fmi2.sort();
+    let mut want: Vec<String> = FMI2_FUNCTIONS.iter().map(|s| s.to_string()).collect();
+    want.sort();
+    assert_eq!(fmi2, want, "the FMI 2 library exports the 34 functions and nothing else");
+    let fmi3 = exported("librins_fmi3.so");
+    assert_eq!(fmi3.len(), 75, "{fmi3:?}");
+    assert!(fmi3.iter().all(|s| s.starts_with("fmi3")), "{fmi3:?}");
+    for f in ["fmi3InstantiateCoSimulation", "fmi3DoStep", "fmi3GetFloat64", "fmi3SerializeFMUState", "fmi3InstantiateModelExchange", "fmi3ActivateModelPartition"] {
+        assert!(fmi3.iter().any(|s| s == f), "{f} missing");
+    }
+}
