@@ -179,7 +179,15 @@ pub fn navigate(name: &str, cfg: &PlantConfig, opts: &NavOptions) -> Result<NavS
         }
         expected = Some(b.seq + 1);
         batches += 1;
-        for r in &b.records[..b.count as usize] {
+        let records = &b.records[..b.count as usize];
+        // The navigator integrates at its scenario's rate: refuse a stream at another one.
+        if let [a, c, ..] = records {
+            let stream_s = c.t_s - a.t_s;
+            if (stream_s * cfg.rate_hz - 1.0).abs() > 1e-6 {
+                return Err(TransportError::Rate { stream_s, rate_hz: cfg.rate_hz });
+            }
+        }
+        for r in records {
             nav.push(r);
         }
         let (seq, flags) = (b.seq, b.flags);

@@ -43,6 +43,14 @@ pub enum TransportError {
         /// Ours.
         want_record: u32,
     },
+    /// The stream's sample interval is not the scenario's.
+    #[error("the plant streams samples every {stream_s} s, but the navigator's scenario has run.rate_hz = {rate_hz} (every {} s): give both the same scenario", 1.0 / rate_hz)]
+    Rate {
+        /// Interval seen in the stream, s.
+        stream_s: f64,
+        /// The navigator's configured rate, Hz.
+        rate_hz: f64,
+    },
     /// A sequence gap: messages were lost.
     #[error("sequence gap: expected batch {expected}, received {got} ({} batches lost)", got.wrapping_sub(*expected))]
     Gap {

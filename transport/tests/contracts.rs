@@ -81,3 +81,19 @@ fn a_sequence_gap_is_detected() {
     let e = nav.join().unwrap().unwrap_err();
     assert!(matches!(e, TransportError::Gap { expected: 1, got: 2 }), "{e}");
 }
+
+#[test]
+fn a_navigator_configured_for_another_rate_is_refused() {
+    let name = session("rate");
+    let n2 = name.clone();
+    // The navigator thinks the plant runs at 100 Hz; the plant runs at 200 Hz.
+    let nav = std::thread::spawn(move || navigate(&n2, &cfg(), &NavOptions { acknowledge: true, commands: vec![], peer_timeout: Duration::from_secs(10) }));
+    let fast = rins_plant::PlantConfig { rate_hz: 200.0, ..cfg() };
+    let mut plant = rins_plant::Plant::new(&fast).unwrap();
+    let served = serve(&name, &mut plant, 1000, &ServeOptions { mode: Mode::Lockstep, batch: 10, pace: None, peer_timeout: Duration::from_secs(10), wait_for_restart: false });
+    let e = nav.join().unwrap().unwrap_err();
+    assert!(matches!(e, TransportError::Rate { .. }), "{e}");
+    assert!(e.to_string().contains("run.rate_hz = 100"), "{e}");
+    // The plant sees its navigator go away instead of acknowledging.
+    assert!(served.is_err());
+}
