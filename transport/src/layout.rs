@@ -34,6 +34,21 @@ pub struct ImuRecord {
     pub temps_c: [f64; 6],
 }
 
+impl ImuRecord {
+    /// The record of one plant output sample and the truth over it.
+    pub fn from_plant(s: &rins_plant::ImuSample, tr: &rins_plant::Truth) -> Self {
+        Self {
+            tick: s.index,
+            t_s: s.t_s,
+            dtheta_rad: s.dtheta_rad.into(),
+            dv_mps: s.dv_mps.into(),
+            outer_rad: tr.gimbal.angles.outer_rad,
+            inner_rad: tr.gimbal.angles.inner_rad,
+            temps_c: tr.temps.nodes_c,
+        }
+    }
+}
+
 /// Flag: the last message of a run.
 pub const FLAG_END: u32 = 1;
 /// Flag: the run ended early (SIGINT/SIGTERM on the plant side).

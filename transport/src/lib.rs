@@ -29,16 +29,7 @@ pub fn reference(cfg: &rins_plant::PlantConfig, samples: u64, batch: usize, comm
         let n = (samples - done).min(batch);
         for _ in 0..n {
             let s = plant.step();
-            let tr = plant.truth();
-            nav.push(&layout::ImuRecord {
-                tick: s.index,
-                t_s: s.t_s,
-                dtheta_rad: s.dtheta_rad.into(),
-                dv_mps: s.dv_mps.into(),
-                outer_rad: tr.gimbal.angles.outer_rad,
-                inner_rad: tr.gimbal.angles.inner_rad,
-                temps_c: tr.temps.nodes_c,
-            });
+            nav.push(&layout::ImuRecord::from_plant(&s, plant.truth()));
         }
         done += n;
         if let Some(c) = commands.iter().find(|c| c.after_seq == seq) {

@@ -105,16 +105,7 @@ pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -
         let n = (samples - done).min(batch_len as u64) as usize;
         for r in batch.records[..n].iter_mut() {
             let s = plant.step();
-            let tr = plant.truth();
-            *r = ImuRecord {
-                tick: s.index,
-                t_s: s.t_s,
-                dtheta_rad: s.dtheta_rad.into(),
-                dv_mps: s.dv_mps.into(),
-                outer_rad: tr.gimbal.angles.outer_rad,
-                inner_rad: tr.gimbal.angles.inner_rad,
-                temps_c: tr.temps.nodes_c,
-            };
+            *r = ImuRecord::from_plant(&s, plant.truth());
         }
         batch.count = n as u32;
         done += n as u64;

@@ -15,3 +15,4 @@ pub mod xml;
 pub mod zip;
 pub mod package;
 pub mod importer;
+pub mod ffi;

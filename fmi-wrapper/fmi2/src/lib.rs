@@ -15,6 +15,7 @@
 use std::ffi::{CStr, CString, c_char, c_int, c_uint, c_void};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
+use rins_fmi::ffi::{panic_message, slice, slice_mut};
 use rins_fmi::fmu;
 use rins_fmi::instance::{FmiError, Instance, Mode, Status};
 use rins_fmi::rins::RinsModel;
@@ -90,7 +91,7 @@ fn with(c: fmi2Component, what: &str, f: impl FnOnce(&mut Fmi2) -> Result<(), Fm
             e.status as fmi2Status
         }
         Err(panic) => {
-            let msg = panic.downcast_ref::<String>().cloned().or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_default();
+            let msg = panic_message(panic.as_ref());
             comp.log(Status::Fatal, "logStatusError", &format!("{what}: internal error: {msg}"));
             Status::Fatal as fmi2Status
         }
@@ -99,28 +100,6 @@ fn with(c: fmi2Component, what: &str, f: impl FnOnce(&mut Fmi2) -> Result<(), Fm
 
 fn unsupported(c: fmi2Component, what: &str, why: &str) -> fmi2Status {
     with(c, what, |_| Err(FmiError::error(format!("not supported: {why}"))))
-}
-
-unsafe fn slice<'a, T>(p: *const T, n: usize) -> Result<&'a [T], FmiError> {
-    if n == 0 {
-        return Ok(&[]);
-    }
-    if p.is_null() {
-        return Err(FmiError::error("NULL array with a non-zero length"));
-    }
-    // SAFETY: the standard requires `p` to point at `n` elements.
-    Ok(unsafe { std::slice::from_raw_parts(p, n) })
-}
-
-unsafe fn slice_mut<'a, T>(p: *mut T, n: usize) -> Result<&'a mut [T], FmiError> {
-    if n == 0 {
-        return Ok(&mut []);
-    }
-    if p.is_null() {
-        return Err(FmiError::error("NULL array with a non-zero length"));
-    }
-    // SAFETY: the standard requires `p` to point at `n` writable elements.
-    Ok(unsafe { std::slice::from_raw_parts_mut(p, n) })
 }
 
 fn kind_of(comp: &Fmi2, vr: u32) -> Result<Kind, FmiError> {

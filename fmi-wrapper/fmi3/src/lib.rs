@@ -15,6 +15,7 @@
 use std::ffi::{CStr, CString, c_char, c_void};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
+use rins_fmi::ffi::{panic_message, slice, slice_mut};
 use rins_fmi::fmu;
 use rins_fmi::instance::{FmiError, Instance, Mode, Status};
 use rins_fmi::rins::RinsModel;
@@ -68,7 +69,7 @@ fn with(c: fmi3Instance, what: &str, f: impl FnOnce(&mut Fmi3) -> Result<(), Fmi
             e.status as fmi3Status
         }
         Err(panic) => {
-            let msg = panic.downcast_ref::<String>().cloned().or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_default();
+            let msg = panic_message(panic.as_ref());
             comp.log(Status::Fatal, "logStatusError", &format!("{what}: internal error: {msg}"));
             Status::Fatal as fmi3Status
         }
@@ -77,28 +78,6 @@ fn with(c: fmi3Instance, what: &str, f: impl FnOnce(&mut Fmi3) -> Result<(), Fmi
 
 fn unsupported(c: fmi3Instance, what: &str, why: &str) -> fmi3Status {
     with(c, what, |_| Err(FmiError::error(format!("not supported: {why}"))))
-}
-
-unsafe fn slice<'a, T>(p: *const T, n: usize) -> Result<&'a [T], FmiError> {
-    if n == 0 {
-        return Ok(&[]);
-    }
-    if p.is_null() {
-        return Err(FmiError::error("NULL array with a non-zero length"));
-    }
-    // SAFETY: the standard requires `p` to point at `n` elements.
-    Ok(unsafe { std::slice::from_raw_parts(p, n) })
-}
-
-unsafe fn slice_mut<'a, T>(p: *mut T, n: usize) -> Result<&'a mut [T], FmiError> {
-    if n == 0 {
-        return Ok(&mut []);
-    }
-    if p.is_null() {
-        return Err(FmiError::error("NULL array with a non-zero length"));
-    }
-    // SAFETY: the standard requires `p` to point at `n` writable elements.
-    Ok(unsafe { std::slice::from_raw_parts_mut(p, n) })
 }
 
 /// Slots of FMI 3 value reference `vr` (0 is `time`, which has none).

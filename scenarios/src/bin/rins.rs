@@ -460,17 +460,7 @@ fn cmd_diagnose(a: &DiagnoseArgs) -> Result<()> {
         }
     }
     if let Some(dir) = &a.data.report {
-        let pred: Vec<Vec<f64>> = (0..6)
-            .map(|c| {
-                if selected[c].is_empty() {
-                    vec![0.0; an.replay.windows.len()]
-                } else {
-                    let x = rins_verify::diagnosis::fit::design(&an.replay.windows, &selected[c]);
-                    let f = rins_verify::diagnosis::fit::wls(&x, &an.data[c], None).expect("accepted fits");
-                    (0..x.nrows()).map(|r| (0..x.ncols()).map(|k| x[(r, k)] * f.theta[k]).sum()).collect()
-                }
-            })
-            .collect();
+        let pred = rins_verify::diagnosis::predictions(&an, &selected);
         let before = an.compare_report(&h.source, &an.zero_pred());
         let after = an.compare_report(&h.source, &pred);
         for f in rins_scenarios::diagnose::write_report(dir, &an, Some(&pred), &before, Some(&after))? {

@@ -547,6 +547,11 @@ fn predict(a: &Analysis, c: usize, groups: &[Group]) -> Vec<f64> {
     (0..x.nrows()).map(|r| (0..x.ncols()).map(|k| x[(r, k)] * fit.theta[k]).sum()).collect()
 }
 
+/// Per-channel window predictions of the `selected` groups (zeros where none), fitted jointly.
+pub fn predictions(a: &Analysis, selected: &[Vec<Group>]) -> Vec<Vec<f64>> {
+    (0..6).map(|c| if selected[c].is_empty() { vec![0.0; a.replay.windows.len()] } else { predict(a, c, &selected[c]) }).collect()
+}
+
 /// `rins diagnose`: rank the catalogue's effects against the residual and select by the gate.
 pub fn diagnose(model: &PlantConfig, h: &History, opts: Options) -> (DiagnoseReport, Analysis, Vec<Vec<Group>>) {
     let a = analyse(model, h, opts);
@@ -577,7 +582,7 @@ pub fn diagnose(model: &PlantConfig, h: &History, opts: Options) -> (DiagnoseRep
     }
     ranking.sort_by(|x, y| x.delta_bic.total_cmp(&y.delta_bic));
     let zero = a.zero_pred();
-    let pred: Vec<Vec<f64>> = (0..6).map(|c| if selected[c].is_empty() { zero[c].clone() } else { predict(&a, c, &selected[c]) }).collect();
+    let pred = predictions(&a, &selected);
     let before = a.compare_report(&h.source, &zero);
     let after = a.compare_report(&h.source, &pred);
     let mut unexplained = Vec::new();
