@@ -33,7 +33,8 @@ impl FineAlignment {
         let w = Vector3::new(0.0, OMEGA_IE_RPS * cl, OMEGA_IE_RPS * sl);
         let g = normal_gravity(lat_rad, 0.0);
         let mut f = SMatrix::<f64, 5, 5>::zeros();
-        f.fixed_view_mut::<3, 3>(0, 0).copy_from(&(-w.cross_matrix()));
+        f.fixed_view_mut::<3, 3>(0, 0)
+            .copy_from(&(-w.cross_matrix()));
         f[(3, 1)] = -g;
         f[(4, 0)] = g;
         f[(3, 4)] = 2.0 * OMEGA_IE_RPS * sl;
@@ -42,8 +43,11 @@ impl FineAlignment {
         let phi = SMatrix::<f64, 5, 5>::identity() + ft + ft * ft * 0.5 + ft * ft * ft / 6.0;
         let qg = arw.max(1e-7).powi(2);
         let qa = vrw.max(1e-5).powi(2);
-        let q = SMatrix::<f64, 5, 5>::from_diagonal(&SVector::<f64, 5>::from([qg, qg, qg, qa, qa])) * dt_s;
-        let p = SMatrix::<f64, 5, 5>::from_diagonal(&SVector::<f64, 5>::from([1e-6, 1e-6, 1e-3, 1e-2, 1e-2]));
+        let q = SMatrix::<f64, 5, 5>::from_diagonal(&SVector::<f64, 5>::from([qg, qg, qg, qa, qa]))
+            * dt_s;
+        let p = SMatrix::<f64, 5, 5>::from_diagonal(&SVector::<f64, 5>::from([
+            1e-6, 1e-6, 1e-3, 1e-2, 1e-2,
+        ]));
         Self { p, phi, q, r: 1e-8 }
     }
 
@@ -55,7 +59,9 @@ impl FineAlignment {
         h[(0, 3)] = 1.0;
         h[(1, 4)] = 1.0;
         let s = h * self.p * h.transpose() + SMatrix::<f64, 2, 2>::identity() * self.r;
-        let Some(s_inv) = s.try_inverse() else { return SVector::zeros() };
+        let Some(s_inv) = s.try_inverse() else {
+            return SVector::zeros();
+        };
         let k = self.p * h.transpose() * s_inv;
         let x = k * dv_en;
         self.p = (SMatrix::<f64, 5, 5>::identity() - k * h) * self.p;
@@ -64,7 +70,11 @@ impl FineAlignment {
 
     /// 1σ of the attitude estimate, rad.
     pub fn attitude_sigma(&self) -> Vector3<f64> {
-        Vector3::new(self.p[(0, 0)].sqrt(), self.p[(1, 1)].sqrt(), self.p[(2, 2)].sqrt())
+        Vector3::new(
+            self.p[(0, 0)].sqrt(),
+            self.p[(1, 1)].sqrt(),
+            self.p[(2, 2)].sqrt(),
+        )
     }
 }
 

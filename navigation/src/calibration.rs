@@ -71,7 +71,16 @@ pub struct CalibrationConfig {
 
 impl Default for CalibrationConfig {
     fn default() -> Self {
-        Self { estimator: Estimator::Coupled, alignment: Alignment::SelfAlign { coarse_s: 120.0, fine_s: 480.0 }, segment_s: 600.0, fit_rate_hz: 1.0, settle_s: 5.0 }
+        Self {
+            estimator: Estimator::Coupled,
+            alignment: Alignment::SelfAlign {
+                coarse_s: 120.0,
+                fine_s: 480.0,
+            },
+            segment_s: 600.0,
+            fit_rate_hz: 1.0,
+            settle_s: 5.0,
+        }
     }
 }
 
@@ -79,7 +88,9 @@ impl Default for CalibrationConfig {
 #[derive(Debug, thiserror::Error)]
 pub enum CalibrationError {
     /// Segment too short for a drift fit.
-    #[error("calibration segment (scheme.dwell_s) of {segment_s} s at {rate_hz} Hz gives {samples} samples; a second-derivative fit needs at least 30 (set scheme.dwell_s ≥ {min_s} s)")]
+    #[error(
+        "calibration segment (scheme.dwell_s) of {segment_s} s at {rate_hz} Hz gives {samples} samples; a second-derivative fit needs at least 30 (set scheme.dwell_s ≥ {min_s} s)"
+    )]
     SegmentTooShort {
         /// Segment length, s.
         segment_s: f64,
@@ -151,7 +162,11 @@ pub struct Calibration {
 pub const Z_DOWN_SEED_MIX: u64 = 0x9E37_79B9_7F4A_7C15;
 
 /// The plant configuration of a calibration run at `pos`, from the scenario's plant `base`.
-pub fn calibration_plant(base: &PlantConfig, pos: CalPosition, cfg: &CalibrationConfig) -> PlantConfig {
+pub fn calibration_plant(
+    base: &PlantConfig,
+    pos: CalPosition,
+    cfg: &CalibrationConfig,
+) -> PlantConfig {
     let mut p = base.clone();
     p.scheme.kind = match pos {
         CalPosition::ZUp => SchemeKind::ZUpCalibration,
@@ -184,7 +199,13 @@ fn series(recs: &[&NavRecord], coupled: bool, lat: f64, g: f64, r_m: f64) -> Ser
     let w = rins_plant::earth::OMEGA_IE_RPS;
     let (wn, wu) = (w * lat.cos(), w * lat.sin());
     let ws2 = g / r_m;
-    let mut out = Series { t_mid: Vec::new(), acc_e: Vec::new(), acc_n: Vec::new(), t: Vec::new(), phi_u: Vec::new() };
+    let mut out = Series {
+        t_mid: Vec::new(),
+        acc_e: Vec::new(),
+        acc_n: Vec::new(),
+        t: Vec::new(),
+        phi_u: Vec::new(),
+    };
     let (mut ie, mut inn, mut iu) = (0.0, 0.0, 0.0);
     let first = recs.first().map(|r| r.t_s).unwrap_or(0.0);
     for (k, r) in recs.iter().enumerate() {
@@ -194,10 +215,15 @@ fn series(recs: &[&NavRecord], coupled: bool, lat: f64, g: f64, r_m: f64) -> Ser
             let mid = |f: &dyn Fn(&NavRecord) -> f64| 0.5 * (f(p) + f(r));
             if coupled {
                 ie += h * mid(&|x| ws2 * x.vel_err_mps[0] - g * wu * x.att_err_rad[0]);
-                inn += h * mid(&|x| ws2 * x.vel_err_mps[1] + g * (wn * x.att_err_rad[2] - wu * x.att_err_rad[1]));
+                inn += h * mid(&|x| {
+                    ws2 * x.vel_err_mps[1] + g * (wn * x.att_err_rad[2] - wu * x.att_err_rad[1])
+                });
                 iu += h * mid(&|x| wn * x.att_err_rad[0] + x.vel_err_mps[0] * lat.tan() / r_m);
             }
-            let (ve, vn) = ((r.vel_err_mps[0] - p.vel_err_mps[0]) / h, (r.vel_err_mps[1] - p.vel_err_mps[1]) / h);
+            let (ve, vn) = (
+                (r.vel_err_mps[0] - p.vel_err_mps[0]) / h,
+                (r.vel_err_mps[1] - p.vel_err_mps[1]) / h,
+            );
             let cor = if coupled { 2.0 * wu } else { 0.0 };
             out.t_mid.push(0.5 * (p.t_s + r.t_s) - first);
             out.acc_e.push(ve + ie - cor * mid(&|x| x.vel_err_mps[1]));
@@ -210,31 +236,84 @@ fn series(recs: &[&NavRecord], coupled: bool, lat: f64, g: f64, r_m: f64) -> Ser
 }
 
 /// Runs the calibration sequence at `pos` and estimates β with Eq. 17 or 19.
-pub fn calibrate_position(base: &PlantConfig, pos: CalPosition, cfg: &CalibrationConfig) -> Result<PositionEstimate, CalibrationError> {
+pub fn calibrate_position(
+    base: &PlantConfig,
+    pos: CalPosition,
+    cfg: &CalibrationConfig,
+) -> Result<PositionEstimate, CalibrationError> {
     let samples = (cfg.segment_s * cfg.fit_rate_hz) as usize;
     if samples < 30 {
-        return Err(CalibrationError::SegmentTooShort { segment_s: cfg.segment_s, rate_hz: cfg.fit_rate_hz, samples, min_s: 30.0 / cfg.fit_rate_hz });
+        return Err(CalibrationError::SegmentTooShort {
+            segment_s: cfg.segment_s,
+            rate_hz: cfg.fit_rate_hz,
+            samples,
+            min_s: 30.0 / cfg.fit_rate_hz,
+        });
     }
     let pcfg = calibration_plant(base, pos, cfg);
-    let mut plant = Plant::new(&pcfg).map_err(|e| CalibrationError::Plant(e.iter().map(|x| x.to_string()).collect::<Vec<_>>().join("; ")))?;
+    let mut plant = Plant::new(&pcfg).map_err(|e| {
+        CalibrationError::Plant(
+            e.iter()
+                .map(|x| x.to_string())
+                .collect::<Vec<_>>()
+                .join("; "),
+        )
+    })?;
     let move_s = plant.schedule().cycle_s() - cfg.segment_s;
     let total = 2.0 * cfg.segment_s + move_s;
-    let nav = NavRunConfig { alignment: cfg.alignment, record_every_s: 1.0 / cfg.fit_rate_hz, ..NavRunConfig::default() };
+    let nav = NavRunConfig {
+        alignment: cfg.alignment,
+        record_every_s: 1.0 / cfg.fit_rate_hz,
+        ..NavRunConfig::default()
+    };
     let run = run(&mut plant, total, &nav)?;
     let g = normal_gravity(plant.site().lat_rad, plant.site().height_m);
     let lat = plant.site().lat_rad;
     let r_m = (plant.site().rm_m * plant.site().rn_m).sqrt() + plant.site().height_m;
     let s = &pcfg.sensor;
-    let arw = if s.gyro.angle_random_walk.enabled { s.gyro.angle_random_walk.dpsh.iter().fold(0.0_f64, |m, x| m.max(*x)) * DPSH } else { 0.0 };
-    let vrw = if s.accel.velocity_random_walk.enabled { s.accel.velocity_random_walk.ug_per_sqrthz.iter().fold(0.0_f64, |m, x| m.max(*x)) * UG } else { 0.0 };
+    let arw = if s.gyro.angle_random_walk.enabled {
+        s.gyro
+            .angle_random_walk
+            .dpsh
+            .iter()
+            .fold(0.0_f64, |m, x| m.max(*x))
+            * DPSH
+    } else {
+        0.0
+    };
+    let vrw = if s.accel.velocity_random_walk.enabled {
+        s.accel
+            .velocity_random_walk
+            .ug_per_sqrthz
+            .iter()
+            .fold(0.0_f64, |m, x| m.max(*x))
+            * UG
+    } else {
+        0.0
+    };
     let dt = 1.0 / cfg.fit_rate_hz;
     let fits = |from: f64, to: f64| -> Result<SegmentFit, CalibrationError> {
-        let recs: Vec<&NavRecord> = run.records.iter().filter(|r| r.t_s > from && r.t_s <= to).collect();
-        let f = |what, r: Option<DriftFit>| r.ok_or(CalibrationError::Fit { what, position: pos });
+        let recs: Vec<&NavRecord> = run
+            .records
+            .iter()
+            .filter(|r| r.t_s > from && r.t_s <= to)
+            .collect();
+        let f = |what, r: Option<DriftFit>| {
+            r.ok_or(CalibrationError::Fit {
+                what,
+                position: pos,
+            })
+        };
         let sr = series(&recs, cfg.estimator == Estimator::Coupled, lat, g, r_m);
         Ok(SegmentFit {
-            dvdd_e: f("east acceleration", fit_drift(&sr.t_mid, &sr.acc_e, g * g * arw * arw, vrw * vrw / dt))?,
-            dvdd_n: f("north acceleration", fit_drift(&sr.t_mid, &sr.acc_n, g * g * arw * arw, vrw * vrw / dt))?,
+            dvdd_e: f(
+                "east acceleration",
+                fit_drift(&sr.t_mid, &sr.acc_e, g * g * arw * arw, vrw * vrw / dt),
+            )?,
+            dvdd_n: f(
+                "north acceleration",
+                fit_drift(&sr.t_mid, &sr.acc_n, g * g * arw * arw, vrw * vrw / dt),
+            )?,
             phi_u_rate: f("up attitude", fit_drift(&sr.t, &sr.phi_u, arw * arw, 0.0))?,
         })
     };
@@ -267,10 +346,18 @@ pub fn calibrate_position(base: &PlantConfig, pos: CalPosition, cfg: &Calibratio
 }
 
 /// Z-up then Z-down calibration of the same plant; δβ = β_down − β_up (Section 3.2).
-pub fn calibrate(base: &PlantConfig, cfg: &CalibrationConfig) -> Result<Calibration, CalibrationError> {
+pub fn calibrate(
+    base: &PlantConfig,
+    cfg: &CalibrationConfig,
+) -> Result<Calibration, CalibrationError> {
     let up = calibrate_position(base, CalPosition::ZUp, cfg)?;
     let down = calibrate_position(base, CalPosition::ZDown, cfg)?;
     let delta_beta_dph = [0, 1, 2].map(|i| down.beta_dph[i] - up.beta_dph[i]);
     let delta_beta_se_dph = [0, 1, 2].map(|i| down.se_dph[i].hypot(up.se_dph[i]));
-    Ok(Calibration { up, down, delta_beta_dph, delta_beta_se_dph })
+    Ok(Calibration {
+        up,
+        down,
+        delta_beta_dph,
+        delta_beta_se_dph,
+    })
 }

@@ -63,7 +63,9 @@ pub struct Campaign {
 #[derive(Debug, thiserror::Error)]
 pub enum CampaignError {
     /// A temperature outside the thermal model's range.
-    #[error("campaign temperature {temp_c} °C (run {index}) is outside the thermal model's range [{min}, {max}] °C")]
+    #[error(
+        "campaign temperature {temp_c} °C (run {index}) is outside the thermal model's range [{min}, {max}] °C"
+    )]
     TemperatureOutOfRange {
         /// Offending temperature.
         temp_c: f64,
@@ -88,10 +90,20 @@ pub enum CampaignError {
 }
 
 /// Runs the campaign at `temps_c` on both cores and fits δβ(T).
-pub fn run_campaign(base: &PlantConfig, temps_c: &[f64], cfg: &CalibrationConfig, ref_temp_c: f64) -> Result<Campaign, CampaignError> {
+pub fn run_campaign(
+    base: &PlantConfig,
+    temps_c: &[f64],
+    cfg: &CalibrationConfig,
+    ref_temp_c: f64,
+) -> Result<Campaign, CampaignError> {
     for (index, &t) in temps_c.iter().enumerate() {
         if !(CHAMBER_MIN_C..=CHAMBER_MAX_C).contains(&t) {
-            return Err(CampaignError::TemperatureOutOfRange { temp_c: t, index, min: CHAMBER_MIN_C, max: CHAMBER_MAX_C });
+            return Err(CampaignError::TemperatureOutOfRange {
+                temp_c: t,
+                index,
+                min: CHAMBER_MIN_C,
+                max: CHAMBER_MAX_C,
+            });
         }
     }
     if temps_c.len() < 5 {
@@ -106,18 +118,30 @@ pub fn run_campaign(base: &PlantConfig, temps_c: &[f64], cfg: &CalibrationConfig
             p.thermal.chamber.temp_c = t;
             p.thermal.chamber.profile.clear();
             p.seed = base.seed.wrapping_add(k as u64 * 7919);
-            let calibration = calibrate(&p, cfg).map_err(|source| CampaignError::Run { temp_c: t, source })?;
-            Ok(CampaignRun { chamber_c: t, block_temp_c: calibration.down.gyro_temp_c, calibration })
+            let calibration =
+                calibrate(&p, cfg).map_err(|source| CampaignError::Run { temp_c: t, source })?;
+            Ok(CampaignRun {
+                chamber_c: t,
+                block_temp_c: calibration.down.gyro_temp_c,
+                calibration,
+            })
         })
         .collect::<Result<_, _>>()?;
     let fits = [0, 1, 2].map(|i| fit_axis(&runs, i, ref_temp_c));
-    Ok(Campaign { runs, ref_temp_c, fits, wall_s: t0.elapsed().as_secs_f64() })
+    Ok(Campaign {
+        runs,
+        ref_temp_c,
+        fits,
+        wall_s: t0.elapsed().as_secs_f64(),
+    })
 }
 
 /// Weighted least-squares cubic (weights 1/SE²); covariance scaled by χ²/dof when above 1.
 fn fit_axis(runs: &[CampaignRun], axis: usize, ref_c: f64) -> AxisFit {
     let n = runs.len();
-    let x = DMatrix::from_fn(n, 4, |r, j| (runs[r].block_temp_c[axis] - ref_c).powi(j as i32));
+    let x = DMatrix::from_fn(n, 4, |r, j| {
+        (runs[r].block_temp_c[axis] - ref_c).powi(j as i32)
+    });
     let w = DVector::from_fn(n, |r, _| {
         let se = runs[r].calibration.delta_beta_se_dph[axis];
         if se > 0.0 { 1.0 / (se * se) } else { 1.0 }
@@ -125,7 +149,10 @@ fn fit_axis(runs: &[CampaignRun], axis: usize, ref_c: f64) -> AxisFit {
     let y = DVector::from_fn(n, |r, _| runs[r].calibration.delta_beta_dph[axis]);
     let xw = DMatrix::from_fn(n, 4, |r, j| x[(r, j)] * w[r]);
     let normal = x.transpose() * &xw;
-    let inv = normal.clone().try_inverse().unwrap_or_else(|| DMatrix::from_diagonal_element(4, 4, f64::INFINITY));
+    let inv = normal
+        .clone()
+        .try_inverse()
+        .unwrap_or_else(|| DMatrix::from_diagonal_element(4, 4, f64::INFINITY));
     let b = &inv * (xw.transpose() * &y);
     let res = &y - &x * &b;
     let chi2 = (0..n).map(|r| res[r] * res[r] * w[r]).sum::<f64>() / (n as f64 - 4.0).max(1.0);

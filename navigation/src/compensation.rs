@@ -16,13 +16,26 @@ pub struct PositionBiasCompensation {
 impl PositionBiasCompensation {
     /// Compensates with `spec` (its `enabled` flag is forced on).
     pub fn new(spec: &PositionBiasSpec) -> Self {
-        let g = GyroSpec { position_bias: PositionBiasSpec { enabled: true, ..*spec }, ..GyroSpec::default() };
-        Self { model: GyroModel::new(&g) }
+        let g = GyroSpec {
+            position_bias: PositionBiasSpec {
+                enabled: true,
+                ..*spec
+            },
+            ..GyroSpec::default()
+        };
+        Self {
+            model: GyroModel::new(&g),
+        }
     }
 
     /// The correction to subtract from Δθ over `dt_s`, given the navigator's body up direction
     /// and the gyro block temperatures.
-    pub fn correction(&self, dt_s: f64, up_b: &Vector3<f64>, gyro_temp_c: &Vector3<f64>) -> Vector3<f64> {
+    pub fn correction(
+        &self,
+        dt_s: f64,
+        up_b: &Vector3<f64>,
+        gyro_temp_c: &Vector3<f64>,
+    ) -> Vector3<f64> {
         let ctx = TermContext {
             dt_s,
             dtheta_rad: Vector3::zeros(),

@@ -15,7 +15,12 @@ pub fn attitude_error(c_bn_nav: &Matrix3<f64>, c_bn_true: &Matrix3<f64>) -> Vect
 }
 
 /// Position error of `nav` against the true site, m: (north, east).
-pub fn position_error_m(nav: &NavState, lat_true_rad: f64, lon_true_rad: f64, height_m: f64) -> (f64, f64) {
+pub fn position_error_m(
+    nav: &NavState,
+    lat_true_rad: f64,
+    lon_true_rad: f64,
+    height_m: f64,
+) -> (f64, f64) {
     let (rm, rn) = radii_of_curvature(lat_true_rad);
     let north = (nav.lat_rad - lat_true_rad) * (rm + height_m);
     let east = (nav.lon_rad - lon_true_rad) * (rn + height_m) * lat_true_rad.cos();
@@ -42,7 +47,11 @@ impl Trms {
     }
     /// tRMS(t_n), m.
     pub fn value(&self) -> f64 {
-        if self.n == 0 { 0.0 } else { (self.sum_sq / self.n as f64).sqrt() }
+        if self.n == 0 {
+            0.0
+        } else {
+            (self.sum_sq / self.n as f64).sqrt()
+        }
     }
 }
 

@@ -33,7 +33,12 @@ pub fn fit_drift(t: &[f64], y: &[f64], q: f64, r: f64) -> Option<DriftFit> {
         let b = &xtx * x.transpose() * yv;
         let res = yv - x * &b;
         let s2 = res.norm_squared() / (n - 2) as f64;
-        Some(DriftFit { slope: b[1], se: (s2 * xtx[(1, 1)]).sqrt(), n, chi2_per_dof: f64::NAN })
+        Some(DriftFit {
+            slope: b[1],
+            se: (s2 * xtx[(1, 1)]).sqrt(),
+            n,
+            chi2_per_dof: f64::NAN,
+        })
     };
     if q <= 0.0 && r <= 0.0 {
         return ols(&x, &yv);
@@ -41,14 +46,21 @@ pub fn fit_drift(t: &[f64], y: &[f64], q: f64, r: f64) -> Option<DriftFit> {
     // Σ_ij = q·min(t_i, t_j) + r·δ_ij, times measured from the first sample (the walk's value
     // there is absorbed by α). A floor on r keeps Σ positive definite.
     let r = r.max(q * 1e-9).max(1e-300);
-    let sigma = DMatrix::from_fn(n, n, |i, j| q * (t[i.min(j)] - t0) + if i == j { r } else { 0.0 });
+    let sigma = DMatrix::from_fn(n, n, |i, j| {
+        q * (t[i.min(j)] - t0) + if i == j { r } else { 0.0 }
+    });
     let chol = sigma.cholesky()?;
     let xs = chol.solve(&x);
     let xtsx = (x.transpose() * &xs).try_inverse()?;
     let b = &xtsx * (xs.transpose() * &yv);
     let res = &yv - &x * &b;
     let chi2 = res.dot(&chol.solve(&res)) / (n - 2) as f64;
-    Some(DriftFit { slope: b[1], se: xtsx[(1, 1)].sqrt(), n, chi2_per_dof: chi2 })
+    Some(DriftFit {
+        slope: b[1],
+        se: xtsx[(1, 1)].sqrt(),
+        n,
+        chi2_per_dof: chi2,
+    })
 }
 
 #[cfg(test)]
@@ -88,6 +100,9 @@ mod tests {
         let sd = (slopes.iter().map(|s| (s - m).powi(2)).sum::<f64>() / 299.0).sqrt();
         assert!((m - beta).abs() < 3.0 * sd / 300f64.sqrt(), "unbiased: {m}");
         let ratio = sd / se;
-        assert!((0.85..1.15).contains(&ratio), "MC spread / reported SE = {ratio}");
+        assert!(
+            (0.85..1.15).contains(&ratio),
+            "MC spread / reported SE = {ratio}"
+        );
     }
 }

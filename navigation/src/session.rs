@@ -104,7 +104,9 @@ impl NavRun {
 #[derive(Debug, PartialEq, thiserror::Error)]
 pub enum SessionError {
     /// The table moved while the navigator was aligning.
-    #[error("the table moved at t = {t_s} s during self-alignment; set scheme.lead_dwell_s >= the alignment time")]
+    #[error(
+        "the table moved at t = {t_s} s during self-alignment; set scheme.lead_dwell_s >= the alignment time"
+    )]
     TableMovedDuringAlignment {
         /// Time of the motion, s.
         t_s: f64,
@@ -116,14 +118,20 @@ pub enum SessionError {
 
 /// The carrier (vehicle) attitude C_v^n from the navigator's IMU attitude and the gimbal
 /// encoder angles: C_v^n = C_b^n·(R_z(outer)·R_x(inner))ᵀ.
-pub fn vehicle_attitude(c_bn: &nalgebra::Matrix3<f64>, gimbal: rins_plant::table::GimbalAngles) -> nalgebra::Matrix3<f64> {
+pub fn vehicle_attitude(
+    c_bn: &nalgebra::Matrix3<f64>,
+    gimbal: rins_plant::table::GimbalAngles,
+) -> nalgebra::Matrix3<f64> {
     c_bn * rins_plant::table::body_to_nav(&nalgebra::Matrix3::identity(), gimbal).transpose()
 }
 
 /// Aligns (if asked) and navigates for `nav_s` seconds, stepping `plant` as it goes.
 pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, SessionError> {
     if !(nav_s > 0.0 && cfg.record_every_s > 0.0) {
-        return Err(SessionError::BadTimes(format!("navigation time {nav_s} s and record interval {} s must be > 0", cfg.record_every_s)));
+        return Err(SessionError::BadTimes(format!(
+            "navigation time {nav_s} s and record interval {} s must be > 0",
+            cfg.record_every_s
+        )));
     }
     let dt = plant.dt_s();
     let site = *plant.site();
@@ -135,13 +143,20 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
         height_m: site.height_m,
     };
     let vertical = match cfg.vertical {
-        VerticalChannel::Hold { .. } => VerticalChannel::Hold { ref_height_m: site.height_m },
-        VerticalChannel::Damped { tau_s, .. } => VerticalChannel::Damped { ref_height_m: site.height_m, tau_s },
+        VerticalChannel::Hold { .. } => VerticalChannel::Hold {
+            ref_height_m: site.height_m,
+        },
+        VerticalChannel::Damped { tau_s, .. } => VerticalChannel::Damped {
+            ref_height_m: site.height_m,
+            tau_s,
+        },
     };
     let mut alignment = None;
     if let Alignment::SelfAlign { coarse_s, fine_s } = cfg.alignment {
         if !(coarse_s > 0.0 && fine_s >= 0.0) {
-            return Err(SessionError::BadTimes(format!("alignment times coarse {coarse_s} s, fine {fine_s} s")));
+            return Err(SessionError::BadTimes(format!(
+                "alignment times coarse {coarse_s} s, fine {fine_s} s"
+            )));
         }
         let (state, res) = self_align(plant, init, coarse_s, fine_s)?;
         init = state;
@@ -185,11 +200,20 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
         }
     }
     let up_att_mean_abs_rad = up_sum / records.len().max(1) as f64;
-    Ok(NavRun { records, alignment, up_att_mean_abs_rad })
+    Ok(NavRun {
+        records,
+        alignment,
+        up_att_mean_abs_rad,
+    })
 }
 
 /// Coarse then fine alignment while the table dwells.
-fn self_align(plant: &mut Plant, init: NavState, coarse_s: f64, fine_s: f64) -> Result<(NavState, AlignmentResult), SessionError> {
+fn self_align(
+    plant: &mut Plant,
+    init: NavState,
+    coarse_s: f64,
+    fine_s: f64,
+) -> Result<(NavState, AlignmentResult), SessionError> {
     let dt = plant.dt_s();
     let n_coarse = (coarse_s / dt).round() as u64;
     let (mut f_sum, mut w_sum) = (Vector3::zeros(), Vector3::zeros());
@@ -206,12 +230,26 @@ fn self_align(plant: &mut Plant, init: NavState, coarse_s: f64, fine_s: f64) -> 
     let coarse_err = attitude_error(&c_bn, &plant.attitude_c_bn());
 
     let cfg = plant.config().sensor.clone();
-    let arw = if cfg.gyro.angle_random_walk.enabled { cfg.gyro.angle_random_walk.dpsh[0] * DPSH } else { 0.0 };
-    let vrw = if cfg.accel.velocity_random_walk.enabled { cfg.accel.velocity_random_walk.ug_per_sqrthz[0] * UG } else { 0.0 };
+    let arw = if cfg.gyro.angle_random_walk.enabled {
+        cfg.gyro.angle_random_walk.dpsh[0] * DPSH
+    } else {
+        0.0
+    };
+    let vrw = if cfg.accel.velocity_random_walk.enabled {
+        cfg.accel.velocity_random_walk.ug_per_sqrthz[0] * UG
+    } else {
+        0.0
+    };
     let kf_dt = 1.0;
     let per_update = ((kf_dt / dt).round() as u64).max(1);
     let mut kf = FineAlignment::new(init.lat_rad, per_update as f64 * dt, arw, vrw);
-    let mut nav = Strapdown::new(NavState { q_bn: q0, ..init }, dt, VerticalChannel::Hold { ref_height_m: init.height_m });
+    let mut nav = Strapdown::new(
+        NavState { q_bn: q0, ..init },
+        dt,
+        VerticalChannel::Hold {
+            ref_height_m: init.height_m,
+        },
+    );
     let n_fine = (fine_s / dt).round() as u64;
     for k in 1..=n_fine {
         let s = plant.step();
@@ -234,7 +272,23 @@ fn self_align(plant: &mut Plant, init: NavState, coarse_s: f64, fine_s: f64) -> 
         }
     }
     let st = *nav.state();
-    let fine_err = attitude_error(&st.q_bn.to_rotation_matrix().into_inner(), &plant.attitude_c_bn());
-    let aligned = NavState { q_bn: st.q_bn, v_n: Vector3::zeros(), lat_rad: init.lat_rad, lon_rad: init.lon_rad, height_m: init.height_m };
-    Ok((aligned, AlignmentResult { coarse_err_rad: coarse_err.into(), fine_err_rad: fine_err.into(), fine_sigma_rad: kf.attitude_sigma().into() }))
+    let fine_err = attitude_error(
+        &st.q_bn.to_rotation_matrix().into_inner(),
+        &plant.attitude_c_bn(),
+    );
+    let aligned = NavState {
+        q_bn: st.q_bn,
+        v_n: Vector3::zeros(),
+        lat_rad: init.lat_rad,
+        lon_rad: init.lon_rad,
+        height_m: init.height_m,
+    };
+    Ok((
+        aligned,
+        AlignmentResult {
+            coarse_err_rad: coarse_err.into(),
+            fine_err_rad: fine_err.into(),
+            fine_sigma_rad: kf.attitude_sigma().into(),
+        },
+    ))
 }

@@ -72,7 +72,14 @@ pub struct Strapdown {
 impl Strapdown {
     /// Starts from `state`, consuming increments over intervals of `dt_s`.
     pub fn new(state: NavState, dt_s: f64, vertical: VerticalChannel) -> Self {
-        let mut s = Self { state, vertical, dt_s, prev_dtheta: Vector3::zeros(), prev_dv: Vector3::zeros(), steps: 0 };
+        let mut s = Self {
+            state,
+            vertical,
+            dt_s,
+            prev_dtheta: Vector3::zeros(),
+            prev_dv: Vector3::zeros(),
+            steps: 0,
+        };
         if let VerticalChannel::Hold { ref_height_m } = vertical {
             s.state.height_m = ref_height_m;
             s.state.v_n.z = 0.0;
@@ -107,7 +114,11 @@ impl Strapdown {
         let (sl, cl) = s.lat_rad.sin_cos();
         let w_ie = Vector3::new(0.0, OMEGA_IE_RPS * cl, OMEGA_IE_RPS * sl);
         let rnh = rn + s.height_m;
-        let w_en = Vector3::new(-s.v_n.y / (rm + s.height_m), s.v_n.x / rnh, s.v_n.x * sl / cl / rnh);
+        let w_en = Vector3::new(
+            -s.v_n.y / (rm + s.height_m),
+            s.v_n.x / rnh,
+            s.v_n.x * sl / cl / rnh,
+        );
         (w_ie, w_en)
     }
 
@@ -136,7 +147,10 @@ impl Strapdown {
                 v.z = 0.0;
                 h = ref_height_m;
             }
-            VerticalChannel::Damped { ref_height_m, tau_s } => {
+            VerticalChannel::Damped {
+                ref_height_m,
+                tau_s,
+            } => {
                 let dh = h - ref_height_m;
                 v.z -= dh / (tau_s * tau_s) * dt;
                 h += (0.5 * (s.v_n.z + v.z) - 2.0 * dh / tau_s) * dt;
@@ -148,7 +162,13 @@ impl Strapdown {
 
         let mut q = quat_from_rotvec(&(-zeta)) * s.q_bn * quat_from_rotvec(&phi);
         q.renormalize_fast();
-        self.state = NavState { q_bn: q, v_n: v, lat_rad: lat, lon_rad: lon, height_m: h };
+        self.state = NavState {
+            q_bn: q,
+            v_n: v,
+            lat_rad: lat,
+            lon_rad: lon,
+            height_m: h,
+        };
         self.steps += 1;
     }
 }

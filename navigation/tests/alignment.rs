@@ -18,7 +18,14 @@ fn fine_alignment_converges_to_bias_limited_attitude() {
     cfg.sensor.gyro.bias.enabled = true;
     cfg.sensor.gyro.bias.dph = [0.01, 0.0, 0.0];
     let mut plant = Plant::new(&cfg).unwrap();
-    let nav = NavRunConfig { alignment: Alignment::SelfAlign { coarse_s: 120.0, fine_s: 1500.0 }, record_every_s: 10.0, ..NavRunConfig::default() };
+    let nav = NavRunConfig {
+        alignment: Alignment::SelfAlign {
+            coarse_s: 120.0,
+            fine_s: 1500.0,
+        },
+        record_every_s: 10.0,
+        ..NavRunConfig::default()
+    };
     let r = run(&mut plant, 10.0, &nav).unwrap();
     let a = r.alignment.expect("self-aligned");
     let lat = 36.6f64.to_radians();
@@ -37,7 +44,13 @@ fn fine_alignment_converges_to_bias_limited_attitude() {
 fn alignment_refuses_a_moving_table() {
     let cfg = PlantConfig::default(); // 16-position scheme starts moving at t = 0
     let mut plant = Plant::new(&cfg).unwrap();
-    let nav = NavRunConfig { alignment: Alignment::SelfAlign { coarse_s: 60.0, fine_s: 60.0 }, ..NavRunConfig::default() };
+    let nav = NavRunConfig {
+        alignment: Alignment::SelfAlign {
+            coarse_s: 60.0,
+            fine_s: 60.0,
+        },
+        ..NavRunConfig::default()
+    };
     let e = run(&mut plant, 10.0, &nav).unwrap_err();
     assert!(e.to_string().contains("lead_dwell_s"), "{e}");
 }
@@ -49,7 +62,15 @@ fn ideal_rotating_imu_navigates_without_error() {
     let mut cfg = PlantConfig::default();
     cfg.thermal.enabled = false;
     let mut plant = Plant::new(&cfg).unwrap();
-    let r = run(&mut plant, 86_400.0, &NavRunConfig { record_every_s: 3600.0, ..NavRunConfig::default() }).unwrap();
+    let r = run(
+        &mut plant,
+        86_400.0,
+        &NavRunConfig {
+            record_every_s: 3600.0,
+            ..NavRunConfig::default()
+        },
+    )
+    .unwrap();
     let e = r.end();
     assert!(e.horizontal_m < 0.5, "{e:?}");
     assert!(e.att_err_rad.iter().all(|a| a.abs() < 1e-8), "{e:?}");
@@ -64,11 +85,26 @@ fn carrier_attitude_error_equals_imu_error_with_exact_encoders() {
     cfg.vehicle.pitch_deg = 2.0;
     cfg.sensor = rins_plant::presets::paper_table3();
     let mut plant = Plant::new(&cfg).unwrap();
-    let r = run(&mut plant, 7200.0, &NavRunConfig { record_every_s: 97.0, ..NavRunConfig::default() }).unwrap();
+    let r = run(
+        &mut plant,
+        7200.0,
+        &NavRunConfig {
+            record_every_s: 97.0,
+            ..NavRunConfig::default()
+        },
+    )
+    .unwrap();
     for rec in &r.records {
         for k in 0..3 {
-            approx::assert_relative_eq!(rec.vehicle_att_err_rad[k], rec.att_err_rad[k], epsilon = 1e-12);
+            approx::assert_relative_eq!(
+                rec.vehicle_att_err_rad[k],
+                rec.att_err_rad[k],
+                epsilon = 1e-12
+            );
         }
     }
-    assert!(r.end().att_err_rad.iter().any(|a| a.abs() > 1e-6), "errors are not trivially zero");
+    assert!(
+        r.end().att_err_rad.iter().any(|a| a.abs() > 1e-6),
+        "errors are not trivially zero"
+    );
 }

@@ -6,8 +6,15 @@ use rins_plant::PlantConfig;
 use rins_plant::effects::GyroTerm;
 
 fn noise_free_full() -> PlantConfig {
-    let mut c = PlantConfig { sensor: rins_plant::presets::nav_grade_full(), ..PlantConfig::default() };
-    for t in [GyroTerm::AngleRandomWalk, GyroTerm::BiasInstability, GyroTerm::RateRandomWalk] {
+    let mut c = PlantConfig {
+        sensor: rins_plant::presets::nav_grade_full(),
+        ..PlantConfig::default()
+    };
+    for t in [
+        GyroTerm::AngleRandomWalk,
+        GyroTerm::BiasInstability,
+        GyroTerm::RateRandomWalk,
+    ] {
         c.sensor.gyro.set_enabled(t, false);
     }
     c.sensor.accel.velocity_random_walk.enabled = false;
@@ -19,7 +26,9 @@ fn noise_free_campaign_recovers_the_temperature_shape_of_dbeta() {
     // Every other effect is on too; they shift the measured delta-beta by constants (g-sensitivity,
     // misalignment on Earth rate) but the temperature coefficients are the plant's own.
     let base = noise_free_full();
-    let temps: Vec<f64> = (0..9).map(|k| 6.54 + (58.14 - 6.54) * k as f64 / 8.0).collect();
+    let temps: Vec<f64> = (0..9)
+        .map(|k| 6.54 + (58.14 - 6.54) * k as f64 / 8.0)
+        .collect();
     let c = run_campaign(&base, &temps, &CalibrationConfig::default(), 25.0).unwrap();
     let pb = &base.sensor.gyro.position_bias;
     // X: linear 1.5e-4 deg/h/K, quadratic -4e-6, cubic 5e-8.
@@ -37,9 +46,21 @@ fn noise_free_campaign_recovers_the_temperature_shape_of_dbeta() {
 #[test]
 fn out_of_range_temperatures_and_too_few_runs_are_refused() {
     let base = noise_free_full();
-    let e = run_campaign(&base, &[20.0, 30.0, 140.0, 40.0, 50.0], &CalibrationConfig::default(), 25.0).unwrap_err();
-    assert!(matches!(e, CampaignError::TemperatureOutOfRange { index: 2, .. }), "{e}");
-    assert!(e.to_string().contains("140") && e.to_string().contains("125"), "{e}");
+    let e = run_campaign(
+        &base,
+        &[20.0, 30.0, 140.0, 40.0, 50.0],
+        &CalibrationConfig::default(),
+        25.0,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, CampaignError::TemperatureOutOfRange { index: 2, .. }),
+        "{e}"
+    );
+    assert!(
+        e.to_string().contains("140") && e.to_string().contains("125"),
+        "{e}"
+    );
     let e = run_campaign(&base, &[20.0, 30.0], &CalibrationConfig::default(), 25.0).unwrap_err();
     assert!(e.to_string().contains("at least 5"), "{e}");
 }

@@ -4,12 +4,15 @@
 //! `RINS_BENCH_SKIP_WEEK=1` skips the week.
 
 use criterion::{Criterion, Throughput};
-use std::hint::black_box;
 use rins_plant::{Plant, PlantConfig};
+use std::hint::black_box;
 use std::time::Instant;
 
 fn config() -> PlantConfig {
-    PlantConfig { sensor: rins_plant::presets::nav_grade_full(), ..PlantConfig::default() }
+    PlantConfig {
+        sensor: rins_plant::presets::nav_grade_full(),
+        ..PlantConfig::default()
+    }
 }
 
 fn run(samples: u64) -> f64 {
@@ -27,7 +30,9 @@ fn main() {
     let hour = 360_000;
     let mut g = c.benchmark_group("plant");
     g.throughput(Throughput::Elements(hour));
-    g.bench_function("16pos_nav_grade_full_1h_100Hz", |b| b.iter(|| black_box(run(hour))));
+    g.bench_function("16pos_nav_grade_full_1h_100Hz", |b| {
+        b.iter(|| black_box(run(hour)))
+    });
     g.finish();
     c.final_summary();
     if std::env::var_os("RINS_BENCH_SKIP_WEEK").is_none() {
@@ -35,6 +40,9 @@ fn main() {
         let t0 = Instant::now();
         black_box(run(week));
         let wall = t0.elapsed().as_secs_f64();
-        println!("plant/week: {week} samples in {wall:.2} s = {:.1} ns/sample", wall * 1e9 / week as f64);
+        println!(
+            "plant/week: {week} samples in {wall:.2} s = {:.1} ns/sample",
+            wall * 1e9 / week as f64
+        );
     }
 }

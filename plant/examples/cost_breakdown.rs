@@ -15,7 +15,10 @@ fn time(label: &str, cfg: &PlantConfig) {
 }
 
 fn main() {
-    let full = PlantConfig { sensor: rins_plant::presets::nav_grade_full(), ..PlantConfig::default() };
+    let full = PlantConfig {
+        sensor: rins_plant::presets::nav_grade_full(),
+        ..PlantConfig::default()
+    };
     time("nav-grade-full", &full);
     let mut c = full.clone();
     c.sensor.gyro.angle_random_walk.enabled = false;

@@ -4,8 +4,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::earth::{EarthSpec, SiteSpec};
 use crate::effects::{AccelSpec, GyroSpec};
-use crate::table::{SchemeKind, SchemeSpec};
 use crate::params::ParamValue;
+use crate::table::{SchemeKind, SchemeSpec};
 use crate::thermal::{CHAMBER_MAX_C, CHAMBER_MIN_C, ThermalSpec};
 
 /// Static vehicle attitude: C_v^n = R_z(azimuth)·R_x(pitch)·R_y(roll), ENU, azimuth counter-clockwise
@@ -99,13 +99,24 @@ struct Checker {
 impl Checker {
     /// Range check; an infinite bound admits infinity (`scheme.accel_dps2 = inf`), NaN never passes.
     fn range(&mut self, path: &str, v: f64, lo: f64, hi: f64) {
-        let ok = !v.is_nan() && v >= lo && v <= hi && (v.is_finite() || (v > 0.0 && hi.is_infinite()) || (v < 0.0 && lo.is_infinite()));
+        let ok = !v.is_nan()
+            && v >= lo
+            && v <= hi
+            && (v.is_finite() || (v > 0.0 && hi.is_infinite()) || (v < 0.0 && lo.is_infinite()));
         if !ok {
-            self.errors.push(ConfigError { path: path.into(), expected: format!("a number in [{lo}, {hi}]"), got: format!("{v}") });
+            self.errors.push(ConfigError {
+                path: path.into(),
+                expected: format!("a number in [{lo}, {hi}]"),
+                got: format!("{v}"),
+            });
         }
     }
     fn fail(&mut self, path: &str, expected: &str, got: String) {
-        self.errors.push(ConfigError { path: path.into(), expected: expected.into(), got });
+        self.errors.push(ConfigError {
+            path: path.into(),
+            expected: expected.into(),
+            got,
+        });
     }
 }
 
@@ -131,20 +142,36 @@ impl PlantConfig {
         }
         self.validate_scheme(&mut c);
         self.validate_thermal(&mut c);
-        if c.errors.is_empty() { Ok(()) } else { Err(c.errors) }
+        if c.errors.is_empty() {
+            Ok(())
+        } else {
+            Err(c.errors)
+        }
     }
 
     fn validate_scheme(&self, c: &mut Checker) {
         let s = &self.scheme;
         if s.kind == SchemeKind::Steps && s.steps.is_empty() {
-            c.fail("scheme.steps", "at least one step when kind = \"steps\"", "an empty list".into());
+            c.fail(
+                "scheme.steps",
+                "at least one step when kind = \"steps\"",
+                "an empty list".into(),
+            );
         }
         if s.kind != SchemeKind::Steps && !s.steps.is_empty() {
-            c.fail("scheme.steps", "no steps unless kind = \"steps\"", format!("{} steps", s.steps.len()));
+            c.fail(
+                "scheme.steps",
+                "no steps unless kind = \"steps\"",
+                format!("{} steps", s.steps.len()),
+            );
         }
         for (i, st) in s.steps.iter().enumerate() {
             if st.angle_deg == 0.0 {
-                c.fail(&format!("scheme.steps[{i}].angle_deg"), "a non-zero angle in [-3600, 3600]", format!("{}", st.angle_deg));
+                c.fail(
+                    &format!("scheme.steps[{i}].angle_deg"),
+                    "a non-zero angle in [-3600, 3600]",
+                    format!("{}", st.angle_deg),
+                );
             }
         }
     }
@@ -153,13 +180,26 @@ impl PlantConfig {
         let t = &self.thermal;
         let ratio = t.step_s * self.rate_hz;
         if (ratio - ratio.round()).abs() > 1e-9 * ratio.max(1.0) || ratio.round() < 1.0 {
-            c.fail("thermal.step_s", "a whole multiple of the output interval 1/run.rate_hz", format!("{} s at {} Hz", t.step_s, self.rate_hz));
+            c.fail(
+                "thermal.step_s",
+                "a whole multiple of the output interval 1/run.rate_hz",
+                format!("{} s at {} Hz", t.step_s, self.rate_hz),
+            );
         }
         let mut last = f64::NEG_INFINITY;
         for (i, p) in t.chamber.profile.iter().enumerate() {
-            c.range(&format!("thermal.chamber.profile[{i}][1]"), p[1], CHAMBER_MIN_C, CHAMBER_MAX_C);
+            c.range(
+                &format!("thermal.chamber.profile[{i}][1]"),
+                p[1],
+                CHAMBER_MIN_C,
+                CHAMBER_MAX_C,
+            );
             if !(p[0].is_finite() && p[0] > last) {
-                c.fail(&format!("thermal.chamber.profile[{i}][0]"), "times strictly increasing", format!("{} after {}", p[0], last));
+                c.fail(
+                    &format!("thermal.chamber.profile[{i}][0]"),
+                    "times strictly increasing",
+                    format!("{} after {}", p[0], last),
+                );
             }
             last = p[0];
         }

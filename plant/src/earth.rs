@@ -31,7 +31,11 @@ pub struct SiteSpec {
 impl Default for SiteSpec {
     /// The paper's simulation site: 36.6° N, 123.6° E (Section 3.1).
     fn default() -> Self {
-        Self { lat_deg: 36.6, lon_deg: 123.6, height_m: 0.0 }
+        Self {
+            lat_deg: 36.6,
+            lon_deg: 123.6,
+            height_m: 0.0,
+        }
     }
 }
 
@@ -48,7 +52,10 @@ pub struct EarthSpec {
 
 impl Default for EarthSpec {
     fn default() -> Self {
-        Self { rotation: true, gravity: true }
+        Self {
+            rotation: true,
+            gravity: true,
+        }
     }
 }
 
@@ -83,7 +90,11 @@ impl Site {
             height_m: spec.height_m,
             rm_m: rm,
             rn_m: rn,
-            gravity_mps2: if earth.gravity { normal_gravity(lat, spec.height_m) } else { 0.0 },
+            gravity_mps2: if earth.gravity {
+                normal_gravity(lat, spec.height_m)
+            } else {
+                0.0
+            },
             omega_ie_n: Vector3::new(0.0, omega * lat.cos(), omega * lat.sin()),
         }
     }
@@ -122,7 +133,11 @@ mod tests {
     fn normal_gravity_matches_published_equator_and_pole_values() {
         // TR8350.2 Table 3.4: gamma_e = 9.7803253359, gamma_p = 9.8321849378.
         assert_relative_eq!(normal_gravity(0.0, 0.0), 9.780_325_335_9, epsilon = 1e-10);
-        assert_relative_eq!(normal_gravity(90.0 * DEG, 0.0), 9.832_184_937_8, epsilon = 1e-9);
+        assert_relative_eq!(
+            normal_gravity(90.0 * DEG, 0.0),
+            9.832_184_937_8,
+            epsilon = 1e-9
+        );
         // Free-air gradient near the surface is about -3.086e-6 m/s^2 per metre.
         let grad = normal_gravity(0.7, 100.0) - normal_gravity(0.7, 0.0);
         assert_relative_eq!(grad / 100.0, -3.086e-6, max_relative = 0.01);

@@ -13,8 +13,8 @@
 pub mod config;
 pub mod earth;
 pub mod effects;
-pub mod plant;
 pub mod params;
+pub mod plant;
 pub mod presets;
 pub mod state;
 pub mod table;

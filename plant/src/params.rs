@@ -62,7 +62,11 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("sensor.gyro.temperature_bias.per_k", -10.0, 10.0),
     ("sensor.gyro.temperature_bias.per_k2", -1.0, 1.0),
     ("sensor.gyro.temperature_bias.per_k3", -0.1, 0.1),
-    ("sensor.gyro.temperature_gradient_bias.dph_per_k", -10.0, 10.0),
+    (
+        "sensor.gyro.temperature_gradient_bias.dph_per_k",
+        -10.0,
+        10.0,
+    ),
     ("sensor.gyro.g_sensitivity.dph_per_g", -100.0, 100.0),
     ("sensor.gyro.position_bias.dph", -100.0, 100.0),
     ("sensor.gyro.position_bias.ref_temp_c", -60.0, 130.0),
@@ -86,7 +90,11 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("sensor.accel.velocity_random_walk.ug_per_sqrthz", 0.0, 1e4),
     ("sensor.accel.quantization.pulse", 0.0, 10.0),
     ("thermal.step_s", 1e-3, 3600.0),
-    ("thermal.chamber.temp_c", crate::thermal::CHAMBER_MIN_C, crate::thermal::CHAMBER_MAX_C),
+    (
+        "thermal.chamber.temp_c",
+        crate::thermal::CHAMBER_MIN_C,
+        crate::thermal::CHAMBER_MAX_C,
+    ),
     ("thermal.chamber.profile", f64::NEG_INFINITY, f64::INFINITY),
     ("thermal.capacitance_j_per_k", 1e-3, 1e9),
     ("thermal.power_w", 0.0, 1e4),
@@ -102,7 +110,18 @@ pub const RANGES: &[(&str, f64, f64)] = &[
 
 /// Names accepted by each enumeration parameter, in the order FMUs number them (1-based).
 pub const ENUMS: &[(&str, &[&str])] = &[
-    ("scheme.kind", &["sixteen-position", "eight-position", "continuous", "static", "z-up-calibration", "z-down-calibration", "steps"]),
+    (
+        "scheme.kind",
+        &[
+            "sixteen-position",
+            "eight-position",
+            "continuous",
+            "static",
+            "z-up-calibration",
+            "z-down-calibration",
+            "steps",
+        ],
+    ),
     ("scheme.axis", &["outer", "inner"]),
     ("sensor.gyro.position_bias.transition", &["cosine", "step"]),
 ];
@@ -131,7 +150,10 @@ pub fn key_of(path: &str) -> String {
 /// The valid range of `path`, if it is a ranged number.
 pub fn range_for(path: &str) -> Option<(f64, f64)> {
     let key = key_of(path);
-    RANGES.iter().find(|(k, _, _)| *k == key).map(|&(_, lo, hi)| (lo, hi))
+    RANGES
+        .iter()
+        .find(|(k, _, _)| *k == key)
+        .map(|&(_, lo, hi)| (lo, hi))
 }
 
 /// The unit of `path`, from the unit in its key name (and, for the bare polynomial and pulse
@@ -141,10 +163,34 @@ pub fn unit_for(path: &str) -> &'static str {
     let last = key.rsplit('.').next().unwrap_or("");
     let accel = key.starts_with("sensor.accel");
     match last {
-        "per_k" => if accel { "ug/K" } else { "deg/h/K" },
-        "per_k2" => if accel { "ug/K2" } else { "deg/h/K2" },
-        "per_k3" => if accel { "ug/K3" } else { "deg/h/K3" },
-        "pulse" => if accel { "m/s" } else { "arcsec" },
+        "per_k" => {
+            if accel {
+                "ug/K"
+            } else {
+                "deg/h/K"
+            }
+        }
+        "per_k2" => {
+            if accel {
+                "ug/K2"
+            } else {
+                "deg/h/K2"
+            }
+        }
+        "per_k3" => {
+            if accel {
+                "ug/K3"
+            } else {
+                "deg/h/K3"
+            }
+        }
+        "pulse" => {
+            if accel {
+                "m/s"
+            } else {
+                "arcsec"
+            }
+        }
         "profile" => "s|degC",
         _ => [
             ("_dph_per_sqrth", "deg/h/sqrt(h)"),
@@ -190,7 +236,11 @@ fn walk(prefix: &str, v: &Value, out: &mut Vec<Param>) {
     match v {
         Value::Object(m) => {
             for (k, v) in m {
-                let p = if prefix.is_empty() { section_of(k) } else { format!("{prefix}.{k}") };
+                let p = if prefix.is_empty() {
+                    section_of(k)
+                } else {
+                    format!("{prefix}.{k}")
+                };
                 walk(&p, v, out);
             }
         }
@@ -199,17 +249,37 @@ fn walk(prefix: &str, v: &Value, out: &mut Vec<Param>) {
                 walk(&format!("{prefix}[{i}]"), v, out);
             }
         }
-        Value::Bool(b) => out.push(Param { path: prefix.into(), value: ParamValue::Bool(*b), unit: "1", range: None }),
-        Value::String(s) => out.push(Param { path: prefix.into(), value: ParamValue::Enum(s.clone()), unit: "1", range: None }),
+        Value::Bool(b) => out.push(Param {
+            path: prefix.into(),
+            value: ParamValue::Bool(*b),
+            unit: "1",
+            range: None,
+        }),
+        Value::String(s) => out.push(Param {
+            path: prefix.into(),
+            value: ParamValue::Enum(s.clone()),
+            unit: "1",
+            range: None,
+        }),
         Value::Number(n) => {
             let value = match (n.as_u64(), prefix == "run.seed" || prefix == "run.substeps") {
                 (Some(u), true) => ParamValue::Integer(u),
                 _ => ParamValue::Real(n.as_f64().unwrap_or(f64::NAN)),
             };
-            out.push(Param { path: prefix.into(), value, unit: unit_for(prefix), range: range_for(prefix) });
+            out.push(Param {
+                path: prefix.into(),
+                value,
+                unit: unit_for(prefix),
+                range: range_for(prefix),
+            });
         }
         // Non-finite numbers (accel_dps2 = inf) serialise as null.
-        Value::Null => out.push(Param { path: prefix.into(), value: ParamValue::Real(f64::INFINITY), unit: unit_for(prefix), range: range_for(prefix) }),
+        Value::Null => out.push(Param {
+            path: prefix.into(),
+            value: ParamValue::Real(f64::INFINITY),
+            unit: unit_for(prefix),
+            range: range_for(prefix),
+        }),
     }
 }
 
@@ -243,44 +313,72 @@ pub fn set(cfg: &PlantConfig, path: &str, value: ParamValue) -> Result<PlantConf
 }
 
 /// `cfg` with every `(path, value)` set, in one pass (an FMU sets all its parameters at once).
-pub fn apply<'a>(cfg: &PlantConfig, values: impl IntoIterator<Item = (&'a str, ParamValue)>) -> Result<PlantConfig, ParamError> {
+pub fn apply<'a>(
+    cfg: &PlantConfig,
+    values: impl IntoIterator<Item = (&'a str, ParamValue)>,
+) -> Result<PlantConfig, ParamError> {
     let mut v = serde_json::to_value(cfg).expect("PlantConfig serialises");
     let mut last = String::new();
     for (path, value) in values {
         set_node(&mut v, path, value)?;
         last = path.to_string();
     }
-    serde_json::from_value(v).map_err(|e| ParamError::Invalid { path: last, message: e.to_string() })
+    serde_json::from_value(v).map_err(|e| ParamError::Invalid {
+        path: last,
+        message: e.to_string(),
+    })
 }
 
 fn set_node(v: &mut Value, path: &str, value: ParamValue) -> Result<(), ParamError> {
-    let inner = path.strip_prefix("run.").filter(|p| ["rate_hz", "substeps", "seed"].contains(p)).unwrap_or(path);
+    let inner = path
+        .strip_prefix("run.")
+        .filter(|p| ["rate_hz", "substeps", "seed"].contains(p))
+        .unwrap_or(path);
     let mut node = v;
     for part in inner.split('.') {
         let (name, idx) = match part.find('[') {
             Some(i) => (&part[..i], &part[i..]),
             None => (part, ""),
         };
-        node = node.get_mut(name).ok_or_else(|| ParamError::Unknown(path.into()))?;
+        node = node
+            .get_mut(name)
+            .ok_or_else(|| ParamError::Unknown(path.into()))?;
         for ix in idx.split(']').filter(|s| !s.is_empty()) {
-            let i: usize = ix.trim_start_matches('[').parse().map_err(|_| ParamError::Unknown(path.into()))?;
-            node = node.get_mut(i).ok_or_else(|| ParamError::Unknown(path.into()))?;
+            let i: usize = ix
+                .trim_start_matches('[')
+                .parse()
+                .map_err(|_| ParamError::Unknown(path.into()))?;
+            node = node
+                .get_mut(i)
+                .ok_or_else(|| ParamError::Unknown(path.into()))?;
         }
     }
     let kind_ok = matches!(
         (&*node, &value),
-        (Value::Number(_) | Value::Null, ParamValue::Real(_) | ParamValue::Integer(_)) | (Value::Bool(_), ParamValue::Bool(_)) | (Value::String(_), ParamValue::Enum(_))
+        (
+            Value::Number(_) | Value::Null,
+            ParamValue::Real(_) | ParamValue::Integer(_)
+        ) | (Value::Bool(_), ParamValue::Bool(_))
+            | (Value::String(_), ParamValue::Enum(_))
     );
     if !kind_ok {
-        return Err(ParamError::Invalid { path: path.into(), message: format!("expected a value like {node}, got {value:?}") });
+        return Err(ParamError::Invalid {
+            path: path.into(),
+            message: format!("expected a value like {node}, got {value:?}"),
+        });
     }
     if let (ParamValue::Enum(name), Some(choices)) = (&value, enum_choices(path))
         && !choices.contains(&name.as_str())
     {
-        return Err(ParamError::Invalid { path: path.into(), message: format!("unknown variant {name:?}, expected one of {choices:?}") });
+        return Err(ParamError::Invalid {
+            path: path.into(),
+            message: format!("unknown variant {name:?}, expected one of {choices:?}"),
+        });
     }
     *node = match value {
-        ParamValue::Real(x) => serde_json::Number::from_f64(x).map(Value::Number).unwrap_or(Value::Null),
+        ParamValue::Real(x) => serde_json::Number::from_f64(x)
+            .map(Value::Number)
+            .unwrap_or(Value::Null),
         ParamValue::Integer(u) => Value::from(u),
         ParamValue::Bool(b) => Value::Bool(b),
         ParamValue::Enum(s) => Value::String(s),
@@ -294,14 +392,19 @@ mod tests {
 
     #[test]
     fn every_number_has_a_unit_and_a_range() {
-        let mut cfg = PlantConfig { sensor: crate::presets::nav_grade_full(), ..PlantConfig::default() };
+        let mut cfg = PlantConfig {
+            sensor: crate::presets::nav_grade_full(),
+            ..PlantConfig::default()
+        };
         cfg.thermal.chamber.profile = vec![[0.0, 20.0], [10.0, 30.0]];
         let params = flatten(&cfg);
         assert!(params.len() > 150, "{}", params.len());
         for p in &params {
             if matches!(p.value, ParamValue::Real(_) | ParamValue::Integer(_)) {
                 assert!(p.range.is_some(), "{} has no range in RANGES", p.path);
-                let dimensionless = ["run.", "amplitude_change", "board_to_block_dir_body"].iter().any(|k| p.path.contains(k));
+                let dimensionless = ["run.", "amplitude_change", "board_to_block_dir_body"]
+                    .iter()
+                    .any(|k| p.path.contains(k));
                 if !dimensionless {
                     assert_ne!(p.unit, "1", "{} has no unit", p.path);
                 }
@@ -316,12 +419,26 @@ mod tests {
         assert_eq!(c2.sensor.gyro.bias.dph, [0.0, 0.0, 0.02]);
         let c3 = set(&c2, "run.seed", ParamValue::Integer(42)).unwrap();
         assert_eq!(c3.seed, 42);
-        let c4 = set(&c3, "scheme.kind", ParamValue::Enum("eight-position".into())).unwrap();
+        let c4 = set(
+            &c3,
+            "scheme.kind",
+            ParamValue::Enum("eight-position".into()),
+        )
+        .unwrap();
         assert_eq!(c4.scheme.kind, crate::table::SchemeKind::EightPosition);
-        let p = flatten(&c4).into_iter().find(|p| p.path == "sensor.gyro.bias.dph[2]").unwrap();
+        let p = flatten(&c4)
+            .into_iter()
+            .find(|p| p.path == "sensor.gyro.bias.dph[2]")
+            .unwrap();
         assert_eq!((p.value, p.unit), (ParamValue::Real(0.02), "deg/h"));
-        assert!(matches!(set(&cfg, "sensor.gyro.bias.dph[7]", ParamValue::Real(1.0)), Err(ParamError::Unknown(_))));
-        assert!(matches!(set(&cfg, "sensor.gyro.bias.enabled", ParamValue::Real(1.0)), Err(ParamError::Invalid { .. })));
+        assert!(matches!(
+            set(&cfg, "sensor.gyro.bias.dph[7]", ParamValue::Real(1.0)),
+            Err(ParamError::Unknown(_))
+        ));
+        assert!(matches!(
+            set(&cfg, "sensor.gyro.bias.enabled", ParamValue::Real(1.0)),
+            Err(ParamError::Invalid { .. })
+        ));
         let e = set(&cfg, "scheme.kind", ParamValue::Enum("spiral".into())).unwrap_err();
         assert!(e.to_string().contains("scheme.kind"), "{e}");
     }
@@ -329,10 +446,14 @@ mod tests {
     #[test]
     fn every_enumeration_lists_exactly_the_names_serde_accepts() {
         let cfg = PlantConfig::default();
-        let enums: Vec<Param> = flatten(&cfg).into_iter().filter(|p| matches!(p.value, ParamValue::Enum(_))).collect();
+        let enums: Vec<Param> = flatten(&cfg)
+            .into_iter()
+            .filter(|p| matches!(p.value, ParamValue::Enum(_)))
+            .collect();
         assert_eq!(enums.len(), ENUMS.len(), "{enums:?}");
         for p in enums {
-            let choices = enum_choices(&p.path).unwrap_or_else(|| panic!("{} has no choices", p.path));
+            let choices =
+                enum_choices(&p.path).unwrap_or_else(|| panic!("{} has no choices", p.path));
             for c in choices {
                 let c2 = set(&cfg, &p.path, ParamValue::Enum(c.to_string())).unwrap();
                 let back = flatten(&c2).into_iter().find(|q| q.path == p.path).unwrap();

@@ -84,7 +84,13 @@ struct ActiveCommand {
 /// held or evaluated does not matter, the table is still there either way.
 fn hold_tick(hold_s: f64, internal_rate_hz: f64) -> u64 {
     let t = (hold_s * internal_rate_hz).floor();
-    if t.is_finite() && t >= 0.0 { t as u64 } else if t > 0.0 { u64::MAX } else { 0 }
+    if t.is_finite() && t >= 0.0 {
+        t as u64
+    } else if t > 0.0 {
+        u64::MAX
+    } else {
+        0
+    }
 }
 
 /// Deterministic results of one output interval while the table dwells. Between thermal updates
@@ -173,7 +179,13 @@ impl Plant {
         let chamber0 = cfg.thermal.chamber.temp_at(0.0);
         let thermal = ThermalNetwork::new(&cfg.thermal, chamber0, &up_b);
         let s = &cfg.sensor;
-        let quant = |on: bool, p: [f64; 3], unit: f64| Quantizer::new(if on { Vector3::from(p) * unit } else { Vector3::zeros() });
+        let quant = |on: bool, p: [f64; 3], unit: f64| {
+            Quantizer::new(if on {
+                Vector3::from(p) * unit
+            } else {
+                Vector3::zeros()
+            })
+        };
         let dt = 1.0 / cfg.rate_hz;
         let temps = thermal.temperatures();
         let gyro = GyroModel::new(&s.gyro);
@@ -188,8 +200,16 @@ impl Plant {
             gyro,
             accel,
             noise: NoiseState::new(&s.gyro, &s.accel, cfg.seed),
-            gyro_quant: quant(s.gyro.quantization.enabled, s.gyro.quantization.pulse, ARCSEC),
-            accel_quant: quant(s.accel.quantization.enabled, s.accel.quantization.pulse, 1.0),
+            gyro_quant: quant(
+                s.gyro.quantization.enabled,
+                s.gyro.quantization.pulse,
+                ARCSEC,
+            ),
+            accel_quant: quant(
+                s.accel.quantization.enabled,
+                s.accel.quantization.pulse,
+                1.0,
+            ),
             internal_rate_hz: cfg.rate_hz * cfg.substeps as f64,
             dt_s: dt,
             sqrt_dt: dt.sqrt(),
@@ -200,7 +220,10 @@ impl Plant {
             slow_countdown: (cfg.thermal.step_s * cfg.rate_hz).round() as u64,
             chamber_override_c: None,
             gimbal_now: g0,
-            hold_until_tick: hold_tick(schedule.eval_hold(0.0).1, cfg.rate_hz * cfg.substeps as f64),
+            hold_until_tick: hold_tick(
+                schedule.eval_hold(0.0).1,
+                cfg.rate_hz * cfg.substeps as f64,
+            ),
             schedule,
             mid_cache: MidCache {
                 outer_rad: f64::NAN,
@@ -308,7 +331,12 @@ impl Plant {
         w.f64(t.chamber_c);
         w.v3(&self.noise.gm_bias_rps);
         w.v3(&self.noise.rrw_bias_rps);
-        for s in [&self.noise.arw, &self.noise.gm, &self.noise.rrw, &self.noise.vrw] {
+        for s in [
+            &self.noise.arw,
+            &self.noise.gm,
+            &self.noise.rrw,
+            &self.noise.vrw,
+        ] {
             w.u128(s.word_pos());
         }
         w.v3(&self.gyro_quant.residual);
@@ -340,7 +368,10 @@ impl Plant {
 
     /// Reads what [`Plant::write_state`] wrote into a freshly built plant of the same
     /// configuration, then rebuilds the derived quantities.
-    pub(crate) fn read_state(&mut self, r: &mut crate::state::Reader<'_>) -> Result<(), crate::state::StateError> {
+    pub(crate) fn read_state(
+        &mut self,
+        r: &mut crate::state::Reader<'_>,
+    ) -> Result<(), crate::state::StateError> {
         self.tick = r.u64()?;
         self.samples = r.u64()?;
         self.slow_countdown = r.u64()?;
@@ -381,17 +412,39 @@ impl Plant {
             let n = r.u64()?;
             let mut steps = Vec::new();
             for _ in 0..n {
-                let axis = if r.u64()? != 0 { GimbalAxis::Inner } else { GimbalAxis::Outer };
-                steps.push(ResolvedStep { axis, angle_rad: r.f64()?, rate_rps: r.f64()?, dwell_s: r.f64()? });
+                let axis = if r.u64()? != 0 {
+                    GimbalAxis::Inner
+                } else {
+                    GimbalAxis::Outer
+                };
+                steps.push(ResolvedStep {
+                    axis,
+                    angle_rad: r.f64()?,
+                    rate_rps: r.f64()?,
+                    dwell_s: r.f64()?,
+                });
             }
-            self.install_command(ActiveCommand { start_tick, initial, steps, repeat });
+            self.install_command(ActiveCommand {
+                start_tick,
+                initial,
+                steps,
+                repeat,
+            });
         }
         let noise_seed = r.u64()?;
         if noise_seed != self.noise_seed {
             self.noise.reseed(noise_seed);
             self.noise_seed = noise_seed;
         }
-        for (s, w) in [&mut self.noise.arw, &mut self.noise.gm, &mut self.noise.rrw, &mut self.noise.vrw].into_iter().zip(word_pos) {
+        for (s, w) in [
+            &mut self.noise.arw,
+            &mut self.noise.gm,
+            &mut self.noise.rrw,
+            &mut self.noise.vrw,
+        ]
+        .into_iter()
+        .zip(word_pos)
+        {
             s.set_word_pos(w);
         }
         // Derived: table state at the current tick, temperature-dependent rates; caches reset.
@@ -402,7 +455,9 @@ impl Plant {
         self.dwell_cache = None;
         self.cursor = Cursor::default();
         let temps = self.thermal.temperatures();
-        self.gyro_thermal = self.gyro.thermal_rates(&temps.gyro_c(), &temps.gyro_gradient_k());
+        self.gyro_thermal = self
+            .gyro
+            .thermal_rates(&temps.gyro_c(), &temps.gyro_gradient_k());
         self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(temps.accel_c());
         Ok(())
     }
@@ -418,24 +473,46 @@ impl Plant {
         let now = self.gimbal_now.angles;
         let rate_ok = |r: f64| r.is_finite() && r > 0.0 && r <= 100f64.to_radians();
         let (steps, repeat) = match cmd {
-            GimbalCommand::MoveTo { outer_rad, inner_rad, rate_rps } => {
+            GimbalCommand::MoveTo {
+                outer_rad,
+                inner_rad,
+                rate_rps,
+            } => {
                 if !outer_rad.is_finite() || !inner_rad.is_finite() {
-                    return Err(format!("gimbal target must be finite, got outer {outer_rad} rad, inner {inner_rad} rad"));
+                    return Err(format!(
+                        "gimbal target must be finite, got outer {outer_rad} rad, inner {inner_rad} rad"
+                    ));
                 }
                 if !rate_ok(*rate_rps) {
-                    return Err(format!("gimbal rate must be in (0, 100] deg/s, got {} deg/s", rate_rps.to_degrees()));
+                    return Err(format!(
+                        "gimbal rate must be in (0, 100] deg/s, got {} deg/s",
+                        rate_rps.to_degrees()
+                    ));
                 }
-                let moves = [(GimbalAxis::Outer, outer_rad - now.outer_rad), (GimbalAxis::Inner, inner_rad - now.inner_rad)];
+                let moves = [
+                    (GimbalAxis::Outer, outer_rad - now.outer_rad),
+                    (GimbalAxis::Inner, inner_rad - now.inner_rad),
+                ];
                 let steps = moves
                     .into_iter()
                     .filter(|(_, d)| *d != 0.0)
-                    .map(|(axis, angle_rad)| ResolvedStep { axis, angle_rad, rate_rps: *rate_rps, dwell_s: 0.0 })
+                    .map(|(axis, angle_rad)| ResolvedStep {
+                        axis,
+                        angle_rad,
+                        rate_rps: *rate_rps,
+                        dwell_s: 0.0,
+                    })
                     .collect();
                 (steps, false)
             }
             GimbalCommand::Steps { steps, repeat } => {
                 for (i, s) in steps.iter().enumerate() {
-                    if !(s.angle_rad.is_finite() && s.angle_rad.abs() <= 3600f64.to_radians() && rate_ok(s.rate_rps) && s.dwell_s >= 0.0 && s.dwell_s.is_finite()) {
+                    if !(s.angle_rad.is_finite()
+                        && s.angle_rad.abs() <= 3600f64.to_radians()
+                        && rate_ok(s.rate_rps)
+                        && s.dwell_s >= 0.0
+                        && s.dwell_s.is_finite())
+                    {
                         return Err(format!(
                             "gimbal step {i}: angle must be finite within ±3600 deg, rate in (0, 100] deg/s, dwell ≥ 0 s; got {} deg, {} deg/s, {} s",
                             s.angle_rad.to_degrees(),
@@ -450,7 +527,12 @@ impl Plant {
                 (steps.clone(), *repeat)
             }
         };
-        self.install_command(ActiveCommand { start_tick: self.tick, initial: now, steps, repeat });
+        self.install_command(ActiveCommand {
+            start_tick: self.tick,
+            initial: now,
+            steps,
+            repeat,
+        });
         Ok(())
     }
 
@@ -483,7 +565,8 @@ impl Plant {
     }
 
     fn chamber_c(&self, t_s: f64) -> f64 {
-        self.chamber_override_c.unwrap_or_else(|| self.cfg.thermal.chamber.temp_at(t_s))
+        self.chamber_override_c
+            .unwrap_or_else(|| self.cfg.thermal.chamber.temp_at(t_s))
     }
 
     fn mid_attitude(&mut self, g: &GimbalState) -> MidCache {
@@ -502,7 +585,11 @@ impl Plant {
             m.inner_rad = i;
         }
         let r = gimbal_rotation(m.sin_outer, m.cos_outer, m.sin_inner, m.cos_inner);
-        m.c_nb = if self.vehicle_level { r.transpose() } else { (self.c_vn * r).transpose() };
+        m.c_nb = if self.vehicle_level {
+            r.transpose()
+        } else {
+            (self.c_vn * r).transpose()
+        };
         self.mid_cache = m;
         m
     }
@@ -513,9 +600,11 @@ impl Plant {
         if tick <= self.hold_until_tick {
             return (self.gimbal_now, self.gimbal_now);
         }
-        let ((g1, hold), gm) = self
-            .schedule
-            .eval_end_and_mid(tick as f64 / self.internal_rate_hz, (tick as f64 - 0.5) / self.internal_rate_hz, &mut self.cursor);
+        let ((g1, hold), gm) = self.schedule.eval_end_and_mid(
+            tick as f64 / self.internal_rate_hz,
+            (tick as f64 - 0.5) / self.internal_rate_hz,
+            &mut self.cursor,
+        );
         self.hold_until_tick = hold_tick(hold, self.internal_rate_hz);
         (g1, gm)
     }
@@ -559,15 +648,26 @@ impl Plant {
                 gyro_gradient_k: gradient,
                 accel_temp_c: accel_temp,
             };
-            let (gyro_terms, accel_terms) = (&mut self.truth.gyro_terms_rad, &mut self.truth.accel_terms_mps);
+            let (gyro_terms, accel_terms) = (
+                &mut self.truth.gyro_terms_rad,
+                &mut self.truth.accel_terms_mps,
+            );
             if sub == 0 {
-                gyro_err = self.gyro.increment_error_with(&ctx, &self.gyro_thermal, gyro_terms);
-                accel_err = self.accel.increment_error_with(&ctx, &self.accel_thermal_mps2, accel_terms);
+                gyro_err = self
+                    .gyro
+                    .increment_error_with(&ctx, &self.gyro_thermal, gyro_terms);
+                accel_err =
+                    self.accel
+                        .increment_error_with(&ctx, &self.accel_thermal_mps2, accel_terms);
             } else {
                 let mut gterm = [Vector3::zeros(); GYRO_TERMS];
                 let mut aterm = [Vector3::zeros(); ACCEL_TERMS];
-                gyro_err += self.gyro.increment_error_with(&ctx, &self.gyro_thermal, &mut gterm);
-                accel_err += self.accel.increment_error_with(&ctx, &self.accel_thermal_mps2, &mut aterm);
+                gyro_err += self
+                    .gyro
+                    .increment_error_with(&ctx, &self.gyro_thermal, &mut gterm);
+                accel_err +=
+                    self.accel
+                        .increment_error_with(&ctx, &self.accel_thermal_mps2, &mut aterm);
                 gyro_terms.iter_mut().zip(gterm).for_each(|(a, b)| *a += b);
                 accel_terms.iter_mut().zip(aterm).for_each(|(a, b)| *a += b);
             }
@@ -601,7 +701,8 @@ impl Plant {
         }
         self.slow_countdown -= 1;
         let temps = self.thermal.temperatures();
-        let (gyro_temp, gradient, accel_temp) = (temps.gyro_c(), temps.gyro_gradient_k(), temps.accel_c());
+        let (gyro_temp, gradient, accel_temp) =
+            (temps.gyro_c(), temps.gyro_gradient_k(), temps.accel_c());
 
         let substeps = self.cfg.substeps as u64;
         let held = self.tick + substeps <= self.hold_until_tick;
@@ -627,10 +728,18 @@ impl Plant {
 
         let dt = self.dt_s;
         use crate::effects::{AccelTerm as A, GyroTerm as G};
-        let arw = if self.noise.has_arw() { self.noise.arw_increment(self.sqrt_dt) } else { Vector3::zeros() };
+        let arw = if self.noise.has_arw() {
+            self.noise.arw_increment(self.sqrt_dt)
+        } else {
+            Vector3::zeros()
+        };
         let gm = self.noise.gm_bias_rps * dt;
         let rrw = self.noise.rrw_bias_rps * dt;
-        let vrw = if self.noise.has_vrw() { self.noise.vrw_increment(self.sqrt_dt) } else { Vector3::zeros() };
+        let vrw = if self.noise.has_vrw() {
+            self.noise.vrw_increment(self.sqrt_dt)
+        } else {
+            Vector3::zeros()
+        };
         let tr = &mut self.truth;
         tr.gyro_terms_rad[G::AngleRandomWalk as usize] = arw;
         tr.gyro_terms_rad[G::BiasInstability as usize] = gm;
@@ -648,6 +757,11 @@ impl Plant {
         tr.dv_true_mps = dv_true;
         tr.temps = temps;
         tr.position_weight = weight;
-        ImuSample { index, t_s: self.time_s(), dtheta_rad: dtheta_out, dv_mps: dv_out }
+        ImuSample {
+            index,
+            t_s: self.time_s(),
+            dtheta_rad: dtheta_out,
+            dv_mps: dv_out,
+        }
     }
 }

@@ -20,7 +20,10 @@ pub fn preset(name: &str) -> Option<SensorSpec> {
 /// The built-in scenario `paper-16pos-week` resolves to exactly this (tested there); the FMU
 /// uses it as its start values.
 pub fn paper_16pos_config() -> crate::PlantConfig {
-    crate::PlantConfig { sensor: paper_table3(), ..crate::PlantConfig::default() }
+    crate::PlantConfig {
+        sensor: paper_table3(),
+        ..crate::PlantConfig::default()
+    }
 }
 
 /// Table 3 of the paper, with every magnitude applied with positive sign on every axis:
@@ -68,7 +71,11 @@ pub fn nav_grade_full() -> SensorSpec {
     g.temperature_gradient_bias.enabled = true;
     g.temperature_gradient_bias.dph_per_k = [0.002, -0.001, 0.0015];
     g.g_sensitivity.enabled = true;
-    g.g_sensitivity.dph_per_g = [[0.001, 0.0005, 0.0], [0.0, 0.001, 0.0005], [0.0005, 0.0, 0.001]];
+    g.g_sensitivity.dph_per_g = [
+        [0.001, 0.0005, 0.0],
+        [0.0, 0.001, 0.0005],
+        [0.0005, 0.0, 0.001],
+    ];
     g.dither_bias.enabled = true;
     g.dither_bias.amplitude_change = [0.02; 3];
     g.dither_bias.dph_per_amplitude = [0.05, 0.05, 0.05];

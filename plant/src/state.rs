@@ -19,7 +19,9 @@ pub enum StateError {
     #[error("not a rins plant state (bad header)")]
     BadHeader,
     /// The state belongs to a plant with another configuration.
-    #[error("the state was saved from a plant with another configuration (fingerprint {saved:#018x}, this plant {current:#018x})")]
+    #[error(
+        "the state was saved from a plant with another configuration (fingerprint {saved:#018x}, this plant {current:#018x})"
+    )]
     ConfigMismatch {
         /// Fingerprint in the state.
         saved: u64,
@@ -42,7 +44,9 @@ pub enum StateError {
 /// FNV-1a over the configuration's JSON form: equal configurations, equal fingerprints.
 pub fn fingerprint(cfg: &PlantConfig) -> u64 {
     let text = serde_json::to_string(cfg).expect("PlantConfig serialises");
-    text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3))
+    text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    })
 }
 
 /// Appends fields to a byte buffer.
@@ -73,7 +77,10 @@ pub(crate) struct Reader<'a> {
 impl<'a> Reader<'a> {
     fn take<const N: usize>(&mut self) -> Result<[u8; N], StateError> {
         let end = self.pos + N;
-        let s = self.bytes.get(self.pos..end).ok_or(StateError::Length { got: self.bytes.len(), expected: end })?;
+        let s = self.bytes.get(self.pos..end).ok_or(StateError::Length {
+            got: self.bytes.len(),
+            expected: end,
+        })?;
         self.pos = end;
         Ok(s.try_into().expect("length checked"))
     }
@@ -112,10 +119,20 @@ impl Plant {
         if saved != current {
             return Err(StateError::ConfigMismatch { saved, current });
         }
-        let mut plant = Plant::new(cfg).map_err(|e| StateError::Config(e.iter().map(|x| x.to_string()).collect::<Vec<_>>().join("; ")))?;
+        let mut plant = Plant::new(cfg).map_err(|e| {
+            StateError::Config(
+                e.iter()
+                    .map(|x| x.to_string())
+                    .collect::<Vec<_>>()
+                    .join("; "),
+            )
+        })?;
         plant.read_state(&mut r)?;
         if r.pos != bytes.len() {
-            return Err(StateError::Length { got: bytes.len(), expected: r.pos });
+            return Err(StateError::Length {
+                got: bytes.len(),
+                expected: r.pos,
+            });
         }
         Ok(plant)
     }

@@ -41,7 +41,10 @@ pub struct ChamberSpec {
 
 impl Default for ChamberSpec {
     fn default() -> Self {
-        Self { temp_c: 25.0, profile: Vec::new() }
+        Self {
+            temp_c: 25.0,
+            profile: Vec::new(),
+        }
     }
 }
 
@@ -141,7 +144,11 @@ impl Temperatures {
     /// Gradient across each gyro block, taken as block minus housing, K.
     pub fn gyro_gradient_k(&self) -> Vector3<f64> {
         let h = self.nodes_c[node::HOUSING];
-        Vector3::new(self.nodes_c[1] - h, self.nodes_c[2] - h, self.nodes_c[3] - h)
+        Vector3::new(
+            self.nodes_c[1] - h,
+            self.nodes_c[2] - h,
+            self.nodes_c[3] - h,
+        )
     }
     /// Accelerometer cluster temperature, °C.
     pub fn accel_c(&self) -> f64 {
@@ -183,7 +190,10 @@ impl ThermalNetwork {
 
     /// Current temperatures.
     pub fn temperatures(&self) -> Temperatures {
-        Temperatures { nodes_c: self.temps.into(), chamber_c: self.chamber_c }
+        Temperatures {
+            nodes_c: self.temps.into(),
+            chamber_c: self.chamber_c,
+        }
     }
 
     /// Overwrites the state (used by state restore).
@@ -209,7 +219,11 @@ impl ThermalNetwork {
         for k in 0..3 {
             let gyro = node::GYRO_X + k;
             link(gyro, node::HOUSING, s.g_gyro_housing_w_per_k[k]);
-            link(node::BOARD, gyro, s.g_board_gyro_w_per_k[k] + rise * s.g_board_gyro_convection_w_per_k[k]);
+            link(
+                node::BOARD,
+                gyro,
+                s.g_board_gyro_w_per_k[k] + rise * s.g_board_gyro_convection_w_per_k[k],
+            );
             link(gyro, node::GYRO_X + (k + 1) % 3, s.g_gyro_gyro_w_per_k);
         }
         l[(node::HOUSING, node::HOUSING)] += s.g_housing_chamber_w_per_k;
@@ -225,7 +239,9 @@ impl ThermalNetwork {
     /// Steady state L·T = P + G_hc·T_chamber.
     pub fn steady_state(&self, chamber_c: f64, up_b: &Vector3<f64>) -> Vector6<f64> {
         let l = self.conductance_matrix(self.dir.dot(up_b));
-        l.lu().solve(&self.source(chamber_c)).unwrap_or_else(|| Vector6::repeat(chamber_c))
+        l.lu()
+            .solve(&self.source(chamber_c))
+            .unwrap_or_else(|| Vector6::repeat(chamber_c))
     }
 
     /// Advances the network by `h_s` to a chamber temperature `chamber_c` with body up
@@ -240,7 +256,10 @@ impl ThermalNetwork {
         let up_dot = self.dir.dot(up_b);
         let cap = Vector6::from(self.spec.capacitance_j_per_k) / h_s;
         // Refactor only when the attitude-dependent convection or the step changed (dwells reuse it).
-        if self.cached_lu.is_none() || (up_dot - self.cached_up_dot).abs() > 1e-12 || h_s != self.cached_step_s {
+        if self.cached_lu.is_none()
+            || (up_dot - self.cached_up_dot).abs() > 1e-12
+            || h_s != self.cached_step_s
+        {
             let a = self.conductance_matrix(up_dot) + Matrix6::from_diagonal(&cap);
             self.cached_lu = Some(a.lu());
             self.cached_up_dot = up_dot;
@@ -296,7 +315,12 @@ mod tests {
         let mut net = ThermalNetwork::new(&spec, 0.0, &up);
         for _ in 0..50 {
             net.step(1e6, 40.0, &up);
-            assert!(net.temperatures().nodes_c.iter().all(|t| (0.0..200.0).contains(t)));
+            assert!(
+                net.temperatures()
+                    .nodes_c
+                    .iter()
+                    .all(|t| (0.0..200.0).contains(t))
+            );
         }
         let ss = net.steady_state(40.0, &up);
         for i in 0..6 {
@@ -304,7 +328,11 @@ mod tests {
         }
         // Energy balance at steady state: everything dissipated leaves through the housing link.
         let total: f64 = spec.power_w.iter().sum();
-        assert_relative_eq!(spec.g_housing_chamber_w_per_k * (ss[node::HOUSING] - 40.0), total, epsilon = 1e-9);
+        assert_relative_eq!(
+            spec.g_housing_chamber_w_per_k * (ss[node::HOUSING] - 40.0),
+            total,
+            epsilon = 1e-9
+        );
     }
 
     #[test]
@@ -319,7 +347,10 @@ mod tests {
 
     #[test]
     fn chamber_profile_interpolates_and_holds() {
-        let c = ChamberSpec { temp_c: 0.0, profile: vec![[0.0, 10.0], [100.0, 20.0]] };
+        let c = ChamberSpec {
+            temp_c: 0.0,
+            profile: vec![[0.0, 10.0], [100.0, 20.0]],
+        };
         assert_relative_eq!(c.temp_at(-5.0), 10.0);
         assert_relative_eq!(c.temp_at(25.0), 12.5);
         assert_relative_eq!(c.temp_at(1e9), 20.0);

@@ -12,7 +12,12 @@ fn ideal(outer_deg: f64, inner_deg: f64) -> PlantConfig {
     let mut c = PlantConfig::default();
     c.earth.rotation = false;
     c.thermal.enabled = false;
-    c.scheme = SchemeSpec { kind: SchemeKind::Static, initial_outer_deg: outer_deg, initial_inner_deg: inner_deg, ..SchemeSpec::default() };
+    c.scheme = SchemeSpec {
+        kind: SchemeKind::Static,
+        initial_outer_deg: outer_deg,
+        initial_inner_deg: inner_deg,
+        ..SchemeSpec::default()
+    };
     c
 }
 
@@ -23,17 +28,30 @@ fn one_turn(axis: GimbalAxis, angle_deg: f64) -> SchemeSpec {
         accel_dps2: f64::INFINITY,
         lead_dwell_s: 1.0,
         repeat: false,
-        steps: vec![RotationStep { axis, angle_deg, rate_dps: 10.0, dwell_s: 1.0 }],
+        steps: vec![RotationStep {
+            axis,
+            angle_deg,
+            rate_dps: 10.0,
+            dwell_s: 1.0,
+        }],
         ..SchemeSpec::default()
     }
 }
 
 /// Runs `seconds` and returns (Σ gyro error, Σ accel error, Σ true Δθ, Σ true Δv). Errors are
 /// accumulated per step (output minus truth) so large sums do not swamp them in roundoff.
-fn run(cfg: &PlantConfig, seconds: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+fn run(
+    cfg: &PlantConfig,
+    seconds: f64,
+) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>, Vector3<f64>) {
     let mut p = Plant::new(cfg).expect("valid config");
     let n = (seconds * cfg.rate_hz).round() as u64;
-    let (mut th_err, mut v_err, mut th_true, mut v_true) = (Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), Vector3::zeros());
+    let (mut th_err, mut v_err, mut th_true, mut v_true) = (
+        Vector3::zeros(),
+        Vector3::zeros(),
+        Vector3::zeros(),
+        Vector3::zeros(),
+    );
     for _ in 0..n {
         let s = p.step();
         th_err += s.dtheta_rad - p.truth().dtheta_true_rad;
@@ -71,8 +89,16 @@ fn constant_bias_and_accel_bias() {
     cfg.sensor.accel.bias.enabled = true;
     cfg.sensor.accel.bias.ug = [50.0, -20.0, 10.0];
     let (th, v, _, _) = run(&cfg, 100.0);
-    assert_relative_eq!(th, Vector3::new(0.01, -0.02, 0.03) * DPH * 100.0, epsilon = 1e-15);
-    assert_relative_eq!(v, Vector3::new(50.0, -20.0, 10.0) * UG * 100.0, epsilon = 1e-11);
+    assert_relative_eq!(
+        th,
+        Vector3::new(0.01, -0.02, 0.03) * DPH * 100.0,
+        epsilon = 1e-15
+    );
+    assert_relative_eq!(
+        v,
+        Vector3::new(50.0, -20.0, 10.0) * UG * 100.0,
+        epsilon = 1e-11
+    );
 }
 
 #[test]
@@ -91,11 +117,19 @@ fn scale_factor_misalignment_and_asymmetry_over_a_half_turn() {
     let (th, _, th_t, _) = run(&cfg, 20.0);
     let pi = std::f64::consts::PI;
     assert_relative_eq!(th_t.z, pi, epsilon = 1e-12);
-    assert_relative_eq!(th, Vector3::new(3.0 * ARCSEC * pi, -4.0 * ARCSEC * pi, 7.0 * PPM * pi), epsilon = 1e-15);
+    assert_relative_eq!(
+        th,
+        Vector3::new(3.0 * ARCSEC * pi, -4.0 * ARCSEC * pi, 7.0 * PPM * pi),
+        epsilon = 1e-15
+    );
     // The reverse turn flips SF and misalignment but not the asymmetry.
     cfg.scheme = one_turn(GimbalAxis::Outer, -180.0);
     let (th2, _, _, _) = run(&cfg, 20.0);
-    assert_relative_eq!((th) + th2, Vector3::new(0.0, 0.0, 4.0 * PPM * pi), epsilon = 1e-15);
+    assert_relative_eq!(
+        (th) + th2,
+        Vector3::new(0.0, 0.0, 4.0 * PPM * pi),
+        epsilon = 1e-15
+    );
 }
 
 #[test]
@@ -108,7 +142,11 @@ fn accel_scale_factor_and_misalignment_under_gravity() {
     a.misalignment.arcsec = [0.0, 5.0, 0.0, 7.0, 0.0, 0.0];
     let (_, v, _, v_t) = run(&cfg, 10.0);
     let g = v_t.z;
-    assert_relative_eq!(v, Vector3::new(5.0 * ARCSEC * g, 7.0 * ARCSEC * g, 50.0 * PPM * g), epsilon = 1e-13);
+    assert_relative_eq!(
+        v,
+        Vector3::new(5.0 * ARCSEC * g, 7.0 * ARCSEC * g, 50.0 * PPM * g),
+        epsilon = 1e-13
+    );
 }
 
 #[test]
@@ -126,7 +164,11 @@ fn temperature_polynomial_bias_at_chamber_temperature() {
     a.per_k = [1.0, 0.0, 0.0];
     let (th, v, _, _) = run(&cfg, 10.0);
     let x = 20.0;
-    assert_relative_eq!((th) / 10.0, Vector3::new(1e-3 * x, 1e-5 * x * x, 1e-7 * x * x * x) * DPH, epsilon = 1e-18);
+    assert_relative_eq!(
+        (th) / 10.0,
+        Vector3::new(1e-3 * x, 1e-5 * x * x, 1e-7 * x * x * x) * DPH,
+        epsilon = 1e-18
+    );
     assert_relative_eq!((v).x / 10.0, 20.0 * UG, epsilon = 1e-12);
 }
 
@@ -140,9 +182,16 @@ fn gradient_bias_follows_the_thermal_network() {
     p.step();
     let tr = p.truth();
     let grad = tr.temps.gyro_gradient_k();
-    assert!(grad.x > 0.1, "self-heated blocks are warmer than the housing");
+    assert!(
+        grad.x > 0.1,
+        "self-heated blocks are warmer than the housing"
+    );
     let expect = Vector3::new(0.002 * grad.x, 0.003 * grad.y, -0.001 * grad.z) * DPH * 0.01;
-    assert_relative_eq!(tr.gyro_terms_rad[GyroTerm::TemperatureGradientBias as usize], expect, epsilon = 1e-20);
+    assert_relative_eq!(
+        tr.gyro_terms_rad[GyroTerm::TemperatureGradientBias as usize],
+        expect,
+        epsilon = 1e-20
+    );
 }
 
 #[test]
@@ -154,8 +203,16 @@ fn g_sensitivity_and_dither_bias_at_z_up_and_z_down() {
         g.g_sensitivity.dph_per_g = [[0.0, 0.0, 0.01], [0.0, 0.0, 0.0], [0.0, 0.0, 0.02]];
         let (th, _, _, v_t) = run(&cfg, 10.0);
         let fz = v_t.z / 10.0;
-        assert_relative_eq!(fz, sign * rins_plant::earth::normal_gravity(36.6f64.to_radians(), 0.0), epsilon = 1e-9);
-        assert_relative_eq!((th) / 10.0, Vector3::new(0.01, 0.0, 0.02) * DPH * fz / G0, epsilon = 1e-18);
+        assert_relative_eq!(
+            fz,
+            sign * rins_plant::earth::normal_gravity(36.6f64.to_radians(), 0.0),
+            epsilon = 1e-9
+        );
+        assert_relative_eq!(
+            (th) / 10.0,
+            Vector3::new(0.01, 0.0, 0.02) * DPH * fz / G0,
+            epsilon = 1e-18
+        );
 
         let mut cfg = ideal(0.0, inner);
         let d = &mut cfg.sensor.gyro.dither_bias;
@@ -209,8 +266,16 @@ fn regressors_times_coefficients_reproduce_each_term() {
             let theta = gm.coefficients(term, axis);
             assert_eq!(phi.len(), theta.len(), "{term:?}");
             let sum: f64 = phi.iter().zip(&theta).map(|(a, b)| a * b).sum();
-            assert_relative_eq!(sum, terms[term as usize][axis], epsilon = 1e-22, max_relative = 1e-12);
-            assert!(terms[term as usize][axis] != 0.0, "{term:?} axis {axis} should be active in nav-grade-full");
+            assert_relative_eq!(
+                sum,
+                terms[term as usize][axis],
+                epsilon = 1e-22,
+                max_relative = 1e-12
+            );
+            assert!(
+                terms[term as usize][axis] != 0.0,
+                "{term:?} axis {axis} should be active in nav-grade-full"
+            );
         }
     }
     let mut aterms = [Vector3::zeros(); 6];
@@ -219,8 +284,17 @@ fn regressors_times_coefficients_reproduce_each_term() {
         for axis in 0..3 {
             let mut phi = Vec::new();
             am.regressors(term, &ctx, axis, &mut phi);
-            let sum: f64 = phi.iter().zip(am.coefficients(term, axis)).map(|(a, b)| a * b).sum();
-            assert_relative_eq!(sum, aterms[term as usize][axis], epsilon = 1e-22, max_relative = 1e-12);
+            let sum: f64 = phi
+                .iter()
+                .zip(am.coefficients(term, axis))
+                .map(|(a, b)| a * b)
+                .sum();
+            assert_relative_eq!(
+                sum,
+                aterms[term as usize][axis],
+                epsilon = 1e-22,
+                max_relative = 1e-12
+            );
         }
     }
 }
@@ -281,7 +355,11 @@ fn bias_instability_is_stationary_with_the_specified_correlation_time() {
     assert_relative_eq!(sd, 0.01, max_relative = 0.05);
     let m = xs.iter().sum::<f64>() / xs.len() as f64;
     let lag = 50;
-    let c: f64 = xs.windows(lag + 1).map(|w| (w[0] - m) * (w[lag] - m)).sum::<f64>() / (xs.len() - lag) as f64;
+    let c: f64 = xs
+        .windows(lag + 1)
+        .map(|w| (w[0] - m) * (w[lag] - m))
+        .sum::<f64>()
+        / (xs.len() - lag) as f64;
     assert_relative_eq!(c / (sd * sd), (-1.0f64).exp(), epsilon = 0.05);
 }
 
@@ -306,18 +384,33 @@ fn rate_random_walk_variance_grows_linearly() {
         })
         .collect();
     // sigma(T) = K sqrt(T/h) in deg/h; sample std over 400 seeds within 15 %.
-    assert_relative_eq!(sample_std(&ends), k * (t_end / 3600.0f64).sqrt(), max_relative = 0.15);
+    assert_relative_eq!(
+        sample_std(&ends),
+        k * (t_end / 3600.0f64).sqrt(),
+        max_relative = 0.15
+    );
 }
 
 #[test]
 fn same_seed_is_bit_identical_and_another_seed_differs() {
-    let mut cfg = PlantConfig { sensor: rins_plant::presets::nav_grade_full(), ..PlantConfig::default() };
+    let mut cfg = PlantConfig {
+        sensor: rins_plant::presets::nav_grade_full(),
+        ..PlantConfig::default()
+    };
     let sample_bits = |cfg: &PlantConfig| {
         let mut p = Plant::new(cfg).unwrap();
         (0..30_000)
             .flat_map(|_| {
                 let s = p.step();
-                [s.dtheta_rad.x, s.dtheta_rad.y, s.dtheta_rad.z, s.dv_mps.x, s.dv_mps.y, s.dv_mps.z].map(f64::to_bits)
+                [
+                    s.dtheta_rad.x,
+                    s.dtheta_rad.y,
+                    s.dtheta_rad.z,
+                    s.dv_mps.x,
+                    s.dv_mps.y,
+                    s.dv_mps.z,
+                ]
+                .map(f64::to_bits)
             })
             .collect::<Vec<u64>>()
     };
@@ -330,10 +423,18 @@ fn same_seed_is_bit_identical_and_another_seed_differs() {
 
 #[test]
 fn switching_one_noise_term_off_leaves_the_others_realisation() {
-    let mut cfg = PlantConfig { sensor: rins_plant::presets::nav_grade_full(), ..PlantConfig::default() };
+    let mut cfg = PlantConfig {
+        sensor: rins_plant::presets::nav_grade_full(),
+        ..PlantConfig::default()
+    };
     let arw = |cfg: &PlantConfig| {
         let mut p = Plant::new(cfg).unwrap();
-        (0..1000).map(|_| { p.step(); p.truth().gyro_terms_rad[GyroTerm::AngleRandomWalk as usize] }).collect::<Vec<_>>()
+        (0..1000)
+            .map(|_| {
+                p.step();
+                p.truth().gyro_terms_rad[GyroTerm::AngleRandomWalk as usize]
+            })
+            .collect::<Vec<_>>()
     };
     let a = arw(&cfg);
     cfg.sensor.accel.velocity_random_walk.enabled = false;
@@ -356,13 +457,19 @@ fn true_increments_integrate_to_the_true_attitude_over_a_cycle() {
         let d = p.truth().dtheta_true_rad;
         c *= nalgebra::Rotation3::from_scaled_axis(d).into_inner();
     }
-    let err = (c.transpose() * p.attitude_c_bn() - nalgebra::Matrix3::identity()).abs().max();
+    let err = (c.transpose() * p.attitude_c_bn() - nalgebra::Matrix3::identity())
+        .abs()
+        .max();
     assert!(err < 1e-9, "attitude mismatch {err}");
 }
 
 #[test]
 fn dwell_cache_is_bit_identical_to_recomputing() {
-    let cfg = PlantConfig { sensor: rins_plant::presets::nav_grade_full(), substeps: 2, ..PlantConfig::default() };
+    let cfg = PlantConfig {
+        sensor: rins_plant::presets::nav_grade_full(),
+        substeps: 2,
+        ..PlantConfig::default()
+    };
     let mut a = Plant::new(&cfg).unwrap();
     let mut b = Plant::new(&cfg).unwrap();
     b.set_dwell_cache(false);
@@ -380,11 +487,20 @@ fn coefficient_keys_round_trip_every_deterministic_coefficient() {
     // the spec again gives the same coefficients: the diagnosis can add fitted effects to files.
     use rins_plant::effects::{AccelModel, AccelTerm, GyroModel, GyroTerm, accel, gyro};
     use rins_plant::params::{ParamValue, apply, flatten};
-    let cfg = PlantConfig { sensor: rins_plant::presets::nav_grade_full(), ..PlantConfig::default() };
-    let (gm, am) = (GyroModel::new(&cfg.sensor.gyro), AccelModel::new(&cfg.sensor.accel));
+    let cfg = PlantConfig {
+        sensor: rins_plant::presets::nav_grade_full(),
+        ..PlantConfig::default()
+    };
+    let (gm, am) = (
+        GyroModel::new(&cfg.sensor.gyro),
+        AccelModel::new(&cfg.sensor.accel),
+    );
     let mut pairs: Vec<(String, ParamValue)> = Vec::new();
     for axis in 0..3 {
-        for t in GyroTerm::DETERMINISTIC.iter().filter(|t| **t != GyroTerm::DitherBias) {
+        for t in GyroTerm::DETERMINISTIC
+            .iter()
+            .filter(|t| **t != GyroTerm::DitherBias)
+        {
             let keys = gyro::coefficient_keys(*t, axis);
             let coefs = gm.coefficients(*t, axis);
             assert_eq!(keys.len(), coefs.len(), "{t:?}");
@@ -393,7 +509,10 @@ fn coefficient_keys_round_trip_every_deterministic_coefficient() {
             }
         }
         for t in AccelTerm::DETERMINISTIC {
-            for ((k, unit), c) in accel::coefficient_keys(*t, axis).into_iter().zip(am.coefficients(*t, axis)) {
+            for ((k, unit), c) in accel::coefficient_keys(*t, axis)
+                .into_iter()
+                .zip(am.coefficients(*t, axis))
+            {
                 pairs.push((k, ParamValue::Real(c / unit * 2.0)));
             }
         }
@@ -403,15 +522,29 @@ fn coefficient_keys_round_trip_every_deterministic_coefficient() {
         assert!(known.contains(k), "{k} is not a scenario key");
     }
     let doubled = apply(&cfg, pairs.iter().map(|(k, v)| (k.as_str(), v.clone()))).unwrap();
-    let (g2, a2) = (GyroModel::new(&doubled.sensor.gyro), AccelModel::new(&doubled.sensor.accel));
+    let (g2, a2) = (
+        GyroModel::new(&doubled.sensor.gyro),
+        AccelModel::new(&doubled.sensor.accel),
+    );
     for axis in 0..3 {
-        for t in GyroTerm::DETERMINISTIC.iter().filter(|t| **t != GyroTerm::DitherBias) {
-            for (a, b) in gm.coefficients(*t, axis).iter().zip(g2.coefficients(*t, axis)) {
+        for t in GyroTerm::DETERMINISTIC
+            .iter()
+            .filter(|t| **t != GyroTerm::DitherBias)
+        {
+            for (a, b) in gm
+                .coefficients(*t, axis)
+                .iter()
+                .zip(g2.coefficients(*t, axis))
+            {
                 approx::assert_relative_eq!(2.0 * a, b, max_relative = 1e-12);
             }
         }
         for t in AccelTerm::DETERMINISTIC {
-            for (a, b) in am.coefficients(*t, axis).iter().zip(a2.coefficients(*t, axis)) {
+            for (a, b) in am
+                .coefficients(*t, axis)
+                .iter()
+                .zip(a2.coefficients(*t, axis))
+            {
                 approx::assert_relative_eq!(2.0 * a, b, max_relative = 1e-12);
             }
         }

@@ -4,7 +4,12 @@ use rins_plant::state::StateError;
 use rins_plant::{Plant, PlantConfig};
 
 fn cfg() -> PlantConfig {
-    let mut c = PlantConfig { sensor: rins_plant::presets::nav_grade_full(), substeps: 2, seed: 9, ..PlantConfig::default() };
+    let mut c = PlantConfig {
+        sensor: rins_plant::presets::nav_grade_full(),
+        substeps: 2,
+        seed: 9,
+        ..PlantConfig::default()
+    };
     c.thermal.chamber.profile = vec![[0.0, 20.0], [3000.0, 35.0]];
     c
 }
@@ -47,10 +52,22 @@ fn wrong_states_are_refused() {
     let bytes = a.serialize_state();
     let mut other = c.clone();
     other.seed = 10;
-    assert!(matches!(Plant::from_serialized_state(&other, &bytes), Err(StateError::ConfigMismatch { .. })));
-    assert!(matches!(Plant::from_serialized_state(&c, &bytes[..bytes.len() - 3]), Err(StateError::Length { .. })));
-    assert_eq!(Plant::from_serialized_state(&c, b"not a state at all").unwrap_err(), StateError::BadHeader);
+    assert!(matches!(
+        Plant::from_serialized_state(&other, &bytes),
+        Err(StateError::ConfigMismatch { .. })
+    ));
+    assert!(matches!(
+        Plant::from_serialized_state(&c, &bytes[..bytes.len() - 3]),
+        Err(StateError::Length { .. })
+    ));
+    assert_eq!(
+        Plant::from_serialized_state(&c, b"not a state at all").unwrap_err(),
+        StateError::BadHeader
+    );
     let mut longer = bytes.clone();
     longer.push(0);
-    assert!(matches!(Plant::from_serialized_state(&c, &longer), Err(StateError::Length { .. })));
+    assert!(matches!(
+        Plant::from_serialized_state(&c, &longer),
+        Err(StateError::Length { .. })
+    ));
 }

@@ -15,5 +15,14 @@ fn main() {
     let t5 = t0.elapsed().as_secs_f64();
     let (d, _, _) = rins_verify::diagnosis::diagnose(&sc.plant, &h, Default::default());
     let t6 = t0.elapsed().as_secs_f64();
-    eprintln!("read {t1:.2} parse {:.2} history {:.2} replay {:.2} report {:.2} diagnose {:.2} ({} cells, {} ranked)", t2 - t1, t3 - t2, t4 - t3, t5 - t4, t6 - t5, r.cells.len(), d.ranking.len());
+    eprintln!(
+        "read {t1:.2} parse {:.2} history {:.2} replay {:.2} report {:.2} diagnose {:.2} ({} cells, {} ranked)",
+        t2 - t1,
+        t3 - t2,
+        t4 - t3,
+        t5 - t4,
+        t6 - t5,
+        r.cells.len(),
+        d.ranking.len()
+    );
 }

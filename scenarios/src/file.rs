@@ -27,7 +27,11 @@ pub struct ScenarioMeta {
 
 impl Default for ScenarioMeta {
     fn default() -> Self {
-        Self { name: "unnamed".into(), description: String::new(), duration_s: 3600.0 }
+        Self {
+            name: "unnamed".into(),
+            description: String::new(),
+            duration_s: 3600.0,
+        }
     }
 }
 
@@ -46,7 +50,11 @@ pub struct RunSpec {
 impl Default for RunSpec {
     fn default() -> Self {
         let p = PlantConfig::default();
-        Self { rate_hz: p.rate_hz, substeps: p.substeps, seed: p.seed }
+        Self {
+            rate_hz: p.rate_hz,
+            substeps: p.substeps,
+            seed: p.seed,
+        }
     }
 }
 
@@ -78,7 +86,12 @@ pub struct OutputSpec {
 
 impl Default for OutputSpec {
     fn default() -> Self {
-        Self { csv: true, decimation: 1, truth: false, effects: false }
+        Self {
+            csv: true,
+            decimation: 1,
+            truth: false,
+            effects: false,
+        }
     }
 }
 
@@ -106,7 +119,9 @@ impl CampaignSpec {
         if n == 1 {
             return vec![self.from_c];
         }
-        (0..n).map(|k| self.from_c + (self.to_c - self.from_c) * k as f64 / (n - 1) as f64).collect()
+        (0..n)
+            .map(|k| self.from_c + (self.to_c - self.from_c) * k as f64 / (n - 1) as f64)
+            .collect()
     }
 }
 
@@ -182,12 +197,27 @@ pub enum ScenarioError {
 
 /// The scenarios shipped with rins, by name.
 pub const BUILTIN: [(&str, &str); 6] = [
-    ("paper-16pos-week", include_str!("../files/paper-16pos-week.toml")),
-    ("paper-16pos-short", include_str!("../files/paper-16pos-short.toml")),
-    ("calibration-z-up", include_str!("../files/calibration-z-up.toml")),
-    ("calibration-z-down", include_str!("../files/calibration-z-down.toml")),
+    (
+        "paper-16pos-week",
+        include_str!("../files/paper-16pos-week.toml"),
+    ),
+    (
+        "paper-16pos-short",
+        include_str!("../files/paper-16pos-short.toml"),
+    ),
+    (
+        "calibration-z-up",
+        include_str!("../files/calibration-z-up.toml"),
+    ),
+    (
+        "calibration-z-down",
+        include_str!("../files/calibration-z-down.toml"),
+    ),
     ("campaign-37", include_str!("../files/campaign-37.toml")),
-    ("paper-static-week", include_str!("../files/paper-static-week.toml")),
+    (
+        "paper-static-week",
+        include_str!("../files/paper-static-week.toml"),
+    ),
 ];
 
 impl Scenario {
@@ -196,30 +226,48 @@ impl Scenario {
         let s = path.to_string_lossy();
         let name = s.strip_prefix("builtin:").unwrap_or(&s);
         let explicit = s.starts_with("builtin:");
-        if let Some((n, text)) = BUILTIN.iter().find(|(n, _)| *n == name).filter(|_| explicit || !path.exists()) {
+        if let Some((n, text)) = BUILTIN
+            .iter()
+            .find(|(n, _)| *n == name)
+            .filter(|_| explicit || !path.exists())
+        {
             return Self::from_toml(text, &format!("builtin:{n}"));
         }
         if explicit {
             let names: Vec<&str> = BUILTIN.iter().map(|(n, _)| *n).collect();
-            return Err(ScenarioError::Parse { source_name: s.to_string(), message: format!("no such built-in scenario; built-ins are {names:?}") });
+            return Err(ScenarioError::Parse {
+                source_name: s.to_string(),
+                message: format!("no such built-in scenario; built-ins are {names:?}"),
+            });
         }
-        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::Read { path: path.into(), source: e })?;
+        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::Read {
+            path: path.into(),
+            source: e,
+        })?;
         Self::from_toml(&text, &path.display().to_string())
     }
 
     /// Parses scenario text; `source_name` appears in every error.
     pub fn from_toml(text: &str, source_name: &str) -> Result<Self, ScenarioError> {
-        let parse_err = |e: toml::de::Error| ScenarioError::Parse { source_name: source_name.into(), message: e.to_string() };
+        let parse_err = |e: toml::de::Error| ScenarioError::Parse {
+            source_name: source_name.into(),
+            message: e.to_string(),
+        };
         // Pass 1 on the text itself: unknown keys and wrong types get toml's line and column.
         let raw: ScenarioFile = toml::from_str(text).map_err(parse_err)?;
         // Pass 2: lay the user's [sensor] over the preset, key by key.
         let mut table: toml::Table = toml::from_str(text).map_err(parse_err)?;
         let preset_name = raw.sensor.preset.clone().unwrap_or_else(|| "ideal".into());
         let Some(preset) = presets::preset(&preset_name) else {
-            let line = locate_key(text, "sensor.preset").map(|l| format!("line {l}: ")).unwrap_or_default();
+            let line = locate_key(text, "sensor.preset")
+                .map(|l| format!("line {l}: "))
+                .unwrap_or_default();
             return Err(ScenarioError::Invalid {
                 source_name: source_name.into(),
-                problems: vec![format!("{line}sensor.preset: expected one of {:?}, got {preset_name:?}", presets::PRESET_NAMES)],
+                problems: vec![format!(
+                    "{line}sensor.preset: expected one of {:?}, got {preset_name:?}",
+                    presets::PRESET_NAMES
+                )],
             });
         };
         let mut sensor = toml::Table::try_from(&preset).expect("presets serialise");
@@ -240,7 +288,13 @@ impl Scenario {
             sensor,
             thermal: raw.thermal,
         };
-        let scenario = Scenario { source: source_name.into(), meta: raw.scenario, plant, outputs: raw.outputs, campaign: raw.campaign };
+        let scenario = Scenario {
+            source: source_name.into(),
+            meta: raw.scenario,
+            plant,
+            outputs: raw.outputs,
+            campaign: raw.campaign,
+        };
         scenario.validate(Some(text))?;
         Ok(scenario)
     }
@@ -249,14 +303,25 @@ impl Scenario {
     pub fn validate(&self, text: Option<&str>) -> Result<(), ScenarioError> {
         let mut problems: Vec<(String, String)> = Vec::new();
         if !(self.meta.duration_s > 0.0 && self.meta.duration_s <= 1e7) {
-            problems.push(("scenario.duration_s".into(), format!("expected a number in (0, 1e7], got {}", self.meta.duration_s)));
+            problems.push((
+                "scenario.duration_s".into(),
+                format!(
+                    "expected a number in (0, 1e7], got {}",
+                    self.meta.duration_s
+                ),
+            ));
         }
         if self.outputs.decimation == 0 {
-            problems.push(("outputs.decimation".into(), "expected a whole number ≥ 1, got 0".into()));
+            problems.push((
+                "outputs.decimation".into(),
+                "expected a whole number ≥ 1, got 0".into(),
+            ));
         }
         if let Some(c) = &self.campaign {
             for (i, t) in c.temperatures_c().iter().enumerate() {
-                if !(rins_plant::thermal::CHAMBER_MIN_C..=rins_plant::thermal::CHAMBER_MAX_C).contains(t) {
+                if !(rins_plant::thermal::CHAMBER_MIN_C..=rins_plant::thermal::CHAMBER_MAX_C)
+                    .contains(t)
+                {
                     problems.push((
                         "campaign.temps_c".into(),
                         format!(
@@ -269,7 +334,10 @@ impl Scenario {
             }
         }
         if let Err(errs) = self.plant.validate() {
-            problems.extend(errs.into_iter().map(|e| (e.path, format!("expected {}, got {}", e.expected, e.got))));
+            problems.extend(
+                errs.into_iter()
+                    .map(|e| (e.path, format!("expected {}, got {}", e.expected, e.got))),
+            );
         }
         if problems.is_empty() {
             return Ok(());
@@ -277,11 +345,17 @@ impl Scenario {
         let lines = problems
             .into_iter()
             .map(|(path, msg)| {
-                let at = text.and_then(|t| locate_key(t, &path)).map(|l| format!("line {l}: ")).unwrap_or_else(|| "(default or preset value) ".into());
+                let at = text
+                    .and_then(|t| locate_key(t, &path))
+                    .map(|l| format!("line {l}: "))
+                    .unwrap_or_else(|| "(default or preset value) ".into());
                 format!("  {at}{path}: {msg}")
             })
             .collect();
-        Err(ScenarioError::Invalid { source_name: self.source.clone(), problems: lines })
+        Err(ScenarioError::Invalid {
+            source_name: self.source.clone(),
+            problems: lines,
+        })
     }
 
     /// Number of output samples in the scenario.

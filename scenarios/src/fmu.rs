@@ -22,7 +22,10 @@ use crate::runner::{RunSummary, Sink};
 /// Where the built FMI libraries are looked for when no folder is given: next to the running
 /// executable (cargo puts `rins` and the cdylibs in the same target folder).
 pub fn default_lib_dir() -> PathBuf {
-    std::env::current_exe().ok().and_then(|p| p.parent().map(Path::to_path_buf)).unwrap_or_default()
+    std::env::current_exe()
+        .ok()
+        .and_then(|p| p.parent().map(Path::to_path_buf))
+        .unwrap_or_default()
 }
 
 /// Writes both FMUs into `out`; returns their paths.
@@ -36,7 +39,10 @@ pub fn build(out: &Path, lib_dir: &Path) -> Result<Vec<PathBuf>> {
                 lib.display()
             );
         }
-        made.push(package::build_fmu(v, &lib, out).with_context(|| format!("packaging {}", lib.display()))?);
+        made.push(
+            package::build_fmu(v, &lib, out)
+                .with_context(|| format!("packaging {}", lib.display()))?,
+        );
     }
     Ok(made)
 }
@@ -45,7 +51,9 @@ pub fn build(out: &Path, lib_dir: &Path) -> Result<Vec<PathBuf>> {
 /// chamber input (driven by [`run`]); explicit scheme steps cannot be expressed and are refused.
 fn set_parameters(fmu: &Fmu2, inst: &Instance2<'_>, cfg: &PlantConfig) -> Result<()> {
     if !cfg.scheme.steps.is_empty() {
-        bail!("scheme.steps cannot be FMU parameters; drive the table with the gimbal command inputs instead (docs/fmu.md)");
+        bail!(
+            "scheme.steps cannot be FMU parameters; drive the table with the gimbal command inputs instead (docs/fmu.md)"
+        );
     }
     let mut fixed = cfg.clone();
     fixed.thermal.chamber.temp_c = cfg.thermal.chamber.temp_at(0.0);
@@ -56,12 +64,16 @@ fn set_parameters(fmu: &Fmu2, inst: &Instance2<'_>, cfg: &PlantConfig) -> Result
         let r = match &p.value {
             ParamValue::Real(x) => inst.set_real(&[vr], &[*x]),
             ParamValue::Integer(u) => {
-                let v = i32::try_from(*u).map_err(|_| anyhow::anyhow!("{}: {u} does not fit the FMU's 32-bit Integer", p.path))?;
+                let v = i32::try_from(*u).map_err(|_| {
+                    anyhow::anyhow!("{}: {u} does not fit the FMU's 32-bit Integer", p.path)
+                })?;
                 inst.set_integer(&[vr], &[v])
             }
             ParamValue::Bool(b) => inst.set_boolean(&[vr], &[*b]),
             ParamValue::Enum(e) => {
-                let i = params::enum_choices(&p.path).and_then(|c| c.iter().position(|x| x == e)).context("enumeration item")?;
+                let i = params::enum_choices(&p.path)
+                    .and_then(|c| c.iter().position(|x| x == e))
+                    .context("enumeration item")?;
                 inst.set_integer(&[vr], &[i as i32 + 1])
             }
         };
@@ -84,7 +96,15 @@ impl OutputRefs {
         names.extend((0..3).map(|i| format!("imu.dtheta_rad[{i}]")));
         names.extend((0..3).map(|i| format!("imu.dv_mps[{i}]")));
         names.push("imu.time_s".into());
-        names.extend(["gimbal.outer_rad", "gimbal.inner_rad", "gimbal.outer_rate_rps", "gimbal.inner_rate_rps"].map(String::from));
+        names.extend(
+            [
+                "gimbal.outer_rad",
+                "gimbal.inner_rad",
+                "gimbal.outer_rate_rps",
+                "gimbal.inner_rate_rps",
+            ]
+            .map(String::from),
+        );
         names.extend(node::NAMES.iter().map(|n| format!("thermal.{n}_c")));
         names.push("thermal.chamber_c".into());
         names.extend((0..3).map(|i| format!("truth.dtheta_rad[{i}]")));
@@ -96,18 +116,35 @@ impl OutputRefs {
         for t in AccelTerm::ALL {
             names.extend((0..3).map(|i| format!("effect.accel.{}_mps[{i}]", t.key())));
         }
-        let reals = names.iter().map(|n| fmu.vr(n)).collect::<Result<Vec<_>, _>>().map_err(anyhow::Error::msg)?;
-        Ok(Self { reals, moving: fmu.vr("gimbal.moving").map_err(anyhow::Error::msg)? })
+        let reals = names
+            .iter()
+            .map(|n| fmu.vr(n))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(anyhow::Error::msg)?;
+        Ok(Self {
+            reals,
+            moving: fmu.vr("gimbal.moving").map_err(anyhow::Error::msg)?,
+        })
     }
 }
 
 /// The sample and truth of the last communication step, rebuilt from the FMU's outputs.
-fn read_outputs(inst: &Instance2<'_>, refs: &OutputRefs, buf: &mut [f64], index: u64) -> Result<(ImuSample, Truth)> {
+fn read_outputs(
+    inst: &Instance2<'_>,
+    refs: &OutputRefs,
+    buf: &mut [f64],
+    index: u64,
+) -> Result<(ImuSample, Truth)> {
     inst.get_real(&refs.reals, buf)?;
     let mut moving = [0];
     inst.get_boolean(&[refs.moving], &mut moving)?;
     let v3 = |k: usize| Vector3::new(buf[k], buf[k + 1], buf[k + 2]);
-    let sample = ImuSample { index, t_s: buf[6], dtheta_rad: v3(0), dv_mps: v3(3) };
+    let sample = ImuSample {
+        index,
+        t_s: buf[6],
+        dtheta_rad: v3(0),
+        dv_mps: v3(3),
+    };
     let mut nodes_c = [0.0; node::COUNT];
     nodes_c.copy_from_slice(&buf[11..11 + node::COUNT]);
     let k = 11 + node::COUNT;
@@ -130,7 +167,10 @@ fn read_outputs(inst: &Instance2<'_>, refs: &OutputRefs, buf: &mut [f64], index:
         },
         dtheta_true_rad: v3(k + 1),
         dv_true_mps: v3(k + 4),
-        temps: Temperatures { nodes_c, chamber_c: buf[k] },
+        temps: Temperatures {
+            nodes_c,
+            chamber_c: buf[k],
+        },
         gyro_terms_rad: gyro,
         accel_terms_mps: accel,
         position_weight: buf[k + 7],
@@ -140,14 +180,23 @@ fn read_outputs(inst: &Instance2<'_>, refs: &OutputRefs, buf: &mut [f64], index:
 
 /// Runs `scenario` through the FMI 2 FMU at `fmu_path` for `samples` IMU samples, one
 /// communication step per sample, feeding `sinks` exactly as [`crate::runner::run`] does.
-pub fn run(fmu_path: &Path, scenario: &Scenario, samples: u64, sinks: &mut [&mut dyn Sink]) -> Result<RunSummary> {
+pub fn run(
+    fmu_path: &Path,
+    scenario: &Scenario,
+    samples: u64,
+    sinks: &mut [&mut dyn Sink],
+) -> Result<RunSummary> {
     let fmu = Fmu2::open(fmu_path).map_err(anyhow::Error::msg)?;
     let inst = fmu.instantiate(&scenario.meta.name, false)?;
     inst.setup_experiment(0.0, None)?;
     set_parameters(&fmu, &inst, &scenario.plant)?;
     let chamber = &scenario.plant.thermal.chamber;
     let profile = !chamber.profile.is_empty();
-    let (override_vr, chamber_vr) = (fmu.vr("input.chamber_override").map_err(anyhow::Error::msg)?, fmu.vr("input.chamber_temp_c").map_err(anyhow::Error::msg)?);
+    let (override_vr, chamber_vr) = (
+        fmu.vr("input.chamber_override")
+            .map_err(anyhow::Error::msg)?,
+        fmu.vr("input.chamber_temp_c").map_err(anyhow::Error::msg)?,
+    );
     if profile {
         inst.set_boolean(&[override_vr], &[true])?;
         inst.set_real(&[chamber_vr], &[chamber.temp_at(0.0)])?;
@@ -181,5 +230,8 @@ pub fn run(fmu_path: &Path, scenario: &Scenario, samples: u64, sinks: &mut [&mut
     }
     pb.finish_and_clear();
     inst.terminate()?;
-    Ok(RunSummary { samples, wall_s: t0.elapsed().as_secs_f64() })
+    Ok(RunSummary {
+        samples,
+        wall_s: t0.elapsed().as_secs_f64(),
+    })
 }

@@ -12,12 +12,26 @@ pub fn locate_key(text: &str, path: &str) -> Option<usize> {
     for (n, line) in text.lines().enumerate() {
         let l = line.trim();
         if let Some(h) = l.strip_prefix('[') {
-            current = h.trim_start_matches('[').trim_end_matches(']').trim().to_string();
+            current = h
+                .trim_start_matches('[')
+                .trim_end_matches(']')
+                .trim()
+                .to_string();
             continue;
         }
-        let Some((k, _)) = l.split_once('=') else { continue };
-        let full = if current.is_empty() { k.trim().to_string() } else { format!("{current}.{}", k.trim()) };
-        let want = if section.is_empty() { key.to_string() } else { format!("{section}.{key}") };
+        let Some((k, _)) = l.split_once('=') else {
+            continue;
+        };
+        let full = if current.is_empty() {
+            k.trim().to_string()
+        } else {
+            format!("{current}.{}", k.trim())
+        };
+        let want = if section.is_empty() {
+            key.to_string()
+        } else {
+            format!("{section}.{key}")
+        };
         if full == want {
             return Some(n + 1);
         }

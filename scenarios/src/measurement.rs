@@ -6,7 +6,15 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 /// Columns every file needs (plus attitude and at least one temperature).
-pub const REQUIRED: [&str; 7] = ["t_s", "dtheta_x_rad", "dtheta_y_rad", "dtheta_z_rad", "dv_x_mps", "dv_y_mps", "dv_z_mps"];
+pub const REQUIRED: [&str; 7] = [
+    "t_s",
+    "dtheta_x_rad",
+    "dtheta_y_rad",
+    "dtheta_z_rad",
+    "dv_x_mps",
+    "dv_y_mps",
+    "dv_z_mps",
+];
 /// Attitude as gimbal angles …
 pub const GIMBAL: [&str; 2] = ["outer_deg", "inner_deg"];
 /// … or as the IMU quaternion q_b^n.
@@ -16,10 +24,18 @@ pub const OPTIONAL: [&str; 4] = ["sample", "lat_deg", "lon_deg", "height_m"];
 /// Optional label columns.
 pub const LABELS: [&str; 3] = ["run", "segment", "position"];
 /// Prefixes of optional numeric families: temperatures, truth and per-effect columns.
-pub const FAMILIES: [(&str, &str); 5] = [("temp_", "_c"), ("dtheta_true_", "_rad"), ("dv_true_", "_mps"), ("gyro_", "_dph"), ("accel_", "_ug")];
+pub const FAMILIES: [(&str, &str); 5] = [
+    ("temp_", "_c"),
+    ("dtheta_true_", "_rad"),
+    ("dv_true_", "_mps"),
+    ("gyro_", "_dph"),
+    ("accel_", "_ug"),
+];
 
 /// Units a quantity may wrongly be given in, to say what was expected.
-const WRONG_UNITS: [&str; 12] = ["_deg", "_arcsec", "_mrad", "_urad", "_dph", "_dps", "_g", "_ug", "_ms", "_min", "_h", "_k"];
+const WRONG_UNITS: [&str; 12] = [
+    "_deg", "_arcsec", "_mrad", "_urad", "_dph", "_dps", "_g", "_ug", "_ms", "_min", "_h", "_k",
+];
 
 /// A parsed measurement file.
 #[derive(Clone, Debug, Default)]
@@ -78,7 +94,11 @@ impl Measurement {
     }
     /// Names of the temperature columns.
     pub fn temperature_columns(&self) -> Vec<&str> {
-        self.columns.keys().filter(|k| k.starts_with("temp_") && k.ends_with("_c")).map(String::as_str).collect()
+        self.columns
+            .keys()
+            .filter(|k| k.starts_with("temp_") && k.ends_with("_c"))
+            .map(String::as_str)
+            .collect()
     }
 }
 
@@ -98,19 +118,29 @@ pub struct MeasurementError {
 
 fn classify(name: &str) -> Result<bool, String> {
     // Ok(true): numeric, Ok(false): label.
-    if REQUIRED.contains(&name) || GIMBAL.contains(&name) || QUATERNION.contains(&name) || OPTIONAL.contains(&name) {
+    if REQUIRED.contains(&name)
+        || GIMBAL.contains(&name)
+        || QUATERNION.contains(&name)
+        || OPTIONAL.contains(&name)
+    {
         return Ok(true);
     }
     if LABELS.contains(&name) {
         return Ok(false);
     }
-    if FAMILIES.iter().any(|(p, s)| name.starts_with(p) && name.ends_with(s) && name.len() > p.len() + s.len()) {
+    if FAMILIES
+        .iter()
+        .any(|(p, s)| name.starts_with(p) && name.ends_with(s) && name.len() > p.len() + s.len())
+    {
         return Ok(true);
     }
     // A known quantity in a wrong unit?
     for want in REQUIRED.iter().chain(&GIMBAL).chain(&OPTIONAL[1..]) {
         let base = want.rsplit_once('_').map(|(b, _)| b).unwrap_or(want);
-        if let Some(unit) = name.strip_prefix(base).filter(|u| WRONG_UNITS.contains(u) || u.starts_with('_')) {
+        if let Some(unit) = name
+            .strip_prefix(base)
+            .filter(|u| WRONG_UNITS.contains(u) || u.starts_with('_'))
+        {
             return Err(format!("unit {unit:?} not accepted; expected {want}"));
         }
     }
@@ -134,11 +164,31 @@ fn count_rows(part: &str) -> usize {
 type Columns = (Vec<Vec<f64>>, Vec<LabelColumn>, usize);
 
 /// Parses the data rows of `part`; row numbers start after `row0`.
-fn parse_rows(part: &str, row0: usize, header: &[String], numeric: &[bool], source_name: &str) -> Result<Columns, MeasurementError> {
-    let err = |row: usize, column: &str, message: String| MeasurementError { source_name: source_name.into(), row, column: column.into(), message };
+fn parse_rows(
+    part: &str,
+    row0: usize,
+    header: &[String],
+    numeric: &[bool],
+    source_name: &str,
+) -> Result<Columns, MeasurementError> {
+    let err = |row: usize, column: &str, message: String| MeasurementError {
+        source_name: source_name.into(),
+        row,
+        column: column.into(),
+        message,
+    };
     // Columns are filled by index (a map lookup per field would dominate on million-row files).
     let estimate = part.len() / 200;
-    let mut nums: Vec<Vec<f64>> = numeric.iter().map(|&n| if n { Vec::with_capacity(estimate) } else { Vec::new() }).collect();
+    let mut nums: Vec<Vec<f64>> = numeric
+        .iter()
+        .map(|&n| {
+            if n {
+                Vec::with_capacity(estimate)
+            } else {
+                Vec::new()
+            }
+        })
+        .collect();
     let mut labs: Vec<LabelColumn> = vec![LabelColumn::default(); header.len()];
     let mut row = row0;
     for line in part.lines() {
@@ -151,7 +201,10 @@ fn parse_rows(part: &str, row0: usize, header: &[String], numeric: &[bool], sour
         let bytes = line.as_bytes();
         let mut a = 0;
         while a <= bytes.len() {
-            let b = bytes[a..].iter().position(|c| *c == b',').map_or(bytes.len(), |k| a + k);
+            let b = bytes[a..]
+                .iter()
+                .position(|c| *c == b',')
+                .map_or(bytes.len(), |k| a + k);
             let i = count;
             count += 1;
             if i < header.len() {
@@ -160,7 +213,9 @@ fn parse_rows(part: &str, row0: usize, header: &[String], numeric: &[bool], sour
                     f = f.trim();
                 }
                 if numeric[i] {
-                    let v: f64 = f.parse().map_err(|_| err(row, &header[i], format!("not a number: {f:?}")))?;
+                    let v: f64 = f
+                        .parse()
+                        .map_err(|_| err(row, &header[i], format!("not a number: {f:?}")))?;
                     if !v.is_finite() {
                         return Err(err(row, &header[i], format!("{v} is not a finite number")));
                     }
@@ -172,7 +227,11 @@ fn parse_rows(part: &str, row0: usize, header: &[String], numeric: &[bool], sour
             a = b + 1;
         }
         if count != header.len() {
-            return Err(err(row, "", format!("{count} fields, header has {}", header.len())));
+            return Err(err(
+                row,
+                "",
+                format!("{count} fields, header has {}", header.len()),
+            ));
         }
     }
     Ok((nums, labs, row - row0))
@@ -187,12 +246,25 @@ struct Layout {
 
 impl Layout {
     fn err(&self, row: usize, column: &str, message: String) -> MeasurementError {
-        MeasurementError { source_name: self.source.clone(), row, column: column.into(), message }
+        MeasurementError {
+            source_name: self.source.clone(),
+            row,
+            column: column.into(),
+            message,
+        }
     }
 
     fn new(header_line: &str, source: &str) -> Result<Self, MeasurementError> {
-        let err = |column: &str, message: String| MeasurementError { source_name: source.into(), row: 0, column: column.into(), message };
-        let header: Vec<String> = header_line.split(',').map(|s| s.trim().to_string()).collect();
+        let err = |column: &str, message: String| MeasurementError {
+            source_name: source.into(),
+            row: 0,
+            column: column.into(),
+            message,
+        };
+        let header: Vec<String> = header_line
+            .split(',')
+            .map(|s| s.trim().to_string())
+            .collect();
         let mut numeric = Vec::with_capacity(header.len());
         for (i, h) in header.iter().enumerate() {
             if header[..i].contains(h) {
@@ -207,12 +279,26 @@ impl Layout {
         }
         let has = |set: &[&str]| set.iter().all(|c| header.iter().any(|h| h == c));
         if !has(&GIMBAL) && !has(&QUATERNION) {
-            return Err(err("outer_deg", "missing attitude: give outer_deg and inner_deg, or q_bn_w, q_bn_x, q_bn_y, q_bn_z".into()));
+            return Err(err(
+                "outer_deg",
+                "missing attitude: give outer_deg and inner_deg, or q_bn_w, q_bn_x, q_bn_y, q_bn_z"
+                    .into(),
+            ));
         }
-        if !header.iter().any(|h| h.starts_with("temp_") && h.ends_with("_c")) {
-            return Err(err("temp_*_c", "missing temperature: at least one temp_<name>_c column".into()));
+        if !header
+            .iter()
+            .any(|h| h.starts_with("temp_") && h.ends_with("_c"))
+        {
+            return Err(err(
+                "temp_*_c",
+                "missing temperature: at least one temp_<name>_c column".into(),
+            ));
         }
-        Ok(Self { header, numeric, source: source.into() })
+        Ok(Self {
+            header,
+            numeric,
+            source: source.into(),
+        })
     }
 }
 
@@ -225,7 +311,11 @@ struct Acc {
 
 impl Acc {
     fn new(l: &Layout) -> Self {
-        Self { nums: vec![Vec::new(); l.header.len()], labs: vec![LabelColumn::default(); l.header.len()], rows: 0 }
+        Self {
+            nums: vec![Vec::new(); l.header.len()],
+            labs: vec![LabelColumn::default(); l.header.len()],
+            rows: 0,
+        }
     }
 
     /// Parses the complete lines of `chunk`, in two halves on both cores.
@@ -237,7 +327,15 @@ impl Acc {
         let (a, b) = rayon::join(
             || parse_rows(first, row0, &l.header, &l.numeric, &l.source),
             // Row numbers of the second half continue the first half's.
-            || parse_rows(second, row0 + count_rows(first), &l.header, &l.numeric, &l.source),
+            || {
+                parse_rows(
+                    second,
+                    row0 + count_rows(first),
+                    &l.header,
+                    &l.numeric,
+                    &l.source,
+                )
+            },
         );
         for (nums, labs, rows) in [a?, b?] {
             for (x, y) in self.nums.iter_mut().zip(nums) {
@@ -264,7 +362,12 @@ pub fn parse(text: &str, source_name: &str) -> Result<Measurement, MeasurementEr
             break;
         }
     }
-    let header_line = header_line.ok_or_else(|| MeasurementError { source_name: source_name.into(), row: 0, column: String::new(), message: "empty file: expected a header row".into() })?;
+    let header_line = header_line.ok_or_else(|| MeasurementError {
+        source_name: source_name.into(),
+        row: 0,
+        column: String::new(),
+        message: "empty file: expected a header row".into(),
+    })?;
     let layout = Layout::new(header_line, source_name)?;
     let mut acc = Acc::new(&layout);
     acc.add(&layout, &text[offset..])?;
@@ -274,8 +377,16 @@ pub fn parse(text: &str, source_name: &str) -> Result<Measurement, MeasurementEr
 /// Builds the measurement from the parsed columns and checks segments and time.
 fn finish(layout: Layout, acc: Acc) -> Result<Measurement, MeasurementError> {
     let err = |row: usize, column: &str, message: String| layout.err(row, column, message);
-    let mut m = Measurement { rows: acc.rows, ..Measurement::default() };
-    for ((h, &num), (n, l)) in layout.header.iter().zip(&layout.numeric).zip(acc.nums.into_iter().zip(acc.labs)) {
+    let mut m = Measurement {
+        rows: acc.rows,
+        ..Measurement::default()
+    };
+    for ((h, &num), (n, l)) in layout
+        .header
+        .iter()
+        .zip(&layout.numeric)
+        .zip(acc.nums.into_iter().zip(acc.labs))
+    {
         if num {
             m.columns.insert(h.clone(), n);
         } else {
@@ -287,11 +398,18 @@ fn finish(layout: Layout, acc: Acc) -> Result<Measurement, MeasurementError> {
     }
     // Segments: consecutive rows with the same (run, segment) labels.
     let label = |name: &str, i: usize| m.labels.get(name).map_or(u32::MAX, |c| c.index[i]);
-    let name = |col: &str, i: usize| m.labels.get(col).map_or(String::new(), |c| c.get(i).to_string());
+    let name = |col: &str, i: usize| {
+        m.labels
+            .get(col)
+            .map_or(String::new(), |c| c.get(i).to_string())
+    };
     let mut start = 0;
     let mut segments = Vec::new();
     for i in 1..=m.rows {
-        if i == m.rows || label("run", i) != label("run", start) || label("segment", i) != label("segment", start) {
+        if i == m.rows
+            || label("run", i) != label("run", start)
+            || label("segment", i) != label("segment", start)
+        {
             segments.push((name("run", start), name("segment", start), start, i));
             start = i;
         }
@@ -306,7 +424,11 @@ fn finish(layout: Layout, acc: Acc) -> Result<Measurement, MeasurementError> {
         let mut d: Vec<f64> = t[a..b].windows(2).map(|w| w[1] - w[0]).collect();
         for (k, dt) in d.iter().enumerate() {
             if *dt <= 0.0 {
-                return Err(err(a + k + 2, "t_s", format!("time not increasing: {} after {}", t[a + k + 1], t[a + k])));
+                return Err(err(
+                    a + k + 2,
+                    "t_s",
+                    format!("time not increasing: {} after {}", t[a + k + 1], t[a + k]),
+                ));
             }
         }
         d.sort_by(f64::total_cmp);
@@ -315,7 +437,13 @@ fn finish(layout: Layout, acc: Acc) -> Result<Measurement, MeasurementError> {
             let dt = t[k] - t[k - 1];
             // The last row of a decimated file may be shorter; a longer step is a gap.
             if dt > median * 1.01 + 1e-9 {
-                return Err(err(k + 1, "t_s", format!("gap: {dt} s since the previous row, the segment's interval is {median} s (start a new segment or run after a gap)")));
+                return Err(err(
+                    k + 1,
+                    "t_s",
+                    format!(
+                        "gap: {dt} s since the previous row, the segment's interval is {median} s (start a new segment or run after a gap)"
+                    ),
+                ));
             }
         }
     }
@@ -327,7 +455,12 @@ fn finish(layout: Layout, acc: Acc) -> Result<Measurement, MeasurementError> {
 pub fn read(path: &Path) -> Result<Measurement, MeasurementError> {
     use std::io::Read;
     let source = path.display().to_string();
-    let io_err = |e: std::io::Error| MeasurementError { source_name: source.clone(), row: 0, column: String::new(), message: format!("cannot read: {e}") };
+    let io_err = |e: std::io::Error| MeasurementError {
+        source_name: source.clone(),
+        row: 0,
+        column: String::new(),
+        message: format!("cannot read: {e}"),
+    };
     let mut f = std::fs::File::open(path).map_err(io_err)?;
     const PIECE: usize = 64 << 20;
     let mut buf: Vec<u8> = Vec::with_capacity(PIECE + (1 << 16));
@@ -340,14 +473,21 @@ pub fn read(path: &Path) -> Result<Measurement, MeasurementError> {
         buf.truncate(have + n);
         let eof = n == 0;
         // Parse every complete line; keep the partial last line for the next piece.
-        let end = if eof { buf.len() } else { buf.iter().rposition(|b| *b == b'\n').map_or(0, |k| k + 1) };
+        let end = if eof {
+            buf.len()
+        } else {
+            buf.iter().rposition(|b| *b == b'\n').map_or(0, |k| k + 1)
+        };
         if end > 0 {
             let row = acc.as_ref().map_or(0, |a| a.rows) + 1;
             let text = std::str::from_utf8(&buf[..end]).map_err(|e| MeasurementError {
                 source_name: source.clone(),
                 row,
                 column: String::new(),
-                message: format!("not UTF-8 text (byte {} of this piece): {e}", e.valid_up_to()),
+                message: format!(
+                    "not UTF-8 text (byte {} of this piece): {e}",
+                    e.valid_up_to()
+                ),
             })?;
             let mut body = text;
             if layout.is_none() {
@@ -372,7 +512,12 @@ pub fn read(path: &Path) -> Result<Measurement, MeasurementError> {
             break;
         }
     }
-    let layout = layout.ok_or_else(|| MeasurementError { source_name: source.clone(), row: 0, column: String::new(), message: "empty file: expected a header row".into() })?;
+    let layout = layout.ok_or_else(|| MeasurementError {
+        source_name: source.clone(),
+        row: 0,
+        column: String::new(),
+        message: "empty file: expected a header row".into(),
+    })?;
     let acc = acc.expect("created with the layout");
     finish(layout, acc)
 }

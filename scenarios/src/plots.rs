@@ -34,7 +34,9 @@ pub fn write_svg(path: &Path, title: &str, x_label: &str, panels: &[Panel]) -> R
     let root = SVGBackend::new(path, (900, height)).into_drawing_area();
     let err = |e: &dyn std::fmt::Display| anyhow!("{}: {e}", path.display());
     root.fill(&WHITE).map_err(|e| err(&e))?;
-    let root = root.titled(title, ("sans-serif", 20)).map_err(|e| err(&e))?;
+    let root = root
+        .titled(title, ("sans-serif", 20))
+        .map_err(|e| err(&e))?;
     let areas = root.split_evenly((panels.len(), 1));
     for (area, p) in areas.iter().zip(panels) {
         let pts = p.lines.iter().flat_map(|l| l.points.iter());
@@ -58,22 +60,45 @@ pub fn write_svg(path: &Path, title: &str, x_label: &str, panels: &[Panel]) -> R
             .y_label_area_size(70)
             .build_cartesian_2d(x0..x1.max(x0 + 1e-9), (y0 - pad)..(y1 + pad))
             .map_err(|e| err(&e))?;
-        chart.configure_mesh().x_desc(x_label).y_desc(p.y_label).draw().map_err(|e| err(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc(p.y_label)
+            .draw()
+            .map_err(|e| err(&e))?;
         for l in &p.lines {
             let color = l.color;
             let series = if l.error_bars {
-                let bars = l.points.chunks(2).filter(|c| c.len() == 2).map(move |c| PathElement::new(vec![c[0], c[1]], color.stroke_width(1)));
+                let bars = l
+                    .points
+                    .chunks(2)
+                    .filter(|c| c.len() == 2)
+                    .map(move |c| PathElement::new(vec![c[0], c[1]], color.stroke_width(1)));
                 chart.draw_series(bars).map_err(|e| err(&e))?;
-                let dots = l.points.chunks(2).filter(|c| c.len() == 2).map(move |c| Circle::new((c[0].0, 0.5 * (c[0].1 + c[1].1)), 3, color.filled()));
+                let dots = l.points.chunks(2).filter(|c| c.len() == 2).map(move |c| {
+                    Circle::new((c[0].0, 0.5 * (c[0].1 + c[1].1)), 3, color.filled())
+                });
                 chart.draw_series(dots).map_err(|e| err(&e))?
             } else {
-                chart.draw_series(LineSeries::new(l.points.iter().copied(), color.stroke_width(2))).map_err(|e| err(&e))?
+                chart
+                    .draw_series(LineSeries::new(
+                        l.points.iter().copied(),
+                        color.stroke_width(2),
+                    ))
+                    .map_err(|e| err(&e))?
             };
             if !l.label.is_empty() {
-                series.label(l.label).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+                series.label(l.label).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+                });
             }
         }
-        chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw().map_err(|e| err(&e))?;
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| err(&e))?;
     }
     root.present().map_err(|e| err(&e))?;
     Ok(())

@@ -31,7 +31,14 @@ pub struct RunSummary {
 /// Runs `scenario` for `samples` output samples, feeding `sinks`.
 pub fn run(scenario: &Scenario, samples: u64, sinks: &mut [&mut dyn Sink]) -> Result<RunSummary> {
     let mut plant = Plant::new(&scenario.plant).map_err(|errs| {
-        anyhow::anyhow!("{}: {}", scenario.source, errs.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("; "))
+        anyhow::anyhow!(
+            "{}: {}",
+            scenario.source,
+            errs.iter()
+                .map(|e| e.to_string())
+                .collect::<Vec<_>>()
+                .join("; ")
+        )
     })?;
     let pb = progress::bar(samples, &scenario.meta.name);
     let t0 = Instant::now();
@@ -49,5 +56,8 @@ pub fn run(scenario: &Scenario, samples: u64, sinks: &mut [&mut dyn Sink]) -> Re
         sink.finish()?;
     }
     pb.finish_and_clear();
-    Ok(RunSummary { samples, wall_s: t0.elapsed().as_secs_f64() })
+    Ok(RunSummary {
+        samples,
+        wall_s: t0.elapsed().as_secs_f64(),
+    })
 }

@@ -59,7 +59,11 @@ fn model() -> PlantConfig {
 
 /// Runs `truth` at each chamber temperature (`profile(T)` replaces the constant chamber when
 /// given), writes the measurement CSV text and reads it back.
-fn dataset(truth: &PlantConfig, temps: &[f64], profile: Option<&dyn Fn(f64) -> Vec<[f64; 2]>>) -> History {
+fn dataset(
+    truth: &PlantConfig,
+    temps: &[f64],
+    profile: Option<&dyn Fn(f64) -> Vec<[f64; 2]>>,
+) -> History {
     let runs: Vec<(String, PlantConfig, u64)> = temps
         .iter()
         .enumerate()
@@ -75,7 +79,11 @@ fn dataset(truth: &PlantConfig, temps: &[f64], profile: Option<&dyn Fn(f64) -> V
         .collect();
     static N: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let n = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let path = std::env::temp_dir().join(format!("rins-dx-{}-{n}-{:x}.csv", std::process::id(), rand_tag(truth, temps)));
+    let path = std::env::temp_dir().join(format!(
+        "rins-dx-{}-{n}-{:x}.csv",
+        std::process::id(),
+        rand_tag(truth, temps)
+    ));
     rins_scenarios::diagnose::write_measurements(&path, &runs).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     let _ = std::fs::remove_file(&path);
@@ -84,7 +92,10 @@ fn dataset(truth: &PlantConfig, temps: &[f64], profile: Option<&dyn Fn(f64) -> V
 }
 
 fn rand_tag(c: &PlantConfig, temps: &[f64]) -> u64 {
-    rins_plant::state::fingerprint(c) ^ temps.iter().fold(0u64, |h, t| h.rotate_left(7) ^ t.to_bits())
+    rins_plant::state::fingerprint(c)
+        ^ temps
+            .iter()
+            .fold(0u64, |h, t| h.rotate_left(7) ^ t.to_bits())
 }
 
 const TEMPS: [f64; 5] = [10.0, 20.0, 30.0, 40.0, 50.0];
@@ -95,30 +106,62 @@ fn hidden_effect_found(truth: &PlantConfig, h: &History, effect: Effect) -> Diag
     let m = model();
     let (report, analysis, _) = diagnose(&m, h, Options::default());
     let top = &report.ranking[0];
-    assert_eq!(top.effect, effect.name(), "ranking: {:#?}", &report.ranking[..3]);
+    assert_eq!(
+        top.effect,
+        effect.name(),
+        "ranking: {:#?}",
+        &report.ranking[..3]
+    );
     assert!(top.passes_gate, "{top:#?}");
     // The true coefficients, in the file units the report uses.
-    let ch = ["gyro_x", "gyro_y", "gyro_z"].iter().position(|c| *c == top.channel).expect("a gyro channel");
-    let Effect::Gyro(term) = effect else { panic!("gyro effects only here") };
+    let ch = ["gyro_x", "gyro_y", "gyro_z"]
+        .iter()
+        .position(|c| *c == top.channel)
+        .expect("a gyro channel");
+    let Effect::Gyro(term) = effect else {
+        panic!("gyro effects only here")
+    };
     let true_si = rins_plant::effects::GyroModel::new(&truth.sensor.gyro).coefficients(term, ch);
     let mut checked = 0;
-    for (((k, unit), t), ci) in gyro::coefficient_keys(term, ch).iter().zip(&true_si).zip(&top.ci95) {
+    for (((k, unit), t), ci) in gyro::coefficient_keys(term, ch)
+        .iter()
+        .zip(&true_si)
+        .zip(&top.ci95)
+    {
         let v = t / unit;
         if ci[0].is_finite() {
-            assert!(ci[0] <= v && v <= ci[1], "{k}: true {v} outside [{}, {}]", ci[0], ci[1]);
+            assert!(
+                ci[0] <= v && v <= ci[1],
+                "{k}: true {v} outside [{}, {}]",
+                ci[0],
+                ci[1]
+            );
             checked += 1;
         }
     }
     assert!(checked > 0);
-    assert!(!report.flagged_cells.is_empty(), "the hidden effect must show in the map");
+    assert!(
+        !report.flagged_cells.is_empty(),
+        "the hidden effect must show in the map"
+    );
     // --apply: the fitted model clears the flagged cells and brings the residual to the floor.
     let (m2, _) = apply(&m, &analysis, &[effect]).unwrap();
     let after = analyse(&m2, h, Options::default());
     let r = after.compare_report("after", &after.zero_pred());
-    let gyro_flags: Vec<_> = r.flagged_cells.iter().filter(|c| c.channel.starts_with("gyro")).collect();
+    let gyro_flags: Vec<_> = r
+        .flagged_cells
+        .iter()
+        .filter(|c| c.channel.starts_with("gyro"))
+        .collect();
     assert!(gyro_flags.is_empty(), "{gyro_flags:#?}");
     for c in r.channels.iter().filter(|c| c.channel.starts_with("gyro")) {
-        assert!(c.residual_rms <= 1.1 * c.noise_floor_rms, "{}: {} vs floor {}", c.channel, c.residual_rms, c.noise_floor_rms);
+        assert!(
+            c.residual_rms <= 1.1 * c.noise_floor_rms,
+            "{}: {} vs floor {}",
+            c.channel,
+            c.residual_rms,
+            c.noise_floor_rms
+        );
     }
     report
 }
@@ -185,8 +228,20 @@ fn control_with_nothing_hidden_claims_nothing() {
     let h = dataset(&truth, &TEMPS, None);
     let (report, _, _) = diagnose(&model(), &h, Options::default());
     assert!(report.accepted.is_empty(), "{:#?}", report.accepted);
-    assert!(report.ranking.iter().all(|r| !r.passes_gate), "{:#?}", report.ranking.iter().filter(|r| r.passes_gate).collect::<Vec<_>>());
-    assert!(report.flagged_cells.is_empty(), "{:#?}", report.flagged_cells);
+    assert!(
+        report.ranking.iter().all(|r| !r.passes_gate),
+        "{:#?}",
+        report
+            .ranking
+            .iter()
+            .filter(|r| r.passes_gate)
+            .collect::<Vec<_>>()
+    );
+    assert!(
+        report.flagged_cells.is_empty(),
+        "{:#?}",
+        report.flagged_cells
+    );
 }
 
 #[test]
@@ -196,7 +251,9 @@ fn an_effect_outside_the_catalogue_is_not_claimed_but_localised() {
     let truth = model();
     let mut h = dataset(&truth, &TEMPS, None);
     let a = 0.03 * rins_plant::units::DPH;
-    let Attitude::Gimbal { inner_rad, .. } = &h.attitude else { panic!() };
+    let Attitude::Gimbal { inner_rad, .. } = &h.attitude else {
+        panic!()
+    };
     let inner = inner_rad.clone();
     for k in 1..h.len() {
         let dt = h.t_s[k] - h.t_s[k - 1];
@@ -208,9 +265,29 @@ fn an_effect_outside_the_catalogue_is_not_claimed_but_localised() {
     let (report, _, _) = diagnose(&model(), &h, Options::default());
     assert!(report.accepted.is_empty(), "claimed {:#?}", report.accepted);
     assert!(!report.flagged_cells_after.is_empty());
-    assert!(report.flagged_cells_after.iter().all(|c| c.channel == "gyro_x"), "{:#?}", report.flagged_cells_after);
-    assert!(report.flagged_cells_after.iter().any(|c| c.position == "tilted"));
-    assert!(report.unexplained.iter().any(|u| u.contains("no candidate") && u.contains("gyro_x")) || report.unexplained.len() > 1, "{:#?}", report.unexplained);
+    assert!(
+        report
+            .flagged_cells_after
+            .iter()
+            .all(|c| c.channel == "gyro_x"),
+        "{:#?}",
+        report.flagged_cells_after
+    );
+    assert!(
+        report
+            .flagged_cells_after
+            .iter()
+            .any(|c| c.position == "tilted")
+    );
+    assert!(
+        report
+            .unexplained
+            .iter()
+            .any(|u| u.contains("no candidate") && u.contains("gyro_x"))
+            || report.unexplained.len() > 1,
+        "{:#?}",
+        report.unexplained
+    );
 }
 
 #[test]
@@ -225,10 +302,27 @@ fn temperature_and_gradient_bias_are_reported_confusable_on_a_settling_run() {
     let settle = |t: f64| vec![[0.0, t], [1.0, t + 20.0]];
     let h = dataset(&truth, &[20.0], Some(&settle));
     let (report, _, _) = diagnose(&model(), &h, Options::default());
-    let x: Vec<_> = report.ranking.iter().filter(|r| r.channel == "gyro_x").collect();
-    let temp = x.iter().find(|r| r.effect == "gyro.temperature_bias").expect("ranked");
-    let grad = x.iter().find(|r| r.effect == "gyro.temperature_gradient_bias").expect("ranked");
-    let says = |a: &rins_verify::diagnosis::RankedEffect, b: &str| a.confusable_with.iter().find(|c| c.effect.starts_with(b)).cloned();
-    let c = says(temp, "gyro.temperature_gradient_bias").or_else(|| says(grad, "gyro.temperature_bias")).unwrap_or_else(|| panic!("{temp:#?} {grad:#?}"));
+    let x: Vec<_> = report
+        .ranking
+        .iter()
+        .filter(|r| r.channel == "gyro_x")
+        .collect();
+    let temp = x
+        .iter()
+        .find(|r| r.effect == "gyro.temperature_bias")
+        .expect("ranked");
+    let grad = x
+        .iter()
+        .find(|r| r.effect == "gyro.temperature_gradient_bias")
+        .expect("ranked");
+    let says = |a: &rins_verify::diagnosis::RankedEffect, b: &str| {
+        a.confusable_with
+            .iter()
+            .find(|c| c.effect.starts_with(b))
+            .cloned()
+    };
+    let c = says(temp, "gyro.temperature_gradient_bias")
+        .or_else(|| says(grad, "gyro.temperature_bias"))
+        .unwrap_or_else(|| panic!("{temp:#?} {grad:#?}"));
     assert!(c.separate_by.contains("steady"), "{}", c.separate_by);
 }

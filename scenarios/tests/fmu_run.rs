@@ -30,7 +30,8 @@ fn the_fmu_writes_the_same_csv_bytes_as_the_in_process_plant() {
     let exe = std::env::current_exe().unwrap();
     let lib_dir = exe.parent().and_then(|d| d.parent()).unwrap().to_path_buf();
     let out = std::env::temp_dir().join(format!("rins-fmu-test-{}", std::process::id()));
-    let fmus = rins_scenarios::fmu::build(&out, &lib_dir).expect("FMI libraries built (cargo build --release -p rins-fmi2 -p rins-fmi3)");
+    let fmus = rins_scenarios::fmu::build(&out, &lib_dir)
+        .expect("FMI libraries built (cargo build --release -p rins-fmi2 -p rins-fmi3)");
     let sc = Scenario::from_toml(SCENARIO, "test").unwrap();
 
     let mut direct = CsvSink::new(Vec::new(), sc.outputs, &sc.plant).unwrap();
@@ -58,7 +59,12 @@ kind = "steps"
 steps = [{ axis = "outer", angle_deg = 90.0, rate_dps = 10.0, dwell_s = 5.0 }]
 "#;
     let sc = Scenario::from_toml(text, "test").unwrap();
-    let e = rins_scenarios::fmu::run(&fmus[0], &sc, 10, &mut []).unwrap_err().to_string();
-    assert!(e.contains("scheme.steps") && e.contains("gimbal command"), "{e}");
+    let e = rins_scenarios::fmu::run(&fmus[0], &sc, 10, &mut [])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("scheme.steps") && e.contains("gimbal command"),
+        "{e}"
+    );
     let _ = std::fs::remove_dir_all(&out);
 }

@@ -26,7 +26,11 @@ fn error(text: &str) -> (usize, String, String) {
 fn a_good_file_parses_with_its_segments() {
     let m = parse(&good(), "m.csv").unwrap();
     assert_eq!(m.rows, 5);
-    assert_eq!(m.segments.len(), 2, "the time gap is allowed between segments");
+    assert_eq!(
+        m.segments.len(),
+        2,
+        "the time gap is allowed between segments"
+    );
     assert_eq!(m.temperature_columns(), vec!["temp_gyro_x_c"]);
     assert_eq!(m.col("dv_z_mps").unwrap()[4], -0.98);
 }
@@ -46,12 +50,22 @@ fn bad_files_name_row_and_column() {
     assert_eq!((r, c.as_str()), (2, "dtheta_x_rad"));
     let (r, c, _) = error(&g.replace("0.3,1e-6", "0.15,1e-6"));
     assert_eq!((r, c.as_str()), (3, "t_s"));
-    let gap = g.replace("0.3,1e-6,2e-6,3e-6,0.0,0.0,0.98,0,0,30.2,r1,zup", "0.9,1e-6,2e-6,3e-6,0.0,0.0,0.98,0,0,30.2,r1,zup");
-    let more = gap.replace("5.0,", "1.0,").replace("zdown", "zup").replace("5.1,", "1.1,");
+    let gap = g.replace(
+        "0.3,1e-6,2e-6,3e-6,0.0,0.0,0.98,0,0,30.2,r1,zup",
+        "0.9,1e-6,2e-6,3e-6,0.0,0.0,0.98,0,0,30.2,r1,zup",
+    );
+    let more = gap
+        .replace("5.0,", "1.0,")
+        .replace("zdown", "zup")
+        .replace("5.1,", "1.1,");
     let (r, c, msg) = error(&more);
     assert_eq!(c, "t_s");
     assert!(msg.contains("gap") && r == 3, "{r} {msg}");
-    let (r, c, _) = error(&g.replace(",temp_gyro_x_c", ",temp_gyro_x_c,extra").replace(",r1,zup\n", ",r1,zup,1\n").replace(",r1,zdown\n", ",r1,zdown,1\n"));
+    let (r, c, _) = error(
+        &g.replace(",temp_gyro_x_c", ",temp_gyro_x_c,extra")
+            .replace(",r1,zup\n", ",r1,zup,1\n")
+            .replace(",r1,zdown\n", ",r1,zdown,1\n"),
+    );
     assert_eq!((r, c.as_str()), (0, "extra"));
     let (r, _, msg) = error(&g.replace(",r1,zup\n0.2", ",r1\n0.2"));
     assert!(r == 1 && msg.contains("fields"), "{r} {msg}");
@@ -60,10 +74,17 @@ fn bad_files_name_row_and_column() {
     let (r, c, _) = error(&g.replace("temp_gyro_x_c", "gyro_temperature"));
     assert_eq!((r, c.as_str()), (0, "gyro_temperature"));
     // Attitude and temperature are required as groups.
-    let no_att = g.replace(",outer_deg,inner_deg", "").replace(",0,0,30", ",30").replace(",180,180,30", ",30");
+    let no_att = g
+        .replace(",outer_deg,inner_deg", "")
+        .replace(",0,0,30", ",30")
+        .replace(",180,180,30", ",30");
     let (_, c, msg) = error(&no_att);
     assert!(c == "outer_deg" && msg.contains("q_bn_w"), "{c} {msg}");
-    let no_temp = g.replace(",temp_gyro_x_c", "").replace(",30.1,", ",").replace(",30.2,", ",").replace(",30.3,", ",");
+    let no_temp = g
+        .replace(",temp_gyro_x_c", "")
+        .replace(",30.1,", ",")
+        .replace(",30.2,", ",")
+        .replace(",30.3,", ",");
     let (_, c, _) = error(&no_temp);
     assert_eq!(c, "temp_*_c");
 }
@@ -72,7 +93,12 @@ fn bad_files_name_row_and_column() {
 fn the_plants_own_csv_is_a_measurement_file() {
     let mut sc = Scenario::load(std::path::Path::new("builtin:paper-16pos-short")).unwrap();
     sc.meta.duration_s = 400.0;
-    let opts = OutputSpec { decimation: 10, truth: true, effects: true, ..OutputSpec::default() };
+    let opts = OutputSpec {
+        decimation: 10,
+        truth: true,
+        effects: true,
+        ..OutputSpec::default()
+    };
     let mut sink = CsvSink::new(Vec::new(), opts, &sc.plant).unwrap();
     {
         let mut sinks: [&mut dyn Sink; 1] = [&mut sink];
@@ -87,7 +113,15 @@ fn the_plants_own_csv_is_a_measurement_file() {
 
 #[test]
 fn the_shipped_example_parses() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/examples/measurement-example.csv");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../docs/examples/measurement-example.csv"
+    );
     let m = rins_scenarios::measurement::read(std::path::Path::new(path)).unwrap();
-    assert!(m.rows >= 100 && m.segments.len() == 2, "{} rows, {} segments", m.rows, m.segments.len());
+    assert!(
+        m.rows >= 100 && m.segments.len() == 2,
+        "{} rows, {} segments",
+        m.rows,
+        m.segments.len()
+    );
 }

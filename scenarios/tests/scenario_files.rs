@@ -54,11 +54,24 @@ fn unknown_key_names_file_line_and_key() {
 #[test]
 fn out_of_range_value_names_line_key_and_range() {
     let e = err_text("[site]\nlat_deg = 95.0\n");
-    assert!(e.contains("line 2") && e.contains("site.lat_deg") && e.contains("[-89, 89]") && e.contains("95"), "{e}");
-    let e = err_text("[sensor.gyro.angle_random_walk]\nenabled = true\ndpsh = [0.003, -1.0, 0.003]\n");
-    assert!(e.contains("line 3") && e.contains("sensor.gyro.angle_random_walk.dpsh[1]"), "{e}");
+    assert!(
+        e.contains("line 2")
+            && e.contains("site.lat_deg")
+            && e.contains("[-89, 89]")
+            && e.contains("95"),
+        "{e}"
+    );
+    let e =
+        err_text("[sensor.gyro.angle_random_walk]\nenabled = true\ndpsh = [0.003, -1.0, 0.003]\n");
+    assert!(
+        e.contains("line 3") && e.contains("sensor.gyro.angle_random_walk.dpsh[1]"),
+        "{e}"
+    );
     let e = err_text("[thermal]\nstep_s = 0.015\n");
-    assert!(e.contains("thermal.step_s") && e.contains("whole multiple"), "{e}");
+    assert!(
+        e.contains("thermal.step_s") && e.contains("whole multiple"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -66,16 +79,32 @@ fn wrong_type_and_bad_preset_and_bad_campaign() {
     let e = err_text("[run]\nrate_hz = \"fast\"\n");
     assert!(e.contains("line 2") && e.contains("rate_hz"), "{e}");
     let e = err_text("[sensor]\npreset = \"hg9900\"\n");
-    assert!(e.contains("line 2") && e.contains("paper-table3") && e.contains("hg9900"), "{e}");
+    assert!(
+        e.contains("line 2") && e.contains("paper-table3") && e.contains("hg9900"),
+        "{e}"
+    );
     let e = err_text("[campaign]\ntemps_c = [20.0, 300.0]\n");
     assert!(e.contains("campaign.temps_c") && e.contains("300"), "{e}");
-    assert!(matches!(Scenario::load(std::path::Path::new("/nonexistent/x.toml")), Err(ScenarioError::Read { .. })));
-    let e = Scenario::load(std::path::Path::new("builtin:paper-table9")).unwrap_err().to_string();
-    assert!(e.contains("paper-table9") && e.contains("paper-16pos-week"), "{e}");
+    assert!(matches!(
+        Scenario::load(std::path::Path::new("/nonexistent/x.toml")),
+        Err(ScenarioError::Read { .. })
+    ));
+    let e = Scenario::load(std::path::Path::new("builtin:paper-table9"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("paper-table9") && e.contains("paper-16pos-week"),
+        "{e}"
+    );
 }
 
 fn csv_bytes(sc: &Scenario, decimation: u64) -> Vec<u8> {
-    let opts = OutputSpec { decimation, truth: true, effects: true, ..OutputSpec::default() };
+    let opts = OutputSpec {
+        decimation,
+        truth: true,
+        effects: true,
+        ..OutputSpec::default()
+    };
     let mut sink = CsvSink::new(Vec::new(), opts, &sc.plant).unwrap();
     {
         let mut sinks: [&mut dyn Sink; 1] = [&mut sink];
@@ -88,7 +117,10 @@ fn column_sums(csv: &[u8], cols: &[&str]) -> Vec<f64> {
     let text = std::str::from_utf8(csv).unwrap();
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let idx: Vec<usize> = cols.iter().map(|c| header.iter().position(|h| h == c).unwrap()).collect();
+    let idx: Vec<usize> = cols
+        .iter()
+        .map(|c| header.iter().position(|h| h == c).unwrap())
+        .collect();
     let mut sums = vec![0.0; cols.len()];
     for l in lines {
         let f: Vec<&str> = l.split(',').collect();
@@ -120,8 +152,15 @@ fn decimated_rows_sum_to_the_full_rate_stream_and_output_is_deterministic() {
 /// documented in docs/scenario-format.md, so the docs cannot fall behind the code.
 #[test]
 fn every_key_is_documented() {
-    let docs = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/scenario-format.md")).unwrap();
-    let mut f = rins_scenarios::file::ScenarioFile { campaign: Some(Default::default()), ..Default::default() };
+    let docs = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../docs/scenario-format.md"
+    ))
+    .unwrap();
+    let mut f = rins_scenarios::file::ScenarioFile {
+        campaign: Some(Default::default()),
+        ..Default::default()
+    };
     f.sensor.preset = Some("ideal".into());
     let value = toml::Value::try_from(&f).unwrap();
     fn leaves(prefix: &str, v: &toml::Value, out: &mut Vec<String>) {
@@ -140,7 +179,10 @@ fn every_key_is_documented() {
     leaves("", &value, &mut keys);
     assert!(keys.len() > 60, "{}", keys.len());
     for k in keys {
-        assert!(docs.contains(&format!("`{k}`")), "docs/scenario-format.md does not mention `{k}`");
+        assert!(
+            docs.contains(&format!("`{k}`")),
+            "docs/scenario-format.md does not mention `{k}`"
+        );
     }
 }
 
@@ -148,6 +190,7 @@ fn every_key_is_documented() {
 fn the_headline_scenario_is_the_fmu_default_plant() {
     // The FMU's start values come from `presets::paper_16pos_config`; the scenario file is the
     // user-facing definition. They must not drift apart.
-    let s = rins_scenarios::file::Scenario::load(std::path::Path::new("builtin:paper-16pos-week")).unwrap();
+    let s = rins_scenarios::file::Scenario::load(std::path::Path::new("builtin:paper-16pos-week"))
+        .unwrap();
     assert_eq!(s.plant, rins_plant::presets::paper_16pos_config());
 }

@@ -19,7 +19,12 @@ pub use session::{Session, TransportError};
 
 /// The in-process reference: the same plant and navigator without the transport, with the same
 /// commands applied at the same ticks (the first tick of the batch after `after_seq`).
-pub fn reference(cfg: &rins_plant::PlantConfig, samples: u64, batch: usize, commands: &[ScheduledCommand]) -> NavProcessor {
+pub fn reference(
+    cfg: &rins_plant::PlantConfig,
+    samples: u64,
+    batch: usize,
+    commands: &[ScheduledCommand],
+) -> NavProcessor {
     let mut plant = rins_plant::Plant::new(cfg).expect("valid configuration");
     let mut nav = NavProcessor::new(cfg);
     let batch = batch.clamp(1, layout::BATCH_CAPACITY) as u64;
@@ -34,7 +39,11 @@ pub fn reference(cfg: &rins_plant::PlantConfig, samples: u64, batch: usize, comm
         done += n;
         if let Some(c) = commands.iter().find(|c| c.after_seq == seq) {
             plant
-                .command_gimbal(&rins_plant::GimbalCommand::MoveTo { outer_rad: c.outer_rad, inner_rad: c.inner_rad, rate_rps: c.rate_rps })
+                .command_gimbal(&rins_plant::GimbalCommand::MoveTo {
+                    outer_rad: c.outer_rad,
+                    inner_rad: c.inner_rad,
+                    rate_rps: c.rate_rps,
+                })
                 .expect("valid command");
         }
         seq += 1;

@@ -9,7 +9,9 @@ use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
 use rins_plant::PlantConfig;
 use rins_plant::table::{GimbalAngles, body_to_nav};
 
-use crate::layout::{FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, LAYOUT_VERSION, NavCommand, NavSolution, kind};
+use crate::layout::{
+    FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, LAYOUT_VERSION, NavCommand, NavSolution, kind,
+};
 use crate::session::{Session, TransportError, ipc};
 
 /// Static navigation over the stream, with a digest of every state it passes through.
@@ -32,18 +34,44 @@ impl NavProcessor {
     /// at the first sample's start (t = 0), or at the end of the first record received after
     /// a restart.
     pub fn new(cfg: &PlantConfig) -> Self {
-        Self { strapdown: None, cfg: cfg.clone(), samples: 0, first_tick: None, last_tick: 0, digest: 0xcbf2_9ce4_8422_2325 }
+        Self {
+            strapdown: None,
+            cfg: cfg.clone(),
+            samples: 0,
+            first_tick: None,
+            last_tick: 0,
+            digest: 0xcbf2_9ce4_8422_2325,
+        }
     }
 
     fn start(&self, r: &ImuRecord) -> Strapdown {
         let c_bn = if r.tick == 0 {
-            rins_plant::Plant::new(&self.cfg).map(|p| p.attitude_c_bn()).unwrap_or_else(|_| body_to_nav(&self.cfg.vehicle.c_vn(), GimbalAngles::new(0.0, 0.0)))
+            rins_plant::Plant::new(&self.cfg)
+                .map(|p| p.attitude_c_bn())
+                .unwrap_or_else(|_| {
+                    body_to_nav(&self.cfg.vehicle.c_vn(), GimbalAngles::new(0.0, 0.0))
+                })
         } else {
-            body_to_nav(&self.cfg.vehicle.c_vn(), GimbalAngles::new(r.outer_rad, r.inner_rad))
+            body_to_nav(
+                &self.cfg.vehicle.c_vn(),
+                GimbalAngles::new(r.outer_rad, r.inner_rad),
+            )
         };
         let s = &self.cfg.site;
-        let state = NavState { q_bn: UnitQuaternion::from_matrix(&c_bn), v_n: Vector3::zeros(), lat_rad: s.lat_deg.to_radians(), lon_rad: s.lon_deg.to_radians(), height_m: s.height_m };
-        Strapdown::new(state, 1.0 / self.cfg.rate_hz, VerticalChannel::Hold { ref_height_m: s.height_m })
+        let state = NavState {
+            q_bn: UnitQuaternion::from_matrix(&c_bn),
+            v_n: Vector3::zeros(),
+            lat_rad: s.lat_deg.to_radians(),
+            lon_rad: s.lon_deg.to_radians(),
+            height_m: s.height_m,
+        };
+        Strapdown::new(
+            state,
+            1.0 / self.cfg.rate_hz,
+            VerticalChannel::Hold {
+                ref_height_m: s.height_m,
+            },
+        )
     }
 
     /// Consumes one record.
@@ -56,7 +84,9 @@ impl NavProcessor {
         sd.update(&Vector3::from(r.dtheta_rad), &Vector3::from(r.dv_mps));
         let s = sd.state();
         let q = s.q_bn.quaternion();
-        for x in [s.lat_rad, s.lon_rad, s.height_m, s.v_n.x, s.v_n.y, s.v_n.z, q.w, q.i, q.j, q.k] {
+        for x in [
+            s.lat_rad, s.lon_rad, s.height_m, s.v_n.x, s.v_n.y, s.v_n.z, q.w, q.i, q.j, q.k,
+        ] {
             for b in x.to_bits().to_le_bytes() {
                 self.digest = (self.digest ^ b as u64).wrapping_mul(0x0100_0000_01b3);
             }
@@ -72,7 +102,11 @@ impl NavProcessor {
 
     /// The solution as a message.
     pub fn solution(&self, seq: u64) -> NavSolution {
-        let mut out = NavSolution { seq, tick: self.last_tick, ..NavSolution::default() };
+        let mut out = NavSolution {
+            seq,
+            tick: self.last_tick,
+            ..NavSolution::default()
+        };
         if let Some(s) = self.state() {
             let q = s.q_bn.quaternion();
             out.lat_rad = s.lat_rad;
@@ -123,13 +157,35 @@ pub struct NavSummary {
 }
 
 /// Runs the navigator of session `name` for the plant `cfg` until the plant ends the run.
-pub fn navigate(name: &str, cfg: &PlantConfig, opts: &NavOptions) -> Result<NavSummary, TransportError> {
+pub fn navigate(
+    name: &str,
+    cfg: &PlantConfig,
+    opts: &NavOptions,
+) -> Result<NavSummary, TransportError> {
     let session = Session::open(name, "navigator")?;
-    let sub = session.imu.subscriber_builder().create().map_err(|e| ipc("creating the IMU subscriber")(&e))?;
-    let cmd = session.cmd.publisher_builder().backpressure_strategy(iceoryx2::prelude::BackpressureStrategy::RetryUntilDelivered).create().map_err(|e| ipc("creating the command publisher")(&e))?;
-    let sol = session.nav.publisher_builder().create().map_err(|e| ipc("creating the solution publisher")(&e))?;
+    let sub = session
+        .imu
+        .subscriber_builder()
+        .create()
+        .map_err(|e| ipc("creating the IMU subscriber")(&e))?;
+    let cmd = session
+        .cmd
+        .publisher_builder()
+        .backpressure_strategy(iceoryx2::prelude::BackpressureStrategy::RetryUntilDelivered)
+        .create()
+        .map_err(|e| ipc("creating the command publisher")(&e))?;
+    let sol = session
+        .nav
+        .publisher_builder()
+        .create()
+        .map_err(|e| ipc("creating the solution publisher")(&e))?;
     // Announce ourselves: a plant waiting on a batch our dead predecessor took resends it.
-    cmd.send_copy(NavCommand { layout_version: LAYOUT_VERSION, kind: kind::HELLO, ..NavCommand::default() }).map_err(|e| ipc("sending hello")(&e))?;
+    cmd.send_copy(NavCommand {
+        layout_version: LAYOUT_VERSION,
+        kind: kind::HELLO,
+        ..NavCommand::default()
+    })
+    .map_err(|e| ipc("sending hello")(&e))?;
     let mut nav = NavProcessor::new(cfg);
     let mut duplicates = 0u64;
     let mut expected: Option<u64> = None;
@@ -149,17 +205,25 @@ pub fn navigate(name: &str, cfg: &PlantConfig, opts: &NavOptions) -> Result<NavS
                     return Err(TransportError::Interrupted);
                 }
                 if session.peer_died() {
-                    return Err(TransportError::PeerDied { peer: "plant", after_ms: last_message.elapsed().as_millis() as u64 });
+                    return Err(TransportError::PeerDied {
+                        peer: "plant",
+                        after_ms: last_message.elapsed().as_millis() as u64,
+                    });
                 }
                 if session.imu_publishers() == 0 && last_message.elapsed() > opts.peer_timeout {
-                    return Err(TransportError::NoPeer { peer: "plant", timeout_s: opts.peer_timeout.as_secs_f64() });
+                    return Err(TransportError::NoPeer {
+                        peer: "plant",
+                        timeout_s: opts.peer_timeout.as_secs_f64(),
+                    });
                 }
             }
             continue;
         };
         last_message = Instant::now();
         let b: &ImuBatch = sample.payload();
-        if b.layout_version != LAYOUT_VERSION || b.record_size as usize != std::mem::size_of::<ImuRecord>() {
+        if b.layout_version != LAYOUT_VERSION
+            || b.record_size as usize != std::mem::size_of::<ImuRecord>()
+        {
             return Err(TransportError::Layout {
                 got_version: b.layout_version,
                 got_record: b.record_size,
@@ -174,7 +238,12 @@ pub fn navigate(name: &str, cfg: &PlantConfig, opts: &NavOptions) -> Result<NavS
                 duplicates += 1;
                 continue;
             }
-            Some(e) if e != b.seq => return Err(TransportError::Gap { expected: e, got: b.seq }),
+            Some(e) if e != b.seq => {
+                return Err(TransportError::Gap {
+                    expected: e,
+                    got: b.seq,
+                });
+            }
             _ => {}
         }
         expected = Some(b.seq + 1);
@@ -184,7 +253,10 @@ pub fn navigate(name: &str, cfg: &PlantConfig, opts: &NavOptions) -> Result<NavS
         if let [a, c, ..] = records {
             let stream_s = c.t_s - a.t_s;
             if (stream_s * cfg.rate_hz - 1.0).abs() > 1e-6 {
-                return Err(TransportError::Rate { stream_s, rate_hz: cfg.rate_hz });
+                return Err(TransportError::Rate {
+                    stream_s,
+                    rate_hz: cfg.rate_hz,
+                });
             }
         }
         for r in records {
@@ -194,15 +266,26 @@ pub fn navigate(name: &str, cfg: &PlantConfig, opts: &NavOptions) -> Result<NavS
         drop(sample);
         let _ = sol.send_copy(nav.solution(seq));
         if opts.acknowledge || flags & FLAG_END != 0 {
-            let mut c = NavCommand { layout_version: LAYOUT_VERSION, kind: kind::ACK, ack_seq: seq, ..NavCommand::default() };
+            let mut c = NavCommand {
+                layout_version: LAYOUT_VERSION,
+                kind: kind::ACK,
+                ack_seq: seq,
+                ..NavCommand::default()
+            };
             if let Some(sc) = opts.commands.iter().find(|c| c.after_seq == seq) {
                 c.kind = kind::MOVE_TO;
                 (c.outer_rad, c.inner_rad, c.rate_rps) = (sc.outer_rad, sc.inner_rad, sc.rate_rps);
             }
-            cmd.send_copy(c).map_err(|e| ipc("sending the acknowledgement")(&e))?;
+            cmd.send_copy(c)
+                .map_err(|e| ipc("sending the acknowledgement")(&e))?;
         }
         if flags & FLAG_END != 0 {
-            return Ok(NavSummary { nav, batches, duplicates, interrupted: flags & FLAG_INTERRUPTED != 0 });
+            return Ok(NavSummary {
+                nav,
+                batches,
+                duplicates,
+                interrupted: flags & FLAG_INTERRUPTED != 0,
+            });
         }
     }
 }

@@ -6,7 +6,9 @@ use std::time::{Duration, Instant};
 use iceoryx2::prelude::BackpressureStrategy;
 use rins_plant::{GimbalCommand, Plant};
 
-use crate::layout::{BATCH_CAPACITY, FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, NavCommand, kind};
+use crate::layout::{
+    BATCH_CAPACITY, FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, NavCommand, kind,
+};
 use crate::session::{Session, TransportError, ipc};
 
 /// Delivery mode.
@@ -55,18 +57,34 @@ pub struct ServeSummary {
     pub interrupted: bool,
 }
 
-fn apply(plant: &mut Plant, c: &NavCommand, summary: &mut ServeSummary) -> Result<(), TransportError> {
+fn apply(
+    plant: &mut Plant,
+    c: &NavCommand,
+    summary: &mut ServeSummary,
+) -> Result<(), TransportError> {
     if c.kind == kind::MOVE_TO {
         plant
-            .command_gimbal(&GimbalCommand::MoveTo { outer_rad: c.outer_rad, inner_rad: c.inner_rad, rate_rps: c.rate_rps })
-            .map_err(|e| TransportError::Ipc { what: "navigator command".into(), detail: e })?;
+            .command_gimbal(&GimbalCommand::MoveTo {
+                outer_rad: c.outer_rad,
+                inner_rad: c.inner_rad,
+                rate_rps: c.rate_rps,
+            })
+            .map_err(|e| TransportError::Ipc {
+                what: "navigator command".into(),
+                detail: e,
+            })?;
         summary.commands.push((plant.samples_done(), *c));
     }
     Ok(())
 }
 
 /// Serves `samples` samples of `plant` on session `name`.
-pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -> Result<ServeSummary, TransportError> {
+pub fn serve(
+    name: &str,
+    plant: &mut Plant,
+    samples: u64,
+    opts: &ServeOptions,
+) -> Result<ServeSummary, TransportError> {
     let t0 = Instant::now();
     let session = Session::open(name, "plant")?;
     let publisher = session
@@ -75,7 +93,11 @@ pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -
         .backpressure_strategy(BackpressureStrategy::RetryUntilDelivered)
         .create()
         .map_err(|e| ipc("creating the IMU publisher")(&e))?;
-    let commands = session.cmd.subscriber_builder().create().map_err(|e| ipc("creating the command subscriber")(&e))?;
+    let commands = session
+        .cmd
+        .subscriber_builder()
+        .create()
+        .map_err(|e| ipc("creating the command subscriber")(&e))?;
     let mut summary = ServeSummary::default();
     let batch_len = opts.batch.clamp(1, BATCH_CAPACITY);
     let wait_for_navigator = |session: &Session| -> Result<(), TransportError> {
@@ -86,7 +108,10 @@ pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -
                 return Err(TransportError::Interrupted);
             }
             if start.elapsed() > opts.peer_timeout {
-                return Err(TransportError::NoPeer { peer: "navigator", timeout_s: opts.peer_timeout.as_secs_f64() });
+                return Err(TransportError::NoPeer {
+                    peer: "navigator",
+                    timeout_s: opts.peer_timeout.as_secs_f64(),
+                });
             }
             session.peer_died();
             std::thread::sleep(Duration::from_millis(2));
@@ -119,13 +144,20 @@ pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -
         }
         // Send; in lockstep, wait for the acknowledgement (resending after a navigator restart).
         loop {
-            let receivers = publisher.send_copy(batch).map_err(|e| ipc("sending a batch")(&e))?;
+            let receivers = publisher
+                .send_copy(batch)
+                .map_err(|e| ipc("sending a batch")(&e))?;
             if receivers == 0 {
                 session.peer_died();
                 if !opts.wait_for_restart {
-                    return Err(TransportError::PeerDied { peer: "navigator", after_ms: 0 });
+                    return Err(TransportError::PeerDied {
+                        peer: "navigator",
+                        after_ms: 0,
+                    });
                 }
-                summary.events.push(format!("navigator gone at batch {seq}; waiting for a new one"));
+                summary.events.push(format!(
+                    "navigator gone at batch {seq}; waiting for a new one"
+                ));
                 wait_for_navigator(&session)?;
                 summary.restarts += 1;
                 continue;
@@ -138,7 +170,10 @@ pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -
             let mut last_check = Instant::now();
             let mut polls: u32 = 0;
             let acked = loop {
-                if let Some(c) = commands.receive().map_err(|e| ipc("receiving commands")(&e))? {
+                if let Some(c) = commands
+                    .receive()
+                    .map_err(|e| ipc("receiving commands")(&e))?
+                {
                     let c = *c.payload();
                     if c.kind == kind::HELLO {
                         if seq > 0 {
@@ -169,7 +204,10 @@ pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -
                     if session.peer_died() || session.imu_subscribers() == 0 {
                         let after_ms = sent.elapsed().as_millis() as u64;
                         if !opts.wait_for_restart {
-                            return Err(TransportError::PeerDied { peer: "navigator", after_ms });
+                            return Err(TransportError::PeerDied {
+                                peer: "navigator",
+                                after_ms,
+                            });
                         }
                         summary.events.push(format!("navigator died {after_ms} ms after batch {seq} was sent; waiting for a new one"));
                         wait_for_navigator(&session)?;
@@ -189,7 +227,10 @@ pub fn serve(name: &str, plant: &mut Plant, samples: u64, opts: &ServeOptions) -
         summary.batches += 1;
         summary.samples += n as u64;
         if opts.mode == Mode::FreeRunning {
-            while let Some(c) = commands.receive().map_err(|e| ipc("receiving commands")(&e))? {
+            while let Some(c) = commands
+                .receive()
+                .map_err(|e| ipc("receiving commands")(&e))?
+            {
                 let c = *c.payload();
                 apply(plant, &c, &mut summary)?;
                 stop |= c.kind == kind::STOP;

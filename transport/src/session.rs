@@ -32,7 +32,9 @@ pub enum TransportError {
         detail: String,
     },
     /// A message with another layout version or record size.
-    #[error("peer sends layout version {got_version} with {got_record}-byte records; this build uses version {want_version} with {want_record}-byte records (docs/transport.md)")]
+    #[error(
+        "peer sends layout version {got_version} with {got_record}-byte records; this build uses version {want_version} with {want_record}-byte records (docs/transport.md)"
+    )]
     Layout {
         /// Peer's version.
         got_version: u32,
@@ -60,7 +62,9 @@ pub enum TransportError {
         got: u64,
     },
     /// The peer process died (found dead by iceoryx2's node monitoring).
-    #[error("the {peer} process died (detected {after_ms} ms after its last message); its resources were cleaned up")]
+    #[error(
+        "the {peer} process died (detected {after_ms} ms after its last message); its resources were cleaned up"
+    )]
     PeerDied {
         /// Which peer.
         peer: &'static str,
@@ -81,7 +85,10 @@ pub enum TransportError {
 }
 
 pub(crate) fn ipc(what: &str) -> impl Fn(&dyn std::fmt::Debug) -> TransportError + '_ {
-    move |e| TransportError::Ipc { what: what.into(), detail: format!("{e:?}") }
+    move |e| TransportError::Ipc {
+        what: what.into(),
+        detail: format!("{e:?}"),
+    }
 }
 
 /// The services of one session.
@@ -106,7 +113,10 @@ pub const BUFFER: usize = 16;
 pub fn config(name: &str) -> Result<Config, TransportError> {
     let mut config = Config::default();
     let prefix = format!("rins_{name}_");
-    config.global.prefix = FileName::new(prefix.as_bytes()).map_err(|e| TransportError::Ipc { what: format!("session name {name:?}"), detail: format!("{e:?} (letters, digits, '-' and '_' only)") })?;
+    config.global.prefix = FileName::new(prefix.as_bytes()).map_err(|e| TransportError::Ipc {
+        what: format!("session name {name:?}"),
+        detail: format!("{e:?} (letters, digits, '-' and '_' only)"),
+    })?;
     Ok(config)
 }
 
@@ -134,8 +144,18 @@ impl Session {
             .signal_handling_mode(SignalHandlingMode::HandleTerminationRequests)
             .create::<ipc::Service>()
             .map_err(|e| ipc("creating the node")(&e))?;
-        let service = |suffix: &str| -> Result<ServiceName, TransportError> { format!("rins/{name}/{suffix}").as_str().try_into().map_err(|e| ipc("service name")(&e)) };
-        let mismatch = |s: String| move |e: &dyn std::fmt::Debug| TransportError::Mismatch { service: s.clone(), detail: format!("{e:?}") };
+        let service = |suffix: &str| -> Result<ServiceName, TransportError> {
+            format!("rins/{name}/{suffix}")
+                .as_str()
+                .try_into()
+                .map_err(|e| ipc("service name")(&e))
+        };
+        let mismatch = |s: String| {
+            move |e: &dyn std::fmt::Debug| TransportError::Mismatch {
+                service: s.clone(),
+                detail: format!("{e:?}"),
+            }
+        };
         let imu_name = service("imu")?;
         let imu = node
             .service_builder(&imu_name)
@@ -169,7 +189,14 @@ impl Session {
             .max_subscribers(8)
             .open_or_create()
             .map_err(|e| mismatch(nav_name.as_str().to_string())(&e))?;
-        Ok(Self { name: name.into(), node, imu, cmd, nav, config })
+        Ok(Self {
+            name: name.into(),
+            node,
+            imu,
+            cmd,
+            nav,
+            config,
+        })
     }
 
     /// Whether a node of the session has died since the last check (its resources are then

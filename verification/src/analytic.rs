@@ -44,20 +44,30 @@ enum Phase {
 
 /// ∫ f(t) over one cycle of `sched`, split at every motion breakpoint, restricted to `phase`.
 /// Returns (∫f, ∫|f|).
-fn over_cycle<F: FnMut(f64) -> Vector3<f64>>(sched: &Schedule, phase: Phase, mut f: F) -> (Vector3<f64>, f64) {
+fn over_cycle<F: FnMut(f64) -> Vector3<f64>>(
+    sched: &Schedule,
+    phase: Phase,
+    mut f: F,
+) -> (Vector3<f64>, f64) {
     let lead = sched.lead_s();
     let mut sum = Vector3::zeros();
     let mut mag = 0.0;
     for (_, bp, end) in sched.step_times_s() {
-        let mut pieces: Vec<(f64, f64, usize, bool)> =
-            vec![(bp[0], bp[1], 4, true), (bp[1], bp[2], PIECES_MOVE, true), (bp[2], bp[3], 4, true)];
+        let mut pieces: Vec<(f64, f64, usize, bool)> = vec![
+            (bp[0], bp[1], 4, true),
+            (bp[1], bp[2], PIECES_MOVE, true),
+            (bp[2], bp[3], 4, true),
+        ];
         pieces.push((bp[3], end, 1, false));
         for (a, b, n, moving) in pieces {
             if (phase == Phase::Stationary && moving) || (phase == Phase::Rotation && !moving) {
                 continue;
             }
             sum += integrate(lead + a, lead + b, n, &mut f);
-            mag += integrate(lead + a, lead + b, n, |t| Vector3::new(f(t).norm(), 0.0, 0.0)).x;
+            mag += integrate(lead + a, lead + b, n, |t| {
+                Vector3::new(f(t).norm(), 0.0, 0.0)
+            })
+            .x;
         }
     }
     (sum, mag)
@@ -149,7 +159,13 @@ pub fn eq8() -> Eq8Report {
     let mut cases = Vec::new();
     let mut cycle_s = 0.0;
     for accel in [f64::INFINITY, SchemeSpec::default().accel_dps2] {
-        let sched = Schedule::new(&SchemeSpec { accel_dps2: accel, ..SchemeSpec::default() }.resolve());
+        let sched = Schedule::new(
+            &SchemeSpec {
+                accel_dps2: accel,
+                ..SchemeSpec::default()
+            }
+            .resolve(),
+        );
         cycle_s = sched.cycle_s();
         for which in ["bias", "scale_factor", "misalignment", "all"] {
             let gm = GyroModel::new(&table3_gyro(which));
@@ -157,17 +173,33 @@ pub fn eq8() -> Eq8Report {
                 let (c, ctx) = context(&sched, t, gravity);
                 c * gm.increment_error(&ctx, &mut [Vector3::zeros(); 13])
             });
-            cases.push(CancellationCase { errors: format!("gyro {which}"), accel_dps2: accel, integral: phi.into(), cancellation_ratio: phi.norm() / mag });
+            cases.push(CancellationCase {
+                errors: format!("gyro {which}"),
+                accel_dps2: accel,
+                integral: phi.into(),
+                cancellation_ratio: phi.norm() / mag,
+            });
             let am = AccelModel::new(&table3_accel(which));
             let (dv, mag) = over_cycle(&sched, Phase::All, |t| {
                 let (c, ctx) = context(&sched, t, gravity);
                 c * am.increment_error(&ctx, &mut [Vector3::zeros(); 6])
             });
             let horizontal = dv.xy().norm();
-            cases.push(CancellationCase { errors: format!("accel {which}"), accel_dps2: accel, integral: dv.into(), cancellation_ratio: horizontal / mag });
+            cases.push(CancellationCase {
+                errors: format!("accel {which}"),
+                accel_dps2: accel,
+                integral: dv.into(),
+                cancellation_ratio: horizontal / mag,
+            });
         }
     }
-    let sched = Schedule::new(&SchemeSpec { accel_dps2: f64::INFINITY, ..SchemeSpec::default() }.resolve());
+    let sched = Schedule::new(
+        &SchemeSpec {
+            accel_dps2: f64::INFINITY,
+            ..SchemeSpec::default()
+        }
+        .resolve(),
+    );
     let spec = table3_accel("scale_factor");
     let am = AccelModel::new(&spec);
     let (dv, _) = over_cycle(&sched, Phase::All, |t| {
@@ -186,8 +218,15 @@ pub fn eq8() -> Eq8Report {
     };
     Eq8Report {
         accel_scale_factor_vertical,
-        cancellation_ratio: cases.iter().map(|c| c.cancellation_ratio).fold(0.0, f64::max),
-        phi_abs_rad: cases.iter().filter(|c| c.errors.starts_with("gyro")).map(|c| Vector3::from(c.integral).norm()).fold(0.0, f64::max),
+        cancellation_ratio: cases
+            .iter()
+            .map(|c| c.cancellation_ratio)
+            .fold(0.0, f64::max),
+        phi_abs_rad: cases
+            .iter()
+            .filter(|c| c.errors.starts_with("gyro"))
+            .map(|c| Vector3::from(c.integral).norm())
+            .fold(0.0, f64::max),
         cycle_s,
         cases,
     }
@@ -229,7 +268,12 @@ pub struct Eq11Report {
 /// With K = [a]×, R(θ) = A₀ + cosθ·A_c + sinθ·A_s (A₀ = I + K², A_c = −K², A_s = K), so u and w
 /// are affine in cosθ and sinθ and the integrand is a quadratic trigonometric polynomial:
 /// ∫₀^π {1, c, s, c², s², sc} dθ = {π, 0, 2, π/2, π/2, 0}.
-pub fn rotation_closed_form(c0: &Matrix3<f64>, a: &Vector3<f64>, rate_rps: f64, dbeta: &Vector3<f64>) -> Vector3<f64> {
+pub fn rotation_closed_form(
+    c0: &Matrix3<f64>,
+    a: &Vector3<f64>,
+    rate_rps: f64,
+    dbeta: &Vector3<f64>,
+) -> Vector3<f64> {
     let k = a.cross_matrix();
     let a0 = Matrix3::identity() + k * k;
     let ac = -(k * k);
@@ -237,7 +281,8 @@ pub fn rotation_closed_form(c0: &Matrix3<f64>, a: &Vector3<f64>, rate_rps: f64, 
     let (u0, uc, us) = ((c0 * a0)[(2, 2)], (c0 * ac)[(2, 2)], (c0 * as_)[(2, 2)]);
     let (w0, wc, ws) = (0.5 * (1.0 - u0), -0.5 * uc, -0.5 * us);
     let pi = std::f64::consts::PI;
-    let m = a0 * (w0 * pi) + (a0 * ws + as_ * w0) * 2.0 + ac * (wc * pi / 2.0) + as_ * (ws * pi / 2.0);
+    let m =
+        a0 * (w0 * pi) + (a0 * ws + as_ * w0) * 2.0 + ac * (wc * pi / 2.0) + as_ * (ws * pi / 2.0);
     c0 * m * dbeta / rate_rps
 }
 
@@ -248,7 +293,11 @@ pub fn eq11(delta_beta_dph: [f64; 3], dwell_s: f64) -> Eq11Report {
     g.position_bias.enabled = true;
     g.position_bias.dph = delta_beta_dph;
     let gm = GyroModel::new(&g);
-    let spec = SchemeSpec { accel_dps2: f64::INFINITY, dwell_s, ..SchemeSpec::default() };
+    let spec = SchemeSpec {
+        accel_dps2: f64::INFINITY,
+        dwell_s,
+        ..SchemeSpec::default()
+    };
     let sched = Schedule::new(&spec.resolve());
     let gm = &gm;
     let integrand = |sched: &Schedule| {
@@ -270,11 +319,21 @@ pub fn eq11(delta_beta_dph: [f64; 3], dwell_s: f64) -> Eq11Report {
         // Just after the move starts the table turns at ±ω_r about one body axis.
         let moving = sched.eval(t0 + 1e-6);
         let c0 = body_to_nav(&Matrix3::identity(), sched.eval(t0).angles);
-        let axis_b = gimbal_body_rate(moving.angles.inner_rad, moving.outer_rate_rps, moving.inner_rate_rps);
+        let axis_b = gimbal_body_rate(
+            moving.angles.inner_rad,
+            moving.outer_rate_rps,
+            moving.inner_rate_rps,
+        );
         closed += rotation_closed_form(&c0, &axis_b.normalize(), rate, &dbeta);
     }
 
-    let limited = Schedule::new(&SchemeSpec { dwell_s, ..SchemeSpec::default() }.resolve());
+    let limited = Schedule::new(
+        &SchemeSpec {
+            dwell_s,
+            ..SchemeSpec::default()
+        }
+        .resolve(),
+    );
     let (rot_lim, _) = over_cycle(&limited, Phase::Rotation, integrand(&limited));
 
     let expected = -8.0 * dwell_s * dbeta.z;

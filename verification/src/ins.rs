@@ -14,7 +14,10 @@ use serde::Serialize;
 
 /// A static, non-rotating plant with nothing on, at `rate_hz`.
 pub fn static_plant(rate_hz: f64) -> PlantConfig {
-    let mut c = PlantConfig { rate_hz, ..PlantConfig::default() };
+    let mut c = PlantConfig {
+        rate_hz,
+        ..PlantConfig::default()
+    };
     c.scheme.kind = SchemeKind::Static;
     c.thermal.enabled = false;
     c
@@ -28,7 +31,8 @@ pub fn gyro_bias_position(eps: &Vector3<f64>, lat: f64, t: f64) -> (f64, f64) {
     let (s, c, tn) = (lat.sin(), lat.cos(), lat.tan());
     let (wt_s, wt_c) = (w * t).sin_cos();
     let dl = -(eps.x / w) * wt_s - ((s * eps.y - c * eps.z) / w) * (1.0 - wt_c);
-    let dlam = (eps.y * c + eps.z * s) * t - (tn * eps.x / w) * (1.0 - wt_c) + tn * (s * eps.y - c * eps.z) * wt_s / w;
+    let dlam = (eps.y * c + eps.z * s) * t - (tn * eps.x / w) * (1.0 - wt_c)
+        + tn * (s * eps.y - c * eps.z) * wt_s / w;
     let (rm, rn) = radii_of_curvature(lat);
     (dl * rm, dlam * rn * c)
 }
@@ -77,7 +81,15 @@ pub fn gyro_bias_case(axis: usize, bias_dph: f64, hours: f64, rate_hz: f64) -> G
     cfg.sensor.gyro.bias.dph[axis] = bias_dph;
     let mut plant = Plant::new(&cfg).expect("valid");
     let rec_s = 10.0;
-    let r = run(&mut plant, hours * 3600.0, &NavRunConfig { record_every_s: rec_s, ..NavRunConfig::default() }).expect("run");
+    let r = run(
+        &mut plant,
+        hours * 3600.0,
+        &NavRunConfig {
+            record_every_s: rec_s,
+            ..NavRunConfig::default()
+        },
+    )
+    .expect("run");
     let lat = plant.site().lat_rad;
     let mut eps = Vector3::zeros();
     eps[axis] = bias_dph * DPH;
@@ -88,7 +100,11 @@ pub fn gyro_bias_case(axis: usize, bias_dph: f64, hours: f64, rate_hz: f64) -> G
     let cf_n = moving_average(&series(&|x| gyro_bias_position(&eps, lat, x.t_s).0), window);
     let cf_e = moving_average(&series(&|x| gyro_bias_position(&eps, lat, x.t_s).1), window);
     let scale = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    let dev = |a: &[f64], b: &[f64]| a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
+    let dev = |a: &[f64], b: &[f64]| {
+        a.iter()
+            .zip(b)
+            .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+    };
     let (sn, se) = (scale(&cf_n), scale(&cf_e));
     let end = r.end();
     let cf_end = gyro_bias_position(&eps, lat, end.t_s);
@@ -97,7 +113,10 @@ pub fn gyro_bias_case(axis: usize, bias_dph: f64, hours: f64, rate_hz: f64) -> G
         bias_dph,
         hours,
         scale_m: [sn, se],
-        max_rel_dev: [dev(&nav_n, &cf_n) / sn.max(1.0), dev(&nav_e, &cf_e) / se.max(1.0)],
+        max_rel_dev: [
+            dev(&nav_n, &cf_n) / sn.max(1.0),
+            dev(&nav_e, &cf_e) / se.max(1.0),
+        ],
         end_m: [end.north_m, end.east_m],
         end_closed_form_m: [cf_end.0, cf_end.1],
     }
@@ -131,7 +150,15 @@ pub fn accel_bias_case(bias_ug: f64, hours: f64, rate_hz: f64) -> AccelBiasCase 
     cfg.sensor.accel.bias.ug = [bias_ug, 0.0, 0.0];
     let mut plant = Plant::new(&cfg).expect("valid");
     let rec_s = 5.0;
-    let r = run(&mut plant, hours * 3600.0, &NavRunConfig { record_every_s: rec_s, ..NavRunConfig::default() }).expect("run");
+    let r = run(
+        &mut plant,
+        hours * 3600.0,
+        &NavRunConfig {
+            record_every_s: rec_s,
+            ..NavRunConfig::default()
+        },
+    )
+    .expect("run");
     let lat = plant.site().lat_rad;
     let ws = schuler_rate(lat);
     let ve: Vec<f64> = r.records.iter().map(|x| x.vel_err_mps[0]).collect();
@@ -146,7 +173,8 @@ pub fn accel_bias_case(bias_ug: f64, hours: f64, rate_hz: f64) -> AccelBiasCase 
         }
     }
     let half_periods = crossings.len().saturating_sub(1).max(1) as f64;
-    let schuler_period = 2.0 * (crossings.last().unwrap_or(&0.0) - crossings.first().unwrap_or(&0.0)) / half_periods;
+    let schuler_period =
+        2.0 * (crossings.last().unwrap_or(&0.0) - crossings.first().unwrap_or(&0.0)) / half_periods;
     // Foucault: project (v_E, v_N) on the Schuler oscillation over each period; the angle of
     // the oscillation plane turns at Ω sin L. Least-squares slope of the unwrapped angle.
     let per = (2.0 * std::f64::consts::PI / ws / rec_s).round() as usize;
@@ -174,7 +202,10 @@ pub fn accel_bias_case(bias_ug: f64, hours: f64, rate_hz: f64) -> AccelBiasCase 
             let m = ea.hypot(eb).max(1e-300);
             (ea / m, eb / m)
         });
-        angles.push((t0 + 0.5 * per as f64 * rec_s, (na * r0 + nb * r1).atan2(ea * r0 + eb * r1)));
+        angles.push((
+            t0 + 0.5 * per as f64 * rec_s,
+            (na * r0 + nb * r1).atan2(ea * r0 + eb * r1),
+        ));
     }
     let mut unwrapped: Vec<(f64, f64)> = Vec::new();
     for (t, a) in angles {
@@ -190,8 +221,12 @@ pub fn accel_bias_case(bias_ug: f64, hours: f64, rate_hz: f64) -> AccelBiasCase 
         unwrapped.push((t, a));
     }
     let n = unwrapped.len() as f64;
-    let (mt, ma) = unwrapped.iter().fold((0.0, 0.0), |(st, sa), (t, a)| (st + t / n, sa + a / n));
-    let (num, den) = unwrapped.iter().fold((0.0, 0.0), |(nu, de), (t, a)| (nu + (t - mt) * (a - ma), de + (t - mt) * (t - mt)));
+    let (mt, ma) = unwrapped
+        .iter()
+        .fold((0.0, 0.0), |(st, sa), (t, a)| (st + t / n, sa + a / n));
+    let (num, den) = unwrapped.iter().fold((0.0, 0.0), |(nu, de), (t, a)| {
+        (nu + (t - mt) * (a - ma), de + (t - mt) * (t - mt))
+    });
     let slope = (num / den).abs();
     let g = normal_gravity(lat, 0.0);
     let phin: Vec<f64> = r.records.iter().map(|x| x.att_err_rad[1]).collect();
@@ -202,10 +237,13 @@ pub fn accel_bias_case(bias_ug: f64, hours: f64, rate_hz: f64) -> AccelBiasCase 
         schuler_period_min: schuler_period / 60.0,
         schuler_period_expected_min: 2.0 * std::f64::consts::PI / ws / 60.0,
         foucault_period_h: 2.0 * std::f64::consts::PI / slope / 3600.0,
-        foucault_period_expected_h: 2.0 * std::f64::consts::PI / (OMEGA_IE_RPS * lat.sin()) / 3600.0,
+        foucault_period_expected_h: 2.0 * std::f64::consts::PI
+            / (OMEGA_IE_RPS * lat.sin())
+            / 3600.0,
         mean_tilt_rad: mean_tilt,
         expected_tilt_rad: nabla / g,
-        max_tilt_over_2_nabla_g: phin.iter().fold(0.0_f64, |m, x| m.max(x.abs())) / (2.0 * nabla / g),
+        max_tilt_over_2_nabla_g: phin.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
+            / (2.0 * nabla / g),
     }
 }
 
@@ -238,7 +276,8 @@ pub fn arw_position_sigma(arw: f64, lat: f64, hours: f64) -> (f64, f64) {
     let mut f = SMatrix::<f64, 7, 7>::zeros();
     // φ̇ = −ω_ie × φ + δω_ie(δL) + δω_en(δv) − ε
     let om = Vector3::new(0.0, w * c, w * s);
-    f.fixed_view_mut::<3, 3>(0, 0).copy_from(&(-om.cross_matrix()));
+    f.fixed_view_mut::<3, 3>(0, 0)
+        .copy_from(&(-om.cross_matrix()));
     f[(0, 4)] = -1.0 / r;
     f[(1, 3)] = 1.0 / r;
     f[(2, 3)] = s / c / r;
@@ -282,7 +321,16 @@ pub fn arw_case(arw_dpsh: f64, runs: usize, hours: f64, rate_hz: f64) -> ArwCase
             cfg.sensor.gyro.angle_random_walk.enabled = true;
             cfg.sensor.gyro.angle_random_walk.dpsh = [arw_dpsh; 3];
             let mut plant = Plant::new(&cfg).expect("valid");
-            let e = run(&mut plant, hours * 3600.0, &NavRunConfig { record_every_s: 3600.0, ..NavRunConfig::default() }).expect("run").end();
+            let e = run(
+                &mut plant,
+                hours * 3600.0,
+                &NavRunConfig {
+                    record_every_s: 3600.0,
+                    ..NavRunConfig::default()
+                },
+            )
+            .expect("run")
+            .end();
             (e.north_m, e.east_m)
         })
         .collect();
@@ -299,7 +347,10 @@ pub fn arw_case(arw_dpsh: f64, runs: usize, hours: f64, rate_hz: f64) -> ArwCase
         arw_dpsh,
         runs,
         hours,
-        mc_sigma_m: [sd(ends.iter().map(|e| e.0).collect()), sd(ends.iter().map(|e| e.1).collect())],
+        mc_sigma_m: [
+            sd(ends.iter().map(|e| e.0).collect()),
+            sd(ends.iter().map(|e| e.1).collect()),
+        ],
         analytic_sigma_m: [an, ae],
         analytic_week_sigma_m: [wn, we],
     }
@@ -324,24 +375,59 @@ impl InsReport {
     /// static, non-rotating IMU the rate changes nothing but the cost.
     pub fn run(arw_runs: usize) -> Self {
         use crate::report::Check;
-        let gyro_bias: Vec<GyroBiasCase> = (0..3usize).into_par_iter().map(|a| gyro_bias_case(a, 0.01, 168.0, 20.0)).collect();
+        let gyro_bias: Vec<GyroBiasCase> = (0..3usize)
+            .into_par_iter()
+            .map(|a| gyro_bias_case(a, 0.01, 168.0, 20.0))
+            .collect();
         let accel_bias = accel_bias_case(50.0, 30.0, 20.0);
         let arw = arw_case(0.003, arw_runs, 12.0, 10.0);
         let mut checks = Vec::new();
         for c in &gyro_bias {
-            checks.push(Check::at_most(&format!("gyro {} bias: Schuler-averaged deviation (fraction)", c.axis), c.max_rel_dev[0].max(c.max_rel_dev[1]), 0.03));
+            checks.push(Check::at_most(
+                &format!(
+                    "gyro {} bias: Schuler-averaged deviation (fraction)",
+                    c.axis
+                ),
+                c.max_rel_dev[0].max(c.max_rel_dev[1]),
+                0.03,
+            ));
         }
         let a = &accel_bias;
-        checks.push(Check::at_most("Schuler period relative error", (a.schuler_period_min / a.schuler_period_expected_min - 1.0).abs(), 0.005));
-        checks.push(Check::at_most("Foucault period relative error", (a.foucault_period_h / a.foucault_period_expected_h - 1.0).abs(), 0.02));
-        checks.push(Check::at_most("mean tilt vs nabla/g relative error", (a.mean_tilt_rad / a.expected_tilt_rad - 1.0).abs(), 0.02));
-        checks.push(Check::at_most("tilt bounded by 2 nabla/g", a.max_tilt_over_2_nabla_g, 1.05));
+        checks.push(Check::at_most(
+            "Schuler period relative error",
+            (a.schuler_period_min / a.schuler_period_expected_min - 1.0).abs(),
+            0.005,
+        ));
+        checks.push(Check::at_most(
+            "Foucault period relative error",
+            (a.foucault_period_h / a.foucault_period_expected_h - 1.0).abs(),
+            0.02,
+        ));
+        checks.push(Check::at_most(
+            "mean tilt vs nabla/g relative error",
+            (a.mean_tilt_rad / a.expected_tilt_rad - 1.0).abs(),
+            0.02,
+        ));
+        checks.push(Check::at_most(
+            "tilt bounded by 2 nabla/g",
+            a.max_tilt_over_2_nabla_g,
+            1.05,
+        ));
         // The sample std of n draws has a relative spread of ~1/sqrt(2(n-1)): allow 3 of those.
         let tol = 3.0 / (2.0 * (arw.runs as f64 - 1.0)).sqrt();
         for (k, axis) in ["north", "east"].iter().enumerate() {
-            checks.push(Check::at_most(&format!("ARW {axis} 1-sigma: |MC/analytic - 1|"), (arw.mc_sigma_m[k] / arw.analytic_sigma_m[k] - 1.0).abs(), tol));
+            checks.push(Check::at_most(
+                &format!("ARW {axis} 1-sigma: |MC/analytic - 1|"),
+                (arw.mc_sigma_m[k] / arw.analytic_sigma_m[k] - 1.0).abs(),
+                tol,
+            ));
         }
-        Self { gyro_bias, accel_bias, arw, checks }
+        Self {
+            gyro_bias,
+            accel_bias,
+            arw,
+            checks,
+        }
     }
 
     /// Whether every check passed.
@@ -351,26 +437,56 @@ impl InsReport {
 
     /// Text rendering.
     pub fn to_text(&self) -> String {
-        let mut s = String::from("Static free-inertial responses, plant + navigator vs closed form (36.6 N)\n");
+        let mut s = String::from(
+            "Static free-inertial responses, plant + navigator vs closed form (36.6 N)\n",
+        );
         for c in &self.gyro_bias {
             s += &format!(
                 "  {:>5} gyro {} deg/h, {} h: end north {:9.1} m (cf {:9.1}), east {:9.1} m (cf {:9.1}); max deviation {:.2} % / {:.2} %\n",
-                c.axis, c.bias_dph, c.hours, c.end_m[0], c.end_closed_form_m[0], c.end_m[1], c.end_closed_form_m[1], 100.0 * c.max_rel_dev[0], 100.0 * c.max_rel_dev[1]
+                c.axis,
+                c.bias_dph,
+                c.hours,
+                c.end_m[0],
+                c.end_closed_form_m[0],
+                c.end_m[1],
+                c.end_closed_form_m[1],
+                100.0 * c.max_rel_dev[0],
+                100.0 * c.max_rel_dev[1]
             );
         }
         let a = &self.accel_bias;
         s += &format!(
             "  east accel {} ug: Schuler {:.2} min (expected {:.2}), Foucault {:.2} h (expected {:.2}), mean tilt {:.4e} rad (nabla/g {:.4e})\n",
-            a.bias_ug, a.schuler_period_min, a.schuler_period_expected_min, a.foucault_period_h, a.foucault_period_expected_h, a.mean_tilt_rad, a.expected_tilt_rad
+            a.bias_ug,
+            a.schuler_period_min,
+            a.schuler_period_expected_min,
+            a.foucault_period_h,
+            a.foucault_period_expected_h,
+            a.mean_tilt_rad,
+            a.expected_tilt_rad
         );
         let w = &self.arw;
         s += &format!(
             "  ARW {} deg/rt-h, {} runs x {} h: 1-sigma north {:.0} m / east {:.0} m, analytic {:.0} / {:.0} m; after a week (analytic) {:.0} / {:.0} m\n",
-            w.arw_dpsh, w.runs, w.hours, w.mc_sigma_m[0], w.mc_sigma_m[1], w.analytic_sigma_m[0], w.analytic_sigma_m[1], w.analytic_week_sigma_m[0], w.analytic_week_sigma_m[1]
+            w.arw_dpsh,
+            w.runs,
+            w.hours,
+            w.mc_sigma_m[0],
+            w.mc_sigma_m[1],
+            w.analytic_sigma_m[0],
+            w.analytic_sigma_m[1],
+            w.analytic_week_sigma_m[0],
+            w.analytic_week_sigma_m[1]
         );
         s += "Checks\n";
         for c in &self.checks {
-            s += &format!("  [{}] {:<52} {:10.3e} <= {:.3e}\n", if c.pass { "pass" } else { "FAIL" }, c.name, c.value, c.limit);
+            s += &format!(
+                "  [{}] {:<52} {:10.3e} <= {:.3e}\n",
+                if c.pass { "pass" } else { "FAIL" },
+                c.name,
+                c.value,
+                c.limit
+            );
         }
         s
     }

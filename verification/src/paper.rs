@@ -39,9 +39,17 @@ impl Band {
             }
             let x = p * (v.len() - 1) as f64;
             let (i, f) = (x.floor() as usize, x - x.floor());
-            if i + 1 < v.len() { v[i] * (1.0 - f) + v[i + 1] * f } else { v[i] }
+            if i + 1 < v.len() {
+                v[i] * (1.0 - f) + v[i + 1] * f
+            } else {
+                v[i]
+            }
         };
-        Self { median: q(0.5), p05: q(0.05), p95: q(0.95) }
+        Self {
+            median: q(0.5),
+            p05: q(0.05),
+            p95: q(0.95),
+        }
     }
 }
 
@@ -204,7 +212,10 @@ fn one_run(
     let (nav, duration_s) = (&opt.nav, opt.duration_s);
     let mut plant = Plant::new(plant_cfg).expect("validated scenario");
     let mut cfg = nav.clone();
-    cfg.compensation = compensated.then(|| opt.compensation.unwrap_or(plant_cfg.sensor.gyro.position_bias));
+    cfg.compensation = compensated.then(|| {
+        opt.compensation
+            .unwrap_or(plant_cfg.sensor.gyro.position_bias)
+    });
     let out = run(&mut plant, duration_s, &cfg).expect("navigation run");
     progress((duration_s * plant_cfg.rate_hz) as u64);
     out
@@ -229,7 +240,11 @@ pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Rep
             match seed {
                 Some(s) => cfg.seed = s,
                 None => {
-                    for t in [GyroTerm::AngleRandomWalk, GyroTerm::BiasInstability, GyroTerm::RateRandomWalk] {
+                    for t in [
+                        GyroTerm::AngleRandomWalk,
+                        GyroTerm::BiasInstability,
+                        GyroTerm::RateRandomWalk,
+                    ] {
                         cfg.sensor.gyro.set_enabled(t, false);
                     }
                     cfg.sensor.accel.velocity_random_walk.enabled = false;
@@ -244,10 +259,19 @@ pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Rep
     let mut nf_series = Series::default();
     for k in 0..opt.runs as u64 {
         let seed = opt.plant.seed + k;
-        let get = |c: bool| results.iter().find(|((s, cc), _)| *s == Some(seed) && *cc == c).map(|(_, r)| r).expect("task ran");
+        let get = |c: bool| {
+            results
+                .iter()
+                .find(|((s, cc), _)| *s == Some(seed) && *cc == c)
+                .map(|(_, r)| r)
+                .expect("task ran")
+        };
         let (u, c) = (get(false), get(true));
         if k == 0 {
-            first = Series { uncompensated: u.records.clone(), compensated: c.records.clone() };
+            first = Series {
+                uncompensated: u.records.clone(),
+                compensated: c.records.clone(),
+            };
         }
         per_seed.push((seed, EndFigures::from_run(u), EndFigures::from_run(c)));
     }
@@ -305,11 +329,23 @@ impl Table4Report {
         let mut s = format!(
             "Table 5: {} seeds x {:.2} days, 16-position RINS, compensation from the fitted dbeta(T) (wall {:.1} s)\n\
              {:<26} {:>9} {:>9}   {:>27}   {:>27}\n",
-            self.runs, self.days, self.wall_s, "", "paper unc", "paper comp", "ours uncompensated median [5%, 95%]", "ours compensated"
+            self.runs,
+            self.days,
+            self.wall_s,
+            "",
+            "paper unc",
+            "paper comp",
+            "ours uncompensated median [5%, 95%]",
+            "ours compensated"
         );
         s += &row("latitude error (nmi)", p::LAT_NM, &u.lat_nm, &c.lat_nm);
         s += &row("longitude error (nmi)", p::LON_NM, &u.lon_nm, &c.lon_nm);
-        s += &row("horizontal error (nmi)", p::HORIZONTAL_NM, &u.horizontal_nm, &c.horizontal_nm);
+        s += &row(
+            "horizontal error (nmi)",
+            p::HORIZONTAL_NM,
+            &u.horizontal_nm,
+            &c.horizontal_nm,
+        );
         s += &row("tRMS (nmi)", p::TRMS_NM, &u.trms_nm, &c.trms_nm);
         let i = &self.improvement_pct;
         s += &format!(
@@ -319,7 +355,14 @@ impl Table4Report {
         let (nu, nc) = (&self.noise_free.uncompensated, &self.noise_free.compensated);
         s += &format!(
             "  noise-free pair:        uncompensated lat {:+.4} lon {:+.4} hor {:.4} tRMS {:.4} nmi; compensated lat {:+.4} lon {:+.4} hor {:.4} tRMS {:.4} nmi\n",
-            nu.lat_nm, nu.lon_nm, nu.horizontal_nm, nu.trms_nm, nc.lat_nm, nc.lon_nm, nc.horizontal_nm, nc.trms_nm
+            nu.lat_nm,
+            nu.lon_nm,
+            nu.horizontal_nm,
+            nu.trms_nm,
+            nc.lat_nm,
+            nc.lon_nm,
+            nc.horizontal_nm,
+            nc.trms_nm
         );
         s
     }
@@ -328,10 +371,24 @@ impl Table4Report {
     pub fn to_text(&self) -> String {
         let (u, c) = (&self.uncompensated, &self.compensated);
         let row = |name: &str, paper: [f64; 2], bu: &Band, bc: &Band| {
-            let p = |x: f64| if x.is_nan() { "-".to_string() } else { format!("{x:.4}") };
+            let p = |x: f64| {
+                if x.is_nan() {
+                    "-".to_string()
+                } else {
+                    format!("{x:.4}")
+                }
+            };
             format!(
                 "  {:<26} {:>9} {:>9}   {:>8.4} [{:>7.4}, {:>7.4}]   {:>8.4} [{:>7.4}, {:>7.4}]\n",
-                name, p(paper[0]), p(paper[1]), bu.median, bu.p05, bu.p95, bc.median, bc.p05, bc.p95
+                name,
+                p(paper[0]),
+                p(paper[1]),
+                bu.median,
+                bu.p05,
+                bu.p95,
+                bc.median,
+                bc.p05,
+                bc.p95
             )
         };
         let na = [f64::NAN, f64::NAN];
@@ -339,15 +396,42 @@ impl Table4Report {
             "Table 4: {} seeds x {:.2} days, 16-position RINS at 36.6 N 123.6 E, Table 3 sensors (wall {:.1} s)\n\
              (navigator vertical channel held at the site height; paper values where the paper gives them)\n\
              {:<28} {:>9} {:>9}   {:>27}   {:>27}\n",
-            self.runs, self.days, self.wall_s, "", "paper unc", "paper comp", "ours uncompensated median [5%, 95%]", "ours compensated"
+            self.runs,
+            self.days,
+            self.wall_s,
+            "",
+            "paper unc",
+            "paper comp",
+            "ours uncompensated median [5%, 95%]",
+            "ours compensated"
         );
-        s += &row("|latitude error| (nmi)", published::LAT_NM, &u.abs_lat_nm, &c.abs_lat_nm);
-        s += &row("|longitude error| (nmi)", published::LON_NM, &u.abs_lon_nm, &c.abs_lon_nm);
+        s += &row(
+            "|latitude error| (nmi)",
+            published::LAT_NM,
+            &u.abs_lat_nm,
+            &c.abs_lat_nm,
+        );
+        s += &row(
+            "|longitude error| (nmi)",
+            published::LON_NM,
+            &u.abs_lon_nm,
+            &c.abs_lon_nm,
+        );
         s += &row("latitude error (nmi)", na, &u.lat_nm, &c.lat_nm);
         s += &row("longitude error (nmi)", na, &u.lon_nm, &c.lon_nm);
-        s += &row("horizontal error (nmi)", na, &u.horizontal_nm, &c.horizontal_nm);
+        s += &row(
+            "horizontal error (nmi)",
+            na,
+            &u.horizontal_nm,
+            &c.horizontal_nm,
+        );
         s += &row("tRMS (nmi)", na, &u.trms_nm, &c.trms_nm);
-        s += &row("up-axis mean |att| (deg)", published::UP_ATT_MEAN_DEG, &u.up_att_mean_deg, &c.up_att_mean_deg);
+        s += &row(
+            "up-axis mean |att| (deg)",
+            published::UP_ATT_MEAN_DEG,
+            &u.up_att_mean_deg,
+            &c.up_att_mean_deg,
+        );
         let i = &self.improvement_pct;
         s += &format!(
             "  improvement (medians):    latitude {:.2} % (paper 0.53 %), longitude {:.2} % (paper 59.44 %), horizontal {:.2} %, tRMS {:.2} %, up attitude {:.2} % (paper 10.65 %)\n",

@@ -21,7 +21,12 @@ const WEIGHTS: [f64; 5] = [
 /// ∫_a^b f(t) dt with `pieces` equal sub-intervals of 10-point Gauss–Legendre (exact for
 /// polynomials of degree 19 per piece; spectrally accurate for the smooth trigonometric
 /// integrands between motion breakpoints).
-pub fn integrate<F: FnMut(f64) -> Vector3<f64>>(a: f64, b: f64, pieces: usize, mut f: F) -> Vector3<f64> {
+pub fn integrate<F: FnMut(f64) -> Vector3<f64>>(
+    a: f64,
+    b: f64,
+    pieces: usize,
+    mut f: F,
+) -> Vector3<f64> {
     if b <= a {
         return Vector3::zeros();
     }
@@ -45,7 +50,9 @@ mod tests {
     #[test]
     fn integrates_trigonometric_closed_forms() {
         let pi = std::f64::consts::PI;
-        let v = integrate(0.0, pi, 8, |t| Vector3::new(t.sin(), t.cos().powi(2), t.powi(19)));
+        let v = integrate(0.0, pi, 8, |t| {
+            Vector3::new(t.sin(), t.cos().powi(2), t.powi(19))
+        });
         assert_relative_eq!(v.x, 2.0, epsilon = 1e-14);
         assert_relative_eq!(v.y, pi / 2.0, epsilon = 1e-14);
         assert_relative_eq!(v.z, pi.powi(20) / 20.0, max_relative = 1e-13);

@@ -76,7 +76,10 @@ pub struct Table2Report {
 /// Evaluates each sequence's C_b^n(t) from the plant's schedule (constant-rate moves as in
 /// Eq. 6) at several angles and compares with the printed table.
 pub fn compare() -> Table2Report {
-    let spec = SchemeSpec { accel_dps2: f64::INFINITY, ..SchemeSpec::default() };
+    let spec = SchemeSpec {
+        accel_dps2: f64::INFINITY,
+        ..SchemeSpec::default()
+    };
     let rate = spec.rate_dps.to_radians();
     let sched = Schedule::new(&spec.resolve());
     let probes_deg: [f64; 3] = [17.0, 60.0, 135.0];
@@ -95,7 +98,10 @@ pub fn compare() -> Table2Report {
                     compared += 1;
                     let d = (derived[(i, j)] - print[(i, j)]).abs();
                     if d > 1e-9 {
-                        if !mismatches.iter().any(|m| m.sequence == seq && m.row == i + 1 && m.col == j + 1) {
+                        if !mismatches
+                            .iter()
+                            .any(|m| m.sequence == seq && m.row == i + 1 && m.col == j + 1)
+                        {
                             mismatches.push(Mismatch {
                                 sequence: seq,
                                 row: i + 1,
@@ -113,5 +119,9 @@ pub fn compare() -> Table2Report {
             }
         }
     }
-    Table2Report { entries_compared: compared, mismatches, max_abs_diff_agreeing: max_ok }
+    Table2Report {
+        entries_compared: compared,
+        mismatches,
+        max_abs_diff_agreeing: max_ok,
+    }
 }

@@ -8,7 +8,13 @@ use rins_verify::table2::compare;
 fn eq8_errors_cancel_over_a_cycle() {
     let r = eq8();
     for c in &r.cases {
-        assert!(c.cancellation_ratio <= 1e-9, "{} (accel {}): ratio {:e}", c.errors, c.accel_dps2, c.cancellation_ratio);
+        assert!(
+            c.cancellation_ratio <= 1e-9,
+            "{} (accel {}): ratio {:e}",
+            c.errors,
+            c.accel_dps2,
+            c.cancellation_ratio
+        );
     }
     // 16 (T_r + T_s) with T_r = 90 s + ramp time 0.1 s at the default 20 deg/s^2.
     approx::assert_relative_eq!(r.cycle_s, 16.0 * (90.1 + 180.0), epsilon = 1e-9);
@@ -17,8 +23,16 @@ fn eq8_errors_cancel_over_a_cycle() {
 #[test]
 fn eq11_stationary_residual_and_paper_example() {
     let r = eq11([0.005; 3], 180.0);
-    assert!(r.stationary_z_rel_err <= 1e-9, "{:e}", r.stationary_z_rel_err);
-    assert!(r.stationary_xy_over_z <= 1e-12, "{:e}", r.stationary_xy_over_z);
+    assert!(
+        r.stationary_z_rel_err <= 1e-9,
+        "{:e}",
+        r.stationary_z_rel_err
+    );
+    assert!(
+        r.stationary_xy_over_z <= 1e-12,
+        "{:e}",
+        r.stationary_xy_over_z
+    );
     // The paper: T_s = 180 s and dbeta_z = 0.005 deg/h give about 0.002 deg.
     approx::assert_relative_eq!(r.expected_z_deg, -0.002, epsilon = 1e-12);
     assert!(r.rotation_rel_err <= 1e-6, "{:e}", r.rotation_rel_err);
@@ -31,7 +45,11 @@ fn eq11_scales_with_dwell_and_only_dbeta_z_survives_the_dwells() {
     let s = nalgebra::Vector3::from(r.stationary_rad);
     assert!(s.norm() < 1e-15, "{s:?}");
     let r2 = eq11([0.0, 0.0, 0.004], 300.0);
-    approx::assert_relative_eq!(r2.stationary_rad[2], -8.0 * 300.0 * 0.004 * rins_plant::units::DPH, max_relative = 1e-9);
+    approx::assert_relative_eq!(
+        r2.stationary_rad[2],
+        -8.0 * 300.0 * 0.004 * rins_plant::units::DPH,
+        max_relative = 1e-9
+    );
 }
 
 #[test]
@@ -39,7 +57,11 @@ fn table2_has_exactly_the_two_misprinted_entries() {
     // Independently derived by hand from Eq. 5-6: sequences 3 and 6 run at Z down (from C and
     // from D), so their (3,3) entry is -1; Table 2 prints 1.
     let t = compare();
-    let found: Vec<(usize, usize, usize)> = t.mismatches.iter().map(|m| (m.sequence, m.row, m.col)).collect();
+    let found: Vec<(usize, usize, usize)> = t
+        .mismatches
+        .iter()
+        .map(|m| (m.sequence, m.row, m.col))
+        .collect();
     assert_eq!(found, vec![(3, 3, 3), (6, 3, 3)]);
     for m in &t.mismatches {
         assert_eq!(m.printed, 1.0);
@@ -53,7 +75,14 @@ fn report_passes_and_serialises_required_keys() {
     let r = AnalyticReport::run();
     assert!(r.passed(), "{}", r.to_text());
     let v = serde_json::to_value(&r).unwrap();
-    for key in ["/eq8/cancellation_ratio", "/eq11/stationary_rad", "/eq11/expected_z_rad", "/eq11/rotation_rad", "/eq11/rotation_closed_form_rad", "/table2/mismatches"] {
+    for key in [
+        "/eq8/cancellation_ratio",
+        "/eq11/stationary_rad",
+        "/eq11/expected_z_rad",
+        "/eq11/rotation_rad",
+        "/eq11/rotation_closed_form_rad",
+        "/table2/mismatches",
+    ] {
         assert!(v.pointer(key).is_some(), "missing {key}");
     }
 }
@@ -66,6 +95,10 @@ fn accel_scale_factor_on_gravity_is_rectified_not_cancelled() {
     assert!(v.numeric_mps > 1.0, "{}", v.numeric_mps);
     assert!(v.rel_err < 1e-9, "{:e}", v.rel_err);
     // Horizontal components still cancel.
-    let sf = r.cases.iter().find(|c| c.errors == "accel scale_factor").unwrap();
+    let sf = r
+        .cases
+        .iter()
+        .find(|c| c.errors == "accel scale_factor")
+        .unwrap();
     assert!(sf.cancellation_ratio < 1e-9);
 }

@@ -15,13 +15,20 @@ use rins_plant::Plant;
 
 fn bench(c: &mut Criterion) {
     let exe = std::env::current_exe().unwrap();
-    let so = exe.parent().and_then(|d| d.parent()).unwrap().join("librins_fmi2.so");
+    let so = exe
+        .parent()
+        .and_then(|d| d.parent())
+        .unwrap()
+        .join("librins_fmi2.so");
     let (guid, _, vars) = parse_model_description(&fmu::description(FmiVersion::V2).0).unwrap();
-    let lib = Fmu2::load(&so, guid, vars).unwrap_or_else(|e| panic!("{e}: build it with cargo build --release -p rins-fmi2"));
+    let lib = Fmu2::load(&so, guid, vars)
+        .unwrap_or_else(|e| panic!("{e}: build it with cargo build --release -p rins-fmi2"));
 
     let mut g = c.benchmark_group("10ms_step");
     let mut plant = Plant::new(&rins_plant::presets::paper_16pos_config()).unwrap();
-    g.bench_function("in_process_plant_step", |b| b.iter(|| black_box(plant.step())));
+    g.bench_function("in_process_plant_step", |b| {
+        b.iter(|| black_box(plant.step()))
+    });
 
     // The same FMI state machine and model, called directly: separates the C ABI from the glue.
     let mut direct = rins_fmi::instance::Instance::<rins_fmi::rins::RinsModel>::new();
@@ -46,10 +53,17 @@ fn bench(c: &mut Criterion) {
             k += 1;
         })
     });
-    let outs: Vec<u32> = ["imu.dtheta_rad[0]", "imu.dtheta_rad[1]", "imu.dtheta_rad[2]", "imu.dv_mps[0]", "imu.dv_mps[1]", "imu.dv_mps[2]"]
-        .iter()
-        .map(|n| lib.vr(n).unwrap())
-        .collect();
+    let outs: Vec<u32> = [
+        "imu.dtheta_rad[0]",
+        "imu.dtheta_rad[1]",
+        "imu.dtheta_rad[2]",
+        "imu.dv_mps[0]",
+        "imu.dv_mps[1]",
+        "imu.dv_mps[2]",
+    ]
+    .iter()
+    .map(|n| lib.vr(n).unwrap())
+    .collect();
     let mut buf = [0.0; 6];
     g.bench_function("fmu_c_abi_do_step_and_get_increments", |b| {
         b.iter(|| {

@@ -15,8 +15,15 @@ fn main() {
         }
         Some("fmu") => {
             let exe = std::env::current_exe().unwrap();
-            let so = exe.parent().and_then(|d| d.parent()).unwrap().join("librins_fmi2.so");
-            let (guid, _, vars) = rins_fmi::importer::parse_model_description(&rins_fmi::fmu::description(rins_fmi::xml::FmiVersion::V2).0).unwrap();
+            let so = exe
+                .parent()
+                .and_then(|d| d.parent())
+                .unwrap()
+                .join("librins_fmi2.so");
+            let (guid, _, vars) = rins_fmi::importer::parse_model_description(
+                &rins_fmi::fmu::description(rins_fmi::xml::FmiVersion::V2).0,
+            )
+            .unwrap();
             let lib = rins_fmi::importer::Fmu2::load(&so, guid, vars).unwrap();
             let inst = lib.instantiate("cost", false).unwrap();
             inst.setup_experiment(0.0, None).unwrap();

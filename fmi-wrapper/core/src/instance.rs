@@ -35,14 +35,24 @@ pub struct FmiError {
 impl FmiError {
     /// An error-status refusal.
     pub fn error(message: impl Into<String>) -> Self {
-        Self { status: Status::Error, category: "logStatusError", message: message.into() }
+        Self {
+            status: Status::Error,
+            category: "logStatusError",
+            message: message.into(),
+        }
     }
 }
 
 /// Log categories the FMUs declare.
 pub const LOG_CATEGORIES: [(&str, &str); 3] = [
-    ("logStatusError", "Calls that fail, with the reason (always reported)"),
-    ("logStatusWarning", "Calls that succeed with a remark (always reported)"),
+    (
+        "logStatusError",
+        "Calls that fail, with the reason (always reported)",
+    ),
+    (
+        "logStatusWarning",
+        "Calls that succeed with a remark (always reported)",
+    ),
     ("logEvents", "Mode changes and steps (only with loggingOn)"),
 ];
 
@@ -85,7 +95,13 @@ impl<M: Model> Default for Instance<M> {
 impl<M: Model> Instance<M> {
     /// A fresh instance in [`Mode::Instantiated`].
     pub fn new() -> Self {
-        Self { model: M::new(), mode: Mode::Instantiated, start_time_s: 0.0, rate_hz: 1.0, steps_done: 0 }
+        Self {
+            model: M::new(),
+            mode: Mode::Instantiated,
+            start_time_s: 0.0,
+            rate_hz: 1.0,
+            steps_done: 0,
+        }
     }
 
     /// The variable table.
@@ -112,15 +128,23 @@ impl<M: Model> Instance<M> {
         if allowed.contains(&self.mode) {
             Ok(())
         } else {
-            Err(FmiError::error(format!("{what} is not allowed in {:?} mode (allowed: {allowed:?})", self.mode)))
+            Err(FmiError::error(format!(
+                "{what} is not allowed in {:?} mode (allowed: {allowed:?})",
+                self.mode
+            )))
         }
     }
 
     /// Records the start time (FMI 2 setupExperiment / FMI 3 enterInitializationMode).
     pub fn setup(&mut self, start_time_s: f64) -> Result<(), FmiError> {
-        self.expect(&[Mode::Instantiated, Mode::Initialization], "setting the start time")?;
+        self.expect(
+            &[Mode::Instantiated, Mode::Initialization],
+            "setting the start time",
+        )?;
         if !start_time_s.is_finite() {
-            return Err(FmiError::error(format!("start time must be finite, got {start_time_s}")));
+            return Err(FmiError::error(format!(
+                "start time must be finite, got {start_time_s}"
+            )));
         }
         self.start_time_s = start_time_s;
         Ok(())
@@ -165,7 +189,14 @@ impl<M: Model> Instance<M> {
     fn slot_of(&self, vr: u32) -> Result<usize, FmiError> {
         let n = M::table().scalars.len();
         let slot = vr as usize;
-        if slot < n { Ok(slot) } else { Err(FmiError::error(format!("unknown value reference {vr} (valid: 0…{})", n - 1))) }
+        if slot < n {
+            Ok(slot)
+        } else {
+            Err(FmiError::error(format!(
+                "unknown value reference {vr} (valid: 0…{})",
+                n - 1
+            )))
+        }
     }
 
     /// Sets the scalar at value reference `vr` (its slot).
@@ -178,11 +209,20 @@ impl<M: Model> Instance<M> {
     pub fn set_slot(&mut self, slot: usize, v: Value) -> Result<(), FmiError> {
         let s = &M::table().scalars[slot];
         match s.causality {
-            Causality::Output => return Err(FmiError::error(format!("{} is an output and cannot be set", s.name))),
-            Causality::Parameter => {
-                self.expect(&[Mode::Instantiated, Mode::Initialization], &format!("setting parameter {}", s.name))?
+            Causality::Output => {
+                return Err(FmiError::error(format!(
+                    "{} is an output and cannot be set",
+                    s.name
+                )));
             }
-            Causality::Input => self.expect(&[Mode::Instantiated, Mode::Initialization, Mode::Step], &format!("setting input {}", s.name))?,
+            Causality::Parameter => self.expect(
+                &[Mode::Instantiated, Mode::Initialization],
+                &format!("setting parameter {}", s.name),
+            )?,
+            Causality::Input => self.expect(
+                &[Mode::Instantiated, Mode::Initialization, Mode::Step],
+                &format!("setting input {}", s.name),
+            )?,
         }
         M::table().check(slot, v).map_err(FmiError::error)?;
         self.model.set(slot, v).map_err(FmiError::error)
@@ -216,7 +256,11 @@ impl<M: Model> Instance<M> {
         }
         let n = h_s * rate;
         // Truncation after +0.5 is round-half-up for positive n without a libm call.
-        let whole = if (0.5..1e15).contains(&n) { (n + 0.5) as u64 } else { 0 };
+        let whole = if (0.5..1e15).contains(&n) {
+            (n + 0.5) as u64
+        } else {
+            0
+        };
         if whole == 0 || !((n - whole as f64).abs() <= STEP_TOL * whole as f64) {
             return Err(Self::do_step_refused_size(h_s, n, rate));
         }
@@ -230,17 +274,23 @@ impl<M: Model> Instance<M> {
 
     #[cold]
     fn do_step_refused_mode(&self) -> FmiError {
-        self.expect(&[Mode::Step], "doStep").expect_err("not in step mode")
+        self.expect(&[Mode::Step], "doStep")
+            .expect_err("not in step mode")
     }
 
     #[cold]
     fn do_step_refused_time(t_s: f64, now: f64) -> FmiError {
-        FmiError::error(format!("doStep from t = {t_s} s, but the FMU is at t = {now} s"))
+        FmiError::error(format!(
+            "doStep from t = {t_s} s, but the FMU is at t = {now} s"
+        ))
     }
 
     #[cold]
     fn do_step_refused_size(h_s: f64, n: f64, rate: f64) -> FmiError {
-        FmiError::error(format!("communication step {h_s} s is not a whole positive number of internal steps of {} s (ratio {n})", 1.0 / rate))
+        FmiError::error(format!(
+            "communication step {h_s} s is not a whole positive number of internal steps of {} s (ratio {n})",
+            1.0 / rate
+        ))
     }
 
     /// A copy of the whole instance (FMU state by value).
@@ -267,7 +317,9 @@ impl<M: Model> Instance<M> {
     /// An instance from [`Instance::serialize`] bytes.
     pub fn deserialize(bytes: &[u8]) -> Result<Self, FmiError> {
         if bytes.len() < 40 || &bytes[..8] != b"RINSFMU1" {
-            return Err(FmiError::error("not a serialized state of this FMU (bad header)"));
+            return Err(FmiError::error(
+                "not a serialized state of this FMU (bad header)",
+            ));
         }
         let mode = match u64::from_le_bytes(bytes[8..16].try_into().expect("8 bytes")) {
             0 => Mode::Instantiated,
@@ -281,7 +333,15 @@ impl<M: Model> Instance<M> {
         let rate_hz = f64::from_le_bytes(word(3));
         let steps_done = u64::from_le_bytes(word(4));
         let mut model = M::new();
-        model.restore(&bytes[40..]).map_err(|e| FmiError::error(format!("cannot restore the serialized state: {e}")))?;
-        Ok(Self { model, mode, start_time_s, rate_hz, steps_done })
+        model
+            .restore(&bytes[40..])
+            .map_err(|e| FmiError::error(format!("cannot restore the serialized state: {e}")))?;
+        Ok(Self {
+            model,
+            mode,
+            start_time_s,
+            rate_hz,
+            steps_done,
+        })
     }
 }

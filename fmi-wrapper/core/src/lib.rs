@@ -6,13 +6,13 @@
 //! packaging ([`package`], [`zip`]) and an FMI 2 importer for tests and `rins fmu run`
 //! ([`importer`]). The exported C functions live in the `rins-fmi2` and `rins-fmi3` cdylibs.
 
+pub mod ffi;
+pub mod fmu;
+pub mod importer;
 pub mod instance;
 pub mod model;
+pub mod package;
 pub mod rins;
 pub mod vars;
-pub mod fmu;
 pub mod xml;
 pub mod zip;
-pub mod package;
-pub mod importer;
-pub mod ffi;

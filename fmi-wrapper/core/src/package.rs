@@ -31,10 +31,31 @@ pub fn fmu_file(version: FmiVersion) -> String {
 pub fn variable_list(version: FmiVersion) -> String {
     let table = RinsModel::table();
     let mut s = String::new();
-    let _ = writeln!(s, "| name | causality | type | unit | start | range | description |\n|---|---|---|---|---|---|---|");
+    let _ = writeln!(
+        s,
+        "| name | causality | type | unit | start | range | description |\n|---|---|---|---|---|---|---|"
+    );
     let rows: Vec<(String, usize)> = match version {
-        FmiVersion::V2 => table.scalars.iter().enumerate().map(|(i, v)| (v.name.clone(), i)).collect(),
-        FmiVersion::V3 => table.arrays.iter().map(|a| (if a.is_array { format!("{}[{}]", a.name, a.slots.len()) } else { a.name.clone() }, a.slots.start)).collect(),
+        FmiVersion::V2 => table
+            .scalars
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (v.name.clone(), i))
+            .collect(),
+        FmiVersion::V3 => table
+            .arrays
+            .iter()
+            .map(|a| {
+                (
+                    if a.is_array {
+                        format!("{}[{}]", a.name, a.slots.len())
+                    } else {
+                        a.name.clone()
+                    },
+                    a.slots.start,
+                )
+            })
+            .collect(),
     };
     for (name, slot) in rows {
         let v = &table.scalars[slot];
@@ -44,16 +65,41 @@ pub fn variable_list(version: FmiVersion) -> String {
             (Kind::Integer, FmiVersion::V2) => "Integer".into(),
             (Kind::Integer, FmiVersion::V3) => "UInt64".into(),
             (Kind::Boolean, _) => "Boolean".into(),
-            (Kind::Enumeration { items, .. }, _) => format!("Enumeration ({})", items.iter().enumerate().map(|(i, n)| format!("{}={n}", i + 1)).collect::<Vec<_>>().join(", ")),
+            (Kind::Enumeration { items, .. }, _) => format!(
+                "Enumeration ({})",
+                items
+                    .iter()
+                    .enumerate()
+                    .map(|(i, n)| format!("{}={n}", i + 1))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
         };
         let causality = match v.causality {
             Causality::Parameter => "parameter",
             Causality::Input => "input",
             Causality::Output => "output",
         };
-        let start = if v.causality == Causality::Output { String::new() } else { format!("{:?}", v.start).replace("Real(", "").replace("Integer(", "").replace("Boolean(", "").replace("Enumeration(", "#").replace(')', "") };
-        let range = v.range.map(|(a, b)| format!("[{a}, {b}]")).unwrap_or_default();
-        let _ = writeln!(s, "| `{name}` | {causality} | {ty} | {} | {start} | {range} | {} |", v.unit.unwrap_or(""), v.description);
+        let start = if v.causality == Causality::Output {
+            String::new()
+        } else {
+            format!("{:?}", v.start)
+                .replace("Real(", "")
+                .replace("Integer(", "")
+                .replace("Boolean(", "")
+                .replace("Enumeration(", "#")
+                .replace(')', "")
+        };
+        let range = v
+            .range
+            .map(|(a, b)| format!("[{a}, {b}]"))
+            .unwrap_or_default();
+        let _ = writeln!(
+            s,
+            "| `{name}` | {causality} | {ty} | {} | {start} | {range} | {} |",
+            v.unit.unwrap_or(""),
+            v.description
+        );
     }
     s
 }
@@ -81,7 +127,8 @@ fn documentation(version: FmiVersion) -> String {
 
 /// Writes the `.fmu` for `version` into `out_dir` from the shared library `lib`; returns its path.
 pub fn build_fmu(version: FmiVersion, lib: &Path, out_dir: &Path) -> std::io::Result<PathBuf> {
-    let binary = std::fs::read(lib).map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", lib.display())))?;
+    let binary = std::fs::read(lib)
+        .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", lib.display())))?;
     let (xml, _) = fmu::description(version);
     let bin_path = match version {
         FmiVersion::V2 => format!("binaries/linux64/{FMI2_ID}.so"),
@@ -90,8 +137,14 @@ pub fn build_fmu(version: FmiVersion, lib: &Path, out_dir: &Path) -> std::io::Re
     let entries = vec![
         ("modelDescription.xml".to_string(), xml.as_bytes().to_vec()),
         (bin_path, binary),
-        ("documentation/index.md".to_string(), documentation(version).into_bytes()),
-        ("documentation/licenses/LICENSE.txt".to_string(), include_bytes!("../../../LICENSE-MIT").to_vec()),
+        (
+            "documentation/index.md".to_string(),
+            documentation(version).into_bytes(),
+        ),
+        (
+            "documentation/licenses/LICENSE.txt".to_string(),
+            include_bytes!("../../../LICENSE-MIT").to_vec(),
+        ),
     ];
     std::fs::create_dir_all(out_dir)?;
     let path = out_dir.join(fmu_file(version));
@@ -105,6 +158,9 @@ mod tests {
     fn docs_fmu_md_lists_the_current_variables() {
         let doc = include_str!("../../../docs/fmu.md");
         let list = super::variable_list(crate::xml::FmiVersion::V3);
-        assert!(doc.contains(&list), "docs/fmu.md is out of date: regenerate with `cargo run -p rins-fmi --example variable_list`");
+        assert!(
+            doc.contains(&list),
+            "docs/fmu.md is out of date: regenerate with `cargo run -p rins-fmi --example variable_list`"
+        );
     }
 }

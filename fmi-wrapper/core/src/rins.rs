@@ -90,33 +90,74 @@ fn param_var(p: &params::Param) -> ScalarVar {
         ParamValue::Integer(u) => {
             // FMI 2 Integer is 32-bit signed: the seed range is what both FMI versions carry.
             let (lo, hi) = p.range.unwrap_or((0.0, f64::INFINITY));
-            (Kind::Integer, Value::Integer(*u), Some((lo, hi.min(i32::MAX as f64))))
+            (
+                Kind::Integer,
+                Value::Integer(*u),
+                Some((lo, hi.min(i32::MAX as f64))),
+            )
         }
         ParamValue::Bool(b) => (Kind::Boolean, Value::Boolean(*b), None),
         ParamValue::Enum(name) => {
-            let items = params::enum_choices(&p.path).expect("every enumeration has choices (tested in rins-plant)");
+            let items = params::enum_choices(&p.path)
+                .expect("every enumeration has choices (tested in rins-plant)");
             let type_name = match array.as_str() {
                 "scheme.kind" => "SchemeKind",
                 "scheme.axis" => "GimbalAxis",
                 _ => "PositionBiasTransition",
             };
-            let idx = items.iter().position(|c| c == name).expect("start value is a valid item");
-            (Kind::Enumeration { type_name, items }, Value::Enumeration(idx), None)
+            let idx = items
+                .iter()
+                .position(|c| c == name)
+                .expect("start value is a valid item");
+            (
+                Kind::Enumeration { type_name, items },
+                Value::Enumeration(idx),
+                None,
+            )
         }
     };
     // FMI structured names write matrix elements as `a[i,j]`.
-    ScalarVar { name: p.path.replace("][", ","), array, kind, causality: Causality::Parameter, unit, start, range, description: describe(&p.path) }
+    ScalarVar {
+        name: p.path.replace("][", ","),
+        array,
+        kind,
+        causality: Causality::Parameter,
+        unit,
+        start,
+        range,
+        description: describe(&p.path),
+    }
 }
 
-fn real(name: String, array: &str, causality: Causality, unit: Option<&'static str>, start: f64, range: Option<(f64, f64)>, description: &str) -> ScalarVar {
-    ScalarVar { name, array: array.into(), kind: Kind::Real, causality, unit, start: Value::Real(start), range, description: description.into() }
+fn real(
+    name: String,
+    array: &str,
+    causality: Causality,
+    unit: Option<&'static str>,
+    start: f64,
+    range: Option<(f64, f64)>,
+    description: &str,
+) -> ScalarVar {
+    ScalarVar {
+        name,
+        array: array.into(),
+        kind: Kind::Real,
+        causality,
+        unit,
+        start: Value::Real(start),
+        range,
+        description: description.into(),
+    }
 }
 
 fn build_table() -> Table {
     let defaults = rins_plant::presets::paper_16pos_config();
     let mut scalars = Vec::new();
     let mut roles = Vec::new();
-    for p in params::flatten(&defaults).into_iter().filter(|p| is_fixed_shape(&p.path)) {
+    for p in params::flatten(&defaults)
+        .into_iter()
+        .filter(|p| is_fixed_shape(&p.path))
+    {
         scalars.push(param_var(&p));
         roles.push(Role::Param(p.path));
     }
@@ -135,18 +176,68 @@ fn build_table() -> Table {
         range: None,
         description: description.into(),
     };
-    push(boolean("input.chamber_override", "use input.chamber_temp_c instead of the scenario's chamber temperature"), Role::Input(Input::ChamberOverride));
+    push(
+        boolean(
+            "input.chamber_override",
+            "use input.chamber_temp_c instead of the scenario's chamber temperature",
+        ),
+        Role::Input(Input::ChamberOverride),
+    );
     let chamber0 = defaults.thermal.chamber.temp_c;
     push(
-        real("input.chamber_temp_c".into(), "input.chamber_temp_c", inp, Some("degC"), chamber0, Some((CHAMBER_MIN_C, CHAMBER_MAX_C)), "chamber (ambient) temperature when input.chamber_override"),
+        real(
+            "input.chamber_temp_c".into(),
+            "input.chamber_temp_c",
+            inp,
+            Some("degC"),
+            chamber0,
+            Some((CHAMBER_MIN_C, CHAMBER_MAX_C)),
+            "chamber (ambient) temperature when input.chamber_override",
+        ),
         Role::Input(Input::ChamberTemp),
     );
-    push(boolean("input.gimbal_command", "drive the table to input.gimbal_outer_deg/inner_deg instead of the rotation scheme"), Role::Input(Input::GimbalEnable));
-    let angle = Some((-3600.0, 3600.0));
-    push(real("input.gimbal_outer_deg".into(), "input.gimbal_outer_deg", inp, Some("deg"), 0.0, angle, "commanded outer (azimuth) gimbal angle"), Role::Input(Input::GimbalOuter));
-    push(real("input.gimbal_inner_deg".into(), "input.gimbal_inner_deg", inp, Some("deg"), 0.0, angle, "commanded inner gimbal angle"), Role::Input(Input::GimbalInner));
     push(
-        real("input.gimbal_rate_dps".into(), "input.gimbal_rate_dps", inp, Some("deg/s"), defaults.scheme.rate_dps, Some((1e-6, 100.0)), "cruise rate of commanded moves"),
+        boolean(
+            "input.gimbal_command",
+            "drive the table to input.gimbal_outer_deg/inner_deg instead of the rotation scheme",
+        ),
+        Role::Input(Input::GimbalEnable),
+    );
+    let angle = Some((-3600.0, 3600.0));
+    push(
+        real(
+            "input.gimbal_outer_deg".into(),
+            "input.gimbal_outer_deg",
+            inp,
+            Some("deg"),
+            0.0,
+            angle,
+            "commanded outer (azimuth) gimbal angle",
+        ),
+        Role::Input(Input::GimbalOuter),
+    );
+    push(
+        real(
+            "input.gimbal_inner_deg".into(),
+            "input.gimbal_inner_deg",
+            inp,
+            Some("deg"),
+            0.0,
+            angle,
+            "commanded inner gimbal angle",
+        ),
+        Role::Input(Input::GimbalInner),
+    );
+    push(
+        real(
+            "input.gimbal_rate_dps".into(),
+            "input.gimbal_rate_dps",
+            inp,
+            Some("deg/s"),
+            defaults.scheme.rate_dps,
+            Some((1e-6, 100.0)),
+            "cruise rate of commanded moves",
+        ),
         Role::Input(Input::GimbalRate),
     );
     push(
@@ -164,12 +255,30 @@ fn build_table() -> Table {
     );
 
     let out = Causality::Output;
-    let o = |name: String, array: &str, unit: &'static str, d: &str| real(name, array, out, Some(unit), 0.0, None, d);
+    let o = |name: String, array: &str, unit: &'static str, d: &str| {
+        real(name, array, out, Some(unit), 0.0, None, d)
+    };
     for i in 0..3 {
-        push(o(format!("imu.dtheta_rad[{i}]"), "imu.dtheta_rad", "rad", "angular increment over the last communication step (body x, y, z)"), Role::Output(Output::Dtheta(i)));
+        push(
+            o(
+                format!("imu.dtheta_rad[{i}]"),
+                "imu.dtheta_rad",
+                "rad",
+                "angular increment over the last communication step (body x, y, z)",
+            ),
+            Role::Output(Output::Dtheta(i)),
+        );
     }
     for i in 0..3 {
-        push(o(format!("imu.dv_mps[{i}]"), "imu.dv_mps", "m/s", "velocity increment over the last communication step (body x, y, z)"), Role::Output(Output::Dv(i)));
+        push(
+            o(
+                format!("imu.dv_mps[{i}]"),
+                "imu.dv_mps",
+                "m/s",
+                "velocity increment over the last communication step (body x, y, z)",
+            ),
+            Role::Output(Output::Dv(i)),
+        );
     }
     push(
         ScalarVar {
@@ -184,11 +293,51 @@ fn build_table() -> Table {
         },
         Role::Output(Output::SampleCount),
     );
-    push(o("imu.time_s".into(), "imu.time_s", "s", "end of the last IMU sample interval (integer tick × internal step)"), Role::Output(Output::TimeS));
-    push(o("gimbal.outer_rad".into(), "gimbal.outer_rad", "rad", "outer (azimuth) gimbal angle"), Role::Output(Output::GimbalOuter));
-    push(o("gimbal.inner_rad".into(), "gimbal.inner_rad", "rad", "inner gimbal angle"), Role::Output(Output::GimbalInner));
-    push(o("gimbal.outer_rate_rps".into(), "gimbal.outer_rate_rps", "rad/s", "outer gimbal rate"), Role::Output(Output::GimbalOuterRate));
-    push(o("gimbal.inner_rate_rps".into(), "gimbal.inner_rate_rps", "rad/s", "inner gimbal rate"), Role::Output(Output::GimbalInnerRate));
+    push(
+        o(
+            "imu.time_s".into(),
+            "imu.time_s",
+            "s",
+            "end of the last IMU sample interval (integer tick × internal step)",
+        ),
+        Role::Output(Output::TimeS),
+    );
+    push(
+        o(
+            "gimbal.outer_rad".into(),
+            "gimbal.outer_rad",
+            "rad",
+            "outer (azimuth) gimbal angle",
+        ),
+        Role::Output(Output::GimbalOuter),
+    );
+    push(
+        o(
+            "gimbal.inner_rad".into(),
+            "gimbal.inner_rad",
+            "rad",
+            "inner gimbal angle",
+        ),
+        Role::Output(Output::GimbalInner),
+    );
+    push(
+        o(
+            "gimbal.outer_rate_rps".into(),
+            "gimbal.outer_rate_rps",
+            "rad/s",
+            "outer gimbal rate",
+        ),
+        Role::Output(Output::GimbalOuterRate),
+    );
+    push(
+        o(
+            "gimbal.inner_rate_rps".into(),
+            "gimbal.inner_rate_rps",
+            "rad/s",
+            "inner gimbal rate",
+        ),
+        Role::Output(Output::GimbalInnerRate),
+    );
     push(
         ScalarVar {
             name: "gimbal.moving".into(),
@@ -204,34 +353,98 @@ fn build_table() -> Table {
     );
     for i in 0..4 {
         push(
-            real(format!("truth.q_bn[{i}]"), "truth.q_bn", out, None, if i == 0 { 1.0 } else { 0.0 }, None, "true attitude quaternion body→ENU navigation frame (w, x, y, z)"),
+            real(
+                format!("truth.q_bn[{i}]"),
+                "truth.q_bn",
+                out,
+                None,
+                if i == 0 { 1.0 } else { 0.0 },
+                None,
+                "true attitude quaternion body→ENU navigation frame (w, x, y, z)",
+            ),
             Role::Output(Output::Quaternion(i)),
         );
     }
     for (n, name) in node::NAMES.iter().enumerate() {
-        push(o(format!("thermal.{name}_c"), &format!("thermal.{name}_c"), "degC", "node temperature"), Role::Output(Output::Node(n)));
+        push(
+            o(
+                format!("thermal.{name}_c"),
+                &format!("thermal.{name}_c"),
+                "degC",
+                "node temperature",
+            ),
+            Role::Output(Output::Node(n)),
+        );
     }
-    push(o("thermal.chamber_c".into(), "thermal.chamber_c", "degC", "chamber temperature in use"), Role::Output(Output::Chamber));
+    push(
+        o(
+            "thermal.chamber_c".into(),
+            "thermal.chamber_c",
+            "degC",
+            "chamber temperature in use",
+        ),
+        Role::Output(Output::Chamber),
+    );
     for i in 0..3 {
-        push(o(format!("truth.dtheta_rad[{i}]"), "truth.dtheta_rad", "rad", "error-free angular increment over the last communication step"), Role::Output(Output::DthetaTrue(i)));
+        push(
+            o(
+                format!("truth.dtheta_rad[{i}]"),
+                "truth.dtheta_rad",
+                "rad",
+                "error-free angular increment over the last communication step",
+            ),
+            Role::Output(Output::DthetaTrue(i)),
+        );
     }
     for i in 0..3 {
-        push(o(format!("truth.dv_mps[{i}]"), "truth.dv_mps", "m/s", "error-free velocity increment over the last communication step"), Role::Output(Output::DvTrue(i)));
+        push(
+            o(
+                format!("truth.dv_mps[{i}]"),
+                "truth.dv_mps",
+                "m/s",
+                "error-free velocity increment over the last communication step",
+            ),
+            Role::Output(Output::DvTrue(i)),
+        );
     }
     for (t, term) in GyroTerm::ALL.iter().enumerate() {
         let arr = format!("effect.gyro.{}_rad", term.key());
         for i in 0..3 {
-            push(o(format!("{arr}[{i}]"), &arr, "rad", "this gyro term's angular increment error over the last IMU sample"), Role::Output(Output::Gyro(t, i)));
+            push(
+                o(
+                    format!("{arr}[{i}]"),
+                    &arr,
+                    "rad",
+                    "this gyro term's angular increment error over the last IMU sample",
+                ),
+                Role::Output(Output::Gyro(t, i)),
+            );
         }
     }
     for (t, term) in AccelTerm::ALL.iter().enumerate() {
         let arr = format!("effect.accel.{}_mps", term.key());
         for i in 0..3 {
-            push(o(format!("{arr}[{i}]"), &arr, "m/s", "this accelerometer term's velocity increment error over the last IMU sample"), Role::Output(Output::Accel(t, i)));
+            push(
+                o(
+                    format!("{arr}[{i}]"),
+                    &arr,
+                    "m/s",
+                    "this accelerometer term's velocity increment error over the last IMU sample",
+                ),
+                Role::Output(Output::Accel(t, i)),
+            );
         }
     }
     push(
-        real("effect.position_weight".into(), "effect.position_weight", out, None, 0.0, None, "weight of the position-dependent bias (0 Z-up, 1 Z-down, Eq. 9)"),
+        real(
+            "effect.position_weight".into(),
+            "effect.position_weight",
+            out,
+            None,
+            0.0,
+            None,
+            "weight of the position-dependent bias (0 Z-up, 1 Z-down, Eq. 9)",
+        ),
         Role::Output(Output::PositionWeight),
     );
     let mut input_slots = vec![usize::MAX; Input::COUNT];
@@ -240,7 +453,12 @@ fn build_table() -> Table {
             input_slots[*i as usize] = slot;
         }
     }
-    Table { vars: VariableTable::new(scalars), roles, defaults, input_slots }
+    Table {
+        vars: VariableTable::new(scalars),
+        roles,
+        defaults,
+        input_slots,
+    }
 }
 
 fn table() -> &'static Table {
@@ -279,10 +497,15 @@ impl RinsModel {
     /// The plant configuration the parameters describe.
     pub fn config(&self) -> Result<PlantConfig, String> {
         let t = table();
-        let pairs = t.roles.iter().zip(&t.vars.scalars).zip(&self.values).filter_map(|((r, s), v)| match r {
-            Role::Param(path) if *v != s.start => Some((path.as_str(), to_param(s, *v))),
-            _ => None,
-        });
+        let pairs = t
+            .roles
+            .iter()
+            .zip(&t.vars.scalars)
+            .zip(&self.values)
+            .filter_map(|((r, s), v)| match r {
+                Role::Param(path) if *v != s.start => Some((path.as_str(), to_param(s, *v))),
+                _ => None,
+            });
         params::apply(&t.defaults, pairs).map_err(|e| e.to_string())
     }
 
@@ -294,10 +517,20 @@ impl RinsModel {
     fn apply_inputs(&mut self) -> Result<(), String> {
         let on = |v: Value| matches!(v, Value::Boolean(true));
         let real = |v: Value| if let Value::Real(x) = v { x } else { f64::NAN };
-        let chamber = on(self.input(Input::ChamberOverride)).then(|| real(self.input(Input::ChamberTemp)));
-        let command = on(self.input(Input::GimbalEnable))
-            .then(|| [real(self.input(Input::GimbalOuter)), real(self.input(Input::GimbalInner)), real(self.input(Input::GimbalRate))]);
-        let noise_seed = if let Value::Integer(u) = self.input(Input::NoiseSeed) { u } else { 0 };
+        let chamber =
+            on(self.input(Input::ChamberOverride)).then(|| real(self.input(Input::ChamberTemp)));
+        let command = on(self.input(Input::GimbalEnable)).then(|| {
+            [
+                real(self.input(Input::GimbalOuter)),
+                real(self.input(Input::GimbalInner)),
+                real(self.input(Input::GimbalRate)),
+            ]
+        });
+        let noise_seed = if let Value::Integer(u) = self.input(Input::NoiseSeed) {
+            u
+        } else {
+            0
+        };
         let plant = self.plant.as_mut().ok_or("the plant is not initialised")?;
         plant.set_chamber_temp_c(chamber);
         if noise_seed != 0 && noise_seed != self.applied_noise_seed {
@@ -307,7 +540,11 @@ impl RinsModel {
         if let Some(c) = command
             && self.applied_command != Some(c)
         {
-            plant.command_gimbal(&GimbalCommand::MoveTo { outer_rad: c[0].to_radians(), inner_rad: c[1].to_radians(), rate_rps: c[2].to_radians() })?;
+            plant.command_gimbal(&GimbalCommand::MoveTo {
+                outer_rad: c[0].to_radians(),
+                inner_rad: c[1].to_radians(),
+                rate_rps: c[2].to_radians(),
+            })?;
             self.applied_command = Some(c);
         }
         self.inputs_dirty = false;
@@ -341,8 +578,20 @@ impl RinsModel {
             }
             Output::Node(n) => tr.temps.nodes_c[n],
             Output::Chamber => tr.temps.chamber_c,
-            Output::DthetaTrue(i) => if self.steps_in_last > 1 { self.dtheta_true_rad[i] } else { tr.dtheta_true_rad[i] },
-            Output::DvTrue(i) => if self.steps_in_last > 1 { self.dv_true_mps[i] } else { tr.dv_true_mps[i] },
+            Output::DthetaTrue(i) => {
+                if self.steps_in_last > 1 {
+                    self.dtheta_true_rad[i]
+                } else {
+                    tr.dtheta_true_rad[i]
+                }
+            }
+            Output::DvTrue(i) => {
+                if self.steps_in_last > 1 {
+                    self.dv_true_mps[i]
+                } else {
+                    tr.dv_true_mps[i]
+                }
+            }
             Output::Gyro(t, i) => tr.gyro_terms_rad[t][i],
             Output::Accel(t, i) => tr.accel_terms_mps[t][i],
             Output::PositionWeight => tr.position_weight,
@@ -355,7 +604,9 @@ fn to_param(s: &ScalarVar, v: Value) -> ParamValue {
         (_, Value::Real(x)) => ParamValue::Real(x),
         (_, Value::Integer(u)) => ParamValue::Integer(u),
         (_, Value::Boolean(b)) => ParamValue::Bool(b),
-        (Kind::Enumeration { items, .. }, Value::Enumeration(i)) => ParamValue::Enum(items[i].to_string()),
+        (Kind::Enumeration { items, .. }, Value::Enumeration(i)) => {
+            ParamValue::Enum(items[i].to_string())
+        }
         (_, Value::Enumeration(i)) => ParamValue::Integer(i as u64),
     }
 }
@@ -397,7 +648,12 @@ impl Model for RinsModel {
 
     fn initialize(&mut self) -> Result<(), String> {
         let cfg = self.config()?;
-        let plant = Plant::new(&cfg).map_err(|errs| errs.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("; "))?;
+        let plant = Plant::new(&cfg).map_err(|errs| {
+            errs.iter()
+                .map(|e| e.to_string())
+                .collect::<Vec<_>>()
+                .join("; ")
+        })?;
         self.plant = Some(plant);
         self.apply_inputs()
     }
@@ -444,7 +700,13 @@ impl Model for RinsModel {
             u64w(&mut w, tag);
             u64w(&mut w, bits);
         }
-        for x in self.dtheta_rad.iter().chain(&self.dv_mps).chain(&self.dtheta_true_rad).chain(&self.dv_true_mps) {
+        for x in self
+            .dtheta_rad
+            .iter()
+            .chain(&self.dv_mps)
+            .chain(&self.dtheta_true_rad)
+            .chain(&self.dv_true_mps)
+        {
             u64w(&mut w, x.to_bits());
         }
         u64w(&mut w, self.applied_command.is_some() as u64);
@@ -468,7 +730,10 @@ impl Model for RinsModel {
         };
         let n = next()? as usize;
         if n != table().vars.scalars.len() {
-            return Err(format!("state has {n} variables, this FMU has {}", table().vars.scalars.len()));
+            return Err(format!(
+                "state has {n} variables, this FMU has {}",
+                table().vars.scalars.len()
+            ));
         }
         let mut values = Vec::with_capacity(n);
         for _ in 0..n {
@@ -485,7 +750,11 @@ impl Model for RinsModel {
             *s = f64::from_bits(next()?);
         }
         let has_cmd = next()? != 0;
-        let cmd = [f64::from_bits(next()?), f64::from_bits(next()?), f64::from_bits(next()?)];
+        let cmd = [
+            f64::from_bits(next()?),
+            f64::from_bits(next()?),
+            f64::from_bits(next()?),
+        ];
         let applied_noise_seed = next()?;
         let steps_in_last = next()?;
         self.values = values;
@@ -510,8 +779,14 @@ impl Model for RinsModel {
 
 /// Every scenario key the FMU cannot carry as a parameter, with what to use instead.
 pub const NOT_PARAMETERS: [(&str, &str); 2] = [
-    ("scheme.steps", "gimbal commands (input.gimbal_command, input.gimbal_outer_deg/inner_deg)"),
-    ("thermal.chamber.profile", "the input input.chamber_temp_c with input.chamber_override = true"),
+    (
+        "scheme.steps",
+        "gimbal commands (input.gimbal_command, input.gimbal_outer_deg/inner_deg)",
+    ),
+    (
+        "thermal.chamber.profile",
+        "the input input.chamber_temp_c with input.chamber_override = true",
+    ),
 ];
 
 #[cfg(test)]
@@ -522,8 +797,16 @@ mod tests {
     fn every_fixed_shape_scenario_key_is_a_parameter_and_round_trips() {
         let cfg = rins_plant::presets::paper_16pos_config();
         let t = table();
-        let n_params = t.roles.iter().filter(|r| matches!(r, Role::Param(_))).count();
-        assert_eq!(n_params, params::flatten(&cfg).len(), "the paper config has no list parameters");
+        let n_params = t
+            .roles
+            .iter()
+            .filter(|r| matches!(r, Role::Param(_)))
+            .count();
+        assert_eq!(
+            n_params,
+            params::flatten(&cfg).len(),
+            "the paper config has no list parameters"
+        );
         // Setting every parameter to its start value reproduces the configuration.
         let m = RinsModel::new();
         assert_eq!(m.config().unwrap(), cfg);
@@ -534,6 +817,9 @@ mod tests {
         assert_eq!(m.config().unwrap().sensor.gyro.bias.dph, [0.01, 0.01, 0.02]);
         let kind = t.vars.slot("scheme.kind").unwrap();
         m.set(kind, Value::Enumeration(1)).unwrap();
-        assert_eq!(m.config().unwrap().scheme.kind, rins_plant::table::SchemeKind::EightPosition);
+        assert_eq!(
+            m.config().unwrap().scheme.kind,
+            rins_plant::table::SchemeKind::EightPosition
+        );
     }
 }

@@ -82,7 +82,12 @@ pub struct ArrayVar {
 
 /// Indices of a structured name: `a.b[1,2]` → `[1, 2]`.
 fn indices(name: &str) -> Vec<usize> {
-    name.rfind('[').map_or_else(Vec::new, |i| name[i + 1..name.len() - 1].split(',').filter_map(|x| x.trim().parse().ok()).collect())
+    name.rfind('[').map_or_else(Vec::new, |i| {
+        name[i + 1..name.len() - 1]
+            .split(',')
+            .filter_map(|x| x.trim().parse().ok())
+            .collect()
+    })
 }
 
 /// All scalars, with their FMI 3 grouping.
@@ -101,13 +106,28 @@ impl VariableTable {
         let mut arrays: Vec<ArrayVar> = Vec::new();
         for (i, s) in scalars.iter().enumerate() {
             match arrays.last_mut() {
-                Some(a) if a.name == s.array && a.slots.end == i && a.is_array => a.slots.end = i + 1,
-                _ => arrays.push(ArrayVar { name: s.array.clone(), slots: i..i + 1, is_array: s.name != s.array, dims: Vec::new() }),
+                Some(a) if a.name == s.array && a.slots.end == i && a.is_array => {
+                    a.slots.end = i + 1
+                }
+                _ => arrays.push(ArrayVar {
+                    name: s.array.clone(),
+                    slots: i..i + 1,
+                    is_array: s.name != s.array,
+                    dims: Vec::new(),
+                }),
             }
         }
         for a in arrays.iter_mut().filter(|a| a.is_array) {
-            a.dims = indices(&scalars[a.slots.end - 1].name).iter().map(|i| i + 1).collect();
-            assert_eq!(a.dims.iter().product::<usize>(), a.slots.len(), "{}: elements must be complete and row-major", a.name);
+            a.dims = indices(&scalars[a.slots.end - 1].name)
+                .iter()
+                .map(|i| i + 1)
+                .collect();
+            assert_eq!(
+                a.dims.iter().product::<usize>(),
+                a.slots.len(),
+                "{}: elements must be complete and row-major",
+                a.name
+            );
         }
         Self { scalars, arrays }
     }
@@ -121,21 +141,28 @@ impl VariableTable {
     pub fn check(&self, slot: usize, v: Value) -> Result<(), String> {
         let s = &self.scalars[slot];
         let range = |x: f64| match s.range {
-            Some((lo, hi)) if !(x >= lo && x <= hi) => Err(format!("{} = {x} is outside its range [{lo}, {hi}]", s.name)),
+            Some((lo, hi)) if !(x >= lo && x <= hi) => Err(format!(
+                "{} = {x} is outside its range [{lo}, {hi}]",
+                s.name
+            )),
             _ => Ok(()),
         };
         match (s.kind, v) {
-            (Kind::Real, Value::Real(x)) if x.is_nan() => Err(format!("{} = NaN is not a number", s.name)),
+            (Kind::Real, Value::Real(x)) if x.is_nan() => {
+                Err(format!("{} = NaN is not a number", s.name))
+            }
             (Kind::Real, Value::Real(x)) => range(x),
             (Kind::Integer, Value::Integer(u)) => range(u as f64),
             (Kind::Boolean, Value::Boolean(_)) => Ok(()),
-            (Kind::Enumeration { items, type_name }, Value::Enumeration(i)) if i >= items.len() => Err(format!(
-                "{} = {} is not an item of {type_name} (1…{}: {})",
-                s.name,
-                i + 1,
-                items.len(),
-                items.join(", ")
-            )),
+            (Kind::Enumeration { items, type_name }, Value::Enumeration(i)) if i >= items.len() => {
+                Err(format!(
+                    "{} = {} is not an item of {type_name} (1…{}: {})",
+                    s.name,
+                    i + 1,
+                    items.len(),
+                    items.join(", ")
+                ))
+            }
             (Kind::Enumeration { .. }, Value::Enumeration(_)) => Ok(()),
             (k, v) => Err(format!("{} is {k:?}, got {v:?}", s.name)),
         }
@@ -161,16 +188,35 @@ mod tests {
 
     #[test]
     fn consecutive_elements_group_into_arrays_and_checks_name_the_variable() {
-        let t = VariableTable::new(vec![real("a[0]", "a"), real("a[1]", "a"), real("b", "b"), real("c[0]", "c")]);
-        let m = VariableTable::new((0..6).map(|k| real(&format!("m[{},{}]", k / 3, k % 3), "m")).collect());
-        assert_eq!(m.arrays[0].dims, [2, 3]);
-        assert_eq!(t.arrays.iter().map(|a| (a.name.as_str(), a.slots.clone(), a.is_array)).collect::<Vec<_>>(), [
-            ("a", 0..2, true),
-            ("b", 2..3, false),
-            ("c", 3..4, true)
+        let t = VariableTable::new(vec![
+            real("a[0]", "a"),
+            real("a[1]", "a"),
+            real("b", "b"),
+            real("c[0]", "c"),
         ]);
-        assert!(t.check(1, Value::Real(2.0)).unwrap_err().contains("a[1] = 2 is outside its range [-1, 1]"));
-        assert!(t.check(1, Value::Real(f64::NAN)).unwrap_err().contains("NaN"));
+        let m = VariableTable::new(
+            (0..6)
+                .map(|k| real(&format!("m[{},{}]", k / 3, k % 3), "m"))
+                .collect(),
+        );
+        assert_eq!(m.arrays[0].dims, [2, 3]);
+        assert_eq!(
+            t.arrays
+                .iter()
+                .map(|a| (a.name.as_str(), a.slots.clone(), a.is_array))
+                .collect::<Vec<_>>(),
+            [("a", 0..2, true), ("b", 2..3, false), ("c", 3..4, true)]
+        );
+        assert!(
+            t.check(1, Value::Real(2.0))
+                .unwrap_err()
+                .contains("a[1] = 2 is outside its range [-1, 1]")
+        );
+        assert!(
+            t.check(1, Value::Real(f64::NAN))
+                .unwrap_err()
+                .contains("NaN")
+        );
         assert!(t.check(2, Value::Boolean(true)).is_err());
         assert!(t.check(2, Value::Real(-1.0)).is_ok());
     }

@@ -35,15 +35,55 @@ pub struct Header {
 /// (factor, offset, exponents of kg m s A K mol cd rad).
 const UNITS: &[(&str, f64, f64, [i8; 8])] = &[
     ("rad", 1.0, 0.0, [0, 0, 0, 0, 0, 0, 0, 1]),
-    ("deg", std::f64::consts::PI / 180.0, 0.0, [0, 0, 0, 0, 0, 0, 0, 1]),
-    ("arcsec", std::f64::consts::PI / 648_000.0, 0.0, [0, 0, 0, 0, 0, 0, 0, 1]),
+    (
+        "deg",
+        std::f64::consts::PI / 180.0,
+        0.0,
+        [0, 0, 0, 0, 0, 0, 0, 1],
+    ),
+    (
+        "arcsec",
+        std::f64::consts::PI / 648_000.0,
+        0.0,
+        [0, 0, 0, 0, 0, 0, 0, 1],
+    ),
     ("rad/s", 1.0, 0.0, [0, 0, -1, 0, 0, 0, 0, 1]),
-    ("deg/s", std::f64::consts::PI / 180.0, 0.0, [0, 0, -1, 0, 0, 0, 0, 1]),
-    ("deg/s2", std::f64::consts::PI / 180.0, 0.0, [0, 0, -2, 0, 0, 0, 0, 1]),
-    ("deg/h", std::f64::consts::PI / 648_000.0, 0.0, [0, 0, -1, 0, 0, 0, 0, 1]),
-    ("deg/h/K", std::f64::consts::PI / 648_000.0, 0.0, [0, 0, -1, 0, -1, 0, 0, 1]),
-    ("deg/h/K2", std::f64::consts::PI / 648_000.0, 0.0, [0, 0, -1, 0, -2, 0, 0, 1]),
-    ("deg/h/K3", std::f64::consts::PI / 648_000.0, 0.0, [0, 0, -1, 0, -3, 0, 0, 1]),
+    (
+        "deg/s",
+        std::f64::consts::PI / 180.0,
+        0.0,
+        [0, 0, -1, 0, 0, 0, 0, 1],
+    ),
+    (
+        "deg/s2",
+        std::f64::consts::PI / 180.0,
+        0.0,
+        [0, 0, -2, 0, 0, 0, 0, 1],
+    ),
+    (
+        "deg/h",
+        std::f64::consts::PI / 648_000.0,
+        0.0,
+        [0, 0, -1, 0, 0, 0, 0, 1],
+    ),
+    (
+        "deg/h/K",
+        std::f64::consts::PI / 648_000.0,
+        0.0,
+        [0, 0, -1, 0, -1, 0, 0, 1],
+    ),
+    (
+        "deg/h/K2",
+        std::f64::consts::PI / 648_000.0,
+        0.0,
+        [0, 0, -1, 0, -2, 0, 0, 1],
+    ),
+    (
+        "deg/h/K3",
+        std::f64::consts::PI / 648_000.0,
+        0.0,
+        [0, 0, -1, 0, -3, 0, 0, 1],
+    ),
     ("m", 1.0, 0.0, [0, 1, 0, 0, 0, 0, 0, 0]),
     ("m/s", 1.0, 0.0, [0, 1, -1, 0, 0, 0, 0, 0]),
     ("ug", 9.806_65e-6, 0.0, [0, 1, -2, 0, 0, 0, 0, 0]),
@@ -60,7 +100,10 @@ const UNITS: &[(&str, f64, f64, [i8; 8])] = &[
 ];
 
 fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 /// Shortest round-trip form; infinities as the XML Schema spells them.
@@ -135,10 +178,26 @@ fn range_attrs(s: &ScalarVar) -> String {
         Some((lo, hi)) => {
             let mut a = String::new();
             if lo.is_finite() {
-                let _ = write!(a, " min=\"{}\"", if matches!(s.kind, Kind::Integer) { (lo as i64).to_string() } else { num(lo) });
+                let _ = write!(
+                    a,
+                    " min=\"{}\"",
+                    if matches!(s.kind, Kind::Integer) {
+                        (lo as i64).to_string()
+                    } else {
+                        num(lo)
+                    }
+                );
             }
             if hi.is_finite() {
-                let _ = write!(a, " max=\"{}\"", if matches!(s.kind, Kind::Integer) { (hi as u64).to_string() } else { num(hi) });
+                let _ = write!(
+                    a,
+                    " max=\"{}\"",
+                    if matches!(s.kind, Kind::Integer) {
+                        (hi as u64).to_string()
+                    } else {
+                        num(hi)
+                    }
+                );
             }
             a
         }
@@ -159,7 +218,11 @@ fn header_open(version: FmiVersion, h: &Header, token: &str, out: &mut String) {
         d = esc(&h.description),
         g = esc(&h.generation_tool),
         ver = env!("CARGO_PKG_VERSION"),
-        extra = if version == FmiVersion::V2 { " numberOfEventIndicators=\"0\"" } else { "" },
+        extra = if version == FmiVersion::V2 {
+            " numberOfEventIndicators=\"0\""
+        } else {
+            ""
+        },
     );
 }
 
@@ -174,20 +237,38 @@ fn body_v2(table: &VariableTable, h: &Header, out: &mut String) {
     for (name, items) in enum_types(table) {
         let _ = writeln!(out, "    <SimpleType name=\"{name}\">\n      <Enumeration>");
         for (i, it) in items.iter().enumerate() {
-            let _ = writeln!(out, "        <Item name=\"{}\" value=\"{}\"/>", esc(it), i + 1);
+            let _ = writeln!(
+                out,
+                "        <Item name=\"{}\" value=\"{}\"/>",
+                esc(it),
+                i + 1
+            );
         }
         out.push_str("      </Enumeration>\n    </SimpleType>\n");
     }
     out.push_str("  </TypeDefinitions>\n  <LogCategories>\n");
     for (n, d) in LOG_CATEGORIES {
-        let _ = writeln!(out, "    <Category name=\"{n}\" description=\"{}\"/>", esc(d));
+        let _ = writeln!(
+            out,
+            "    <Category name=\"{n}\" description=\"{}\"/>",
+            esc(d)
+        );
     }
     out.push_str("  </LogCategories>\n");
-    let _ = writeln!(out, "  <DefaultExperiment startTime=\"0.0\" stopTime=\"{}\" stepSize=\"{}\"/>", num(h.stop_time_s), num(h.step_size_s));
+    let _ = writeln!(
+        out,
+        "  <DefaultExperiment startTime=\"0.0\" stopTime=\"{}\" stepSize=\"{}\"/>",
+        num(h.stop_time_s),
+        num(h.step_size_s)
+    );
     out.push_str("  <ModelVariables>\n");
     for (vr, s) in table.scalars.iter().enumerate() {
         let (c, var) = causality(s.causality);
-        let initial = if s.causality == Causality::Output { " initial=\"calculated\"" } else { "" };
+        let initial = if s.causality == Causality::Output {
+            " initial=\"calculated\""
+        } else {
+            ""
+        };
         let _ = writeln!(
             out,
             "    <!-- index {} -->\n    <ScalarVariable name=\"{}\" valueReference=\"{vr}\" description=\"{}\" causality=\"{c}\" variability=\"{var}\"{initial}>",
@@ -195,18 +276,34 @@ fn body_v2(table: &VariableTable, h: &Header, out: &mut String) {
             esc(&s.name),
             esc(&s.description)
         );
-        let start = if s.causality == Causality::Output { String::new() } else { format!(" start=\"{}\"", start_text(s.start)) };
-        let unit = s.unit.map(|u| format!(" unit=\"{}\"", esc(u))).unwrap_or_default();
+        let start = if s.causality == Causality::Output {
+            String::new()
+        } else {
+            format!(" start=\"{}\"", start_text(s.start))
+        };
+        let unit = s
+            .unit
+            .map(|u| format!(" unit=\"{}\"", esc(u)))
+            .unwrap_or_default();
         let _ = match s.kind {
             Kind::Real => writeln!(out, "      <Real{unit}{}{start}/>", range_attrs(s)),
             Kind::Integer => writeln!(out, "      <Integer{}{start}/>", range_attrs(s)),
             Kind::Boolean => writeln!(out, "      <Boolean{start}/>"),
-            Kind::Enumeration { type_name, .. } => writeln!(out, "      <Enumeration declaredType=\"{type_name}\"{start}/>"),
+            Kind::Enumeration { type_name, .. } => writeln!(
+                out,
+                "      <Enumeration declaredType=\"{type_name}\"{start}/>"
+            ),
         };
         out.push_str("    </ScalarVariable>\n");
     }
     out.push_str("  </ModelVariables>\n  <ModelStructure>\n    <Outputs>\n");
-    let outputs: Vec<usize> = table.scalars.iter().enumerate().filter(|(_, s)| s.causality == Causality::Output).map(|(i, _)| i + 1).collect();
+    let outputs: Vec<usize> = table
+        .scalars
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.causality == Causality::Output)
+        .map(|(i, _)| i + 1)
+        .collect();
     for i in &outputs {
         let _ = writeln!(out, "      <Unknown index=\"{i}\" dependencies=\"\"/>");
     }
@@ -228,16 +325,30 @@ fn body_v3(table: &VariableTable, h: &Header, out: &mut String) {
     for (name, items) in enum_types(table) {
         let _ = writeln!(out, "    <EnumerationType name=\"{name}\">");
         for (i, it) in items.iter().enumerate() {
-            let _ = writeln!(out, "      <Item name=\"{}\" value=\"{}\"/>", esc(it), i + 1);
+            let _ = writeln!(
+                out,
+                "      <Item name=\"{}\" value=\"{}\"/>",
+                esc(it),
+                i + 1
+            );
         }
         out.push_str("    </EnumerationType>\n");
     }
     out.push_str("  </TypeDefinitions>\n  <LogCategories>\n");
     for (n, d) in LOG_CATEGORIES {
-        let _ = writeln!(out, "    <Category name=\"{n}\" description=\"{}\"/>", esc(d));
+        let _ = writeln!(
+            out,
+            "    <Category name=\"{n}\" description=\"{}\"/>",
+            esc(d)
+        );
     }
     out.push_str("  </LogCategories>\n");
-    let _ = writeln!(out, "  <DefaultExperiment startTime=\"0.0\" stopTime=\"{}\" stepSize=\"{}\"/>", num(h.stop_time_s), num(h.step_size_s));
+    let _ = writeln!(
+        out,
+        "  <DefaultExperiment startTime=\"0.0\" stopTime=\"{}\" stepSize=\"{}\"/>",
+        num(h.stop_time_s),
+        num(h.step_size_s)
+    );
     out.push_str("  <ModelVariables>\n    <Float64 name=\"time\" valueReference=\"0\" causality=\"independent\" variability=\"continuous\" description=\"simulation time\" unit=\"s\"/>\n");
     let mut outputs = Vec::new();
     for (i, a) in table.arrays.iter().enumerate() {
@@ -256,13 +367,32 @@ fn body_v3(table: &VariableTable, h: &Header, out: &mut String) {
         let start = if s.causality == Causality::Output {
             String::new()
         } else {
-            let vals: Vec<String> = a.slots.clone().map(|k| start_text(table.scalars[k].start)).collect();
+            let vals: Vec<String> = a
+                .slots
+                .clone()
+                .map(|k| start_text(table.scalars[k].start))
+                .collect();
             format!(" start=\"{}\"", vals.join(" "))
         };
-        let unit = s.unit.map(|u| format!(" unit=\"{}\"", esc(u))).unwrap_or_default();
-        let declared = if let Kind::Enumeration { type_name, .. } = s.kind { format!(" declaredType=\"{type_name}\"") } else { String::new() };
-        let initial = if s.causality == Causality::Output { " initial=\"calculated\"" } else { "" };
-        let range = if matches!(s.kind, Kind::Real | Kind::Integer) { range_attrs(s) } else { String::new() };
+        let unit = s
+            .unit
+            .map(|u| format!(" unit=\"{}\"", esc(u)))
+            .unwrap_or_default();
+        let declared = if let Kind::Enumeration { type_name, .. } = s.kind {
+            format!(" declaredType=\"{type_name}\"")
+        } else {
+            String::new()
+        };
+        let initial = if s.causality == Causality::Output {
+            " initial=\"calculated\""
+        } else {
+            ""
+        };
+        let range = if matches!(s.kind, Kind::Real | Kind::Integer) {
+            range_attrs(s)
+        } else {
+            String::new()
+        };
         let _ = write!(
             out,
             "    <{tag} name=\"{}\" valueReference=\"{vr}\" description=\"{}\" causality=\"{c}\" variability=\"{var}\"{initial}{declared}{unit}{range}{start}",
@@ -281,17 +411,26 @@ fn body_v3(table: &VariableTable, h: &Header, out: &mut String) {
     }
     out.push_str("  </ModelVariables>\n  <ModelStructure>\n");
     for vr in &outputs {
-        let _ = writeln!(out, "    <Output valueReference=\"{vr}\" dependencies=\"\"/>");
+        let _ = writeln!(
+            out,
+            "    <Output valueReference=\"{vr}\" dependencies=\"\"/>"
+        );
     }
     for vr in &outputs {
-        let _ = writeln!(out, "    <InitialUnknown valueReference=\"{vr}\" dependencies=\"\"/>");
+        let _ = writeln!(
+            out,
+            "    <InitialUnknown valueReference=\"{vr}\" dependencies=\"\"/>"
+        );
     }
     out.push_str("  </ModelStructure>\n</fmiModelDescription>\n");
 }
 
 /// 128-bit FNV-1a of `text`, formatted as a braced GUID.
 pub fn content_token(text: &str) -> String {
-    let fnv = |seed: u64| text.bytes().fold(seed, |h, b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3));
+    let fnv = |seed: u64| {
+        text.bytes()
+            .fold(seed, |h, b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3))
+    };
     let (a, b) = (fnv(0xcbf2_9ce4_8422_2325), fnv(0x6c62_272e_07bb_0142));
     format!(
         "{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}",
@@ -304,7 +443,11 @@ pub fn content_token(text: &str) -> String {
 }
 
 /// The modelDescription.xml and its token (a hash of the document with an empty token).
-pub fn model_description(version: FmiVersion, table: &VariableTable, h: &Header) -> (String, String) {
+pub fn model_description(
+    version: FmiVersion,
+    table: &VariableTable,
+    h: &Header,
+) -> (String, String) {
     let render = |token: &str| {
         let mut out = String::with_capacity(256 * 1024);
         header_open(version, h, token, &mut out);

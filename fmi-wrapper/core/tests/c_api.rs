@@ -14,20 +14,37 @@ fn library() -> Fmu2 {
     let exe = std::env::current_exe().unwrap();
     let dir = exe.parent().and_then(|d| d.parent()).unwrap();
     let so: PathBuf = dir.join("librins_fmi2.so");
-    assert!(so.exists(), "{} missing: run `cargo build --release -p rins-fmi2` before the tests", so.display());
+    assert!(
+        so.exists(),
+        "{} missing: run `cargo build --release -p rins-fmi2` before the tests",
+        so.display()
+    );
     let (guid, _, vars) = parse_model_description(&fmu::description(FmiVersion::V2).0).unwrap();
     Fmu2::load(&so, guid, vars).unwrap()
 }
 
-const DTHETA: [&str; 3] = ["imu.dtheta_rad[0]", "imu.dtheta_rad[1]", "imu.dtheta_rad[2]"];
+const DTHETA: [&str; 3] = [
+    "imu.dtheta_rad[0]",
+    "imu.dtheta_rad[1]",
+    "imu.dtheta_rad[2]",
+];
 
 fn start<'a>(fmu: &'a Fmu2, seed: i32) -> Instance2<'a> {
     let inst = fmu.instantiate("t", false).unwrap();
     inst.setup_experiment(0.0, None).unwrap();
-    inst.set_integer(&[fmu.vr("run.seed").unwrap()], &[seed]).unwrap();
+    inst.set_integer(&[fmu.vr("run.seed").unwrap()], &[seed])
+        .unwrap();
     // Turn on every stochastic term so that any cross-talk between instances shows.
-    inst.set_boolean(&[fmu.vr("sensor.gyro.bias_instability.enabled").unwrap()], &[true]).unwrap();
-    inst.set_real(&[fmu.vr("sensor.gyro.bias_instability.sigma_dph[0]").unwrap()], &[0.01]).unwrap();
+    inst.set_boolean(
+        &[fmu.vr("sensor.gyro.bias_instability.enabled").unwrap()],
+        &[true],
+    )
+    .unwrap();
+    inst.set_real(
+        &[fmu.vr("sensor.gyro.bias_instability.sigma_dph[0]").unwrap()],
+        &[0.01],
+    )
+    .unwrap();
     inst.enter_initialization_mode().unwrap();
     inst.exit_initialization_mode().unwrap();
     inst
@@ -43,7 +60,8 @@ fn step_n(fmu: &Fmu2, inst: &Instance2<'_>, t0: f64, n: usize) -> Vec<[f64; 3]> 
         inst.get_real(&vrs, &mut v).unwrap();
         out.push(v);
         let mut ts = [0.0];
-        inst.get_real(&[fmu.vr("imu.time_s").unwrap()], &mut ts).unwrap();
+        inst.get_real(&[fmu.vr("imu.time_s").unwrap()], &mut ts)
+            .unwrap();
         t = ts[0];
     }
     out
@@ -89,7 +107,9 @@ fn state_save_and_restore_replays_bit_identically() {
 /// next outputs. Does nothing unless the parent set the variable.
 #[test]
 fn child_restores_serialized_state() {
-    let Ok(path) = std::env::var("RINS_FMU_STATE_FILE") else { return };
+    let Ok(path) = std::env::var("RINS_FMU_STATE_FILE") else {
+        return;
+    };
     let fmu = library();
     let inst = fmu.instantiate("child", false).unwrap();
     let bytes = std::fs::read(&path).unwrap();
@@ -110,7 +130,11 @@ fn serialized_state_restores_in_a_new_process() {
     let path = std::env::temp_dir().join(format!("rins-fmu-state-{}", std::process::id()));
     std::fs::write(&path, &bytes).unwrap();
     let status = std::process::Command::new(std::env::current_exe().unwrap())
-        .args(["--exact", "child_restores_serialized_state", "--test-threads=1"])
+        .args([
+            "--exact",
+            "child_restores_serialized_state",
+            "--test-threads=1",
+        ])
         .env("RINS_FMU_STATE_FILE", &path)
         .status()
         .unwrap();
@@ -124,66 +148,121 @@ fn serialized_state_restores_in_a_new_process() {
 fn refused(r: Result<(), rins_fmi::importer::CallError>, reason: &str) {
     let e = r.expect_err("the call must be refused");
     assert_eq!(e.status, 3, "{e}");
-    assert!(e.log.iter().any(|l| l.contains(reason)), "log {:?} lacks {reason:?}", e.log);
+    assert!(
+        e.log.iter().any(|l| l.contains(reason)),
+        "log {:?} lacks {reason:?}",
+        e.log
+    );
 }
 
 #[test]
 fn bad_calls_return_errors_with_a_logged_reason_and_no_crash() {
     let fmu = library();
     // Wrong GUID: NULL instance, reason logged.
-    let e = fmu.instantiate_with_guid("g", "{not-the-guid}", false).err().expect("refused");
-    assert!(e.log.iter().any(|l| l.contains("does not match")), "{:?}", e.log);
+    let e = fmu
+        .instantiate_with_guid("g", "{not-the-guid}", false)
+        .err()
+        .expect("refused");
+    assert!(
+        e.log.iter().any(|l| l.contains("does not match")),
+        "{:?}",
+        e.log
+    );
 
     let inst = fmu.instantiate("bad", false).unwrap();
     // Wrong state: stepping before initialisation.
     refused(inst.do_step(0.0, 0.01), "not allowed in Instantiated mode");
     // Unknown value reference.
-    refused(inst.set_real(&[999_999], &[1.0]), "unknown value reference 999999");
+    refused(
+        inst.set_real(&[999_999], &[1.0]),
+        "unknown value reference 999999",
+    );
     let bias = fmu.vr("sensor.gyro.bias.dph[0]").unwrap();
     // NaN and out-of-range parameters name the variable and range.
     refused(inst.set_real(&[bias], &[f64::NAN]), "NaN");
-    refused(inst.set_real(&[bias], &[1e6]), "sensor.gyro.bias.dph[0] = 1000000 is outside its range [-100, 100]");
+    refused(
+        inst.set_real(&[bias], &[1e6]),
+        "sensor.gyro.bias.dph[0] = 1000000 is outside its range [-100, 100]",
+    );
     // Type mismatch.
-    refused(inst.set_real(&[fmu.vr("run.seed").unwrap()], &[1.0]), "is Integer, not a Real");
+    refused(
+        inst.set_real(&[fmu.vr("run.seed").unwrap()], &[1.0]),
+        "is Integer, not a Real",
+    );
     // Enumeration out of its items.
-    refused(inst.set_integer(&[fmu.vr("scheme.kind").unwrap()], &[99]), "not an item of SchemeKind");
+    refused(
+        inst.set_integer(&[fmu.vr("scheme.kind").unwrap()], &[99]),
+        "not an item of SchemeKind",
+    );
     inst.setup_experiment(0.0, None).unwrap();
     inst.enter_initialization_mode().unwrap();
     inst.exit_initialization_mode().unwrap();
     // Parameters are fixed after initialisation.
-    refused(inst.set_real(&[bias], &[0.02]), "setting parameter sensor.gyro.bias.dph[0] is not allowed in Step mode");
+    refused(
+        inst.set_real(&[bias], &[0.02]),
+        "setting parameter sensor.gyro.bias.dph[0] is not allowed in Step mode",
+    );
     // Outputs cannot be set.
-    refused(inst.set_real(&[fmu.vr("imu.dtheta_rad[0]").unwrap()], &[0.0]), "is an output");
+    refused(
+        inst.set_real(&[fmu.vr("imu.dtheta_rad[0]").unwrap()], &[0.0]),
+        "is an output",
+    );
     // A communication step that is not a whole number of 10 ms steps.
-    refused(inst.do_step(0.0, 0.015), "not a whole positive number of internal steps");
+    refused(
+        inst.do_step(0.0, 0.015),
+        "not a whole positive number of internal steps",
+    );
     // A step from the wrong time.
     refused(inst.do_step(5.0, 0.01), "but the FMU is at t = 0 s");
     // Still usable after all that.
     inst.do_step(0.0, 0.05).unwrap();
     let mut n = [0];
-    inst.get_integer(&[fmu.vr("imu.sample_count").unwrap()], &mut n).unwrap();
+    inst.get_integer(&[fmu.vr("imu.sample_count").unwrap()], &mut n)
+        .unwrap();
     assert_eq!(n[0], 5);
     // A configuration that fails whole-plant validation is refused at exit-initialisation.
     let inst2 = fmu.instantiate("bad2", false).unwrap();
-    inst2.set_real(&[fmu.vr("thermal.step_s").unwrap()], &[0.015]).unwrap();
+    inst2
+        .set_real(&[fmu.vr("thermal.step_s").unwrap()], &[0.015])
+        .unwrap();
     inst2.enter_initialization_mode().unwrap();
     let e = inst2.exit_initialization_mode().expect_err("refused");
-    assert!(e.log.iter().any(|l| l.contains("thermal.step_s")), "{:?}", e.log);
+    assert!(
+        e.log.iter().any(|l| l.contains("thermal.step_s")),
+        "{:?}",
+        e.log
+    );
 }
 
 #[test]
 fn gimbal_command_inputs_drive_the_table() {
     let fmu = library();
     let inst = fmu.instantiate("cmd", false).unwrap();
-    inst.set_integer(&[fmu.vr("scheme.kind").unwrap()], &[4]).unwrap(); // static
+    inst.set_integer(&[fmu.vr("scheme.kind").unwrap()], &[4])
+        .unwrap(); // static
     inst.enter_initialization_mode().unwrap();
     inst.exit_initialization_mode().unwrap();
-    inst.set_boolean(&[fmu.vr("input.gimbal_command").unwrap()], &[true]).unwrap();
-    inst.set_real(&[fmu.vr("input.gimbal_inner_deg").unwrap(), fmu.vr("input.gimbal_rate_dps").unwrap()], &[180.0, 10.0]).unwrap();
+    inst.set_boolean(&[fmu.vr("input.gimbal_command").unwrap()], &[true])
+        .unwrap();
+    inst.set_real(
+        &[
+            fmu.vr("input.gimbal_inner_deg").unwrap(),
+            fmu.vr("input.gimbal_rate_dps").unwrap(),
+        ],
+        &[180.0, 10.0],
+    )
+    .unwrap();
     // 18 s cruise plus 0.5 s for the 20 °/s² ramps.
     inst.do_step(0.0, 20.0).unwrap();
     let mut g = [0.0; 2];
-    inst.get_real(&[fmu.vr("gimbal.inner_rad").unwrap(), fmu.vr("effect.position_weight").unwrap()], &mut g).unwrap();
+    inst.get_real(
+        &[
+            fmu.vr("gimbal.inner_rad").unwrap(),
+            fmu.vr("effect.position_weight").unwrap(),
+        ],
+        &mut g,
+    )
+    .unwrap();
     assert_eq!(g[0], std::f64::consts::PI);
     // Z-down after the flip: full position-dependent bias weight (Eq. 9).
     assert!((g[1] - 1.0).abs() < 1e-12, "{}", g[1]);
@@ -191,21 +270,60 @@ fn gimbal_command_inputs_drive_the_table() {
 
 /// The 34 functions of fmi2Functions.h a co-simulation FMU exports (FMI 2.0.4).
 const FMI2_FUNCTIONS: [&str; 34] = [
-    "fmi2GetTypesPlatform", "fmi2GetVersion", "fmi2SetDebugLogging", "fmi2Instantiate", "fmi2FreeInstance",
-    "fmi2SetupExperiment", "fmi2EnterInitializationMode", "fmi2ExitInitializationMode", "fmi2Terminate", "fmi2Reset",
-    "fmi2GetReal", "fmi2GetInteger", "fmi2GetBoolean", "fmi2GetString", "fmi2SetReal", "fmi2SetInteger",
-    "fmi2SetBoolean", "fmi2SetString", "fmi2GetFMUstate", "fmi2SetFMUstate", "fmi2FreeFMUstate",
-    "fmi2SerializedFMUstateSize", "fmi2SerializeFMUstate", "fmi2DeSerializeFMUstate", "fmi2GetDirectionalDerivative",
-    "fmi2SetRealInputDerivatives", "fmi2GetRealOutputDerivatives", "fmi2DoStep", "fmi2CancelStep", "fmi2GetStatus",
-    "fmi2GetRealStatus", "fmi2GetIntegerStatus", "fmi2GetBooleanStatus", "fmi2GetStringStatus",
+    "fmi2GetTypesPlatform",
+    "fmi2GetVersion",
+    "fmi2SetDebugLogging",
+    "fmi2Instantiate",
+    "fmi2FreeInstance",
+    "fmi2SetupExperiment",
+    "fmi2EnterInitializationMode",
+    "fmi2ExitInitializationMode",
+    "fmi2Terminate",
+    "fmi2Reset",
+    "fmi2GetReal",
+    "fmi2GetInteger",
+    "fmi2GetBoolean",
+    "fmi2GetString",
+    "fmi2SetReal",
+    "fmi2SetInteger",
+    "fmi2SetBoolean",
+    "fmi2SetString",
+    "fmi2GetFMUstate",
+    "fmi2SetFMUstate",
+    "fmi2FreeFMUstate",
+    "fmi2SerializedFMUstateSize",
+    "fmi2SerializeFMUstate",
+    "fmi2DeSerializeFMUstate",
+    "fmi2GetDirectionalDerivative",
+    "fmi2SetRealInputDerivatives",
+    "fmi2GetRealOutputDerivatives",
+    "fmi2DoStep",
+    "fmi2CancelStep",
+    "fmi2GetStatus",
+    "fmi2GetRealStatus",
+    "fmi2GetIntegerStatus",
+    "fmi2GetBooleanStatus",
+    "fmi2GetStringStatus",
 ];
 
 fn exported(lib: &str) -> Vec<String> {
     let exe = std::env::current_exe().unwrap();
     let so = exe.parent().and_then(|d| d.parent()).unwrap().join(lib);
-    let out = std::process::Command::new("nm").args(["-D", "--defined-only"]).arg(&so).output().expect("nm (binutils) is installed");
-    assert!(out.status.success(), "nm {}: {}", so.display(), String::from_utf8_lossy(&out.stderr));
-    String::from_utf8_lossy(&out.stdout).lines().filter_map(|l| l.split_whitespace().nth(2).map(str::to_string)).collect()
+    let out = std::process::Command::new("nm")
+        .args(["-D", "--defined-only"])
+        .arg(&so)
+        .output()
+        .expect("nm (binutils) is installed");
+    assert!(
+        out.status.success(),
+        "nm {}: {}",
+        so.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter_map(|l| l.split_whitespace().nth(2).map(str::to_string))
+        .collect()
 }
 
 #[test]
@@ -214,11 +332,21 @@ fn the_libraries_export_exactly_the_fmi_functions() {
     fmi2.sort();
     let mut want: Vec<String> = FMI2_FUNCTIONS.iter().map(|s| s.to_string()).collect();
     want.sort();
-    assert_eq!(fmi2, want, "the FMI 2 library exports the 34 functions and nothing else");
+    assert_eq!(
+        fmi2, want,
+        "the FMI 2 library exports the 34 functions and nothing else"
+    );
     let fmi3 = exported("librins_fmi3.so");
     assert_eq!(fmi3.len(), 75, "{fmi3:?}");
     assert!(fmi3.iter().all(|s| s.starts_with("fmi3")), "{fmi3:?}");
-    for f in ["fmi3InstantiateCoSimulation", "fmi3DoStep", "fmi3GetFloat64", "fmi3SerializeFMUState", "fmi3InstantiateModelExchange", "fmi3ActivateModelPartition"] {
+    for f in [
+        "fmi3InstantiateCoSimulation",
+        "fmi3DoStep",
+        "fmi3GetFloat64",
+        "fmi3SerializeFMUState",
+        "fmi3InstantiateModelExchange",
+        "fmi3ActivateModelPartition",
+    ] {
         assert!(fmi3.iter().any(|s| s == f), "{f} missing");
     }
 }

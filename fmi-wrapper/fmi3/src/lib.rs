@@ -29,7 +29,8 @@ type fmi3ValueReference = u32;
 type fmi3Status = i32;
 type fmi3String = *const c_char;
 type fmi3Boolean = bool;
-type LogMessage = Option<unsafe extern "C" fn(fmi3InstanceEnvironment, fmi3Status, fmi3String, fmi3String)>;
+type LogMessage =
+    Option<unsafe extern "C" fn(fmi3InstanceEnvironment, fmi3Status, fmi3String, fmi3String)>;
 type Callback = *const c_void;
 
 struct Fmi3 {
@@ -39,7 +40,13 @@ struct Fmi3 {
     logging_on: bool,
 }
 
-fn log_to(logger: LogMessage, env: fmi3InstanceEnvironment, status: Status, category: &str, message: &str) {
+fn log_to(
+    logger: LogMessage,
+    env: fmi3InstanceEnvironment,
+    status: Status,
+    category: &str,
+    message: &str,
+) {
     let Some(f) = logger else { return };
     let msg = CString::new(message.replace('\0', " ")).unwrap_or_default();
     let cat = CString::new(category).unwrap_or_default();
@@ -56,7 +63,11 @@ impl Fmi3 {
     }
 }
 
-fn with(c: fmi3Instance, what: &str, f: impl FnOnce(&mut Fmi3) -> Result<(), FmiError>) -> fmi3Status {
+fn with(
+    c: fmi3Instance,
+    what: &str,
+    f: impl FnOnce(&mut Fmi3) -> Result<(), FmiError>,
+) -> fmi3Status {
     if c.is_null() {
         return Status::Error as fmi3Status;
     }
@@ -70,31 +81,48 @@ fn with(c: fmi3Instance, what: &str, f: impl FnOnce(&mut Fmi3) -> Result<(), Fmi
         }
         Err(panic) => {
             let msg = panic_message(panic.as_ref());
-            comp.log(Status::Fatal, "logStatusError", &format!("{what}: internal error: {msg}"));
+            comp.log(
+                Status::Fatal,
+                "logStatusError",
+                &format!("{what}: internal error: {msg}"),
+            );
             Status::Fatal as fmi3Status
         }
     }
 }
 
 fn unsupported(c: fmi3Instance, what: &str, why: &str) -> fmi3Status {
-    with(c, what, |_| Err(FmiError::error(format!("not supported: {why}"))))
+    with(c, what, |_| {
+        Err(FmiError::error(format!("not supported: {why}")))
+    })
 }
 
 /// Slots of FMI 3 value reference `vr` (0 is `time`, which has none).
 fn slots(comp: &Fmi3, vr: u32) -> Result<std::ops::Range<usize>, FmiError> {
     let arrays = &comp.inst.table().arrays;
     match vr {
-        0 => Err(FmiError::error("value reference 0 is the independent variable time (read it with fmi3GetFloat64 only)")),
+        0 => Err(FmiError::error(
+            "value reference 0 is the independent variable time (read it with fmi3GetFloat64 only)",
+        )),
         _ => arrays
             .get(vr as usize - 1)
             .map(|a| a.slots.clone())
-            .ok_or_else(|| FmiError::error(format!("unknown value reference {vr} (valid: 0…{})", arrays.len()))),
+            .ok_or_else(|| {
+                FmiError::error(format!(
+                    "unknown value reference {vr} (valid: 0…{})",
+                    arrays.len()
+                ))
+            }),
     }
 }
 
 fn type_error(comp: &Fmi3, vr: u32, wanted: &str) -> FmiError {
     let a = &comp.inst.table().arrays[vr as usize - 1];
-    FmiError::error(format!("value reference {vr} ({}) is {:?}, not {wanted}", a.name, comp.inst.table().scalars[a.slots.start].kind))
+    FmiError::error(format!(
+        "value reference {vr} ({}) is {:?}, not {wanted}",
+        a.name,
+        comp.inst.table().scalars[a.slots.start].kind
+    ))
 }
 
 /// Shared body of the fmi3Get* functions: walks the value references, checks `nValues`.
@@ -111,7 +139,9 @@ fn get_typed<T: Copy>(
 ) -> fmi3Status {
     with(c, what, |comp| {
         if comp.inst.mode() == Mode::Instantiated {
-            return Err(FmiError::error("values can be read from initialization mode on"));
+            return Err(FmiError::error(
+                "values can be read from initialization mode on",
+            ));
         }
         // SAFETY: the standard gives `n_vr` references and room for `n_values` values.
         let (vrs, out) = unsafe { (slice(vr, n_vr)?, slice_mut(out, n_values)?) };
@@ -120,18 +150,27 @@ fn get_typed<T: Copy>(
             if r == 0
                 && let Some(t) = time
             {
-                *out.get_mut(k).ok_or_else(|| FmiError::error(format!("nValues = {n_values} is too small")))? = t(comp.inst.time_s());
+                *out.get_mut(k).ok_or_else(|| {
+                    FmiError::error(format!("nValues = {n_values} is too small"))
+                })? = t(comp.inst.time_s());
                 k += 1;
                 continue;
             }
             for slot in slots(comp, r)? {
-                let v = conv(comp.inst.get_slot(slot)).ok_or_else(|| type_error(comp, r, wanted))?;
-                *out.get_mut(k).ok_or_else(|| FmiError::error(format!("nValues = {n_values} is too small for these value references")))? = v;
+                let v =
+                    conv(comp.inst.get_slot(slot)).ok_or_else(|| type_error(comp, r, wanted))?;
+                *out.get_mut(k).ok_or_else(|| {
+                    FmiError::error(format!(
+                        "nValues = {n_values} is too small for these value references"
+                    ))
+                })? = v;
                 k += 1;
             }
         }
         if k != n_values {
-            return Err(FmiError::error(format!("nValues = {n_values}, but the value references hold {k} values")));
+            return Err(FmiError::error(format!(
+                "nValues = {n_values}, but the value references hold {k} values"
+            )));
         }
         Ok(())
     })
@@ -155,14 +194,20 @@ fn set_typed<T: Copy>(
         for &r in vrs {
             for slot in slots(comp, r)? {
                 let kind = comp.inst.table().scalars[slot].kind;
-                let x = *vals.get(k).ok_or_else(|| FmiError::error(format!("nValues = {n_values} is too small for these value references")))?;
+                let x = *vals.get(k).ok_or_else(|| {
+                    FmiError::error(format!(
+                        "nValues = {n_values} is too small for these value references"
+                    ))
+                })?;
                 let v = conv(kind, x).ok_or_else(|| type_error(comp, r, wanted))?;
                 comp.inst.set_slot(slot, v)?;
                 k += 1;
             }
         }
         if k != n_values {
-            return Err(FmiError::error(format!("nValues = {n_values}, but the value references hold {k} values")));
+            return Err(FmiError::error(format!(
+                "nValues = {n_values}, but the value references hold {k} values"
+            )));
         }
         Ok(())
     })
@@ -174,12 +219,24 @@ pub extern "C" fn fmi3GetVersion() -> *const c_char {
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SetDebugLogging(c: fmi3Instance, logging_on: fmi3Boolean, n: usize, categories: *const fmi3String) -> fmi3Status {
+pub extern "C" fn fmi3SetDebugLogging(
+    c: fmi3Instance,
+    logging_on: fmi3Boolean,
+    n: usize,
+    categories: *const fmi3String,
+) -> fmi3Status {
     with(c, "fmi3SetDebugLogging", |comp| {
         // SAFETY: `categories` holds `n` C strings.
         for &cat in unsafe { slice(categories, n)? } {
-            let name = if cat.is_null() { "" } else { unsafe { CStr::from_ptr(cat) }.to_str().unwrap_or("") };
-            if !rins_fmi::instance::LOG_CATEGORIES.iter().any(|(n, _)| *n == name) {
+            let name = if cat.is_null() {
+                ""
+            } else {
+                unsafe { CStr::from_ptr(cat) }.to_str().unwrap_or("")
+            };
+            if !rins_fmi::instance::LOG_CATEGORIES
+                .iter()
+                .any(|(n, _)| *n == name)
+            {
                 return Err(FmiError::error(format!("unknown log category {name:?}")));
             }
         }
@@ -188,8 +245,18 @@ pub extern "C" fn fmi3SetDebugLogging(c: fmi3Instance, logging_on: fmi3Boolean, 
     })
 }
 
-fn refuse_instantiate(logger: LogMessage, env: fmi3InstanceEnvironment, what: &str) -> fmi3Instance {
-    log_to(logger, env, Status::Error, "logStatusError", &format!("{what}: this FMU supports co-simulation only"));
+fn refuse_instantiate(
+    logger: LogMessage,
+    env: fmi3InstanceEnvironment,
+    what: &str,
+) -> fmi3Instance {
+    log_to(
+        logger,
+        env,
+        Status::Error,
+        "logStatusError",
+        &format!("{what}: this FMU supports co-simulation only"),
+    );
     std::ptr::null_mut()
 }
 
@@ -203,7 +270,8 @@ pub extern "C" fn fmi3InstantiateModelExchange(
     env: fmi3InstanceEnvironment,
     logger: LogMessage,
 ) -> fmi3Instance {
-    catch_unwind(|| refuse_instantiate(logger, env, "fmi3InstantiateModelExchange")).unwrap_or(std::ptr::null_mut())
+    catch_unwind(|| refuse_instantiate(logger, env, "fmi3InstantiateModelExchange"))
+        .unwrap_or(std::ptr::null_mut())
 }
 
 #[unsafe(no_mangle)]
@@ -219,7 +287,8 @@ pub extern "C" fn fmi3InstantiateScheduledExecution(
     _lock: Callback,
     _unlock: Callback,
 ) -> fmi3Instance {
-    catch_unwind(|| refuse_instantiate(logger, env, "fmi3InstantiateScheduledExecution")).unwrap_or(std::ptr::null_mut())
+    catch_unwind(|| refuse_instantiate(logger, env, "fmi3InstantiateScheduledExecution"))
+        .unwrap_or(std::ptr::null_mut())
 }
 
 #[unsafe(no_mangle)]
@@ -264,14 +333,25 @@ pub extern "C" fn fmi3FreeInstance(c: fmi3Instance) {
         return;
     }
     // SAFETY: `c` is the Box from instantiate, freed once.
-    let _ = catch_unwind(AssertUnwindSafe(|| drop(unsafe { Box::from_raw(c as *mut Fmi3) })));
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        drop(unsafe { Box::from_raw(c as *mut Fmi3) })
+    }));
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3EnterInitializationMode(c: fmi3Instance, _tol_defined: fmi3Boolean, _tol: f64, start: f64, stop_defined: fmi3Boolean, stop: f64) -> fmi3Status {
+pub extern "C" fn fmi3EnterInitializationMode(
+    c: fmi3Instance,
+    _tol_defined: fmi3Boolean,
+    _tol: f64,
+    start: f64,
+    stop_defined: fmi3Boolean,
+    stop: f64,
+) -> fmi3Status {
     with(c, "fmi3EnterInitializationMode", |comp| {
         if stop_defined && !(stop >= start) {
-            return Err(FmiError::error(format!("stop time {stop} is before start time {start}")));
+            return Err(FmiError::error(format!(
+                "stop time {stop} is before start time {start}"
+            )));
         }
         comp.inst.setup(start)?;
         comp.inst.enter_initialization()
@@ -306,32 +386,134 @@ pub extern "C" fn fmi3Reset(c: fmi3Instance) -> fmi3Status {
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetFloat64(c: fmi3Instance, vr: *const fmi3ValueReference, n_vr: usize, values: *mut f64, n_values: usize) -> fmi3Status {
-    get_typed(c, "fmi3GetFloat64", vr, n_vr, values, n_values, Some(|t| t), |v| if let Value::Real(x) = v { Some(x) } else { None }, "Float64")
+pub extern "C" fn fmi3GetFloat64(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n_vr: usize,
+    values: *mut f64,
+    n_values: usize,
+) -> fmi3Status {
+    get_typed(
+        c,
+        "fmi3GetFloat64",
+        vr,
+        n_vr,
+        values,
+        n_values,
+        Some(|t| t),
+        |v| {
+            if let Value::Real(x) = v {
+                Some(x)
+            } else {
+                None
+            }
+        },
+        "Float64",
+    )
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SetFloat64(c: fmi3Instance, vr: *const fmi3ValueReference, n_vr: usize, values: *const f64, n_values: usize) -> fmi3Status {
-    set_typed(c, "fmi3SetFloat64", vr, n_vr, values, n_values, |k, x| (k == Kind::Real).then_some(Value::Real(x)), "Float64")
+pub extern "C" fn fmi3SetFloat64(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n_vr: usize,
+    values: *const f64,
+    n_values: usize,
+) -> fmi3Status {
+    set_typed(
+        c,
+        "fmi3SetFloat64",
+        vr,
+        n_vr,
+        values,
+        n_values,
+        |k, x| (k == Kind::Real).then_some(Value::Real(x)),
+        "Float64",
+    )
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetUInt64(c: fmi3Instance, vr: *const fmi3ValueReference, n_vr: usize, values: *mut u64, n_values: usize) -> fmi3Status {
-    get_typed(c, "fmi3GetUInt64", vr, n_vr, values, n_values, None, |v| if let Value::Integer(u) = v { Some(u) } else { None }, "UInt64")
+pub extern "C" fn fmi3GetUInt64(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n_vr: usize,
+    values: *mut u64,
+    n_values: usize,
+) -> fmi3Status {
+    get_typed(
+        c,
+        "fmi3GetUInt64",
+        vr,
+        n_vr,
+        values,
+        n_values,
+        None,
+        |v| {
+            if let Value::Integer(u) = v {
+                Some(u)
+            } else {
+                None
+            }
+        },
+        "UInt64",
+    )
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SetUInt64(c: fmi3Instance, vr: *const fmi3ValueReference, n_vr: usize, values: *const u64, n_values: usize) -> fmi3Status {
-    set_typed(c, "fmi3SetUInt64", vr, n_vr, values, n_values, |k, x| (k == Kind::Integer).then_some(Value::Integer(x)), "UInt64")
+pub extern "C" fn fmi3SetUInt64(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n_vr: usize,
+    values: *const u64,
+    n_values: usize,
+) -> fmi3Status {
+    set_typed(
+        c,
+        "fmi3SetUInt64",
+        vr,
+        n_vr,
+        values,
+        n_values,
+        |k, x| (k == Kind::Integer).then_some(Value::Integer(x)),
+        "UInt64",
+    )
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetInt64(c: fmi3Instance, vr: *const fmi3ValueReference, n_vr: usize, values: *mut i64, n_values: usize) -> fmi3Status {
-    get_typed(c, "fmi3GetInt64", vr, n_vr, values, n_values, None, |v| if let Value::Enumeration(i) = v { Some(i as i64 + 1) } else { None }, "an Enumeration (Int64)")
+pub extern "C" fn fmi3GetInt64(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n_vr: usize,
+    values: *mut i64,
+    n_values: usize,
+) -> fmi3Status {
+    get_typed(
+        c,
+        "fmi3GetInt64",
+        vr,
+        n_vr,
+        values,
+        n_values,
+        None,
+        |v| {
+            if let Value::Enumeration(i) = v {
+                Some(i as i64 + 1)
+            } else {
+                None
+            }
+        },
+        "an Enumeration (Int64)",
+    )
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SetInt64(c: fmi3Instance, vr: *const fmi3ValueReference, n_vr: usize, values: *const i64, n_values: usize) -> fmi3Status {
+pub extern "C" fn fmi3SetInt64(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n_vr: usize,
+    values: *const i64,
+    n_values: usize,
+) -> fmi3Status {
     set_typed(
         c,
         "fmi3SetInt64",
@@ -339,19 +521,62 @@ pub extern "C" fn fmi3SetInt64(c: fmi3Instance, vr: *const fmi3ValueReference, n
         n_vr,
         values,
         n_values,
-        |k, x| matches!(k, Kind::Enumeration { .. }).then_some(Value::Enumeration(if x >= 1 { x as usize - 1 } else { usize::MAX })),
+        |k, x| {
+            matches!(k, Kind::Enumeration { .. }).then_some(Value::Enumeration(if x >= 1 {
+                x as usize - 1
+            } else {
+                usize::MAX
+            }))
+        },
         "an Enumeration (Int64)",
     )
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetBoolean(c: fmi3Instance, vr: *const fmi3ValueReference, n_vr: usize, values: *mut fmi3Boolean, n_values: usize) -> fmi3Status {
-    get_typed(c, "fmi3GetBoolean", vr, n_vr, values, n_values, None, |v| if let Value::Boolean(b) = v { Some(b) } else { None }, "Boolean")
+pub extern "C" fn fmi3GetBoolean(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n_vr: usize,
+    values: *mut fmi3Boolean,
+    n_values: usize,
+) -> fmi3Status {
+    get_typed(
+        c,
+        "fmi3GetBoolean",
+        vr,
+        n_vr,
+        values,
+        n_values,
+        None,
+        |v| {
+            if let Value::Boolean(b) = v {
+                Some(b)
+            } else {
+                None
+            }
+        },
+        "Boolean",
+    )
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SetBoolean(c: fmi3Instance, vr: *const fmi3ValueReference, n_vr: usize, values: *const fmi3Boolean, n_values: usize) -> fmi3Status {
-    set_typed(c, "fmi3SetBoolean", vr, n_vr, values, n_values, |k, x| (k == Kind::Boolean).then_some(Value::Boolean(x)), "Boolean")
+pub extern "C" fn fmi3SetBoolean(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n_vr: usize,
+    values: *const fmi3Boolean,
+    n_values: usize,
+) -> fmi3Status {
+    set_typed(
+        c,
+        "fmi3SetBoolean",
+        vr,
+        n_vr,
+        values,
+        n_values,
+        |k, x| (k == Kind::Boolean).then_some(Value::Boolean(x)),
+        "Boolean",
+    )
 }
 
 /// Getters and setters of types this FMU has no variables of: fine for zero references,
@@ -359,12 +584,43 @@ pub extern "C" fn fmi3SetBoolean(c: fmi3Instance, vr: *const fmi3ValueReference,
 macro_rules! absent_type {
     ($get:ident, $set:ident, $t:ty, $name:literal) => {
         #[unsafe(no_mangle)]
-        pub extern "C" fn $get(c: fmi3Instance, vr: *const fmi3ValueReference, n_vr: usize, values: *mut $t, n_values: usize) -> fmi3Status {
-            get_typed(c, stringify!($get), vr, n_vr, values, n_values, None, |_| None, concat!("a ", $name, " (this FMU has none)"))
+        pub extern "C" fn $get(
+            c: fmi3Instance,
+            vr: *const fmi3ValueReference,
+            n_vr: usize,
+            values: *mut $t,
+            n_values: usize,
+        ) -> fmi3Status {
+            get_typed(
+                c,
+                stringify!($get),
+                vr,
+                n_vr,
+                values,
+                n_values,
+                None,
+                |_| None,
+                concat!("a ", $name, " (this FMU has none)"),
+            )
         }
         #[unsafe(no_mangle)]
-        pub extern "C" fn $set(c: fmi3Instance, vr: *const fmi3ValueReference, n_vr: usize, values: *const $t, n_values: usize) -> fmi3Status {
-            set_typed(c, stringify!($set), vr, n_vr, values, n_values, |_, _| None, concat!("a ", $name, " (this FMU has none)"))
+        pub extern "C" fn $set(
+            c: fmi3Instance,
+            vr: *const fmi3ValueReference,
+            n_vr: usize,
+            values: *const $t,
+            n_values: usize,
+        ) -> fmi3Status {
+            set_typed(
+                c,
+                stringify!($set),
+                vr,
+                n_vr,
+                values,
+                n_values,
+                |_, _| None,
+                concat!("a ", $name, " (this FMU has none)"),
+            )
         }
     };
 }
@@ -379,28 +635,79 @@ absent_type!(fmi3GetUInt32, fmi3SetUInt32, u32, "UInt32");
 absent_type!(fmi3GetString, fmi3SetString, fmi3String, "String");
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetBinary(c: fmi3Instance, vr: *const fmi3ValueReference, n_vr: usize, _sizes: *mut usize, values: *mut *const u8, n_values: usize) -> fmi3Status {
-    get_typed(c, "fmi3GetBinary", vr, n_vr, values, n_values, None, |_| None, "a Binary (this FMU has none)")
+pub extern "C" fn fmi3GetBinary(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n_vr: usize,
+    _sizes: *mut usize,
+    values: *mut *const u8,
+    n_values: usize,
+) -> fmi3Status {
+    get_typed(
+        c,
+        "fmi3GetBinary",
+        vr,
+        n_vr,
+        values,
+        n_values,
+        None,
+        |_| None,
+        "a Binary (this FMU has none)",
+    )
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SetBinary(c: fmi3Instance, vr: *const fmi3ValueReference, n_vr: usize, _sizes: *const usize, values: *const *const u8, n_values: usize) -> fmi3Status {
-    set_typed(c, "fmi3SetBinary", vr, n_vr, values, n_values, |_, _| None, "a Binary (this FMU has none)")
+pub extern "C" fn fmi3SetBinary(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n_vr: usize,
+    _sizes: *const usize,
+    values: *const *const u8,
+    n_values: usize,
+) -> fmi3Status {
+    set_typed(
+        c,
+        "fmi3SetBinary",
+        vr,
+        n_vr,
+        values,
+        n_values,
+        |_, _| None,
+        "a Binary (this FMU has none)",
+    )
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetClock(c: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _values: *mut fmi3Boolean) -> fmi3Status {
+pub extern "C" fn fmi3GetClock(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _values: *mut fmi3Boolean,
+) -> fmi3Status {
     unsupported(c, "fmi3GetClock", "this FMU has no clocks")
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SetClock(c: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _values: *const fmi3Boolean) -> fmi3Status {
+pub extern "C" fn fmi3SetClock(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _values: *const fmi3Boolean,
+) -> fmi3Status {
     unsupported(c, "fmi3SetClock", "this FMU has no clocks")
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetNumberOfVariableDependencies(c: fmi3Instance, _vr: fmi3ValueReference, _n: *mut usize) -> fmi3Status {
-    unsupported(c, "fmi3GetNumberOfVariableDependencies", "providesPerElementDependencies is false")
+pub extern "C" fn fmi3GetNumberOfVariableDependencies(
+    c: fmi3Instance,
+    _vr: fmi3ValueReference,
+    _n: *mut usize,
+) -> fmi3Status {
+    unsupported(
+        c,
+        "fmi3GetNumberOfVariableDependencies",
+        "providesPerElementDependencies is false",
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -413,7 +720,11 @@ pub extern "C" fn fmi3GetVariableDependencies(
     _kinds: *mut i32,
     _n: usize,
 ) -> fmi3Status {
-    unsupported(c, "fmi3GetVariableDependencies", "providesPerElementDependencies is false")
+    unsupported(
+        c,
+        "fmi3GetVariableDependencies",
+        "providesPerElementDependencies is false",
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -441,7 +752,8 @@ pub extern "C" fn fmi3SetFMUState(c: fmi3Instance, state: fmi3FMUState) -> fmi3S
             return Err(FmiError::error("NULL FMUState"));
         }
         // SAFETY: one of our boxes.
-        comp.inst.restore_snapshot(unsafe { &*(state as *const Instance<RinsModel>) });
+        comp.inst
+            .restore_snapshot(unsafe { &*(state as *const Instance<RinsModel>) });
         Ok(())
     })
 }
@@ -464,7 +776,11 @@ pub extern "C" fn fmi3FreeFMUState(c: fmi3Instance, state: *mut fmi3FMUState) ->
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SerializedFMUStateSize(c: fmi3Instance, state: fmi3FMUState, size: *mut usize) -> fmi3Status {
+pub extern "C" fn fmi3SerializedFMUStateSize(
+    c: fmi3Instance,
+    state: fmi3FMUState,
+    size: *mut usize,
+) -> fmi3Status {
     with(c, "fmi3SerializedFMUStateSize", |_| {
         if state.is_null() || size.is_null() {
             return Err(FmiError::error("NULL FMUState or size pointer"));
@@ -476,7 +792,12 @@ pub extern "C" fn fmi3SerializedFMUStateSize(c: fmi3Instance, state: fmi3FMUStat
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SerializeFMUState(c: fmi3Instance, state: fmi3FMUState, bytes: *mut u8, size: usize) -> fmi3Status {
+pub extern "C" fn fmi3SerializeFMUState(
+    c: fmi3Instance,
+    state: fmi3FMUState,
+    bytes: *mut u8,
+    size: usize,
+) -> fmi3Status {
     with(c, "fmi3SerializeFMUState", |_| {
         if state.is_null() {
             return Err(FmiError::error("NULL FMUState"));
@@ -484,7 +805,10 @@ pub extern "C" fn fmi3SerializeFMUState(c: fmi3Instance, state: fmi3FMUState, by
         // SAFETY: one of our boxes; `bytes` has `size` bytes.
         let data = unsafe { (*(state as *const Instance<RinsModel>)).serialize() };
         if data.len() != size {
-            return Err(FmiError::error(format!("buffer has {size} bytes, the state needs {}", data.len())));
+            return Err(FmiError::error(format!(
+                "buffer has {size} bytes, the state needs {}",
+                data.len()
+            )));
         }
         unsafe { slice_mut(bytes, size)? }.copy_from_slice(&data);
         Ok(())
@@ -492,7 +816,12 @@ pub extern "C" fn fmi3SerializeFMUState(c: fmi3Instance, state: fmi3FMUState, by
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3DeserializeFMUState(c: fmi3Instance, bytes: *const u8, size: usize, state: *mut fmi3FMUState) -> fmi3Status {
+pub extern "C" fn fmi3DeserializeFMUState(
+    c: fmi3Instance,
+    bytes: *const u8,
+    size: usize,
+    state: *mut fmi3FMUState,
+) -> fmi3Status {
     with(c, "fmi3DeserializeFMUState", |_| {
         if state.is_null() {
             return Err(FmiError::error("NULL FMUState pointer"));
@@ -516,7 +845,11 @@ pub extern "C" fn fmi3GetDirectionalDerivative(
     _sensitivity: *mut f64,
     _n_sensitivity: usize,
 ) -> fmi3Status {
-    unsupported(c, "fmi3GetDirectionalDerivative", "providesDirectionalDerivatives is false")
+    unsupported(
+        c,
+        "fmi3GetDirectionalDerivative",
+        "providesDirectionalDerivatives is false",
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -531,62 +864,124 @@ pub extern "C" fn fmi3GetAdjointDerivative(
     _sensitivity: *mut f64,
     _n_sensitivity: usize,
 ) -> fmi3Status {
-    unsupported(c, "fmi3GetAdjointDerivative", "providesAdjointDerivatives is false")
+    unsupported(
+        c,
+        "fmi3GetAdjointDerivative",
+        "providesAdjointDerivatives is false",
+    )
 }
 
 #[unsafe(no_mangle)]
 pub extern "C" fn fmi3EnterConfigurationMode(c: fmi3Instance) -> fmi3Status {
-    unsupported(c, "fmi3EnterConfigurationMode", "this FMU has no structural parameters")
+    unsupported(
+        c,
+        "fmi3EnterConfigurationMode",
+        "this FMU has no structural parameters",
+    )
 }
 
 #[unsafe(no_mangle)]
 pub extern "C" fn fmi3ExitConfigurationMode(c: fmi3Instance) -> fmi3Status {
-    unsupported(c, "fmi3ExitConfigurationMode", "this FMU has no structural parameters")
+    unsupported(
+        c,
+        "fmi3ExitConfigurationMode",
+        "this FMU has no structural parameters",
+    )
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetIntervalDecimal(c: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _intervals: *mut f64, _q: *mut i32) -> fmi3Status {
+pub extern "C" fn fmi3GetIntervalDecimal(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _intervals: *mut f64,
+    _q: *mut i32,
+) -> fmi3Status {
     unsupported(c, "fmi3GetIntervalDecimal", "this FMU has no clocks")
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetIntervalFraction(c: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _counters: *mut u64, _res: *mut u64, _q: *mut i32) -> fmi3Status {
+pub extern "C" fn fmi3GetIntervalFraction(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _counters: *mut u64,
+    _res: *mut u64,
+    _q: *mut i32,
+) -> fmi3Status {
     unsupported(c, "fmi3GetIntervalFraction", "this FMU has no clocks")
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetShiftDecimal(c: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _shifts: *mut f64) -> fmi3Status {
+pub extern "C" fn fmi3GetShiftDecimal(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _shifts: *mut f64,
+) -> fmi3Status {
     unsupported(c, "fmi3GetShiftDecimal", "this FMU has no clocks")
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetShiftFraction(c: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _counters: *mut u64, _res: *mut u64) -> fmi3Status {
+pub extern "C" fn fmi3GetShiftFraction(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _counters: *mut u64,
+    _res: *mut u64,
+) -> fmi3Status {
     unsupported(c, "fmi3GetShiftFraction", "this FMU has no clocks")
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SetIntervalDecimal(c: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _intervals: *const f64) -> fmi3Status {
+pub extern "C" fn fmi3SetIntervalDecimal(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _intervals: *const f64,
+) -> fmi3Status {
     unsupported(c, "fmi3SetIntervalDecimal", "this FMU has no clocks")
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SetIntervalFraction(c: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _counters: *const u64, _res: *const u64) -> fmi3Status {
+pub extern "C" fn fmi3SetIntervalFraction(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _counters: *const u64,
+    _res: *const u64,
+) -> fmi3Status {
     unsupported(c, "fmi3SetIntervalFraction", "this FMU has no clocks")
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SetShiftDecimal(c: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _shifts: *const f64) -> fmi3Status {
+pub extern "C" fn fmi3SetShiftDecimal(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _shifts: *const f64,
+) -> fmi3Status {
     unsupported(c, "fmi3SetShiftDecimal", "this FMU has no clocks")
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3SetShiftFraction(c: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _counters: *const u64, _res: *const u64) -> fmi3Status {
+pub extern "C" fn fmi3SetShiftFraction(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _counters: *const u64,
+    _res: *const u64,
+) -> fmi3Status {
     unsupported(c, "fmi3SetShiftFraction", "this FMU has no clocks")
 }
 
 #[unsafe(no_mangle)]
 pub extern "C" fn fmi3EvaluateDiscreteStates(c: fmi3Instance) -> fmi3Status {
-    unsupported(c, "fmi3EvaluateDiscreteStates", "providesEvaluateDiscreteStates is false")
+    unsupported(
+        c,
+        "fmi3EvaluateDiscreteStates",
+        "providesEvaluateDiscreteStates is false",
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -627,12 +1022,27 @@ model_exchange_only! {
 
 #[unsafe(no_mangle)]
 pub extern "C" fn fmi3EnterStepMode(c: fmi3Instance) -> fmi3Status {
-    unsupported(c, "fmi3EnterStepMode", "hasEventMode is false: exitInitializationMode enters step mode")
+    unsupported(
+        c,
+        "fmi3EnterStepMode",
+        "hasEventMode is false: exitInitializationMode enters step mode",
+    )
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3GetOutputDerivatives(c: fmi3Instance, _vr: *const fmi3ValueReference, _n: usize, _orders: *const i32, _values: *mut f64, _n_values: usize) -> fmi3Status {
-    unsupported(c, "fmi3GetOutputDerivatives", "maxOutputDerivativeOrder is 0")
+pub extern "C" fn fmi3GetOutputDerivatives(
+    c: fmi3Instance,
+    _vr: *const fmi3ValueReference,
+    _n: usize,
+    _orders: *const i32,
+    _values: *mut f64,
+    _n_values: usize,
+) -> fmi3Status {
+    unsupported(
+        c,
+        "fmi3GetOutputDerivatives",
+        "maxOutputDerivativeOrder is 0",
+    )
 }
 
 #[unsafe(no_mangle)]
@@ -664,6 +1074,14 @@ pub extern "C" fn fmi3DoStep(
 }
 
 #[unsafe(no_mangle)]
-pub extern "C" fn fmi3ActivateModelPartition(c: fmi3Instance, _clock: fmi3ValueReference, _time: f64) -> fmi3Status {
-    unsupported(c, "fmi3ActivateModelPartition", "Scheduled Execution is not provided")
+pub extern "C" fn fmi3ActivateModelPartition(
+    c: fmi3Instance,
+    _clock: fmi3ValueReference,
+    _time: f64,
+) -> fmi3Status {
+    unsupported(
+        c,
+        "fmi3ActivateModelPartition",
+        "Scheduled Execution is not provided",
+    )
 }

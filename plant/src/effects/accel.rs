@@ -145,7 +145,13 @@ pub struct AccelModel {
 impl AccelModel {
     /// Compiles the deterministic part of `spec`.
     pub fn new(spec: &AccelSpec) -> Self {
-        let on = |flag: bool, v: Axes3, unit: f64| if flag { Vector3::from(v) * unit } else { Vector3::zeros() };
+        let on = |flag: bool, v: Axes3, unit: f64| {
+            if flag {
+                Vector3::from(v) * unit
+            } else {
+                Vector3::zeros()
+            }
+        };
         let tp = &spec.temperature_bias;
         let mut mis = [0.0; 6];
         if spec.misalignment.enabled {
@@ -171,7 +177,11 @@ impl AccelModel {
 
     /// Adds each deterministic term's increment error (m/s) to `out` and returns the sum.
     #[inline]
-    pub fn increment_error(&self, c: &TermContext, out: &mut [Vector3<f64>; ACCEL_TERMS]) -> Vector3<f64> {
+    pub fn increment_error(
+        &self,
+        c: &TermContext,
+        out: &mut [Vector3<f64>; ACCEL_TERMS],
+    ) -> Vector3<f64> {
         self.increment_error_with(c, &self.thermal_bias_mps2(c.accel_temp_c), out)
     }
 

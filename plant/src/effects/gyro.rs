@@ -217,7 +217,11 @@ pub struct GaussMarkovSpec {
 
 impl Default for GaussMarkovSpec {
     fn default() -> Self {
-        Self { enabled: false, sigma_dph: [0.0; 3], tau_s: [3600.0; 3] }
+        Self {
+            enabled: false,
+            sigma_dph: [0.0; 3],
+            tau_s: [3600.0; 3],
+        }
     }
 }
 
@@ -315,7 +319,11 @@ impl GyroSpec {
 }
 
 fn on(flag: bool, v: Axes3, unit: f64) -> Vector3<f64> {
-    if flag { Vector3::from(v) * unit } else { Vector3::zeros() }
+    if flag {
+        Vector3::from(v) * unit
+    } else {
+        Vector3::zeros()
+    }
 }
 
 /// Deterministic gyro terms compiled to SI (rad/s, fraction, rad). Disabled terms are zero.
@@ -373,18 +381,35 @@ impl GyroModel {
         Self {
             bias_rps: on(spec.bias.enabled, spec.bias.dph, DPH),
             sf: on(spec.scale_factor.enabled, spec.scale_factor.ppm, PPM),
-            asym: on(spec.scale_factor_asymmetry.enabled, spec.scale_factor_asymmetry.ppm, PPM),
+            asym: on(
+                spec.scale_factor_asymmetry.enabled,
+                spec.scale_factor_asymmetry.ppm,
+                PPM,
+            ),
             mis_rad: mis,
             temp_ref_c: tp.ref_temp_c,
             temp_rps: [tp.per_k, tp.per_k2, tp.per_k3].map(|c| on(tp.enabled, c, DPH)),
-            grad_rps_per_k: on(spec.temperature_gradient_bias.enabled, spec.temperature_gradient_bias.dph_per_k, DPH),
+            grad_rps_per_k: on(
+                spec.temperature_gradient_bias.enabled,
+                spec.temperature_gradient_bias.dph_per_k,
+                DPH,
+            ),
             gsens_rps_per_g: gsens,
             pos_on: pb.enabled,
             pos_transition: pb.transition,
             pos_ref_c: pb.ref_temp_c,
-            pos_rps: [pb.dph, pb.dph_per_k, pb.dph_per_k2, pb.dph_per_k3].map(|c| on(pb.enabled, c, DPH)),
-            dither_kappa: on(spec.dither_bias.enabled, spec.dither_bias.amplitude_change, 1.0),
-            dither_rps: on(spec.dither_bias.enabled, spec.dither_bias.dph_per_amplitude, DPH),
+            pos_rps: [pb.dph, pb.dph_per_k, pb.dph_per_k2, pb.dph_per_k3]
+                .map(|c| on(pb.enabled, c, DPH)),
+            dither_kappa: on(
+                spec.dither_bias.enabled,
+                spec.dither_bias.amplitude_change,
+                1.0,
+            ),
+            dither_rps: on(
+                spec.dither_bias.enabled,
+                spec.dither_bias.dph_per_amplitude,
+                DPH,
+            ),
         }
     }
 
@@ -410,19 +435,38 @@ impl GyroModel {
 
     /// Evaluates the temperature-dependent rates once per thermal update (temperatures are
     /// constant between updates), so the per-sample path does no polynomial work.
-    pub fn thermal_rates(&self, gyro_temp_c: &Vector3<f64>, gradient_k: &Vector3<f64>) -> GyroThermalRates {
+    pub fn thermal_rates(
+        &self,
+        gyro_temp_c: &Vector3<f64>,
+        gradient_k: &Vector3<f64>,
+    ) -> GyroThermalRates {
         let dtemp = gyro_temp_c.add_scalar(-self.temp_ref_c);
         GyroThermalRates {
-            temp_rps: Vector3::from_fn(|i, _| cubic(self.temp_rps[0][i], self.temp_rps[1][i], self.temp_rps[2][i], dtemp[i])),
+            temp_rps: Vector3::from_fn(|i, _| {
+                cubic(
+                    self.temp_rps[0][i],
+                    self.temp_rps[1][i],
+                    self.temp_rps[2][i],
+                    dtemp[i],
+                )
+            }),
             grad_rps: self.grad_rps_per_k.component_mul(gradient_k),
-            position_rps: if self.pos_on { self.position_bias_rps(gyro_temp_c) } else { Vector3::zeros() },
+            position_rps: if self.pos_on {
+                self.position_bias_rps(gyro_temp_c)
+            } else {
+                Vector3::zeros()
+            },
         }
     }
 
     /// Adds each deterministic term's increment error (rad) over the interval to `out`
     /// (indexed like [`GyroTerm::ALL`]) and returns their sum.
     #[inline]
-    pub fn increment_error(&self, c: &TermContext, out: &mut [Vector3<f64>; GYRO_TERMS]) -> Vector3<f64> {
+    pub fn increment_error(
+        &self,
+        c: &TermContext,
+        out: &mut [Vector3<f64>; GYRO_TERMS],
+    ) -> Vector3<f64> {
         let rates = self.thermal_rates(&c.gyro_temp_c, &c.gyro_gradient_k);
         self.increment_error_with(c, &rates, out)
     }
@@ -528,8 +572,20 @@ pub fn coefficient_keys(term: GyroTerm, axis: usize) -> Vec<(String, f64)> {
             .collect(),
         GyroTerm::TemperatureBias => vec![k("per_k", DPH), k("per_k2", DPH), k("per_k3", DPH)],
         GyroTerm::TemperatureGradientBias => vec![k("dph_per_k", DPH)],
-        GyroTerm::GSensitivity => (0..3).map(|j| (format!("sensor.gyro.g_sensitivity.dph_per_g[{axis}][{j}]"), DPH)).collect(),
-        GyroTerm::PositionBias => vec![k("dph", DPH), k("dph_per_k", DPH), k("dph_per_k2", DPH), k("dph_per_k3", DPH)],
+        GyroTerm::GSensitivity => (0..3)
+            .map(|j| {
+                (
+                    format!("sensor.gyro.g_sensitivity.dph_per_g[{axis}][{j}]"),
+                    DPH,
+                )
+            })
+            .collect(),
+        GyroTerm::PositionBias => vec![
+            k("dph", DPH),
+            k("dph_per_k", DPH),
+            k("dph_per_k2", DPH),
+            k("dph_per_k3", DPH),
+        ],
         // Written with amplitude_change = 1, so dph_per_amplitude carries the whole coefficient.
         GyroTerm::DitherBias => vec![k("dph_per_amplitude", DPH)],
         _ => Vec::new(),

@@ -78,7 +78,13 @@ pub struct TempPolySpec {
 
 impl Default for TempPolySpec {
     fn default() -> Self {
-        Self { enabled: false, ref_temp_c: 25.0, per_k: [0.0; 3], per_k2: [0.0; 3], per_k3: [0.0; 3] }
+        Self {
+            enabled: false,
+            ref_temp_c: 25.0,
+            per_k: [0.0; 3],
+            per_k2: [0.0; 3],
+            per_k3: [0.0; 3],
+        }
     }
 }
 
@@ -93,11 +99,16 @@ pub struct QuantizationSpec {
 }
 
 /// The index pairs (i, j) of the misalignment vector [xy, xz, yx, yz, zx, zy].
-pub const MISALIGNMENT_PAIRS: [(usize, usize); 6] = [(0, 1), (0, 2), (1, 0), (1, 2), (2, 0), (2, 1)];
+pub const MISALIGNMENT_PAIRS: [(usize, usize); 6] =
+    [(0, 1), (0, 2), (1, 0), (1, 2), (2, 0), (2, 1)];
 
 /// Applies a scale factor and misalignment (both in SI: fraction and rad) to an input increment.
 #[inline]
-fn scale_and_misalign(sf: &Vector3<f64>, mis: &[f64; 6], input: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+fn scale_and_misalign(
+    sf: &Vector3<f64>,
+    mis: &[f64; 6],
+    input: &Vector3<f64>,
+) -> (Vector3<f64>, Vector3<f64>) {
     let sfe = sf.component_mul(input);
     let mut m = Vector3::zeros();
     for (k, &(i, j)) in MISALIGNMENT_PAIRS.iter().enumerate() {

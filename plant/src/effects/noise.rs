@@ -90,12 +90,34 @@ impl NoiseState {
 
     /// Builds the noise state. The Gauss–Markov bias starts from its stationary distribution.
     pub fn new(gyro: &GyroSpec, accel: &AccelSpec, seed: u64) -> Self {
-        let on = |flag: bool, v: [f64; 3], unit: f64| if flag { Vector3::from(v) * unit } else { Vector3::zeros() };
-        let gm_sigma = on(gyro.bias_instability.enabled, gyro.bias_instability.sigma_dph, DPH);
+        let on = |flag: bool, v: [f64; 3], unit: f64| {
+            if flag {
+                Vector3::from(v) * unit
+            } else {
+                Vector3::zeros()
+            }
+        };
+        let gm_sigma = on(
+            gyro.bias_instability.enabled,
+            gyro.bias_instability.sigma_dph,
+            DPH,
+        );
         let mut gm = NormalStream::new(seed, stream::GYRO_BIAS_INSTABILITY);
-        let gm0 = if gyro.bias_instability.enabled { gm_sigma.component_mul(&gm.vec3()) } else { Vector3::zeros() };
-        let arw_sigma = on(gyro.angle_random_walk.enabled, gyro.angle_random_walk.dpsh, DPSH);
-        let vrw_sigma = on(accel.velocity_random_walk.enabled, accel.velocity_random_walk.ug_per_sqrthz, UG);
+        let gm0 = if gyro.bias_instability.enabled {
+            gm_sigma.component_mul(&gm.vec3())
+        } else {
+            Vector3::zeros()
+        };
+        let arw_sigma = on(
+            gyro.angle_random_walk.enabled,
+            gyro.angle_random_walk.dpsh,
+            DPSH,
+        );
+        let vrw_sigma = on(
+            accel.velocity_random_walk.enabled,
+            accel.velocity_random_walk.ug_per_sqrthz,
+            UG,
+        );
         Self {
             arw_on: arw_sigma != Vector3::zeros(),
             vrw_on: vrw_sigma != Vector3::zeros(),
@@ -103,7 +125,11 @@ impl NoiseState {
             vrw_sigma,
             gm_sigma,
             gm_tau: Vector3::from(gyro.bias_instability.tau_s),
-            rrw_sigma: on(gyro.rate_random_walk.enabled, gyro.rate_random_walk.dph_per_sqrth, DPH_PER_SQRTH),
+            rrw_sigma: on(
+                gyro.rate_random_walk.enabled,
+                gyro.rate_random_walk.dph_per_sqrth,
+                DPH_PER_SQRTH,
+            ),
             gm_bias_rps: gm0,
             rrw_bias_rps: Vector3::zeros(),
             arw: NormalStream::new(seed, stream::GYRO_ARW),
@@ -142,7 +168,8 @@ impl NoiseState {
             let w = self.gm.vec3();
             for i in 0..3 {
                 let phi = (-h_s / self.gm_tau[i]).exp();
-                self.gm_bias_rps[i] = phi * self.gm_bias_rps[i] + self.gm_sigma[i] * (1.0 - phi * phi).sqrt() * w[i];
+                self.gm_bias_rps[i] =
+                    phi * self.gm_bias_rps[i] + self.gm_sigma[i] * (1.0 - phi * phi).sqrt() * w[i];
             }
         }
         if self.rrw_sigma != Vector3::zeros() {

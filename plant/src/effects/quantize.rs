@@ -16,7 +16,11 @@ impl Quantizer {
     /// A quantiser with pulse weights `pulse` (zero disables an axis).
     pub fn new(pulse: Vector3<f64>) -> Self {
         let inv_pulse = pulse.map(|q| if q > 0.0 { 1.0 / q } else { 0.0 });
-        Self { pulse, inv_pulse, residual: Vector3::zeros() }
+        Self {
+            pulse,
+            inv_pulse,
+            residual: Vector3::zeros(),
+        }
     }
 
     /// Whether any axis quantises.
@@ -55,7 +59,18 @@ mod tests {
 
     #[test]
     fn floor_small_matches_floor() {
-        for x in [-2.5, -2.0, -0.1, -0.0, 0.0, 0.3, 1.0, 7.999_999, 1e12 + 0.5, -1e12 - 0.5] {
+        for x in [
+            -2.5,
+            -2.0,
+            -0.1,
+            -0.0,
+            0.0,
+            0.3,
+            1.0,
+            7.999_999,
+            1e12 + 0.5,
+            -1e12 - 0.5,
+        ] {
             assert_eq!(floor_small(x), x.floor(), "{x}");
         }
     }
@@ -74,7 +89,10 @@ mod tests {
                 assert_relative_eq!(pulses, pulses.round(), epsilon = 1e-9);
                 // Sum error stays within one pulse: the residual is carried.
                 let err = sum[i] - inc[i] * k as f64;
-                assert!(err <= 1e-9 && err > -q.pulse[i] - 1e-9, "axis {i} err {err}");
+                assert!(
+                    err <= 1e-9 && err > -q.pulse[i] - 1e-9,
+                    "axis {i} err {err}"
+                );
             }
         }
         assert_relative_eq!(sum[2], 500.0, epsilon = 1e-9);

@@ -16,14 +16,23 @@ pub struct GimbalAngles {
 impl GimbalAngles {
     /// Angles in rad.
     pub fn new(outer_rad: f64, inner_rad: f64) -> Self {
-        Self { outer_rad, inner_rad }
+        Self {
+            outer_rad,
+            inner_rad,
+        }
     }
 
     /// The angles after moving `axis` by `angle_rad`.
     pub fn moved(self, axis: GimbalAxis, angle_rad: f64) -> Self {
         match axis {
-            GimbalAxis::Outer => Self { outer_rad: self.outer_rad + angle_rad, ..self },
-            GimbalAxis::Inner => Self { inner_rad: self.inner_rad + angle_rad, ..self },
+            GimbalAxis::Outer => Self {
+                outer_rad: self.outer_rad + angle_rad,
+                ..self
+            },
+            GimbalAxis::Inner => Self {
+                inner_rad: self.inner_rad + angle_rad,
+                ..self
+            },
         }
     }
 }
@@ -54,7 +63,12 @@ pub fn body_to_nav(c_vn: &Matrix3<f64>, g: GimbalAngles) -> Matrix3<f64> {
 
 /// R_z(outer)·R_x(inner) from the sines and cosines of the gimbal angles.
 #[inline]
-pub fn gimbal_rotation(sin_outer: f64, cos_outer: f64, sin_inner: f64, cos_inner: f64) -> Matrix3<f64> {
+pub fn gimbal_rotation(
+    sin_outer: f64,
+    cos_outer: f64,
+    sin_inner: f64,
+    cos_inner: f64,
+) -> Matrix3<f64> {
     let (so, co, si, ci) = (sin_outer, cos_outer, sin_inner, cos_inner);
     Matrix3::new(co, -so * ci, so * si, so, co * ci, -co * si, 0.0, si, ci)
 }

@@ -91,9 +91,17 @@ mod tests {
     #[test]
     fn trapezoid_reaches_target_and_rate_integrates_to_angle() {
         let p = TrapezoidProfile::new(-std::f64::consts::PI, 0.035, 0.35);
-        assert_relative_eq!(p.angle_at(p.duration_s()), -std::f64::consts::PI, epsilon = 1e-15);
+        assert_relative_eq!(
+            p.angle_at(p.duration_s()),
+            -std::f64::consts::PI,
+            epsilon = 1e-15
+        );
         // Duration closed form: angle/rate + rate/accel.
-        assert_relative_eq!(p.duration_s(), std::f64::consts::PI / 0.035 + 0.1, epsilon = 1e-12);
+        assert_relative_eq!(
+            p.duration_s(),
+            std::f64::consts::PI / 0.035 + 0.1,
+            epsilon = 1e-12
+        );
         // Midpoint integration of the rate reproduces the angle (second method).
         let n = 200_000;
         let h = p.duration_s() / n as f64;

@@ -178,7 +178,12 @@ fn gimbal_moves_from_body_rates(
             if gimbal == GimbalAxis::Inner {
                 inner += angle;
             }
-            ResolvedStep { axis: gimbal, angle_rad: angle, rate_rps, dwell_s }
+            ResolvedStep {
+                axis: gimbal,
+                angle_rad: angle,
+                rate_rps,
+                dwell_s,
+            }
         })
         .collect()
 }
@@ -197,10 +202,19 @@ impl SchemeSpec {
             continuous: None,
             accel_rps2: accel,
         };
-        let half_turn = |axis| ResolvedStep { axis, angle_rad: 180.0 * DEG, rate_rps: rate, dwell_s: self.dwell_s };
+        let half_turn = |axis| ResolvedStep {
+            axis,
+            angle_rad: 180.0 * DEG,
+            rate_rps: rate,
+            dwell_s: self.dwell_s,
+        };
         match self.kind {
             SchemeKind::SixteenPosition | SchemeKind::EightPosition => {
-                let n = if self.kind == SchemeKind::SixteenPosition { 16 } else { 8 };
+                let n = if self.kind == SchemeKind::SixteenPosition {
+                    16
+                } else {
+                    8
+                };
                 ResolvedScheme {
                     initial: GimbalAngles::new(0.0, 0.0),
                     steps: gimbal_moves_from_body_rates(&EQ6_BODY_RATES[..n], rate, self.dwell_s),
@@ -208,7 +222,10 @@ impl SchemeSpec {
                     ..base
                 }
             }
-            SchemeKind::Continuous => ResolvedScheme { continuous: Some((self.axis, rate)), ..base },
+            SchemeKind::Continuous => ResolvedScheme {
+                continuous: Some((self.axis, rate)),
+                ..base
+            },
             SchemeKind::Static => base,
             SchemeKind::ZUpCalibration => ResolvedScheme {
                 initial: GimbalAngles::new(0.0, 0.0),
@@ -273,10 +290,22 @@ mod tests {
             (SchemeKind::ZUpCalibration, 'A', 'B'),
             (SchemeKind::ZDownCalibration, 'C', 'D'),
         ] {
-            let spec = SchemeSpec { kind, dwell_s: 600.0, ..SchemeSpec::default() };
+            let spec = SchemeSpec {
+                kind,
+                dwell_s: 600.0,
+                ..SchemeSpec::default()
+            };
             let s = spec.resolve();
-            assert_relative_eq!(body_to_nav(&Matrix3::identity(), s.initial), eq5_position(first), epsilon = 1e-12);
-            assert_relative_eq!(dwell_attitudes(&s)[0], eq5_position(second), epsilon = 1e-12);
+            assert_relative_eq!(
+                body_to_nav(&Matrix3::identity(), s.initial),
+                eq5_position(first),
+                epsilon = 1e-12
+            );
+            assert_relative_eq!(
+                dwell_attitudes(&s)[0],
+                eq5_position(second),
+                epsilon = 1e-12
+            );
         }
     }
 }

@@ -9,7 +9,11 @@ use rins_scenarios::sinks::CsvSink;
 use rins_scenarios::{Sink, run};
 
 #[derive(Parser)]
-#[command(name = "rins", version, about = "Co-simulation plant model of a dual-axis rotating RLG inertial navigation system")]
+#[command(
+    name = "rins",
+    version,
+    about = "Co-simulation plant model of a dual-axis rotating RLG inertial navigation system"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -339,20 +343,30 @@ fn load(path: &std::path::Path, o: &Overrides) -> Result<Scenario> {
     if let Some(r) = o.rate_hz {
         sc.plant.rate_hz = r;
     }
-    sc.validate(None).context("after applying command-line overrides")?;
+    sc.validate(None)
+        .context("after applying command-line overrides")?;
     Ok(sc)
 }
 
 fn cmd_run(a: &RunArgs) -> Result<()> {
     let sc = load(&a.scenario, &a.overrides)?;
-    std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
-    let resolved = toml::to_string_pretty(&sc.plant).context("serialising the resolved configuration")?;
+    std::fs::create_dir_all(&a.out)
+        .with_context(|| format!("cannot create {}", a.out.display()))?;
+    let resolved =
+        toml::to_string_pretty(&sc.plant).context("serialising the resolved configuration")?;
     std::fs::write(a.out.join("resolved-plant.toml"), resolved)?;
     let mut sinks: Vec<Box<dyn Sink>> = Vec::new();
     if sc.outputs.csv {
-        sinks.push(Box::new(CsvSink::create(&a.out.join("imu.csv"), sc.outputs, &sc.plant)?));
+        sinks.push(Box::new(CsvSink::create(
+            &a.out.join("imu.csv"),
+            sc.outputs,
+            &sc.plant,
+        )?));
     }
-    let mut refs: Vec<&mut dyn Sink> = sinks.iter_mut().map(|b| b.as_mut() as &mut dyn Sink).collect();
+    let mut refs: Vec<&mut dyn Sink> = sinks
+        .iter_mut()
+        .map(|b| b.as_mut() as &mut dyn Sink)
+        .collect();
     let n = sc.samples();
     let summary = run(&sc, n, &mut refs)?;
     eprintln!(
@@ -367,7 +381,12 @@ fn cmd_run(a: &RunArgs) -> Result<()> {
     Ok(())
 }
 
-fn cmd_fmu_run(fmu: &std::path::Path, scenario: &std::path::Path, out: &std::path::Path, overrides: &Overrides) -> Result<()> {
+fn cmd_fmu_run(
+    fmu: &std::path::Path,
+    scenario: &std::path::Path,
+    out: &std::path::Path,
+    overrides: &Overrides,
+) -> Result<()> {
     let sc = load(scenario, overrides)?;
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let mut csv = CsvSink::create(&out.join("imu.csv"), sc.outputs, &sc.plant)?;
@@ -384,7 +403,14 @@ fn cmd_fmu_run(fmu: &std::path::Path, scenario: &std::path::Path, out: &std::pat
     Ok(())
 }
 
-fn load_data(a: &DataArgs) -> Result<(Scenario, rins_plant::PlantConfig, rins_verify::diagnosis::history::History, rins_verify::diagnosis::Options)> {
+fn load_data(
+    a: &DataArgs,
+) -> Result<(
+    Scenario,
+    rins_plant::PlantConfig,
+    rins_verify::diagnosis::history::History,
+    rins_verify::diagnosis::Options,
+)> {
     let sc = Scenario::load(&a.model)?;
     let m = rins_scenarios::measurement::read(&a.data)?;
     let (model, note) = rins_scenarios::diagnose::with_data_site(&sc.plant, &m);
@@ -392,12 +418,21 @@ fn load_data(a: &DataArgs) -> Result<(Scenario, rins_plant::PlantConfig, rins_ve
         eprintln!("{}", n);
     }
     let h = rins_scenarios::diagnose::to_history(m, &a.data.display().to_string())?;
-    for (name, v) in [("--window-s", a.window_s), ("--temp-bin-k", a.temp_bin_k), ("--time-window-s", a.time_window_s)] {
+    for (name, v) in [
+        ("--window-s", a.window_s),
+        ("--temp-bin-k", a.temp_bin_k),
+        ("--time-window-s", a.time_window_s),
+    ] {
         if !(v > 0.0 && v.is_finite()) {
             anyhow::bail!("{name} must be a positive number, got {v}");
         }
     }
-    let opts = rins_verify::diagnosis::Options { window_s: a.window_s, temp_bin_k: a.temp_bin_k, time_window_s: a.time_window_s, ..Default::default() };
+    let opts = rins_verify::diagnosis::Options {
+        window_s: a.window_s,
+        temp_bin_k: a.temp_bin_k,
+        time_window_s: a.time_window_s,
+        ..Default::default()
+    };
     Ok((sc, model, h, opts))
 }
 
@@ -414,27 +449,55 @@ fn cmd_compare(a: &CompareArgs) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&report)?);
         return Ok(());
     }
-    println!("{}: {} rows, {} windows, {} runs", report.source, report.rows, report.windows, report.runs);
-    println!("{:<8} {:>12} {:>12} {:>12}  unit", "channel", "resid RMS", "noise RMS", "resid mean");
+    println!(
+        "{}: {} rows, {} windows, {} runs",
+        report.source, report.rows, report.windows, report.runs
+    );
+    println!(
+        "{:<8} {:>12} {:>12} {:>12}  unit",
+        "channel", "resid RMS", "noise RMS", "resid mean"
+    );
     for c in &report.channels {
-        println!("{:<8} {:>12.5} {:>12.5} {:>12.5}  {}", c.channel, c.residual_rms, c.noise_floor_rms, c.residual_mean, c.unit);
+        println!(
+            "{:<8} {:>12.5} {:>12.5} {:>12.5}  {}",
+            c.channel, c.residual_rms, c.noise_floor_rms, c.residual_mean, c.unit
+        );
     }
     for n in &report.noise {
         println!("noise {}: {}", n.channel, n.source);
     }
-    println!("{} of {} cells flagged (|z| > {:.2})", report.flagged_cells.len(), report.cells.len(), report.z_critical);
+    println!(
+        "{} of {} cells flagged (|z| > {:.2})",
+        report.flagged_cells.len(),
+        report.cells.len(),
+        report.z_critical
+    );
     for c in report.flagged_cells.iter().take(20) {
         println!(
             "  {:<8} {:<7} {:>5.1}-{:<5.1} C  {:>7.0}-{:<7.0} s  residual {:>10.5} ± {:.5}  z = {:>6.1}",
-            c.channel, c.position, c.temp_bin_c[0], c.temp_bin_c[1], c.time_window_s[0], c.time_window_s[1], c.residual, c.noise_floor, c.z
+            c.channel,
+            c.position,
+            c.temp_bin_c[0],
+            c.temp_bin_c[1],
+            c.time_window_s[0],
+            c.time_window_s[1],
+            c.residual,
+            c.noise_floor,
+            c.z
         );
     }
     for c in report.correlations.iter().filter(|c| c.significant) {
-        println!("  {}: residual correlates with {} (|rho| = {:.2} > {:.2}, lag {})", c.channel, c.with, c.max_abs_rho, c.band99, c.lag);
+        println!(
+            "  {}: residual correlates with {} (|rho| = {:.2} > {:.2}, lag {})",
+            c.channel, c.with, c.max_abs_rho, c.band99, c.lag
+        );
     }
     println!("navigation (static, horizontal error at the end of each segment):");
     for n in report.navigation.iter().take(12) {
-        println!("  {:<16} {:>7.0} s  measured {:>9.2} m  model {:>9.2} m  (difference RMS {:.2} m)", n.run, n.duration_s, n.measured_final_m, n.model_final_m, n.difference_rms_m);
+        println!(
+            "  {:<16} {:>7.0} s  measured {:>9.2} m  model {:>9.2} m  (difference RMS {:.2} m)",
+            n.run, n.duration_s, n.measured_final_m, n.model_final_m, n.difference_rms_m
+        );
     }
     Ok(())
 }
@@ -444,15 +507,29 @@ fn cmd_diagnose(a: &DiagnoseArgs) -> Result<()> {
     let (report, an, selected) = rins_verify::diagnosis::diagnose(&model, &h, opts);
     if let Some(effect) = &a.apply {
         let e = rins_verify::diagnosis::replay::Effect::parse(effect).with_context(|| {
-            let names: Vec<String> = rins_verify::diagnosis::replay::Effect::all().iter().map(|e| e.name()).collect();
+            let names: Vec<String> = rins_verify::diagnosis::replay::Effect::all()
+                .iter()
+                .map(|e| e.name())
+                .collect();
             format!("--apply {effect:?}: not an effect of the catalogue; one of {names:?}")
         })?;
-        let (cfg2, set) = rins_verify::diagnosis::apply(&model, &an, &[e]).map_err(anyhow::Error::msg)?;
+        let (cfg2, set) =
+            rins_verify::diagnosis::apply(&model, &an, &[e]).map_err(anyhow::Error::msg)?;
         let out = a.out.clone().unwrap_or_else(|| {
-            let stem = a.data.model.file_stem().map_or("model".into(), |s| s.to_string_lossy().replace("builtin:", ""));
+            let stem = a.data.model.file_stem().map_or("model".into(), |s| {
+                s.to_string_lossy().replace("builtin:", "")
+            });
             a.data.model.with_file_name(format!("{stem}-fitted.toml"))
         });
-        let text = rins_scenarios::diagnose::model_with_sensor(&rins_scenarios::diagnose::model_text(&a.data.model)?, &cfg2, &format!("{} with {effect} fitted on {}", a.data.model.display(), h.source))?;
+        let text = rins_scenarios::diagnose::model_with_sensor(
+            &rins_scenarios::diagnose::model_text(&a.data.model)?,
+            &cfg2,
+            &format!(
+                "{} with {effect} fitted on {}",
+                a.data.model.display(),
+                h.source
+            ),
+        )?;
         std::fs::write(&out, text).with_context(|| format!("cannot write {}", out.display()))?;
         eprintln!("wrote {} ({} coefficients)", out.display(), set.len());
         for (k, v) in &set {
@@ -463,7 +540,9 @@ fn cmd_diagnose(a: &DiagnoseArgs) -> Result<()> {
         let pred = rins_verify::diagnosis::predictions(&an, &selected);
         let before = an.compare_report(&h.source, &an.zero_pred());
         let after = an.compare_report(&h.source, &pred);
-        for f in rins_scenarios::diagnose::write_report(dir, &an, Some(&pred), &before, Some(&after))? {
+        for f in
+            rins_scenarios::diagnose::write_report(dir, &an, Some(&pred), &before, Some(&after))?
+        {
             eprintln!("wrote {f}");
         }
     }
@@ -471,20 +550,70 @@ fn cmd_diagnose(a: &DiagnoseArgs) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&report)?);
         return Ok(());
     }
-    println!("{}: candidates ranked by delta-BIC (gate: delta-BIC < -10, Bonferroni p < 0.01, CV gain > 0)", report.source);
-    println!("{:<36} {:<8} {:>10} {:>10} {:>8}  gate  coefficient (95 % CI)", "effect", "channel", "dBIC", "p", "CV %");
+    println!(
+        "{}: candidates ranked by delta-BIC (gate: delta-BIC < -10, Bonferroni p < 0.01, CV gain > 0)",
+        report.source
+    );
+    println!(
+        "{:<36} {:<8} {:>10} {:>10} {:>8}  gate  coefficient (95 % CI)",
+        "effect", "channel", "dBIC", "p", "CV %"
+    );
     for r in report.ranking.iter().take(15) {
-        let coef: Vec<String> = r.coefficient.iter().zip(&r.ci95).zip(&r.keys).map(|((c, ci), k)| format!("{}={c:.4} [{:.4}, {:.4}]", k.rsplit('.').next().unwrap_or(k), ci[0], ci[1])).collect();
-        println!("{:<36} {:<8} {:>10.1} {:>10.2e} {:>8.2}  {}  {}", r.effect, r.channel, r.delta_bic, r.p_value, r.cv_rmse_gain_pct, if r.passes_gate { "PASS" } else { "-   " }, coef.join(" "));
+        let coef: Vec<String> = r
+            .coefficient
+            .iter()
+            .zip(&r.ci95)
+            .zip(&r.keys)
+            .map(|((c, ci), k)| {
+                format!(
+                    "{}={c:.4} [{:.4}, {:.4}]",
+                    k.rsplit('.').next().unwrap_or(k),
+                    ci[0],
+                    ci[1]
+                )
+            })
+            .collect();
+        println!(
+            "{:<36} {:<8} {:>10.1} {:>10.2e} {:>8.2}  {}  {}",
+            r.effect,
+            r.channel,
+            r.delta_bic,
+            r.p_value,
+            r.cv_rmse_gain_pct,
+            if r.passes_gate { "PASS" } else { "-   " },
+            coef.join(" ")
+        );
         for c in &r.confusable_with {
-            println!("    confusable with {} (gap {:.1}, rho {:.2}, VIF {:.0}): separate by {}", c.effect, c.delta_bic_gap, c.correlation, c.vif, c.separate_by);
+            println!(
+                "    confusable with {} (gap {:.1}, rho {:.2}, VIF {:.0}): separate by {}",
+                c.effect, c.delta_bic_gap, c.correlation, c.vif, c.separate_by
+            );
         }
     }
-    println!("accepted: {}", if report.accepted.is_empty() { "none".to_string() } else { report.accepted.iter().map(|r| format!("{} on {}", r.effect, r.channel)).collect::<Vec<_>>().join(", ") });
+    println!(
+        "accepted: {}",
+        if report.accepted.is_empty() {
+            "none".to_string()
+        } else {
+            report
+                .accepted
+                .iter()
+                .map(|r| format!("{} on {}", r.effect, r.channel))
+                .collect::<Vec<_>>()
+                .join(", ")
+        }
+    );
     for (ch, b) in &report.residual_rms_before {
-        println!("  {ch}: residual RMS {b:.5} -> {:.5} (noise floor {:.5})", report.residual_rms_after[ch], report.noise_floor_rms[ch]);
+        println!(
+            "  {ch}: residual RMS {b:.5} -> {:.5} (noise floor {:.5})",
+            report.residual_rms_after[ch], report.noise_floor_rms[ch]
+        );
     }
-    println!("flagged cells: {} before, {} after", report.flagged_cells.len(), report.flagged_cells_after.len());
+    println!(
+        "flagged cells: {} before, {} after",
+        report.flagged_cells.len(),
+        report.flagged_cells_after.len()
+    );
     for u in &report.unexplained {
         println!("  {u}");
     }
@@ -511,7 +640,14 @@ fn cmd_measure(a: &MeasureArgs) -> Result<()> {
     };
     let t0 = std::time::Instant::now();
     rins_scenarios::diagnose::write_measurements(&a.out, &runs)?;
-    eprintln!("{}: {} runs x {} samples in {:.1} s -> {}", sc.meta.name, runs.len(), n, t0.elapsed().as_secs_f64(), a.out.display());
+    eprintln!(
+        "{}: {} runs x {} samples in {:.1} s -> {}",
+        sc.meta.name,
+        runs.len(),
+        n,
+        t0.elapsed().as_secs_f64(),
+        a.out.display()
+    );
     Ok(())
 }
 
@@ -528,14 +664,37 @@ fn cmd_serve(a: &ServeArgs) -> Result<()> {
     use rins_transport::{Mode, ServeOptions};
     let sc = load(&a.scenario, &a.overrides)?;
     if !(1..=rins_transport::layout::BATCH_CAPACITY).contains(&a.batch) {
-        anyhow::bail!("--batch must be in 1..={}, got {}", rins_transport::layout::BATCH_CAPACITY, a.batch);
+        anyhow::bail!(
+            "--batch must be in 1..={}, got {}",
+            rins_transport::layout::BATCH_CAPACITY,
+            a.batch
+        );
     }
-    let mode = if a.mode == "lockstep" { Mode::Lockstep } else { Mode::FreeRunning };
+    let mode = if a.mode == "lockstep" {
+        Mode::Lockstep
+    } else {
+        Mode::FreeRunning
+    };
     if let Some(k) = a.pace.filter(|k| !(*k > 0.0 && k.is_finite())) {
         anyhow::bail!("--pace must be a positive real-time factor, got {k}");
     }
-    let opts = ServeOptions { mode, batch: a.batch, pace: a.pace, peer_timeout: positive_timeout(a.peer_timeout_s)?, wait_for_restart: a.wait_for_restart };
-    let mut plant = rins_plant::Plant::new(&sc.plant).map_err(|e| anyhow::anyhow!("{}: {}", sc.source, e.iter().map(|x| x.to_string()).collect::<Vec<_>>().join("; ")))?;
+    let opts = ServeOptions {
+        mode,
+        batch: a.batch,
+        pace: a.pace,
+        peer_timeout: positive_timeout(a.peer_timeout_s)?,
+        wait_for_restart: a.wait_for_restart,
+    };
+    let mut plant = rins_plant::Plant::new(&sc.plant).map_err(|e| {
+        anyhow::anyhow!(
+            "{}: {}",
+            sc.source,
+            e.iter()
+                .map(|x| x.to_string())
+                .collect::<Vec<_>>()
+                .join("; ")
+        )
+    })?;
     let summary = rins_transport::serve(&a.session, &mut plant, sc.samples(), &opts)?;
     for e in &summary.events {
         eprintln!("{e}");
@@ -549,7 +708,11 @@ fn cmd_serve(a: &ServeArgs) -> Result<()> {
         summary.samples as f64 / summary.wall_s.max(1e-9) / 1e6,
         summary.commands.len(),
         summary.restarts,
-        if summary.interrupted { ", interrupted" } else { "" }
+        if summary.interrupted {
+            ", interrupted"
+        } else {
+            ""
+        }
     );
     Ok(())
 }
@@ -562,15 +725,26 @@ fn cmd_nav(a: &NavArgs) -> Result<()> {
         .iter()
         .map(|c| {
             let p: Vec<&str> = c.split(':').collect();
-            let bad = || anyhow::anyhow!("--command-after {c:?}: expected SEQ:OUTER_DEG:INNER_DEG:RATE_DPS");
+            let bad = || {
+                anyhow::anyhow!("--command-after {c:?}: expected SEQ:OUTER_DEG:INNER_DEG:RATE_DPS")
+            };
             if p.len() != 4 {
                 return Err(bad());
             }
             let f = |s: &str| s.parse::<f64>().map_err(|_| bad());
-            Ok(rins_transport::ScheduledCommand { after_seq: p[0].parse().map_err(|_| bad())?, outer_rad: f(p[1])?.to_radians(), inner_rad: f(p[2])?.to_radians(), rate_rps: f(p[3])?.to_radians() })
+            Ok(rins_transport::ScheduledCommand {
+                after_seq: p[0].parse().map_err(|_| bad())?,
+                outer_rad: f(p[1])?.to_radians(),
+                inner_rad: f(p[2])?.to_radians(),
+                rate_rps: f(p[3])?.to_radians(),
+            })
         })
         .collect::<Result<Vec<_>>>()?;
-    let opts = rins_transport::NavOptions { acknowledge: !a.no_ack, commands, peer_timeout: positive_timeout(a.peer_timeout_s)? };
+    let opts = rins_transport::NavOptions {
+        acknowledge: !a.no_ack,
+        commands,
+        peer_timeout: positive_timeout(a.peer_timeout_s)?,
+    };
     let s = rins_transport::navigate(&a.connect, &sc.plant, &opts)?;
     let st = s.nav.state().copied();
     let q = st.map(|s| s.q_bn.into_inner());
@@ -593,7 +767,10 @@ fn cmd_nav(a: &NavArgs) -> Result<()> {
 
 fn cmd_paper(a: &PaperArgs) -> Result<()> {
     let report = rins_verify::report::AnalyticReport::run();
-    println!("== Analytic verification (Eq. 8, Eq. 11, Table 2) ==\n{}", report.to_text());
+    println!(
+        "== Analytic verification (Eq. 8, Eq. 11, Table 2) ==\n{}",
+        report.to_text()
+    );
     let t4 = Table4Args {
         runs: if a.full { 32 } else { 2 },
         days: 7.0,
@@ -602,7 +779,10 @@ fn cmd_paper(a: &PaperArgs) -> Result<()> {
         json: false,
         out: a.out.clone(),
     };
-    println!("== Section 3.1 / Table 4 ({} seeds; --full for 32) ==", t4.runs);
+    println!(
+        "== Section 3.1 / Table 4 ({} seeds; --full for 32) ==",
+        t4.runs
+    );
     cmd_table4(&t4)?;
     if !report.passed() {
         anyhow::bail!("analytic verification failed");
@@ -623,13 +803,20 @@ fn check_runs_days(runs: usize, days: f64) -> Result<()> {
 
 /// Runs the paired uncompensated/compensated study with a progress bar and writes
 /// `<name>.json` and the figures to `out`.
-fn run_paired(opt: &rins_verify::paper::Table4Options, name: &str, out: &std::path::Path) -> Result<rins_verify::paper::Table4Report> {
+fn run_paired(
+    opt: &rins_verify::paper::Table4Options,
+    name: &str,
+    out: &std::path::Path,
+) -> Result<rins_verify::paper::Table4Report> {
     let total = (2 * opt.runs as u64 + 2) * (opt.duration_s * opt.plant.rate_hz) as u64;
     let pb = rins_scenarios::progress::bar(total, name);
     let r = rins_verify::paper::table4(opt, &|n| pb.inc(n));
     pb.finish_and_clear();
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
-    std::fs::write(out.join(format!("{name}.json")), serde_json::to_string_pretty(&r)?)?;
+    std::fs::write(
+        out.join(format!("{name}.json")),
+        serde_json::to_string_pretty(&r)?,
+    )?;
     write_table4_figures(&r, out)?;
     Ok(r)
 }
@@ -649,7 +836,10 @@ fn cmd_table4(a: &Table4Args) -> Result<()> {
         compensation: None,
         nav: rins_nav::NavRunConfig {
             alignment: if a.align == "self" {
-                rins_nav::Alignment::SelfAlign { coarse_s: 300.0, fine_s: 600.0 }
+                rins_nav::Alignment::SelfAlign {
+                    coarse_s: 300.0,
+                    fine_s: 600.0,
+                }
             } else {
                 rins_nav::Alignment::Truth
             },
@@ -667,38 +857,89 @@ fn cmd_table4(a: &Table4Args) -> Result<()> {
 }
 
 fn write_table4_figures(r: &rins_verify::paper::Table4Report, out: &std::path::Path) -> Result<()> {
-    use rins_scenarios::plots::{Line, Panel, write_svg};
     use plotters::style::RGBColor;
+    use rins_scenarios::plots::{Line, Panel, write_svg};
     const UNC: RGBColor = RGBColor(200, 40, 40);
     const COMP: RGBColor = RGBColor(30, 90, 200);
-    for (series, tag, what) in [(&r.first_seed, "", "first seed"), (&r.noise_free_series, "_noise_free", "noise-free")] {
-        let pts = |recs: &[rins_nav::NavRecord], f: &dyn Fn(&rins_nav::NavRecord) -> f64| -> Vec<(f64, f64)> {
+    for (series, tag, what) in [
+        (&r.first_seed, "", "first seed"),
+        (&r.noise_free_series, "_noise_free", "noise-free"),
+    ] {
+        let pts = |recs: &[rins_nav::NavRecord],
+                   f: &dyn Fn(&rins_nav::NavRecord) -> f64|
+         -> Vec<(f64, f64)> {
             recs.iter().map(|x| (x.t_s / 3600.0, f(x))).collect()
         };
         let pair = |f: &dyn Fn(&rins_nav::NavRecord) -> f64| {
             vec![
-                Line { label: "uncompensated", points: pts(&series.uncompensated, f), color: UNC, error_bars: false },
-                Line { label: "compensated", points: pts(&series.compensated, f), color: COMP, error_bars: false },
+                Line {
+                    label: "uncompensated",
+                    points: pts(&series.uncompensated, f),
+                    color: UNC,
+                    error_bars: false,
+                },
+                Line {
+                    label: "compensated",
+                    points: pts(&series.compensated, f),
+                    color: COMP,
+                    error_bars: false,
+                },
             ]
         };
         let att = ["East", "North", "Up"]
             .iter()
             .enumerate()
-            .map(|(k, n)| Panel { title: format!("{n}-axis attitude error"), y_label: "deg", lines: pair(&|x| x.att_err_rad[k].to_degrees()) })
+            .map(|(k, n)| Panel {
+                title: format!("{n}-axis attitude error"),
+                y_label: "deg",
+                lines: pair(&|x| x.att_err_rad[k].to_degrees()),
+            })
             .collect::<Vec<_>>();
-        write_svg(&out.join(format!("fig2_attitude_error{tag}.svg")), &format!("Figure 2 counterpart: attitude error ({what})"), "time (h)", &att)?;
+        write_svg(
+            &out.join(format!("fig2_attitude_error{tag}.svg")),
+            &format!("Figure 2 counterpart: attitude error ({what})"),
+            "time (h)",
+            &att,
+        )?;
         let nm = rins_nav::errors::nmi;
         let pos = vec![
-            Panel { title: "Latitude error".into(), y_label: "nmi", lines: pair(&|x| nm(x.north_m)) },
-            Panel { title: "Longitude error".into(), y_label: "nmi", lines: pair(&|x| nm(x.east_m)) },
-            Panel { title: "Horizontal error and tRMS (Eq. 20)".into(), y_label: "nmi", lines: {
-                let mut l = pair(&|x| nm(x.horizontal_m));
-                l.push(Line { label: "tRMS uncompensated", points: pts(&series.uncompensated, &|x| nm(x.trms_m)), color: RGBColor(240, 150, 150), error_bars: false });
-                l.push(Line { label: "tRMS compensated", points: pts(&series.compensated, &|x| nm(x.trms_m)), color: RGBColor(140, 170, 240), error_bars: false });
-                l
-            } },
+            Panel {
+                title: "Latitude error".into(),
+                y_label: "nmi",
+                lines: pair(&|x| nm(x.north_m)),
+            },
+            Panel {
+                title: "Longitude error".into(),
+                y_label: "nmi",
+                lines: pair(&|x| nm(x.east_m)),
+            },
+            Panel {
+                title: "Horizontal error and tRMS (Eq. 20)".into(),
+                y_label: "nmi",
+                lines: {
+                    let mut l = pair(&|x| nm(x.horizontal_m));
+                    l.push(Line {
+                        label: "tRMS uncompensated",
+                        points: pts(&series.uncompensated, &|x| nm(x.trms_m)),
+                        color: RGBColor(240, 150, 150),
+                        error_bars: false,
+                    });
+                    l.push(Line {
+                        label: "tRMS compensated",
+                        points: pts(&series.compensated, &|x| nm(x.trms_m)),
+                        color: RGBColor(140, 170, 240),
+                        error_bars: false,
+                    });
+                    l
+                },
+            },
         ];
-        write_svg(&out.join(format!("fig3_position_error{tag}.svg")), &format!("Figure 3 counterpart: position error ({what})"), "time (h)", &pos)?;
+        write_svg(
+            &out.join(format!("fig3_position_error{tag}.svg")),
+            &format!("Figure 3 counterpart: position error ({what})"),
+            "time (h)",
+            &pos,
+        )?;
     }
     Ok(())
 }
@@ -709,12 +950,19 @@ fn calibration_config(sc: &Scenario, estimator: &str) -> rins_nav::calibration::
     let lead = sc.plant.scheme.lead_dwell_s;
     let alignment = if lead > 0.0 {
         let coarse = (lead / 4.0).min(120.0);
-        rins_nav::Alignment::SelfAlign { coarse_s: coarse, fine_s: lead - coarse }
+        rins_nav::Alignment::SelfAlign {
+            coarse_s: coarse,
+            fine_s: lead - coarse,
+        }
     } else {
         rins_nav::Alignment::Truth
     };
     CalibrationConfig {
-        estimator: if estimator == "paper" { Estimator::Paper } else { Estimator::Coupled },
+        estimator: if estimator == "paper" {
+            Estimator::Paper
+        } else {
+            Estimator::Coupled
+        },
         alignment,
         segment_s: sc.plant.scheme.dwell_s,
         ..CalibrationConfig::default()
@@ -729,7 +977,10 @@ fn cmd_calibrate(a: &CalibrateArgs) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
     }
-    println!("System-level indirect calibration ({} estimator), {} s per position", a.estimator, cfg.segment_s);
+    println!(
+        "System-level indirect calibration ({} estimator), {} s per position",
+        a.estimator, cfg.segment_s
+    );
     for (name, e) in [("Z-up   (Eq. 17)", &r.up), ("Z-down (Eq. 19)", &r.down)] {
         println!(
             "  {name}: beta = [{:+.5}, {:+.5}, {:+.5}] +- [{:.5}, {:.5}, {:.5}] deg/h",
@@ -738,20 +989,41 @@ fn cmd_calibrate(a: &CalibrateArgs) -> Result<()> {
         for (k, f) in e.segments.iter().enumerate() {
             println!(
                 "      segment {}: dVdd_E {:+.3e} +- {:.1e}, dVdd_N {:+.3e} +- {:.1e} m/s^3, dphi_U {:+.3e} +- {:.1e} rad/s (chi2/dof {:.2} {:.2} {:.2})",
-                k + 1, f.dvdd_e.slope, f.dvdd_e.se, f.dvdd_n.slope, f.dvdd_n.se, f.phi_u_rate.slope, f.phi_u_rate.se,
-                f.dvdd_e.chi2_per_dof, f.dvdd_n.chi2_per_dof, f.phi_u_rate.chi2_per_dof
+                k + 1,
+                f.dvdd_e.slope,
+                f.dvdd_e.se,
+                f.dvdd_n.slope,
+                f.dvdd_n.se,
+                f.phi_u_rate.slope,
+                f.phi_u_rate.se,
+                f.dvdd_e.chi2_per_dof,
+                f.dvdd_n.chi2_per_dof,
+                f.phi_u_rate.chi2_per_dof
             );
         }
     }
     let (d, e) = (r.delta_beta_dph, r.delta_beta_se_dph);
-    println!("  delta-beta = beta_down - beta_up = [{:+.5}, {:+.5}, {:+.5}] +- [{:.5}, {:.5}, {:.5}] deg/h", d[0], d[1], d[2], e[0], e[1], e[2]);
+    println!(
+        "  delta-beta = beta_down - beta_up = [{:+.5}, {:+.5}, {:+.5}] +- [{:.5}, {:.5}, {:.5}] deg/h",
+        d[0], d[1], d[2], e[0], e[1], e[2]
+    );
     Ok(())
 }
 
 fn run_campaign_from(sc: &Scenario, ref_temp_c: f64) -> Result<rins_nav::campaign::Campaign> {
-    let camp = sc.campaign.as_ref().with_context(|| format!("{}: no [campaign] section (temps_c, or from_c/to_c/runs)", sc.source))?;
+    let camp = sc.campaign.as_ref().with_context(|| {
+        format!(
+            "{}: no [campaign] section (temps_c, or from_c/to_c/runs)",
+            sc.source
+        )
+    })?;
     let cfg = calibration_config(sc, "coupled");
-    Ok(rins_nav::campaign::run_campaign(&sc.plant, &camp.temperatures_c(), &cfg, ref_temp_c)?)
+    Ok(rins_nav::campaign::run_campaign(
+        &sc.plant,
+        &camp.temperatures_c(),
+        &cfg,
+        ref_temp_c,
+    )?)
 }
 
 fn write_campaign(c: &rins_nav::campaign::Campaign, out: &std::path::Path) -> Result<()> {
@@ -762,29 +1034,47 @@ fn write_campaign(c: &rins_nav::campaign::Campaign, out: &std::path::Path) -> Re
     // Written as a scenario fragment: the plant loads it as a scenario (or paste the table into
     // one), the navigator with `rins paper table5 --compensation`.
     let mut gyro = toml::Table::new();
-    gyro.insert("position_bias".into(), toml::Value::try_from(c.compensation())?);
+    gyro.insert(
+        "position_bias".into(),
+        toml::Value::try_from(c.compensation())?,
+    );
     let mut sensor = toml::Table::new();
     sensor.insert("gyro".into(), toml::Value::Table(gyro));
     let mut t = toml::Table::new();
     t.insert("sensor".into(), toml::Value::Table(sensor));
     let header = "# Fitted position-dependent gyro bias delta-beta(T) from `rins campaign`: a scenario fragment.\n# The plant reads it as [sensor.gyro.position_bias]; `rins paper table5 --compensation FILE` compensates with it.\n";
-    std::fs::write(out.join("dbeta-compensation.toml"), format!("{header}{}", toml::to_string_pretty(&t)?))?;
+    std::fs::write(
+        out.join("dbeta-compensation.toml"),
+        format!("{header}{}", toml::to_string_pretty(&t)?),
+    )?;
     let panels: Vec<Panel> = ["X", "Y", "Z"]
         .iter()
         .enumerate()
         .map(|(i, axis)| {
-            let pts: Vec<(f64, f64)> = c.runs.iter().map(|r| (r.block_temp_c[i], r.calibration.delta_beta_dph[i])).collect();
-            let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.0), b.max(p.0)));
+            let pts: Vec<(f64, f64)> = c
+                .runs
+                .iter()
+                .map(|r| (r.block_temp_c[i], r.calibration.delta_beta_dph[i]))
+                .collect();
+            let (lo, hi) = pts
+                .iter()
+                .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.0), b.max(p.0)));
             let curve = |k: f64| -> Vec<(f64, f64)> {
-                (0..=100).map(|j| {
-                    let t = lo + (hi - lo) * j as f64 / 100.0;
-                    let (v, sd) = c.fits[i].eval(t - c.ref_temp_c);
-                    (t, v + k * 1.96 * sd)
-                }).collect()
+                (0..=100)
+                    .map(|j| {
+                        let t = lo + (hi - lo) * j as f64 / 100.0;
+                        let (v, sd) = c.fits[i].eval(t - c.ref_temp_c);
+                        (t, v + k * 1.96 * sd)
+                    })
+                    .collect()
             };
             let mut bars = Vec::new();
             for r in &c.runs {
-                let (x, y, e) = (r.block_temp_c[i], r.calibration.delta_beta_dph[i], r.calibration.delta_beta_se_dph[i]);
+                let (x, y, e) = (
+                    r.block_temp_c[i],
+                    r.calibration.delta_beta_dph[i],
+                    r.calibration.delta_beta_se_dph[i],
+                );
                 bars.push((x, y - e));
                 bars.push((x, y + e));
             }
@@ -792,15 +1082,40 @@ fn write_campaign(c: &rins_nav::campaign::Campaign, out: &std::path::Path) -> Re
                 title: format!("{axis}-axis gyro: delta-beta = beta(Z-down) - beta(Z-up)"),
                 y_label: "deg/h",
                 lines: vec![
-                    Line { label: "estimate +- 1 SE", points: bars, color: RGBColor(90, 90, 90), error_bars: true },
-                    Line { label: "cubic fit", points: curve(0.0), color: RGBColor(30, 90, 200), error_bars: false },
-                    Line { label: "95 % band", points: curve(1.0), color: RGBColor(140, 170, 240), error_bars: false },
-                    Line { label: "", points: curve(-1.0), color: RGBColor(140, 170, 240), error_bars: false },
+                    Line {
+                        label: "estimate +- 1 SE",
+                        points: bars,
+                        color: RGBColor(90, 90, 90),
+                        error_bars: true,
+                    },
+                    Line {
+                        label: "cubic fit",
+                        points: curve(0.0),
+                        color: RGBColor(30, 90, 200),
+                        error_bars: false,
+                    },
+                    Line {
+                        label: "95 % band",
+                        points: curve(1.0),
+                        color: RGBColor(140, 170, 240),
+                        error_bars: false,
+                    },
+                    Line {
+                        label: "",
+                        points: curve(-1.0),
+                        color: RGBColor(140, 170, 240),
+                        error_bars: false,
+                    },
                 ],
             }
         })
         .collect();
-    write_svg(&out.join("fig8_dbeta_vs_temperature.svg"), "Figure 8 counterpart: identified position-dependent gyro bias", "gyro block temperature at Z-down (deg C)", &panels)
+    write_svg(
+        &out.join("fig8_dbeta_vs_temperature.svg"),
+        "Figure 8 counterpart: identified position-dependent gyro bias",
+        "gyro block temperature at Z-down (deg C)",
+        &panels,
+    )
 }
 
 fn cmd_campaign(a: &CampaignArgs) -> Result<()> {
@@ -811,16 +1126,41 @@ fn cmd_campaign(a: &CampaignArgs) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&c)?);
         return Ok(());
     }
-    println!("Temperature campaign: {} runs ({:.1} s wall)", c.runs.len(), c.wall_s);
-    println!("  {:>9} {:>27} {:>27} {:>27}", "chamber", "dbeta_x +- SE (deg/h)", "dbeta_y", "dbeta_z");
+    println!(
+        "Temperature campaign: {} runs ({:.1} s wall)",
+        c.runs.len(),
+        c.wall_s
+    );
+    println!(
+        "  {:>9} {:>27} {:>27} {:>27}",
+        "chamber", "dbeta_x +- SE (deg/h)", "dbeta_y", "dbeta_z"
+    );
     for r in &c.runs {
-        let (d, e) = (r.calibration.delta_beta_dph, r.calibration.delta_beta_se_dph);
-        println!("  {:>7.2} C {:>+12.5} +- {:>9.5} {:>+12.5} +- {:>9.5} {:>+12.5} +- {:>9.5}", r.chamber_c, d[0], e[0], d[1], e[1], d[2], e[2]);
+        let (d, e) = (
+            r.calibration.delta_beta_dph,
+            r.calibration.delta_beta_se_dph,
+        );
+        println!(
+            "  {:>7.2} C {:>+12.5} +- {:>9.5} {:>+12.5} +- {:>9.5} {:>+12.5} +- {:>9.5}",
+            r.chamber_c, d[0], e[0], d[1], e[1], d[2], e[2]
+        );
     }
     for (i, f) in c.fits.iter().enumerate() {
-        println!("  fit {}: c0..c3 = [{:+.3e}, {:+.3e}, {:+.3e}, {:+.3e}] (T - {} C), chi2/dof {:.2}", ["x", "y", "z"][i], f.coef[0], f.coef[1], f.coef[2], f.coef[3], c.ref_temp_c, f.chi2_per_dof);
+        println!(
+            "  fit {}: c0..c3 = [{:+.3e}, {:+.3e}, {:+.3e}, {:+.3e}] (T - {} C), chi2/dof {:.2}",
+            ["x", "y", "z"][i],
+            f.coef[0],
+            f.coef[1],
+            f.coef[2],
+            f.coef[3],
+            c.ref_temp_c,
+            f.chi2_per_dof
+        );
     }
-    println!("  compensation file: {}", a.out.join("dbeta-compensation.toml").display());
+    println!(
+        "  compensation file: {}",
+        a.out.join("dbeta-compensation.toml").display()
+    );
     Ok(())
 }
 
@@ -828,18 +1168,25 @@ fn cmd_table5(a: &Table5Args) -> Result<()> {
     check_runs_days(a.runs, a.days)?;
     let comp = match &a.compensation {
         Some(path) => {
-            let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+            let text = std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read {}", path.display()))?;
             // The file is a scenario fragment: its [sensor.gyro.position_bias] is the compensation.
             let sc = Scenario::from_toml(&text, &path.display().to_string())?;
             let pb = sc.plant.sensor.gyro.position_bias;
             if !pb.enabled {
-                anyhow::bail!("{}: expected an enabled [sensor.gyro.position_bias] table (from `rins campaign`)", path.display());
+                anyhow::bail!(
+                    "{}: expected an enabled [sensor.gyro.position_bias] table (from `rins campaign`)",
+                    path.display()
+                );
             }
             pb
         }
         None => {
             eprintln!("no --compensation given: running the 37-run campaign first");
-            let c = run_campaign_from(&Scenario::load(std::path::Path::new("builtin:campaign-37"))?, 25.0)?;
+            let c = run_campaign_from(
+                &Scenario::load(std::path::Path::new("builtin:campaign-37"))?,
+                25.0,
+            )?;
             write_campaign(&c, &a.out.join("campaign"))?;
             c.compensation()
         }
@@ -857,13 +1204,22 @@ fn cmd_table5(a: &Table5Args) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
         print!("{}", r.to_text_table5());
-        println!("  figures (Figures 9-10 counterparts: fig3_position_error*.svg) and table5.json in {}", a.out.display());
+        println!(
+            "  figures (Figures 9-10 counterparts: fig3_position_error*.svg) and table5.json in {}",
+            a.out.display()
+        );
     }
     Ok(())
 }
 
 /// Prints a verification report as JSON or text and fails when a check failed.
-fn emit_report<T: serde::Serialize>(report: &T, json: bool, text: &str, passed: bool, what: &str) -> Result<()> {
+fn emit_report<T: serde::Serialize>(
+    report: &T,
+    json: bool,
+    text: &str,
+    passed: bool,
+    what: &str,
+) -> Result<()> {
     if json {
         println!("{}", serde_json::to_string_pretty(report)?);
     } else {
@@ -905,8 +1261,14 @@ fn dispatch(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Run(a) => cmd_run(&a),
         Command::Paper { which: None, args } => cmd_paper(&args),
-        Command::Paper { which: Some(PaperCommand::Table4(a)), .. } => cmd_table4(&a),
-        Command::Paper { which: Some(PaperCommand::Table5(a)), .. } => cmd_table5(&a),
+        Command::Paper {
+            which: Some(PaperCommand::Table4(a)),
+            ..
+        } => cmd_table4(&a),
+        Command::Paper {
+            which: Some(PaperCommand::Table5(a)),
+            ..
+        } => cmd_table5(&a),
         Command::Calibrate(a) => cmd_calibrate(&a),
         Command::Campaign(a) => cmd_campaign(&a),
         Command::Verify(VerifyCommand::Analytic { json }) => {
@@ -918,7 +1280,13 @@ fn dispatch(cli: Cli) -> Result<()> {
                 anyhow::bail!("--runs: expected at least 8 Monte Carlo runs, got {runs}");
             }
             let r = rins_verify::ins::InsReport::run(runs);
-            emit_report(&r, json, &r.to_text(), r.passed(), "INS closed-form verification")
+            emit_report(
+                &r,
+                json,
+                &r.to_text(),
+                r.passed(),
+                "INS closed-form verification",
+            )
         }
         Command::Fmu(FmuCommand::Build { out, lib_dir }) => {
             let lib_dir = lib_dir.unwrap_or_else(rins_scenarios::fmu::default_lib_dir);
@@ -927,7 +1295,12 @@ fn dispatch(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
-        Command::Fmu(FmuCommand::Run { fmu, scenario, out, overrides }) => cmd_fmu_run(&fmu, &scenario, &out, &overrides),
+        Command::Fmu(FmuCommand::Run {
+            fmu,
+            scenario,
+            out,
+            overrides,
+        }) => cmd_fmu_run(&fmu, &scenario, &out, &overrides),
         #[cfg(feature = "transport")]
         Command::Serve(a) => cmd_serve(&a),
         #[cfg(feature = "transport")]
@@ -944,7 +1317,10 @@ fn dispatch(cli: Cli) -> Result<()> {
         }
         Command::Scenarios { name: Some(n) } => {
             let n = n.strip_prefix("builtin:").unwrap_or(&n);
-            let (_, text) = BUILTIN.iter().find(|(b, _)| *b == n).with_context(|| format!("no built-in scenario {n:?}; see `rins scenarios`"))?;
+            let (_, text) = BUILTIN
+                .iter()
+                .find(|(b, _)| *b == n)
+                .with_context(|| format!("no built-in scenario {n:?}; see `rins scenarios`"))?;
             print!("{text}");
             Ok(())
         }

@@ -44,7 +44,11 @@ pub struct CsvSink<W: Write> {
 const AXES: [&str; 3] = ["x", "y", "z"];
 
 /// Column names for the given options and enabled terms.
-pub fn header(opts: &OutputSpec, gyro_terms: &[GyroTerm], accel_terms: &[AccelTerm]) -> Vec<String> {
+pub fn header(
+    opts: &OutputSpec,
+    gyro_terms: &[GyroTerm],
+    accel_terms: &[AccelTerm],
+) -> Vec<String> {
     let mut h: Vec<String> = vec!["sample".into(), "t_s".into()];
     h.extend(AXES.iter().map(|a| format!("dtheta_{a}_rad")));
     h.extend(AXES.iter().map(|a| format!("dv_{a}_mps")));
@@ -72,9 +76,17 @@ pub fn position_label(outer_rad: f64, inner_rad: f64, moving: bool) -> &'static 
     if moving {
         return "moving";
     }
-    let near = |a: f64, b: f64| ((a - b).rem_euclid(std::f64::consts::TAU)).min((b - a).rem_euclid(std::f64::consts::TAU)) < 1e-6;
+    let near = |a: f64, b: f64| {
+        ((a - b).rem_euclid(std::f64::consts::TAU)).min((b - a).rem_euclid(std::f64::consts::TAU))
+            < 1e-6
+    };
     let pi = std::f64::consts::PI;
-    match (near(outer_rad, 0.0), near(outer_rad, pi), near(inner_rad, 0.0), near(inner_rad, pi)) {
+    match (
+        near(outer_rad, 0.0),
+        near(outer_rad, pi),
+        near(inner_rad, 0.0),
+        near(inner_rad, pi),
+    ) {
         (true, _, true, _) => "A",
         (_, true, true, _) => "B",
         (_, true, _, true) => "C",
@@ -86,7 +98,11 @@ pub fn position_label(outer_rad: f64, inner_rad: f64, moving: bool) -> &'static 
 
 impl CsvSink<BufWriter<File>> {
     /// Creates `path` for the scenario's enabled terms.
-    pub fn create(path: &Path, opts: OutputSpec, plant_cfg: &rins_plant::PlantConfig) -> Result<Self> {
+    pub fn create(
+        path: &Path,
+        opts: OutputSpec,
+        plant_cfg: &rins_plant::PlantConfig,
+    ) -> Result<Self> {
         let f = File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
         CsvSink::new(BufWriter::with_capacity(1 << 20, f), opts, plant_cfg)
     }
@@ -100,10 +116,22 @@ impl<W: Write> CsvSink<W> {
 
     /// A sink whose rows start with a `run` label column (one file holding several runs, as the
     /// measurement format allows); `write_header` is false when appending a further run.
-    pub fn for_run(mut out: W, opts: OutputSpec, plant_cfg: &rins_plant::PlantConfig, run: Option<&str>, write_header: bool) -> Result<Self> {
+    pub fn for_run(
+        mut out: W,
+        opts: OutputSpec,
+        plant_cfg: &rins_plant::PlantConfig,
+        run: Option<&str>,
+        write_header: bool,
+    ) -> Result<Self> {
         let s = &plant_cfg.sensor;
-        let gyro_terms: Vec<GyroTerm> = GyroTerm::ALL.into_iter().filter(|t| s.gyro.is_enabled(*t)).collect();
-        let accel_terms: Vec<AccelTerm> = AccelTerm::ALL.into_iter().filter(|t| s.accel.is_enabled(*t)).collect();
+        let gyro_terms: Vec<GyroTerm> = GyroTerm::ALL
+            .into_iter()
+            .filter(|t| s.gyro.is_enabled(*t))
+            .collect();
+        let accel_terms: Vec<AccelTerm> = AccelTerm::ALL
+            .into_iter()
+            .filter(|t| s.accel.is_enabled(*t))
+            .collect();
         if write_header {
             let mut h = header(&opts, &gyro_terms, &accel_terms);
             if run.is_some() {
@@ -137,7 +165,9 @@ impl<W: Write> CsvSink<W> {
     }
 
     fn write_row(&mut self) -> Result<()> {
-        let Some((s, tr)) = self.last else { return Ok(()) };
+        let Some((s, tr)) = self.last else {
+            return Ok(());
+        };
         let span_s = self.in_row as f64 * self.dt_s;
         let l = &mut self.line;
         l.clear();
@@ -150,7 +180,13 @@ impl<W: Write> CsvSink<W> {
         for v in [&self.dtheta, &self.dv] {
             write!(l, ",{},{},{}", v.x, v.y, v.z)?;
         }
-        write!(l, ",{},{},{}", g.angles.outer_rad.to_degrees(), g.angles.inner_rad.to_degrees(), label)?;
+        write!(
+            l,
+            ",{},{},{}",
+            g.angles.outer_rad.to_degrees(),
+            g.angles.inner_rad.to_degrees(),
+            label
+        )?;
         for t in tr.temps.nodes_c {
             write!(l, ",{t}")?;
         }
@@ -181,7 +217,9 @@ impl<W: Write> CsvSink<W> {
         self.dtheta_true = Vector3::zeros();
         self.dv_true = Vector3::zeros();
         self.gyro_sum.iter_mut().for_each(|v| *v = Vector3::zeros());
-        self.accel_sum.iter_mut().for_each(|v| *v = Vector3::zeros());
+        self.accel_sum
+            .iter_mut()
+            .for_each(|v| *v = Vector3::zeros());
         Ok(())
     }
 }

@@ -63,12 +63,20 @@ pub fn design(windows: &[Window], groups: &[Group]) -> DMatrix<f64> {
 
 /// WLS of `d.y` on the columns `x` (rows with `mask` false are left out).
 pub fn wls(x: &DMatrix<f64>, d: &ChannelData, mask: Option<&[bool]>) -> Option<Fit> {
-    let rows: Vec<usize> = (0..d.y.len()).filter(|&r| mask.is_none_or(|m| m[r])).collect();
+    let rows: Vec<usize> = (0..d.y.len())
+        .filter(|&r| mask.is_none_or(|m| m[r]))
+        .collect();
     let p = x.ncols();
     let n = rows.len();
     if p == 0 {
         let chi2 = rows.iter().map(|&r| d.y[r] * d.y[r] / d.v[r]).sum();
-        return Some(Fit { theta: Vec::new(), cov: DMatrix::zeros(0, 0), chi2, n, condition: 1.0 });
+        return Some(Fit {
+            theta: Vec::new(),
+            cov: DMatrix::zeros(0, 0),
+            chi2,
+            n,
+            condition: 1.0,
+        });
     }
     if n <= p {
         return None;
@@ -86,7 +94,9 @@ pub fn wls(x: &DMatrix<f64>, d: &ChannelData, mask: Option<&[bool]>) -> Option<F
     // on this data (e.g. g-sensitivity to x when x is never vertical) is not estimated: its
     // coefficient is reported as 0 with an unbounded interval.
     let scale: Vec<f64> = (0..p).map(|c| a.column(c).norm()).collect();
-    let live: Vec<usize> = (0..p).filter(|&c| scale[c] > 0.0 && scale[c].is_finite()).collect();
+    let live: Vec<usize> = (0..p)
+        .filter(|&c| scale[c] > 0.0 && scale[c].is_finite())
+        .collect();
     if live.is_empty() {
         return None;
     }
@@ -104,7 +114,13 @@ pub fn wls(x: &DMatrix<f64>, d: &ChannelData, mask: Option<&[bool]>) -> Option<F
         for c in (0..p).filter(|c| !live.contains(c)) {
             cov[(c, c)] = f64::INFINITY;
         }
-        return Some(Fit { theta, cov, chi2: f.chi2, n: f.n, condition: f.condition });
+        return Some(Fit {
+            theta,
+            cov,
+            chi2: f.chi2,
+            n: f.n,
+            condition: f.condition,
+        });
     }
     for c in 0..p {
         a.column_mut(c).unscale_mut(scale[c]);
@@ -129,7 +145,13 @@ pub fn wls(x: &DMatrix<f64>, d: &ChannelData, mask: Option<&[bool]>) -> Option<F
         }
     }
     let theta = (0..p).map(|c| sol[c] / scale[c]).collect();
-    Some(Fit { theta, cov, chi2, n, condition: smax / smin })
+    Some(Fit {
+        theta,
+        cov,
+        chi2,
+        n,
+        condition: smax / smin,
+    })
 }
 
 /// Cross-validated RMS of the residual rate (rate units) with the columns `x`.
@@ -138,7 +160,9 @@ pub fn cv_rmse(x: &DMatrix<f64>, d: &ChannelData) -> f64 {
     let mut count = 0usize;
     for f in 0..d.folds {
         let train: Vec<bool> = d.fold.iter().map(|&k| k != f).collect();
-        let Some(fit) = wls(x, d, Some(&train)) else { continue };
+        let Some(fit) = wls(x, d, Some(&train)) else {
+            continue;
+        };
         for r in (0..d.y.len()).filter(|&r| d.fold[r] == f) {
             let pred: f64 = (0..x.ncols()).map(|c| x[(r, c)] * fit.theta[c]).sum();
             let e = (d.y[r] - pred) / d.dur[r];
@@ -171,7 +195,12 @@ pub struct Candidate {
 }
 
 /// Tests every group of `pool` added to `selected`.
-pub fn test_candidates(windows: &[Window], d: &ChannelData, selected: &[Group], pool: &[Group]) -> (Fit, f64, Vec<Candidate>) {
+pub fn test_candidates(
+    windows: &[Window],
+    d: &ChannelData,
+    selected: &[Group],
+    pool: &[Group],
+) -> (Fit, f64, Vec<Candidate>) {
     let x0 = design(windows, selected);
     let base = wls(&x0, d, None).expect("the selected model is identifiable");
     let cv0 = cv_rmse(&x0, d);
@@ -181,7 +210,9 @@ pub fn test_candidates(windows: &[Window], d: &ChannelData, selected: &[Group], 
         let mut groups = selected.to_vec();
         groups.push(g);
         let x = design(windows, &groups);
-        let Some(fit) = wls(&x, d, None) else { continue };
+        let Some(fit) = wls(&x, d, None) else {
+            continue;
+        };
         let k = g.len as f64;
         let delta_chi2 = base.chi2 - fit.chi2;
         let dof = (fit.n - fit.theta.len()).max(1) as f64;
@@ -197,7 +228,11 @@ pub fn test_candidates(windows: &[Window], d: &ChannelData, selected: &[Group], 
             delta_chi2,
             delta_bic,
             p_value,
-            cv_gain_pct: if cv0 > 0.0 { 100.0 * (1.0 - cv / cv0) } else { 0.0 },
+            cv_gain_pct: if cv0 > 0.0 {
+                100.0 * (1.0 - cv / cv0)
+            } else {
+                0.0
+            },
             cv_rmse: cv,
         };
         // Of a polynomial's orders (tried from the lowest), a higher one replaces a lower one
@@ -239,30 +274,53 @@ pub struct Gate {
 impl Gate {
     /// Whether `c` passes.
     pub fn passes(&self, c: &Candidate) -> bool {
-        c.delta_bic < self.max_delta_bic && c.p_value < self.alpha / self.tests.max(1) as f64 && c.cv_gain_pct > self.min_cv_gain_pct
+        c.delta_bic < self.max_delta_bic
+            && c.p_value < self.alpha / self.tests.max(1) as f64
+            && c.cv_gain_pct > self.min_cv_gain_pct
     }
 }
 
 /// ΔBIC (against `selected` alone) of adding `groups` together, or `None` if not identifiable.
-pub fn delta_bic_of(windows: &[Window], d: &ChannelData, selected: &[Group], groups: &[Group]) -> Option<(f64, Fit)> {
+pub fn delta_bic_of(
+    windows: &[Window],
+    d: &ChannelData,
+    selected: &[Group],
+    groups: &[Group],
+) -> Option<(f64, Fit)> {
     let base = wls(&design(windows, selected), d, None)?;
     let mut all = selected.to_vec();
     all.extend_from_slice(groups);
     let fit = wls(&design(windows, &all), d, None)?;
     let k: usize = groups.iter().map(|g| g.len).sum();
     let s2 = fit.chi2_red().max(1.0);
-    Some((-(base.chi2 - fit.chi2) / s2 + k as f64 * (d.y.len() as f64).ln(), fit))
+    Some((
+        -(base.chi2 - fit.chi2) / s2 + k as f64 * (d.y.len() as f64).ln(),
+        fit,
+    ))
 }
 
 /// Whitened contribution Σ x·θ / σ of `groups` with coefficients `theta` (in group order).
-pub fn contribution(windows: &[Window], d: &ChannelData, groups: &[Group], theta: &[f64]) -> Vec<f64> {
+pub fn contribution(
+    windows: &[Window],
+    d: &ChannelData,
+    groups: &[Group],
+    theta: &[f64],
+) -> Vec<f64> {
     let x = design(windows, groups);
-    (0..x.nrows()).map(|r| (0..x.ncols()).map(|k| x[(r, k)] * theta[k]).sum::<f64>() / d.v[r].sqrt()).collect()
+    (0..x.nrows())
+        .map(|r| (0..x.ncols()).map(|k| x[(r, k)] * theta[k]).sum::<f64>() / d.v[r].sqrt())
+        .collect()
 }
 
 /// Pearson correlation of two whitened contributions, and the variance inflation of the first
 /// when regressed on `other_cols` (with an intercept).
-pub fn collinearity(a: &[f64], b: &[f64], windows: &[Window], d: &ChannelData, other: &[Group]) -> (f64, f64) {
+pub fn collinearity(
+    a: &[f64],
+    b: &[f64],
+    windows: &[Window],
+    d: &ChannelData,
+    other: &[Group],
+) -> (f64, f64) {
     let n = a.len().max(1) as f64;
     let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
     let (mut sab, mut saa, mut sbb) = (0.0, 0.0, 0.0);
@@ -271,7 +329,11 @@ pub fn collinearity(a: &[f64], b: &[f64], windows: &[Window], d: &ChannelData, o
         saa += (x - ma) * (x - ma);
         sbb += (y - mb) * (y - mb);
     }
-    let rho = if saa > 0.0 && sbb > 0.0 { sab / (saa * sbb).sqrt() } else { 0.0 };
+    let rho = if saa > 0.0 && sbb > 0.0 {
+        sab / (saa * sbb).sqrt()
+    } else {
+        0.0
+    };
     let xb = design(windows, other);
     let mut m = DMatrix::zeros(a.len(), xb.ncols() + 1);
     for r in 0..a.len() {
@@ -285,7 +347,11 @@ pub fn collinearity(a: &[f64], b: &[f64], windows: &[Window], d: &ChannelData, o
     let r2 = m.clone().svd(true, true).solve(&y, 1e-12).map_or(0.0, |s| {
         let fitted = &m * s;
         let tot = y.norm_squared();
-        if tot > 0.0 { (1.0 - (&y - fitted).norm_squared() / tot).clamp(0.0, 1.0) } else { 0.0 }
+        if tot > 0.0 {
+            (1.0 - (&y - fitted).norm_squared() / tot).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
     });
     (rho, 1.0 / (1.0 - r2).max(1e-12))
 }

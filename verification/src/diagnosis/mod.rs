@@ -23,7 +23,9 @@ use rins_plant::params::{self, ParamValue};
 use rins_plant::units::{DPH, DPSH, UG};
 use serde::Serialize;
 
-use fit::{ChannelData, Gate, collinearity, contribution, delta_bic_of, design, test_candidates, wls};
+use fit::{
+    ChannelData, Gate, collinearity, contribution, delta_bic_of, design, test_candidates, wls,
+};
 use history::History;
 use replay::{CHANNELS, Effect, Group, Replay, Window, replay};
 
@@ -42,13 +44,22 @@ pub struct Options {
 
 impl Default for Options {
     fn default() -> Self {
-        Self { window_s: 30.0, temp_bin_k: 5.0, time_window_s: 3600.0, alpha: 0.01 }
+        Self {
+            window_s: 30.0,
+            temp_bin_k: 5.0,
+            time_window_s: 3600.0,
+            alpha: 0.01,
+        }
     }
 }
 
 /// Display unit of a channel: °/h for gyros, µg for accelerometers.
 fn unit_of(channel: usize) -> (&'static str, f64) {
-    if channel < 3 { ("deg/h", DPH) } else { ("ug", UG) }
+    if channel < 3 {
+        ("deg/h", DPH)
+    } else {
+        ("ug", UG)
+    }
 }
 
 /// The noise floor of one channel.
@@ -184,7 +195,11 @@ pub struct Analysis {
 fn model_density(model: &PlantConfig, channel: usize) -> f64 {
     let s = &model.sensor;
     if channel < 3 {
-        if s.gyro.angle_random_walk.enabled { s.gyro.angle_random_walk.dpsh[channel] * DPSH } else { 0.0 }
+        if s.gyro.angle_random_walk.enabled {
+            s.gyro.angle_random_walk.dpsh[channel] * DPSH
+        } else {
+            0.0
+        }
     } else if s.accel.velocity_random_walk.enabled {
         s.accel.velocity_random_walk.ug_per_sqrthz[channel - 3] * UG
     } else {
@@ -200,19 +215,35 @@ pub fn analyse(model: &PlantConfig, h: &History, opts: Options) -> Analysis {
     let mut data = Vec::new();
     // Folds: leave one run out with three runs or more, else five contiguous blocks.
     let n = rep.windows.len();
-    let (fold, folds): (Vec<usize>, usize) =
-        if runs >= 3 { (rep.windows.iter().map(|w| w.run as usize).collect(), runs) } else { ((0..n).map(|i| i * 5 / n.max(1)).collect(), 5) };
+    let (fold, folds): (Vec<usize>, usize) = if runs >= 3 {
+        (rep.windows.iter().map(|w| w.run as usize).collect(), runs)
+    } else {
+        ((0..n).map(|i| i * 5 / n.max(1)).collect(), 5)
+    };
     for c in 0..6 {
         let (unit, scale) = unit_of(c);
         let adev = rep.allan[c].deviation(rep.row_dt_s, 30);
         let data_n = stats::white_density(&adev, 1.0).unwrap_or(0.0);
         let model_n = model_density(model, c);
-        let (used, source) = if model_n > 0.0 && data_n <= 1.5 * model_n && data_n >= model_n / 1.5 {
-            (model_n, "model noise terms (the data's Allan deviation agrees within 1.5x)".to_string())
+        let (used, source) = if model_n > 0.0 && data_n <= 1.5 * model_n && data_n >= model_n / 1.5
+        {
+            (
+                model_n,
+                "model noise terms (the data's Allan deviation agrees within 1.5x)".to_string(),
+            )
         } else if model_n > 0.0 {
-            (data_n.max(f64::MIN_POSITIVE), format!("data: the model's noise density is {:.2}x the data's; the data's is used", model_n / data_n.max(f64::MIN_POSITIVE)))
+            (
+                data_n.max(f64::MIN_POSITIVE),
+                format!(
+                    "data: the model's noise density is {:.2}x the data's; the data's is used",
+                    model_n / data_n.max(f64::MIN_POSITIVE)
+                ),
+            )
         } else {
-            (data_n.max(f64::MIN_POSITIVE), "data: the model has no white-noise term on this channel".to_string())
+            (
+                data_n.max(f64::MIN_POSITIVE),
+                "data: the model has no white-noise term on this channel".to_string(),
+            )
         };
         noise.push(NoiseFloor {
             channel: CHANNELS[c].into(),
@@ -221,7 +252,11 @@ pub fn analyse(model: &PlantConfig, h: &History, opts: Options) -> Analysis {
             used_density: used / scale,
             source: format!("{source} ({unit}·√s)"),
         });
-        let v: Vec<f64> = rep.windows.iter().map(|w| used * used * w.duration_s).collect();
+        let v: Vec<f64> = rep
+            .windows
+            .iter()
+            .map(|w| used * used * w.duration_s)
+            .collect();
         data.push(ChannelData {
             channel: c,
             y: rep.windows.iter().map(|w| w.y[c]).collect(),
@@ -231,7 +266,14 @@ pub fn analyse(model: &PlantConfig, h: &History, opts: Options) -> Analysis {
             folds,
         });
     }
-    Analysis { run_names: h.run_names.clone(), replay: rep, noise, data, opts, runs }
+    Analysis {
+        run_names: h.run_names.clone(),
+        replay: rep,
+        noise,
+        data,
+        opts,
+        runs,
+    }
 }
 
 fn position_of(w: &Window) -> &'static str {
@@ -247,7 +289,11 @@ fn position_of(w: &Window) -> &'static str {
 }
 
 fn temp_of(w: &Window, c: usize) -> f64 {
-    if c < 3 { w.gyro_temp_c[c] } else { w.accel_temp_c }
+    if c < 3 {
+        w.gyro_temp_c[c]
+    } else {
+        w.accel_temp_c
+    }
 }
 
 impl Analysis {
@@ -277,7 +323,10 @@ impl Analysis {
                     channel: CHANNELS[c].into(),
                     position: pos.into(),
                     temp_bin_c: [tb as f64 * o.temp_bin_k, (tb + 1) as f64 * o.temp_bin_k],
-                    time_window_s: [tw as f64 * o.time_window_s, (tw + 1) as f64 * o.time_window_s],
+                    time_window_s: [
+                        tw as f64 * o.time_window_s,
+                        (tw + 1) as f64 * o.time_window_s,
+                    ],
                     residual: r / d / scale,
                     noise_floor: v.sqrt() / d / scale,
                     z: r / v.sqrt(),
@@ -294,12 +343,19 @@ impl Analysis {
                 let (unit, scale) = unit_of(c);
                 let d = &self.data[c];
                 let n = d.y.len().max(1) as f64;
-                let rates: Vec<f64> = (0..d.y.len()).map(|i| (d.y[i] - pred[c][i]) / d.dur[i] / scale).collect();
+                let rates: Vec<f64> = (0..d.y.len())
+                    .map(|i| (d.y[i] - pred[c][i]) / d.dur[i] / scale)
+                    .collect();
                 ChannelSummary {
                     channel: CHANNELS[c].into(),
                     unit: unit.into(),
                     residual_rms: (rates.iter().map(|r| r * r).sum::<f64>() / n).sqrt(),
-                    noise_floor_rms: ((0..d.y.len()).map(|i| d.v[i] / (d.dur[i] * d.dur[i])).sum::<f64>() / n).sqrt() / scale,
+                    noise_floor_rms: ((0..d.y.len())
+                        .map(|i| d.v[i] / (d.dur[i] * d.dur[i]))
+                        .sum::<f64>()
+                        / n)
+                        .sqrt()
+                        / scale,
                     residual_mean: rates.iter().sum::<f64>() / n,
                 }
             })
@@ -311,15 +367,35 @@ impl Analysis {
         let mut out = Vec::new();
         for c in 0..6 {
             let d = &self.data[c];
-            let z: Vec<f64> = (0..d.y.len()).map(|i| (d.y[i] - pred[c][i]) / d.v[i].sqrt()).collect();
+            let z: Vec<f64> = (0..d.y.len())
+                .map(|i| (d.y[i] - pred[c][i]) / d.v[i].sqrt())
+                .collect();
             let temp: Vec<f64> = ws.iter().map(|w| temp_of(w, c)).collect();
-            let rate: Vec<f64> = (0..ws.len()).map(|i| if i == 0 || ws[i].run != ws[i - 1].run { 0.0 } else { (temp[i] - temp[i - 1]) / (ws[i].t_mid_s - ws[i - 1].t_mid_s) }).collect();
+            let rate: Vec<f64> = (0..ws.len())
+                .map(|i| {
+                    if i == 0 || ws[i].run != ws[i - 1].run {
+                        0.0
+                    } else {
+                        (temp[i] - temp[i - 1]) / (ws[i].t_mid_s - ws[i - 1].t_mid_s)
+                    }
+                })
+                .collect();
             let grav: Vec<f64> = ws.iter().map(|w| w.f_b_g[c % 3]).collect();
             let rot: Vec<f64> = ws.iter().map(|w| w.rotation_rps).collect();
             let band = stats::band99(z.len());
             let mut push = |with: &str, x: &[f64], lags: std::ops::RangeInclusive<usize>| {
-                let (lag, rho) = lags.map(|l| (l, stats::correlation(x, &z, l))).max_by(|a, b| a.1.abs().total_cmp(&b.1.abs())).unwrap_or((0, 0.0));
-                out.push(Correlation { channel: CHANNELS[c].into(), with: with.into(), max_abs_rho: rho.abs(), lag, band99: band, significant: rho.abs() > band });
+                let (lag, rho) = lags
+                    .map(|l| (l, stats::correlation(x, &z, l)))
+                    .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+                    .unwrap_or((0, 0.0));
+                out.push(Correlation {
+                    channel: CHANNELS[c].into(),
+                    with: with.into(),
+                    max_abs_rho: rho.abs(),
+                    lag,
+                    band99: band,
+                    significant: rho.abs() > band,
+                });
             };
             push("residual", &z, 1..=10);
             push("temperature", &temp, 0..=10);
@@ -334,7 +410,14 @@ impl Analysis {
         (0..6)
             .map(|c| {
                 let (_, scale) = unit_of(c);
-                (CHANNELS[c].to_string(), self.replay.allan[c].deviation(self.replay.row_dt_s, 10).into_iter().map(|(t, a)| (t, a / scale)).collect())
+                (
+                    CHANNELS[c].to_string(),
+                    self.replay.allan[c]
+                        .deviation(self.replay.row_dt_s, 10)
+                        .into_iter()
+                        .map(|(t, a)| (t, a / scale))
+                        .collect(),
+                )
             })
             .collect()
     }
@@ -364,11 +447,22 @@ impl Analysis {
                 .map(|t| {
                     let n = t.t_s.len() as f64;
                     NavComparison {
-                        run: self.run_names.get(t.run as usize).cloned().unwrap_or_default(),
+                        run: self
+                            .run_names
+                            .get(t.run as usize)
+                            .cloned()
+                            .unwrap_or_default(),
                         duration_s: *t.t_s.last().expect("non-empty"),
                         measured_final_m: *t.measured_m.last().expect("non-empty"),
                         model_final_m: *t.model_m.last().expect("non-empty"),
-                        difference_rms_m: (t.measured_m.iter().zip(&t.model_m).map(|(a, b)| (a - b).powi(2)).sum::<f64>() / n).sqrt(),
+                        difference_rms_m: (t
+                            .measured_m
+                            .iter()
+                            .zip(&t.model_m)
+                            .map(|(a, b)| (a - b).powi(2))
+                            .sum::<f64>()
+                            / n)
+                            .sqrt(),
                     }
                 })
                 .collect(),
@@ -468,7 +562,9 @@ pub fn separating_experiment(a: &str, b: &str) -> String {
         "hold the chamber at two or more steady temperatures (the gradient settles to its steady value while the temperature differs) and add a fast chamber step: the temperature bias follows T, the gradient bias follows the transient".into()
     } else if has("position_bias") && (has("g_sensitivity") || has("dither_bias")) {
         "dwell at tilted positions (inner gimbal at ±45° and ±90°): δβ switches with Z-up/Z-down, g-sensitivity is linear and dither bias quadratic in the gravity component".into()
-    } else if has("position_bias") && has(".bias") || has("position_bias") && has("temperature_bias") {
+    } else if has("position_bias") && has(".bias")
+        || has("position_bias") && has("temperature_bias")
+    {
         "dwell at both Z-up and Z-down at each temperature: δβ appears only at Z-down".into()
     } else if has("scale_factor_asymmetry") && has("scale_factor") {
         "rotate in both directions at the same rate: the scale factor changes sign with the rate, the asymmetry does not".into()
@@ -481,7 +577,12 @@ pub fn separating_experiment(a: &str, b: &str) -> String {
     }
 }
 
-fn ranked(a: &Analysis, c: &fit::Candidate, others: &[fit::Candidate], gate: &Gate) -> RankedEffect {
+fn ranked(
+    a: &Analysis,
+    c: &fit::Candidate,
+    others: &[fit::Candidate],
+    gate: &Gate,
+) -> RankedEffect {
     let ch = c.group.channel;
     let mut keys = keys_of(c.group.effect, ch);
     keys.truncate(c.group.len);
@@ -491,7 +592,14 @@ fn ranked(a: &Analysis, c: &fit::Candidate, others: &[fit::Candidate], gate: &Ga
         .map(|(k, (_, unit))| {
             let i = c.theta_offset + k;
             let (th, se) = (c.fit.theta[i], c.fit.cov[(i, i)].sqrt());
-            if se.is_finite() { (th / unit, [(th - 1.96 * se) / unit, (th + 1.96 * se) / unit]) } else { (th / unit, [f64::NAN, f64::NAN]) }
+            if se.is_finite() {
+                (
+                    th / unit,
+                    [(th - 1.96 * se) / unit, (th + 1.96 * se) / unit],
+                )
+            } else {
+                (th / unit, [f64::NAN, f64::NAN])
+            }
         })
         .unzip();
     // Another effect is confusable when it (with a bias correction, which any calibration
@@ -499,15 +607,34 @@ fn ranked(a: &Analysis, c: &fit::Candidate, others: &[fit::Candidate], gate: &Ga
     // are nearly collinear.
     let ws = &a.replay.windows;
     let d = &a.data[ch];
-    let bias = a.replay.groups.iter().find(|g| g.channel == ch && matches!(g.effect, Effect::Gyro(rins_plant::effects::GyroTerm::Bias) | Effect::Accel(rins_plant::effects::AccelTerm::Bias))).copied();
-    let own = contribution(ws, d, std::slice::from_ref(&c.group), &c.fit.theta[c.theta_offset..]);
+    let bias = a
+        .replay
+        .groups
+        .iter()
+        .find(|g| {
+            g.channel == ch
+                && matches!(
+                    g.effect,
+                    Effect::Gyro(rins_plant::effects::GyroTerm::Bias)
+                        | Effect::Accel(rins_plant::effects::AccelTerm::Bias)
+                )
+        })
+        .copied();
+    let own = contribution(
+        ws,
+        d,
+        std::slice::from_ref(&c.group),
+        &c.fit.theta[c.theta_offset..],
+    );
     let confusable_with = others
         .iter()
         .filter(|o| o.group.effect != c.group.effect && c.delta_bic < -10.0)
         .take(8)
         .filter_map(|o| {
             let mut alt = vec![o.group];
-            if let Some(b) = bias.filter(|b| b.effect != o.group.effect && b.effect != c.group.effect) {
+            if let Some(b) =
+                bias.filter(|b| b.effect != o.group.effect && b.effect != c.group.effect)
+            {
                 alt.push(b);
             }
             let (dbic, fit) = delta_bic_of(ws, d, &[], &alt)?;
@@ -517,7 +644,11 @@ fn ranked(a: &Analysis, c: &fit::Candidate, others: &[fit::Candidate], gate: &Ga
             let theirs = contribution(ws, d, &alt, &fit.theta);
             let (rho, vif) = collinearity(&own, &theirs, ws, d, &alt);
             (rho.abs() > 0.9).then(|| Confusable {
-                effect: if alt.len() > 1 { format!("{} (with a bias correction)", o.group.effect.name()) } else { o.group.effect.name() },
+                effect: if alt.len() > 1 {
+                    format!("{} (with a bias correction)", o.group.effect.name())
+                } else {
+                    o.group.effect.name()
+                },
                 delta_bic_gap: dbic - c.delta_bic,
                 correlation: rho,
                 vif,
@@ -544,29 +675,58 @@ fn ranked(a: &Analysis, c: &fit::Candidate, others: &[fit::Candidate], gate: &Ga
 fn predict(a: &Analysis, c: usize, groups: &[Group]) -> Vec<f64> {
     let x = design(&a.replay.windows, groups);
     let fit = wls(&x, &a.data[c], None).expect("accepted model fits");
-    (0..x.nrows()).map(|r| (0..x.ncols()).map(|k| x[(r, k)] * fit.theta[k]).sum()).collect()
+    (0..x.nrows())
+        .map(|r| (0..x.ncols()).map(|k| x[(r, k)] * fit.theta[k]).sum())
+        .collect()
 }
 
 /// Per-channel window predictions of the `selected` groups (zeros where none), fitted jointly.
 pub fn predictions(a: &Analysis, selected: &[Vec<Group>]) -> Vec<Vec<f64>> {
-    (0..6).map(|c| if selected[c].is_empty() { vec![0.0; a.replay.windows.len()] } else { predict(a, c, &selected[c]) }).collect()
+    (0..6)
+        .map(|c| {
+            if selected[c].is_empty() {
+                vec![0.0; a.replay.windows.len()]
+            } else {
+                predict(a, c, &selected[c])
+            }
+        })
+        .collect()
 }
 
 /// `rins diagnose`: rank the catalogue's effects against the residual and select by the gate.
-pub fn diagnose(model: &PlantConfig, h: &History, opts: Options) -> (DiagnoseReport, Analysis, Vec<Vec<Group>>) {
+pub fn diagnose(
+    model: &PlantConfig,
+    h: &History,
+    opts: Options,
+) -> (DiagnoseReport, Analysis, Vec<Vec<Group>>) {
     let a = analyse(model, h, opts);
     let tests = a.replay.groups.len();
-    let gate = Gate { max_delta_bic: -10.0, alpha: opts.alpha, tests, min_cv_gain_pct: 0.0 };
+    let gate = Gate {
+        max_delta_bic: -10.0,
+        alpha: opts.alpha,
+        tests,
+        min_cv_gain_pct: 0.0,
+    };
     let mut ranking = Vec::new();
     let mut accepted = Vec::new();
     let mut selected: Vec<Vec<Group>> = vec![Vec::new(); 6];
     for c in 0..6 {
-        let pool: Vec<Group> = a.replay.groups.iter().filter(|g| g.channel == c).copied().collect();
+        let pool: Vec<Group> = a
+            .replay
+            .groups
+            .iter()
+            .filter(|g| g.channel == c)
+            .copied()
+            .collect();
         let (_, _, first) = test_candidates(&a.replay.windows, &a.data[c], &[], &pool);
         ranking.extend(first.iter().map(|cand| ranked(&a, cand, &first, &gate)));
         // Forward selection: add the best candidate while it passes the gate.
         loop {
-            let rest: Vec<Group> = pool.iter().filter(|g| !selected[c].iter().any(|s| s.effect == g.effect)).copied().collect();
+            let rest: Vec<Group> = pool
+                .iter()
+                .filter(|g| !selected[c].iter().any(|s| s.effect == g.effect))
+                .copied()
+                .collect();
             if rest.is_empty() {
                 break;
             }
@@ -593,12 +753,26 @@ pub fn diagnose(model: &PlantConfig, h: &History, opts: Options) -> (DiagnoseRep
     } else {
         let mut by: BTreeMap<(String, String), usize> = BTreeMap::new();
         for c in &after.flagged_cells {
-            *by.entry((c.channel.clone(), c.position.clone())).or_default() += 1;
+            *by.entry((c.channel.clone(), c.position.clone()))
+                .or_default() += 1;
         }
-        let claim = if accepted.is_empty() { "no candidate in the catalogue passes the gate" } else { "the accepted effects do not explain all of it" };
-        unexplained.push(format!("{claim}; {} cells stay outside ±{:.2}σ", after.flagged_cells.len(), after.z_critical));
+        let claim = if accepted.is_empty() {
+            "no candidate in the catalogue passes the gate"
+        } else {
+            "the accepted effects do not explain all of it"
+        };
+        unexplained.push(format!(
+            "{claim}; {} cells stay outside ±{:.2}σ",
+            after.flagged_cells.len(),
+            after.z_critical
+        ));
         for ((ch, pos), n) in by {
-            let worst = after.flagged_cells.iter().filter(|c| c.channel == ch && c.position == pos).max_by(|a, b| a.z.abs().total_cmp(&b.z.abs())).expect("non-empty");
+            let worst = after
+                .flagged_cells
+                .iter()
+                .filter(|c| c.channel == ch && c.position == pos)
+                .max_by(|a, b| a.z.abs().total_cmp(&b.z.abs()))
+                .expect("non-empty");
             unexplained.push(format!(
                 "{ch} at {pos}: {n} cells, worst {:.4} {} (z = {:.1}) at {:.0}–{:.0} °C, {:.0}–{:.0} s",
                 worst.residual,
@@ -610,18 +784,34 @@ pub fn diagnose(model: &PlantConfig, h: &History, opts: Options) -> (DiagnoseRep
                 worst.time_window_s[1]
             ));
         }
-        for corr in after.correlations.iter().filter(|c| c.significant && c.with != "residual") {
-            unexplained.push(format!("{}: residual correlates with {} (|ρ| = {:.2} > {:.2} at lag {})", corr.channel, corr.with, corr.max_abs_rho, corr.band99, corr.lag));
+        for corr in after
+            .correlations
+            .iter()
+            .filter(|c| c.significant && c.with != "residual")
+        {
+            unexplained.push(format!(
+                "{}: residual correlates with {} (|ρ| = {:.2} > {:.2} at lag {})",
+                corr.channel, corr.with, corr.max_abs_rho, corr.band99, corr.lag
+            ));
         }
     }
-    let map = |r: &CompareReport| r.channels.iter().map(|c| (c.channel.clone(), c.residual_rms)).collect();
+    let map = |r: &CompareReport| {
+        r.channels
+            .iter()
+            .map(|c| (c.channel.clone(), c.residual_rms))
+            .collect()
+    };
     let report = DiagnoseReport {
         source: h.source.clone(),
         ranking,
         accepted,
         residual_rms_before: map(&before),
         residual_rms_after: map(&after),
-        noise_floor_rms: before.channels.iter().map(|c| (c.channel.clone(), c.noise_floor_rms)).collect(),
+        noise_floor_rms: before
+            .channels
+            .iter()
+            .map(|c| (c.channel.clone(), c.noise_floor_rms))
+            .collect(),
         flagged_cells: before.flagged_cells,
         flagged_cells_after: after.flagged_cells,
         unexplained,
@@ -633,26 +823,44 @@ pub fn diagnose(model: &PlantConfig, h: &History, opts: Options) -> (DiagnoseRep
 /// `model` with `effects` switched on and fitted jointly on every channel they act on (the
 /// model as given stays underneath): the `--apply` of `rins diagnose`. Returns the new model and
 /// the scenario values set.
-pub fn apply(model: &PlantConfig, a: &Analysis, effects: &[Effect]) -> Result<(PlantConfig, Vec<(String, f64)>), String> {
+pub fn apply(
+    model: &PlantConfig,
+    a: &Analysis,
+    effects: &[Effect],
+) -> Result<(PlantConfig, Vec<(String, f64)>), String> {
     let mut pairs: Vec<(String, ParamValue)> = Vec::new();
     let mut set = Vec::new();
     for e in effects {
         if let Some((_, why)) = a.replay.unavailable.iter().find(|(n, _)| *n == e.name()) {
             return Err(format!("cannot fit {}: {why}", e.name()));
         }
-        pairs.push((format!("sensor.{}.enabled", e.name()), ParamValue::Bool(true)));
+        pairs.push((
+            format!("sensor.{}.enabled", e.name()),
+            ParamValue::Bool(true),
+        ));
         if let Effect::Gyro(rins_plant::effects::GyroTerm::DitherBias) = e {
             for i in 0..3 {
-                pairs.push((format!("sensor.gyro.dither_bias.amplitude_change[{i}]"), ParamValue::Real(1.0)));
+                pairs.push((
+                    format!("sensor.gyro.dither_bias.amplitude_change[{i}]"),
+                    ParamValue::Real(1.0),
+                ));
             }
         }
     }
-    let (gm, am) = (rins_plant::effects::GyroModel::new(&model.sensor.gyro), rins_plant::effects::AccelModel::new(&model.sensor.accel));
+    let (gm, am) = (
+        rins_plant::effects::GyroModel::new(&model.sensor.gyro),
+        rins_plant::effects::AccelModel::new(&model.sensor.accel),
+    );
     for c in 0..6 {
         // Each effect at the polynomial order BIC prefers on this channel.
         let groups: Vec<Group> = effects
             .iter()
-            .filter_map(|e| a.replay.groups.iter().find(|g| g.channel == c && g.effect == *e))
+            .filter_map(|e| {
+                a.replay
+                    .groups
+                    .iter()
+                    .find(|g| g.channel == c && g.effect == *e)
+            })
             .filter_map(|g| {
                 // Lowest order first; a higher one only if its extra terms are significant (as in the ranking).
                 let mut best: Option<(fit::Fit, Group)> = None;
@@ -672,7 +880,13 @@ pub fn apply(model: &PlantConfig, a: &Analysis, effects: &[Effect]) -> Result<(P
         }
         let x = design(&a.replay.windows, &groups);
         let names: Vec<String> = groups.iter().map(|g| g.effect.name()).collect();
-        let fit = wls(&x, &a.data[c], None).ok_or_else(|| format!("{} cannot be fitted together on {} with this data (not identifiable)", names.join(" + "), CHANNELS[c]))?;
+        let fit = wls(&x, &a.data[c], None).ok_or_else(|| {
+            format!(
+                "{} cannot be fitted together on {} with this data (not identifiable)",
+                names.join(" + "),
+                CHANNELS[c]
+            )
+        })?;
         let mut k = 0;
         for g in &groups {
             // The model may already carry this effect: the fit is a correction on top.
@@ -688,6 +902,7 @@ pub fn apply(model: &PlantConfig, a: &Analysis, effects: &[Effect]) -> Result<(P
             }
         }
     }
-    let cfg = params::apply(model, pairs.iter().map(|(k, v)| (k.as_str(), v.clone()))).map_err(|e| e.to_string())?;
+    let cfg = params::apply(model, pairs.iter().map(|(k, v)| (k.as_str(), v.clone())))
+        .map_err(|e| e.to_string())?;
     Ok((cfg, set))
 }

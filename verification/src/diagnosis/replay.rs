@@ -16,7 +16,9 @@ use super::history::{Attitude, History};
 use super::stats::AllanAcc;
 
 /// The six measured channels.
-pub const CHANNELS: [&str; 6] = ["gyro_x", "gyro_y", "gyro_z", "accel_x", "accel_y", "accel_z"];
+pub const CHANNELS: [&str; 6] = [
+    "gyro_x", "gyro_y", "gyro_z", "accel_x", "accel_y", "accel_z",
+];
 
 /// A candidate effect from the plant's catalogue.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -30,7 +32,11 @@ pub enum Effect {
 impl Effect {
     /// Every candidate, gyro first.
     pub fn all() -> Vec<Effect> {
-        GyroTerm::DETERMINISTIC.iter().map(|t| Effect::Gyro(*t)).chain(AccelTerm::DETERMINISTIC.iter().map(|t| Effect::Accel(*t))).collect()
+        GyroTerm::DETERMINISTIC
+            .iter()
+            .map(|t| Effect::Gyro(*t))
+            .chain(AccelTerm::DETERMINISTIC.iter().map(|t| Effect::Accel(*t)))
+            .collect()
     }
 
     /// `gyro.<term>` / `accel.<term>`, as in scenario files.
@@ -48,7 +54,10 @@ impl Effect {
 
     /// Whether the effect acts on `channel` (0–2 gyro, 3–5 accelerometer).
     pub fn acts_on(self, channel: usize) -> bool {
-        matches!((self, channel), (Effect::Gyro(_), 0..=2) | (Effect::Accel(_), 3..=5))
+        matches!(
+            (self, channel),
+            (Effect::Gyro(_), 0..=2) | (Effect::Accel(_), 3..=5)
+        )
     }
 }
 
@@ -71,7 +80,9 @@ impl Group {
     pub fn orders(&self) -> Vec<Group> {
         let min = match self.effect {
             Effect::Gyro(GyroTerm::PositionBias) => 1,
-            Effect::Gyro(GyroTerm::TemperatureBias) | Effect::Accel(AccelTerm::TemperatureBias) => 1,
+            Effect::Gyro(GyroTerm::TemperatureBias) | Effect::Accel(AccelTerm::TemperatureBias) => {
+                1
+            }
             _ => self.len,
         };
         (min..=self.len).map(|len| Group { len, ..*self }).collect()
@@ -143,7 +154,11 @@ pub struct Replay {
 }
 
 /// Builds the group layout for the candidates available with this history.
-fn layout(gyro: &GyroModel, accel: &AccelModel, has_gradient: bool) -> (Vec<Group>, Vec<(String, String)>) {
+fn layout(
+    gyro: &GyroModel,
+    accel: &AccelModel,
+    has_gradient: bool,
+) -> (Vec<Group>, Vec<(String, String)>) {
     let mut groups = Vec::new();
     let mut unavailable = Vec::new();
     let mut offset = 0;
@@ -159,7 +174,10 @@ fn layout(gyro: &GyroModel, accel: &AccelModel, has_gradient: bool) -> (Vec<Grou
     };
     for e in Effect::all() {
         if e == Effect::Gyro(GyroTerm::TemperatureGradientBias) && !has_gradient {
-            unavailable.push((e.name(), "needs a housing temperature (temp_housing_c) to form the gradient".into()));
+            unavailable.push((
+                e.name(),
+                "needs a housing temperature (temp_housing_c) to form the gradient".into(),
+            ));
             continue;
         }
         for channel in 0..6 {
@@ -171,7 +189,12 @@ fn layout(gyro: &GyroModel, accel: &AccelModel, has_gradient: bool) -> (Vec<Grou
                 Effect::Gyro(t) => gyro.regressors(t, &ctx, channel, &mut buf),
                 Effect::Accel(t) => accel.regressors(t, &ctx, channel - 3, &mut buf),
             }
-            groups.push(Group { channel, effect: e, offset, len: buf.len() });
+            groups.push(Group {
+                channel,
+                effect: e,
+                offset,
+                len: buf.len(),
+            });
             offset += buf.len();
         }
     }
@@ -186,23 +209,43 @@ struct Kinematics {
 
 impl Kinematics {
     /// True increments over row k and the mid attitude C_n^b.
-    fn row(&self, h: &History, k: usize, dt: f64) -> (Vector3<f64>, Vector3<f64>, Matrix3<f64>, bool) {
+    fn row(
+        &self,
+        h: &History,
+        k: usize,
+        dt: f64,
+    ) -> (Vector3<f64>, Vector3<f64>, Matrix3<f64>, bool) {
         let j = k - 1;
         let (gimbal_inc, c_nb, moving) = match &h.attitude {
-            Attitude::Gimbal { outer_rad, inner_rad } => {
+            Attitude::Gimbal {
+                outer_rad,
+                inner_rad,
+            } => {
                 let (o0, i0, o1, i1) = (outer_rad[j], inner_rad[j], outer_rad[k], inner_rad[k]);
                 let mid = GimbalAngles::new(0.5 * (o0 + o1), 0.5 * (i0 + i1));
                 let (d_outer, d_inner) = (o1 - o0, i1 - i0);
                 let (s, c) = mid.inner_rad.sin_cos();
                 let inc = Vector3::new(d_inner, s * d_outer, c * d_outer);
-                (inc, body_to_nav(&self.c_vn, mid).transpose(), d_outer != 0.0 || d_inner != 0.0)
+                (
+                    inc,
+                    body_to_nav(&self.c_vn, mid).transpose(),
+                    d_outer != 0.0 || d_inner != 0.0,
+                )
             }
             Attitude::Quaternion(q) => {
-                let qa = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[j][0], q[j][1], q[j][2], q[j][3]));
-                let qb = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[k][0], q[k][1], q[k][2], q[k][3]));
+                let qa = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                    q[j][0], q[j][1], q[j][2], q[j][3],
+                ));
+                let qb = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                    q[k][0], q[k][1], q[k][2], q[k][3],
+                ));
                 let rel = qa.inverse() * qb;
                 let mid = qa.slerp(&qb, 0.5);
-                (rel.scaled_axis(), mid.to_rotation_matrix().matrix().transpose(), rel.angle() > 1e-12)
+                (
+                    rel.scaled_axis(),
+                    mid.to_rotation_matrix().matrix().transpose(),
+                    rel.angle() > 1e-12,
+                )
             }
         };
         let dtheta = gimbal_inc + c_nb * self.omega_ie_n * dt;
@@ -212,7 +255,11 @@ impl Kinematics {
 }
 
 fn median_dt(h: &History) -> f64 {
-    let mut d: Vec<f64> = h.segments.iter().flat_map(|s| (s.start + 1..s.end).map(|k| h.t_s[k] - h.t_s[k - 1])).collect();
+    let mut d: Vec<f64> = h
+        .segments
+        .iter()
+        .flat_map(|s| (s.start + 1..s.end).map(|k| h.t_s[k] - h.t_s[k - 1]))
+        .collect();
     if d.is_empty() {
         return 1.0;
     }
@@ -225,7 +272,11 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
     let gyro = GyroModel::new(&model.sensor.gyro);
     let accel = AccelModel::new(&model.sensor.accel);
     let site = Site::new(&model.site, &model.earth);
-    let kin = Kinematics { c_vn: model.vehicle.c_vn(), omega_ie_n: site.omega_ie_n, f_n: Vector3::new(0.0, 0.0, site.gravity_mps2) };
+    let kin = Kinematics {
+        c_vn: model.vehicle.c_vn(),
+        omega_ie_n: site.omega_ie_n,
+        f_n: Vector3::new(0.0, 0.0, site.gravity_mps2),
+    };
     let (groups, unavailable) = layout(&gyro, &accel, h.housing_temp_c.is_some());
     let nx = groups.iter().map(|g| g.len).sum::<usize>();
     let row_dt_s = median_dt(h);
@@ -237,7 +288,9 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
         lon_rad: model.site.lon_deg.to_radians(),
         height_m: model.site.height_m,
     };
-    let vertical = rins_nav::strapdown::VerticalChannel::Hold { ref_height_m: model.site.height_m };
+    let vertical = rins_nav::strapdown::VerticalChannel::Hold {
+        ref_height_m: model.site.height_m,
+    };
     let per_segment: Vec<(Vec<Window>, Vec<AllanAcc>, NavTrack)> = h
         .segments
         .par_iter()
@@ -251,16 +304,38 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
             let mut aterms = [Vector3::zeros(); rins_plant::effects::accel::ACCEL_TERMS];
             // Both navigators start from the attitude at the end of the first row.
             let c_bn0 = match &h.attitude {
-                Attitude::Gimbal { outer_rad, inner_rad } => body_to_nav(&kin.c_vn, GimbalAngles::new(outer_rad[seg.start], inner_rad[seg.start])),
-                Attitude::Quaternion(q) => UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[seg.start][0], q[seg.start][1], q[seg.start][2], q[seg.start][3]))
+                Attitude::Gimbal {
+                    outer_rad,
+                    inner_rad,
+                } => body_to_nav(
+                    &kin.c_vn,
+                    GimbalAngles::new(outer_rad[seg.start], inner_rad[seg.start]),
+                ),
+                Attitude::Quaternion(q) => {
+                    UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                        q[seg.start][0],
+                        q[seg.start][1],
+                        q[seg.start][2],
+                        q[seg.start][3],
+                    ))
                     .to_rotation_matrix()
-                    .into_inner(),
+                    .into_inner()
+                }
             };
-            let mut nav_meas = rins_nav::strapdown::Strapdown::new(site_state(c_bn0), row_dt_s, vertical);
+            let mut nav_meas =
+                rins_nav::strapdown::Strapdown::new(site_state(c_bn0), row_dt_s, vertical);
             let mut nav_model = nav_meas.clone();
-            let mut track = NavTrack { run: h.run[seg.start], ..NavTrack::default() };
+            let mut track = NavTrack {
+                run: h.run[seg.start],
+                ..NavTrack::default()
+            };
             let horizontal = |n: &rins_nav::strapdown::Strapdown| {
-                let (north, east) = rins_nav::errors::position_error_m(n.state(), model.site.lat_deg.to_radians(), model.site.lon_deg.to_radians(), model.site.height_m);
+                let (north, east) = rins_nav::errors::position_error_m(
+                    n.state(),
+                    model.site.lat_deg.to_radians(),
+                    model.site.lon_deg.to_radians(),
+                    model.site.height_m,
+                );
                 north.hypot(east)
             };
             // The first row of a segment only gives the start attitude: its own start attitude
@@ -270,7 +345,11 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                 let (dtheta, dv, c_nb, moving) = kin.row(h, k, dt);
                 let up_b = c_nb.column(2).into_owned();
                 let f_b = c_nb * kin.f_n;
-                let gt = Vector3::new(h.gyro_temp_c[0][k], h.gyro_temp_c[1][k], h.gyro_temp_c[2][k]);
+                let gt = Vector3::new(
+                    h.gyro_temp_c[0][k],
+                    h.gyro_temp_c[1][k],
+                    h.gyro_temp_c[2][k],
+                );
                 let ctx = TermContext {
                     dt_s: dt,
                     dtheta_rad: dtheta,
@@ -278,7 +357,10 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                     f_b_mps2: f_b,
                     up_b,
                     gyro_temp_c: gt,
-                    gyro_gradient_k: h.housing_temp_c.as_ref().map_or(Vector3::zeros(), |t| gt.add_scalar(-t[k])),
+                    gyro_gradient_k: h
+                        .housing_temp_c
+                        .as_ref()
+                        .map_or(Vector3::zeros(), |t| gt.add_scalar(-t[k])),
                     accel_temp_c: h.accel_temp_c[k],
                 };
                 let ge = gyro.increment_error(&ctx, &mut gterms);
@@ -288,7 +370,10 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                     r[i] = h.dtheta_rad[i][k] - (dtheta[i] + ge[i]);
                     r[i + 3] = h.dv_mps[i][k] - (dv[i] + ae[i]);
                 }
-                let measured = (Vector3::new(h.dtheta_rad[0][k], h.dtheta_rad[1][k], h.dtheta_rad[2][k]), Vector3::new(h.dv_mps[0][k], h.dv_mps[1][k], h.dv_mps[2][k]));
+                let measured = (
+                    Vector3::new(h.dtheta_rad[0][k], h.dtheta_rad[1][k], h.dtheta_rad[2][k]),
+                    Vector3::new(h.dv_mps[0][k], h.dv_mps[1][k], h.dv_mps[2][k]),
+                );
                 nav_meas.update(&measured.0, &measured.1);
                 nav_model.update(&(dtheta + ge), &(dv + ae));
                 for (c, acc) in allan.iter_mut().enumerate() {
@@ -296,7 +381,11 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                 }
                 let t_mid = h.t_s[k] - 0.5 * dt;
                 let split = match &cur {
-                    Some(w) => w.moving != moving || (w.up_z - up_b.z).abs() > 1e-6 && !moving || w.duration_s + dt > window_s * (1.0 + 1e-9),
+                    Some(w) => {
+                        w.moving != moving
+                            || (w.up_z - up_b.z).abs() > 1e-6 && !moving
+                            || w.duration_s + dt > window_s * (1.0 + 1e-9)
+                    }
                     None => true,
                 };
                 if split {
@@ -369,7 +458,15 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
             acc.merge(&part);
         }
     }
-    Replay { windows, groups, unavailable, allan, row_dt_s, nav, rows: h.len() }
+    Replay {
+        windows,
+        groups,
+        unavailable,
+        allan,
+        row_dt_s,
+        nav,
+        rows: h.len(),
+    }
 }
 
 /// Turns time-weighted sums into means.

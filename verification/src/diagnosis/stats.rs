@@ -76,7 +76,13 @@ impl AllanAcc {
 /// White-noise density (rate·√s) from an Allan curve, read at the τ nearest `tau_s` where
 /// white noise dominates (ADEV(τ) = N/√τ).
 pub fn white_density(adev: &[(f64, f64)], tau_s: f64) -> Option<f64> {
-    adev.iter().min_by(|a, b| (a.0.ln() - tau_s.ln()).abs().total_cmp(&(b.0.ln() - tau_s.ln()).abs())).map(|(t, a)| a * t.sqrt())
+    adev.iter()
+        .min_by(|a, b| {
+            (a.0.ln() - tau_s.ln())
+                .abs()
+                .total_cmp(&(b.0.ln() - tau_s.ln()).abs())
+        })
+        .map(|(t, a)| a * t.sqrt())
 }
 
 /// Normalised correlation of `x` and `y` at `lag` (y shifted later), over the overlap.
@@ -92,7 +98,10 @@ pub fn correlation(x: &[f64], y: &[f64], lag: usize) -> f64 {
     if sx == 0.0 || sy == 0.0 {
         return 0.0;
     }
-    (0..n - lag).map(|k| (x[k] - mx) * (y[k + lag] - my)).sum::<f64>() / (sx * sy)
+    (0..n - lag)
+        .map(|k| (x[k] - mx) * (y[k + lag] - my))
+        .sum::<f64>()
+        / (sx * sy)
 }
 
 /// Half-width of the 99 % band of a correlation estimate from `n` white samples.
@@ -142,7 +151,10 @@ mod tests {
             let m = tau / 0.01;
             let expect = sigma / m.sqrt();
             let n_diffs = (1u64 << 18) as f64 / m;
-            assert!((a / expect - 1.0).abs() < 4.0 / n_diffs.sqrt() + 0.01, "τ = {tau}: {a} vs {expect}");
+            assert!(
+                (a / expect - 1.0).abs() < 4.0 / n_diffs.sqrt() + 0.01,
+                "τ = {tau}: {a} vs {expect}"
+            );
         }
         let n = white_density(&dev, 1.0).unwrap();
         assert!((n / (sigma * 0.1) - 1.0).abs() < 0.05, "{n}");
