@@ -4,13 +4,16 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# The `rins` binary is built with Rerun support here (the README's first command builds without it).
+features=(--features rins-scenarios/rerun)
+
 echo "== cargo build (the FMI shared libraries are loaded by the tests) =="
-cargo build --workspace --release
+cargo build --workspace --release "${features[@]}"
 target_dir="${CARGO_TARGET_DIR:-target}"
 bin="$target_dir/release"
 
 echo "== cargo test (release: the tests integrate hours to weeks of 100 Hz samples) =="
-cargo test --workspace --release --no-fail-fast
+cargo test --workspace --release --no-fail-fast "${features[@]}"
 
 echo "== Python clients (pinned, in a venv this script creates) =="
 venv="${RINS_VENV:-${HOME:-/root}/.cache/rins-venv}"
@@ -20,10 +23,11 @@ pytmp=$(mktemp -d)
 "$bin/rins" fmu build --out "$pytmp/fmu" > /dev/null
 "$venv/bin/python" tests/python/test_fmu.py "$pytmp/fmu" "$bin/rins" "$pytmp"
 "$venv/bin/python" tests/python/test_transport.py "$bin/rins" "$pytmp"
+"$venv/bin/python" tests/python/test_rerun.py "$bin/rins" "$pytmp"
 rm -rf "$pytmp"
 
 echo "== rins command line =="
-rins=(cargo run --release -q -p rins-scenarios --bin rins --)
+rins=(cargo run --release -q -p rins-scenarios --features rerun --bin rins --)
 "${rins[@]}" verify analytic > /dev/null
 "${rins[@]}" verify analytic --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["eq8"]["cancellation_ratio"] <= 1e-9; assert len(d["table2"]["mismatches"]) == 2'
 tmp=$(mktemp -d)

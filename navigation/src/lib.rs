@@ -14,5 +14,5 @@ pub mod fit;
 pub mod session;
 pub mod strapdown;
 
-pub use session::{Alignment, NavRecord, NavRun, NavRunConfig, run};
+pub use session::{Alignment, NavRecord, NavRun, NavRunConfig, Tracker, run};
 pub use strapdown::{NavState, Strapdown, VerticalChannel};

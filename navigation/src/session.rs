@@ -1,10 +1,11 @@
 //! Runs the plant and the reference navigator together: alignment, navigation, δβ compensation,
 //! and error records against the plant's truth.
 
-use nalgebra::{Vector2, Vector3};
-use rins_plant::Plant;
+use nalgebra::{Matrix3, Vector2, Vector3};
+use rins_plant::earth::Site;
 use rins_plant::effects::gyro::PositionBiasSpec;
 use rins_plant::units::{DPSH, UG};
+use rins_plant::{ImuSample, Plant, Truth};
 
 use crate::alignment::{FineAlignment, coarse, correct_attitude};
 use crate::compensation::PositionBiasCompensation;
@@ -125,6 +126,125 @@ pub fn vehicle_attitude(
     c_bn * rins_plant::table::body_to_nav(&nalgebra::Matrix3::identity(), gimbal).transpose()
 }
 
+/// The reference navigator fed one sample at a time, with error records against the plant's
+/// truth every `record_every_s`: what [`run`] does inside its loop, usable from any sink that
+/// sees the plant's samples and truth (the Rerun sink, the CLI).
+pub struct Tracker {
+    nav: Strapdown,
+    comp: Option<PositionBiasCompensation>,
+    dt_s: f64,
+    site: Site,
+    c_vn: Matrix3<f64>,
+    every: u64,
+    k: u64,
+    trms: Trms,
+    up_sum: f64,
+    records: u64,
+}
+
+impl Tracker {
+    /// A navigator started at `init` (aligned already) at the plant's `site` and mount `c_vn`,
+    /// with optional δβ compensation (Eq. 9 with the navigator's own up direction).
+    pub fn new(
+        init: NavState,
+        dt_s: f64,
+        vertical: VerticalChannel,
+        site: Site,
+        c_vn: Matrix3<f64>,
+        compensation: Option<&PositionBiasSpec>,
+        record_every_s: f64,
+    ) -> Self {
+        Self {
+            nav: Strapdown::new(init, dt_s, vertical),
+            comp: compensation.map(PositionBiasCompensation::new),
+            dt_s,
+            site,
+            c_vn,
+            every: ((record_every_s / dt_s).round() as u64).max(1),
+            k: 0,
+            trms: Trms::default(),
+            up_sum: 0.0,
+            records: 0,
+        }
+    }
+
+    /// A navigator aligned to the truth of a freshly built plant (before its first step), at rest,
+    /// with the vertical channel held at the site height.
+    pub fn at_truth(plant: &Plant, record_every_s: f64) -> Self {
+        let site = *plant.site();
+        let init = NavState {
+            q_bn: plant.attitude_q_bn(),
+            v_n: Vector3::zeros(),
+            lat_rad: site.lat_rad,
+            lon_rad: site.lon_rad,
+            height_m: site.height_m,
+        };
+        Self::new(
+            init,
+            plant.dt_s(),
+            VerticalChannel::Hold {
+                ref_height_m: site.height_m,
+            },
+            site,
+            *plant.vehicle_to_nav(),
+            None,
+            record_every_s,
+        )
+    }
+
+    /// Integrates one sample; returns the error record when one is due.
+    pub fn push(&mut self, s: &ImuSample, truth: &Truth) -> Option<NavRecord> {
+        let mut dtheta = s.dtheta_rad;
+        if let Some(c) = &self.comp {
+            let up_b = self
+                .nav
+                .state()
+                .q_bn
+                .inverse_transform_vector(&Vector3::z());
+            dtheta -= c.correction(self.dt_s, &up_b, &truth.temps.gyro_c());
+        }
+        self.nav.update(&dtheta, &s.dv_mps);
+        self.k += 1;
+        (self.k % self.every == 0).then(|| self.record(truth))
+    }
+
+    /// The error record now, against `truth` (the plant's truth after the last pushed sample).
+    pub fn record(&mut self, truth: &Truth) -> NavRecord {
+        let st = self.nav.state();
+        let c_bn_true = rins_plant::table::body_to_nav(&self.c_vn, truth.gimbal.angles);
+        let c_bn_nav = st.q_bn.to_rotation_matrix().into_inner();
+        let phi = attitude_error(&c_bn_nav, &c_bn_true);
+        let c_vn_nav = vehicle_attitude(&c_bn_nav, truth.gimbal.angles);
+        let phi_v = attitude_error(&c_vn_nav, &self.c_vn);
+        let (north, east) =
+            position_error_m(st, self.site.lat_rad, self.site.lon_rad, self.site.height_m);
+        let horizontal = north.hypot(east);
+        self.trms.push(horizontal);
+        self.up_sum += phi.z.abs();
+        self.records += 1;
+        NavRecord {
+            t_s: self.k as f64 * self.dt_s,
+            att_err_rad: phi.into(),
+            vehicle_att_err_rad: phi_v.into(),
+            vel_err_mps: st.v_n.into(),
+            north_m: north,
+            east_m: east,
+            horizontal_m: horizontal,
+            trms_m: self.trms.value(),
+        }
+    }
+
+    /// Mean of |φ_U| over the records so far, rad.
+    pub fn up_att_mean_abs_rad(&self) -> f64 {
+        self.up_sum / self.records.max(1) as f64
+    }
+
+    /// The navigation state now.
+    pub fn state(&self) -> &NavState {
+        self.nav.state()
+    }
+}
+
 /// Aligns (if asked) and navigates for `nav_s` seconds, stepping `plant` as it goes.
 pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, SessionError> {
     if !(nav_s > 0.0 && cfg.record_every_s > 0.0) {
@@ -162,44 +282,26 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
         init = state;
         alignment = Some(res);
     }
-    let mut nav = Strapdown::new(init, dt, vertical);
-    let comp = cfg.compensation.as_ref().map(PositionBiasCompensation::new);
+    let mut tracker = Tracker::new(
+        init,
+        dt,
+        vertical,
+        site,
+        *plant.vehicle_to_nav(),
+        cfg.compensation.as_ref(),
+        cfg.record_every_s,
+    );
     let samples = (nav_s / dt).round() as u64;
-    let every = ((cfg.record_every_s / dt).round() as u64).max(1);
-    let mut records = Vec::with_capacity((samples / every + 1) as usize);
-    let mut trms = Trms::default();
-    let mut up_sum = 0.0;
+    let mut records = Vec::with_capacity((samples / tracker.every + 1) as usize);
     for k in 1..=samples {
         let s = plant.step();
-        let mut dtheta = s.dtheta_rad;
-        if let Some(c) = &comp {
-            let up_b = nav.state().q_bn.inverse_transform_vector(&Vector3::z());
-            dtheta -= c.correction(dt, &up_b, &plant.truth().temps.gyro_c());
-        }
-        nav.update(&dtheta, &s.dv_mps);
-        if k % every == 0 || k == samples {
-            let st = nav.state();
-            let c_bn_nav = st.q_bn.to_rotation_matrix().into_inner();
-            let phi = attitude_error(&c_bn_nav, &plant.attitude_c_bn());
-            let c_vn_nav = vehicle_attitude(&c_bn_nav, plant.truth().gimbal.angles);
-            let phi_v = attitude_error(&c_vn_nav, plant.vehicle_to_nav());
-            let (north, east) = position_error_m(st, site.lat_rad, site.lon_rad, site.height_m);
-            let horizontal = north.hypot(east);
-            trms.push(horizontal);
-            up_sum += phi.z.abs();
-            records.push(NavRecord {
-                t_s: k as f64 * dt,
-                att_err_rad: phi.into(),
-                vehicle_att_err_rad: phi_v.into(),
-                vel_err_mps: st.v_n.into(),
-                north_m: north,
-                east_m: east,
-                horizontal_m: horizontal,
-                trms_m: trms.value(),
-            });
+        if let Some(r) = tracker.push(&s, plant.truth()) {
+            records.push(r);
+        } else if k == samples {
+            records.push(tracker.record(plant.truth()));
         }
     }
-    let up_att_mean_abs_rad = up_sum / records.len().max(1) as f64;
+    let up_att_mean_abs_rad = tracker.up_att_mean_abs_rad();
     Ok(NavRun {
         records,
         alignment,

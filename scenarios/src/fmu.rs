@@ -233,5 +233,6 @@ pub fn run(
     Ok(RunSummary {
         samples,
         wall_s: t0.elapsed().as_secs_f64(),
+        interrupted: false,
     })
 }

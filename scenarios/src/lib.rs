@@ -6,12 +6,15 @@
 pub mod diagnose;
 pub mod file;
 pub mod fmu;
+pub mod interrupt;
 pub mod locate;
 pub mod measurement;
 pub mod plots;
 pub mod progress;
+pub mod report;
 pub mod runner;
 pub mod sinks;
+pub mod viz;
 
 pub use file::{Scenario, ScenarioError};
 pub use runner::{RunSummary, Sink, run};

@@ -1,6 +1,9 @@
-//! Static SVG figures with plotters (SVG needs no fonts).
+//! Static figures with plotters, each written as SVG and PNG. The PNG rasteriser needs a font:
+//! DejaVu Sans ships in `assets/fonts/` (licence beside it) and is built into the binary, so a
+//! machine without fonts draws the same text.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Once;
 
 use anyhow::{Result, anyhow};
 use plotters::prelude::*;
@@ -28,10 +31,59 @@ pub struct Panel<'a> {
     pub lines: Vec<Line<'a>>,
 }
 
-/// Writes panels stacked vertically, sharing an x axis labelled `x_label`.
-pub fn write_svg(path: &Path, title: &str, x_label: &str, panels: &[Panel]) -> Result<()> {
+/// DejaVu Sans, registered as the `sans-serif` family for both backends.
+static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+static REGISTER: Once = Once::new();
+
+fn register_font() {
+    REGISTER.call_once(|| {
+        // The bytes are a valid TrueType font (checked by the figure tests); a failure here
+        // would only leave text undrawn in the PNG, never abort.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
+
+/// Writes panels stacked vertically, sharing an x axis labelled `x_label`, to `path` (SVG) and
+/// to the same name with `.png`. Returns both paths.
+pub fn write_figure(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    panels: &[Panel],
+) -> Result<Vec<PathBuf>> {
+    register_font();
     let height = 40 + 260 * panels.len() as u32;
-    let root = SVGBackend::new(path, (900, height)).into_drawing_area();
+    let svg = path.with_extension("svg");
+    let png = path.with_extension("png");
+    draw(
+        SVGBackend::new(&svg, (900, height)).into_drawing_area(),
+        &svg,
+        title,
+        x_label,
+        panels,
+    )?;
+    draw(
+        BitMapBackend::new(&png, (900, height)).into_drawing_area(),
+        &png,
+        title,
+        x_label,
+        panels,
+    )?;
+    Ok(vec![svg, png])
+}
+
+/// [`write_figure`], for callers that only name the SVG.
+pub fn write_svg(path: &Path, title: &str, x_label: &str, panels: &[Panel]) -> Result<()> {
+    write_figure(path, title, x_label, panels).map(|_| ())
+}
+
+fn draw<DB: DrawingBackend>(
+    root: DrawingArea<DB, plotters::coord::Shift>,
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    panels: &[Panel],
+) -> Result<()> {
     let err = |e: &dyn std::fmt::Display| anyhow!("{}: {e}", path.display());
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let root = root

@@ -26,6 +26,8 @@ pub struct RunSummary {
     pub samples: u64,
     /// Wall time, s.
     pub wall_s: f64,
+    /// Stopped early by Ctrl-C ([`crate::interrupt`]); the sinks were still finished.
+    pub interrupted: bool,
 }
 
 /// Runs `scenario` for `samples` output samples, feeding `sinks`.
@@ -42,8 +44,14 @@ pub fn run(scenario: &Scenario, samples: u64, sinks: &mut [&mut dyn Sink]) -> Re
     })?;
     let pb = progress::bar(samples, &scenario.meta.name);
     let t0 = Instant::now();
-    const CHUNK: u64 = 1 << 16;
+    // About 1-7 ms of wall time between checks of the progress bar and of Ctrl-C.
+    const CHUNK: u64 = 1 << 14;
+    let mut done = samples;
     for k in 0..samples {
+        if k % CHUNK == 0 && crate::interrupt::requested() {
+            done = k;
+            break;
+        }
         let s = plant.step();
         for sink in sinks.iter_mut() {
             sink.sample(&s, plant.truth())?;
@@ -57,7 +65,8 @@ pub fn run(scenario: &Scenario, samples: u64, sinks: &mut [&mut dyn Sink]) -> Re
     }
     pb.finish_and_clear();
     Ok(RunSummary {
-        samples,
+        samples: done,
         wall_s: t0.elapsed().as_secs_f64(),
+        interrupted: done < samples,
     })
 }

@@ -14,7 +14,7 @@ pub mod plant_side;
 pub mod session;
 
 pub use nav_side::{NavOptions, NavProcessor, NavSummary, ScheduledCommand, navigate};
-pub use plant_side::{Mode, ServeOptions, ServeSummary, serve};
+pub use plant_side::{Mode, ServeOptions, ServeSummary, serve, serve_observed};
 pub use session::{Session, TransportError};
 
 /// The in-process reference: the same plant and navigator without the transport, with the same

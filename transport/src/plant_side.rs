@@ -4,7 +4,7 @@
 use std::time::{Duration, Instant};
 
 use iceoryx2::prelude::BackpressureStrategy;
-use rins_plant::{GimbalCommand, Plant};
+use rins_plant::{GimbalCommand, ImuSample, Plant, Truth};
 
 use crate::layout::{
     BATCH_CAPACITY, FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, NavCommand, kind,
@@ -85,6 +85,19 @@ pub fn serve(
     samples: u64,
     opts: &ServeOptions,
 ) -> Result<ServeSummary, TransportError> {
+    serve_observed(name, plant, samples, opts, &mut |_, _| {})
+}
+
+/// [`serve`], handing every sample and the plant's truth over it to `observe` as it is produced
+/// (once each, also when a batch is resent to a restarted navigator): a recorder or logger on
+/// the plant side.
+pub fn serve_observed(
+    name: &str,
+    plant: &mut Plant,
+    samples: u64,
+    opts: &ServeOptions,
+    observe: &mut dyn FnMut(&ImuSample, &Truth),
+) -> Result<ServeSummary, TransportError> {
     let t0 = Instant::now();
     let session = Session::open(name, "plant")?;
     let publisher = session
@@ -130,6 +143,7 @@ pub fn serve(
         let n = (samples - done).min(batch_len as u64) as usize;
         for r in batch.records[..n].iter_mut() {
             let s = plant.step();
+            observe(&s, plant.truth());
             *r = ImuRecord::from_plant(&s, plant.truth());
         }
         batch.count = n as u32;

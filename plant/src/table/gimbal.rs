@@ -78,3 +78,28 @@ pub fn gimbal_body_rate(inner_rad: f64, outer_rate: f64, inner_rate: f64) -> Vec
     let (s, c) = inner_rad.sin_cos();
     Vector3::new(inner_rate, s * outer_rate, c * outer_rate)
 }
+
+/// Dwell label of the IMU from the gimbal angles: A/B/C/D of Eq. 5, or `moving`.
+pub fn position_label(outer_rad: f64, inner_rad: f64, moving: bool) -> &'static str {
+    if moving {
+        return "moving";
+    }
+    let near = |a: f64, b: f64| {
+        ((a - b).rem_euclid(std::f64::consts::TAU)).min((b - a).rem_euclid(std::f64::consts::TAU))
+            < 1e-6
+    };
+    let pi = std::f64::consts::PI;
+    match (
+        near(outer_rad, 0.0),
+        near(outer_rad, pi),
+        near(inner_rad, 0.0),
+        near(inner_rad, pi),
+    ) {
+        (true, _, true, _) => "A",
+        (_, true, true, _) => "B",
+        (_, true, _, true) => "C",
+        (true, _, _, true) => "D",
+        _ if inner_rad.cos() > 0.0 => "z-up",
+        _ => "z-down",
+    }
+}

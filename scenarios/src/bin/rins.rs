@@ -85,8 +85,17 @@ struct RunArgs {
     /// Output folder (created).
     #[arg(long, default_value = "out")]
     out: PathBuf,
+    /// Also write figures of the run (SVG and PNG) into the output folder.
+    #[arg(long)]
+    figures: bool,
+    /// With --rerun: run the reference navigator (aligned to the truth) alongside and record its
+    /// attitude, velocity and position errors and tRMS.
+    #[arg(long)]
+    nav: bool,
     #[command(flatten)]
     overrides: Overrides,
+    #[command(flatten)]
+    viz: rins_scenarios::viz::RerunArgs,
 }
 
 #[derive(Args)]
@@ -97,6 +106,8 @@ struct PaperArgs {
     /// Output folder.
     #[arg(long, default_value = "out/paper")]
     out: PathBuf,
+    #[command(flatten)]
+    viz: rins_scenarios::viz::RerunArgs,
 }
 
 #[derive(Args)]
@@ -151,6 +162,8 @@ struct DataArgs {
     /// Time window of the cell map, s.
     #[arg(long, default_value_t = 3600.0)]
     time_window_s: f64,
+    #[command(flatten)]
+    viz: rins_scenarios::viz::RerunArgs,
 }
 
 #[derive(Args)]
@@ -207,6 +220,8 @@ struct ServeArgs {
     wait_for_restart: bool,
     #[command(flatten)]
     overrides: Overrides,
+    #[command(flatten)]
+    viz: rins_scenarios::viz::RerunArgs,
 }
 
 #[cfg(feature = "transport")]
@@ -286,6 +301,8 @@ struct Table5Args {
     /// Output folder.
     #[arg(long, default_value = "out/table5")]
     out: PathBuf,
+    #[command(flatten)]
+    viz: rins_scenarios::viz::RerunArgs,
 }
 
 #[derive(Args)]
@@ -309,6 +326,8 @@ struct Table4Args {
     /// Output folder for table4.json and the SVG figures.
     #[arg(long, default_value = "out/table4")]
     out: PathBuf,
+    #[command(flatten)]
+    viz: rins_scenarios::viz::RerunArgs,
 }
 
 #[derive(Subcommand)]
@@ -350,11 +369,18 @@ fn load(path: &std::path::Path, o: &Overrides) -> Result<Scenario> {
 
 fn cmd_run(a: &RunArgs) -> Result<()> {
     let sc = load(&a.scenario, &a.overrides)?;
+    let target = a.viz.target()?;
+    if a.nav && target.is_none() {
+        anyhow::bail!(
+            "--nav records the reference navigator's errors to Rerun: give --rerun DEST too"
+        );
+    }
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("cannot create {}", a.out.display()))?;
     let resolved =
         toml::to_string_pretty(&sc.plant).context("serialising the resolved configuration")?;
     std::fs::write(a.out.join("resolved-plant.toml"), resolved)?;
+    let n = sc.samples();
     let mut sinks: Vec<Box<dyn Sink>> = Vec::new();
     if sc.outputs.csv {
         sinks.push(Box::new(CsvSink::create(
@@ -363,23 +389,68 @@ fn cmd_run(a: &RunArgs) -> Result<()> {
             &sc.plant,
         )?));
     }
+    let mut figures = a
+        .figures
+        .then(|| rins_scenarios::report::RunFigures::new(&sc.plant, n));
+    #[cfg(feature = "rerun")]
+    let mut rerun = match &target {
+        Some(t) => Some(rins_scenarios::viz::RerunSink::open(
+            t,
+            &sc,
+            n,
+            a.viz.rerun_bucket_s,
+            a.nav,
+        )?),
+        None => None,
+    };
     let mut refs: Vec<&mut dyn Sink> = sinks
         .iter_mut()
         .map(|b| b.as_mut() as &mut dyn Sink)
         .collect();
-    let n = sc.samples();
+    if let Some(f) = figures.as_mut() {
+        refs.push(f);
+    }
+    #[cfg(feature = "rerun")]
+    if let Some(r) = rerun.as_mut() {
+        refs.push(r);
+    }
+    rins_scenarios::interrupt::install();
     let summary = run(&sc, n, &mut refs)?;
+    drop(refs);
+    #[cfg(feature = "rerun")]
+    if let Some(mut r) = rerun {
+        r.close()?;
+        eprintln!(
+            "rerun: {} rows per series -> {}",
+            r.rows(),
+            a.viz.rerun.as_deref().unwrap_or_default()
+        );
+    }
+    drop(sinks);
+    if let Some(f) = figures {
+        for p in f.write(&a.out, &sc.meta.name)? {
+            eprintln!("wrote {}", p.display());
+        }
+    }
     eprintln!(
         "{}: {} samples ({} s simulated) in {:.2} s, {:.1} ns/sample -> {}",
         sc.meta.name,
         summary.samples,
-        sc.meta.duration_s,
+        summary.samples as f64 / sc.plant.rate_hz,
         summary.wall_s,
         summary.wall_s * 1e9 / summary.samples.max(1) as f64,
         a.out.display()
     );
+    if summary.interrupted {
+        return Err(Interrupted(summary.samples).into());
+    }
     Ok(())
 }
+
+/// Ctrl-C stopped a run after this many samples; its outputs were closed cleanly.
+#[derive(Debug, thiserror::Error)]
+#[error("interrupted after {0} samples; the outputs are complete up to there")]
+struct Interrupted(u64);
 
 fn cmd_fmu_run(
     fmu: &std::path::Path,
@@ -440,6 +511,13 @@ fn cmd_compare(a: &CompareArgs) -> Result<()> {
     let (_, model, h, opts) = load_data(&a.data)?;
     let an = rins_verify::diagnosis::analyse(&model, &h, opts);
     let report = an.compare_report(&h.source, &an.zero_pred());
+    record_analysis(
+        &a.data.viz,
+        &an,
+        None,
+        &h.source,
+        &serde_json::to_string_pretty(&report)?,
+    )?;
     if let Some(dir) = &a.data.report {
         for f in rins_scenarios::diagnose::write_report(dir, &an, None, &report, None)? {
             eprintln!("wrote {f}");
@@ -502,6 +580,28 @@ fn cmd_compare(a: &CompareArgs) -> Result<()> {
     Ok(())
 }
 
+/// `--rerun` of compare/diagnose: the residual windows, the fitted prediction, navigation.
+fn record_analysis(
+    viz: &rins_scenarios::viz::RerunArgs,
+    an: &rins_verify::diagnosis::Analysis,
+    pred: Option<&[Vec<f64>]>,
+    source: &str,
+    text: &str,
+) -> Result<()> {
+    let target = viz.target()?;
+    #[cfg(feature = "rerun")]
+    if let Some(t) = &target {
+        rins_scenarios::viz::record_diagnosis(t, an, pred, source, text)?;
+        eprintln!(
+            "rerun: recorded -> {}",
+            viz.rerun.as_deref().unwrap_or_default()
+        );
+    }
+    #[cfg(not(feature = "rerun"))]
+    let _ = (target, an, pred, source, text);
+    Ok(())
+}
+
 fn cmd_diagnose(a: &DiagnoseArgs) -> Result<()> {
     let (_, model, h, opts) = load_data(&a.data)?;
     let (report, an, selected) = rins_verify::diagnosis::diagnose(&model, &h, opts);
@@ -535,6 +635,16 @@ fn cmd_diagnose(a: &DiagnoseArgs) -> Result<()> {
         for (k, v) in &set {
             eprintln!("  {k} = {v}");
         }
+    }
+    if a.data.report.is_some() || a.data.viz.rerun.is_some() {
+        let pred = rins_verify::diagnosis::predictions(&an, &selected);
+        record_analysis(
+            &a.data.viz,
+            &an,
+            Some(&pred),
+            &h.source,
+            &serde_json::to_string_pretty(&report)?,
+        )?;
     }
     if let Some(dir) = &a.data.report {
         let pred = rins_verify::diagnosis::predictions(&an, &selected);
@@ -695,7 +805,52 @@ fn cmd_serve(a: &ServeArgs) -> Result<()> {
                 .join("; ")
         )
     })?;
-    let summary = rins_transport::serve(&a.session, &mut plant, sc.samples(), &opts)?;
+    let target = a.viz.target()?;
+    #[cfg(feature = "rerun")]
+    let mut rerun = match &target {
+        Some(t) => Some(rins_scenarios::viz::RerunSink::open(
+            t,
+            &sc,
+            sc.samples(),
+            a.viz.rerun_bucket_s,
+            false,
+        )?),
+        None => None,
+    };
+    #[cfg(not(feature = "rerun"))]
+    let _ = target;
+    #[cfg_attr(not(feature = "rerun"), allow(unused_mut))]
+    let mut rerun_err: Option<anyhow::Error> = None;
+    let summary = rins_transport::serve_observed(
+        &a.session,
+        &mut plant,
+        sc.samples(),
+        &opts,
+        &mut |s, tr| {
+            #[cfg(feature = "rerun")]
+            if let Some(r) = rerun.as_mut()
+                && rerun_err.is_none()
+                && let Err(e) = r.sample(s, tr)
+            {
+                rerun_err = Some(e);
+            }
+            #[cfg(not(feature = "rerun"))]
+            let _ = (s, tr);
+        },
+    )?;
+    #[cfg(feature = "rerun")]
+    if let Some(mut r) = rerun {
+        r.finish()?;
+        r.close()?;
+        eprintln!(
+            "rerun: {} rows per series -> {}",
+            r.rows(),
+            a.viz.rerun.as_deref().unwrap_or_default()
+        );
+    }
+    if let Some(e) = rerun_err {
+        return Err(e.context("recording to Rerun"));
+    }
     for e in &summary.events {
         eprintln!("{e}");
     }
@@ -778,6 +933,7 @@ fn cmd_paper(a: &PaperArgs) -> Result<()> {
         align: "truth".into(),
         json: false,
         out: a.out.clone(),
+        viz: a.viz.clone(),
     };
     println!(
         "== Section 3.1 / Table 4 ({} seeds; --full for 32) ==",
@@ -807,7 +963,10 @@ fn run_paired(
     opt: &rins_verify::paper::Table4Options,
     name: &str,
     out: &std::path::Path,
+    sc: &Scenario,
+    viz: &rins_scenarios::viz::RerunArgs,
 ) -> Result<rins_verify::paper::Table4Report> {
+    let target = viz.target()?;
     let total = (2 * opt.runs as u64 + 2) * (opt.duration_s * opt.plant.rate_hz) as u64;
     let pb = rins_scenarios::progress::bar(total, name);
     let r = rins_verify::paper::table4(opt, &|n| pb.inc(n));
@@ -818,6 +977,29 @@ fn run_paired(
         serde_json::to_string_pretty(&r)?,
     )?;
     write_table4_figures(&r, out)?;
+    #[cfg(feature = "rerun")]
+    if let Some(t) = &target {
+        let text = if name == "table5" {
+            r.to_text_table5()
+        } else {
+            r.to_text()
+        };
+        rins_scenarios::viz::record_paired(
+            t,
+            viz.rerun_bucket_s,
+            sc,
+            &opt.plant,
+            opt.duration_s,
+            &r,
+            &text,
+        )?;
+        eprintln!(
+            "rerun: recorded -> {}",
+            viz.rerun.as_deref().unwrap_or_default()
+        );
+    }
+    #[cfg(not(feature = "rerun"))]
+    let _ = (target, sc);
     Ok(r)
 }
 
@@ -846,7 +1028,7 @@ fn cmd_table4(a: &Table4Args) -> Result<()> {
             ..rins_nav::NavRunConfig::default()
         },
     };
-    let r = run_paired(&opt, "table4", &a.out)?;
+    let r = run_paired(&opt, "table4", &a.out, &sc, &a.viz)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
@@ -1199,7 +1381,7 @@ fn cmd_table5(a: &Table5Args) -> Result<()> {
         nav: rins_nav::NavRunConfig::default(),
         compensation: Some(comp),
     };
-    let r = run_paired(&opt, "table5", &a.out)?;
+    let r = run_paired(&opt, "table5", &a.out, &sc, &a.viz)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
@@ -1246,6 +1428,10 @@ fn main() -> std::process::ExitCode {
     default_sigpipe();
     match dispatch(Cli::parse()) {
         Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) if e.downcast_ref::<Interrupted>().is_some() => {
+            eprintln!("{e}");
+            std::process::ExitCode::from(130)
+        }
         Err(e) => {
             // The chain, without the backtrace anyhow adds when RUST_BACKTRACE is set.
             eprintln!("error: {e}");
