@@ -23,10 +23,19 @@ impl<const N: usize> MinMaxMean<N> {
     /// Adds one sample of every channel.
     #[inline]
     pub fn push(&mut self, v: &[f64; N]) {
+        // Plain comparisons (not f64::min/max) so the loop vectorises; the plant emits no NaN.
         for i in 0..N {
             self.sum[i] += v[i];
-            self.min[i] = self.min[i].min(v[i]);
-            self.max[i] = self.max[i].max(v[i]);
+            self.min[i] = if v[i] < self.min[i] {
+                v[i]
+            } else {
+                self.min[i]
+            };
+            self.max[i] = if v[i] > self.max[i] {
+                v[i]
+            } else {
+                self.max[i]
+            };
         }
     }
 

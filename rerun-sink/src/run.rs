@@ -18,10 +18,21 @@ use crate::scene;
 use crate::series::{Series, nanos};
 
 const AXES: [&str; 3] = ["x", "y", "z"];
+
+/// What the end of a bucket needs of its last sample (a whole [`Truth`] is ~700 bytes).
+#[derive(Clone, Copy, Debug)]
+struct Last {
+    index: u64,
+    t_s: f64,
+    outer_rad: f64,
+    inner_rad: f64,
+}
 const XYZ: [[u8; 3]; 3] = [[220, 50, 50], [50, 160, 50], [50, 90, 230]];
 const ENVELOPE: [[u8; 3]; 3] = [[30, 30, 30], [150, 150, 150], [150, 150, 150]];
 /// Channels of the min/max/mean block: Δθ xyz, Δv xyz, outer, inner.
 const ENV_CHANNELS: usize = 8;
+/// Samples per bucket over which temperatures and effect contributions are averaged.
+pub const SLOW_SAMPLES: u64 = 64;
 /// Temperature channels: the six nodes and the chamber.
 const TEMPS: usize = node::COUNT + 1;
 
@@ -45,6 +56,11 @@ pub struct RunRecorder {
     rec: RecordingStream,
     bucket: u64,
     in_bucket: u64,
+    /// Samples between reads of the temperatures and effects, and the countdown to the next.
+    slow_stride: u64,
+    slow_countdown: u64,
+    /// Reads in the current bucket.
+    slow_n: u64,
     env: MinMaxMean<ENV_CHANNELS>,
     temps: [f64; TEMPS],
     gyro: [Vector3<f64>; GYRO_TERMS],
@@ -56,10 +72,15 @@ pub struct RunRecorder {
     gyro_series: Vec<Series>,
     accel_series: Vec<Series>,
     label: &'static str,
+    /// (moving, outer, inner) the label was computed for: recomputed only when these change.
+    label_key: (bool, f64, f64),
     dwell_log: u64,
-    last: Option<(ImuSample, Truth)>,
+    last: Option<Last>,
+    poses: scene::PoseColumns,
     tracker: Option<(Tracker, NavSeries)>,
     nav_at_last: bool,
+    /// The last truth, kept only when navigating (the final record needs it).
+    last_truth: Option<Truth>,
     dt_s: f64,
 }
 
@@ -75,6 +96,12 @@ impl RunRecorder {
         let bucket = opts.bucket_samples.max(1);
         let dt_s = 1.0 / cfg.rate_hz;
         let span = format!("{} s", fmt_s(bucket as f64 * dt_s));
+        let stride = (bucket / SLOW_SAMPLES).max(1);
+        let slow = if stride == 1 {
+            format!("mean over {span} bucket")
+        } else {
+            format!("mean over {span} bucket, every {stride}th sample")
+        };
         let env_names = |unit: &str| -> Vec<String> {
             vec![
                 format!("mean per sample over {span} bucket, {unit}"),
@@ -107,9 +134,9 @@ impl RunRecorder {
         )?);
         let mut tnames: Vec<String> = node::NAMES
             .iter()
-            .map(|n| format!("{n} (mean over {span} bucket), °C"))
+            .map(|n| format!("{n} ({slow}), °C"))
             .collect();
-        tnames.push(format!("chamber (mean over {span} bucket), °C"));
+        tnames.push(format!("chamber ({slow}), °C"));
         let temp_series = Series::new(rec, "thermal/temps_c", &tnames, &[])?;
         let s = &cfg.sensor;
         let gyro_on: Vec<GyroTerm> = GyroTerm::ALL
@@ -122,7 +149,7 @@ impl RunRecorder {
             .collect();
         let xyz = |unit: &str| -> Vec<String> {
             AXES.iter()
-                .map(|a| format!("{a} (mean over {span} bucket), {unit}"))
+                .map(|a| format!("{a} ({slow}), {unit}"))
                 .collect()
         };
         let gyro_series = gyro_on
@@ -159,6 +186,9 @@ impl RunRecorder {
             rec: rec.clone(),
             bucket,
             in_bucket: 0,
+            slow_stride: stride,
+            slow_countdown: 0,
+            slow_n: 0,
             env: MinMaxMean::default(),
             temps: [0.0; TEMPS],
             gyro: [Vector3::zeros(); GYRO_TERMS],
@@ -170,10 +200,13 @@ impl RunRecorder {
             gyro_series,
             accel_series,
             label: "",
+            label_key: (false, f64::NAN, f64::NAN),
             dwell_log: 0,
             last: None,
+            poses: scene::PoseColumns::default(),
             tracker,
             nav_at_last: false,
+            last_truth: None,
             dt_s,
         })
     }
@@ -193,26 +226,50 @@ impl RunRecorder {
             g.angles.outer_rad.to_degrees(),
             g.angles.inner_rad.to_degrees(),
         ]);
-        for (acc, t) in self
-            .temps
-            .iter_mut()
-            .zip(tr.temps.nodes_c.iter().chain([&tr.temps.chamber_c]))
-        {
-            *acc += t;
+        // Temperatures and effect contributions are averaged over evenly spaced samples of the
+        // bucket (every sample when the bucket has at most SLOW_SAMPLES): reading the ~60
+        // values of the truth every sample would cost a third of the plant's own time, and these
+        // series vary slowly (temperatures; effects within a dwell) or are noise whose bucket
+        // mean is what the plot shows anyway.
+        if self.slow_countdown == 0 {
+            self.slow_countdown = self.slow_stride;
+            self.slow_n += 1;
+            for (acc, t) in self
+                .temps
+                .iter_mut()
+                .zip(tr.temps.nodes_c.iter().chain([&tr.temps.chamber_c]))
+            {
+                *acc += t;
+            }
+            for (a, e) in self.gyro.iter_mut().zip(&tr.gyro_terms_rad) {
+                *a += e;
+            }
+            for (a, e) in self.accel.iter_mut().zip(&tr.accel_terms_mps) {
+                *a += e;
+            }
         }
-        for (acc, e) in self.gyro.iter_mut().zip(&tr.gyro_terms_rad) {
-            *acc += e;
-        }
-        for (acc, e) in self.accel.iter_mut().zip(&tr.accel_terms_mps) {
-            *acc += e;
-        }
+        self.slow_countdown -= 1;
         self.in_bucket += 1;
-        self.last = Some((*s, *tr));
-        let label = position_label(g.angles.outer_rad, g.angles.inner_rad, g.moving);
-        if label != self.label {
-            self.dwell_changed(s, tr, label)?;
+        let (outer, inner) = (g.angles.outer_rad, g.angles.inner_rad);
+        self.last = Some(Last {
+            index: s.index,
+            t_s: s.t_s,
+            outer_rad: outer,
+            inner_rad: inner,
+        });
+        // The label changes only when the table starts or stops moving; dwells hold the angles.
+        let key = (g.moving, outer, inner);
+        if key.0 != self.label_key.0
+            || (!key.0 && (key.1 != self.label_key.1 || key.2 != self.label_key.2))
+        {
+            self.label_key = key;
+            let label = position_label(outer, inner, g.moving);
+            if label != self.label {
+                self.dwell_changed(s, tr, label)?;
+            }
         }
         if let Some((t, series)) = &mut self.tracker {
+            self.last_truth = Some(*tr);
             let r = t.push(s, tr);
             self.nav_at_last = r.is_some();
             if let Some(r) = r {
@@ -259,18 +316,19 @@ impl RunRecorder {
     }
 
     fn write_row(&mut self) -> Result<()> {
-        let Some((s, tr)) = self.last else {
+        let Some(last) = self.last else {
             return Ok(());
         };
         let n = self.in_bucket;
-        let (step, t_ns) = (s.index, nanos(s.t_s));
+        let (step, t_ns) = (last.index, nanos(last.t_s));
         for (i, series) in self.env_series.iter_mut().enumerate() {
             series.push(&self.rec, step, t_ns, &self.env.take(i, n))?;
         }
-        let temps: Vec<f64> = self.temps.iter().map(|t| t / n as f64).collect();
+        let m = self.slow_n.max(1) as f64;
+        let temps: Vec<f64> = self.temps.iter().map(|t| t / m).collect();
         self.temp_series.push(&self.rec, step, t_ns, &temps)?;
         self.temps = [0.0; TEMPS];
-        let span_s = n as f64 * self.dt_s;
+        let span_s = m * self.dt_s;
         for (series, t) in self.gyro_series.iter_mut().zip(&self.gyro_on) {
             let r = self.gyro[*t as usize] / (span_s * DPH);
             series.push(&self.rec, step, t_ns, &[r.x, r.y, r.z])?;
@@ -282,13 +340,11 @@ impl RunRecorder {
         self.gyro = [Vector3::zeros(); GYRO_TERMS];
         self.accel = [Vector3::zeros(); ACCEL_TERMS];
         // The pose at the end of each bucket, so the 3D view follows the moves too.
-        self.set_time(&s);
-        scene::log_gimbal(
-            &self.rec,
-            tr.gimbal.angles.outer_rad,
-            tr.gimbal.angles.inner_rad,
-        )?;
+        self.poses
+            .push(&self.rec, step, t_ns, last.outer_rad, last.inner_rad)?;
         self.in_bucket = 0;
+        self.slow_n = 0;
+        self.slow_countdown = 0;
         Ok(())
     }
 
@@ -299,12 +355,17 @@ impl RunRecorder {
         }
         if let Some((t, series)) = &mut self.tracker {
             // The end of the run gets a record unless the last sample produced one.
-            if let Some((s, tr)) = self.last.filter(|_| !self.nav_at_last) {
-                let r: NavRecord = t.record(&tr);
-                series.push(&self.rec, s.index, &r)?;
+            if let Some((last, tr)) = self
+                .last
+                .zip(self.last_truth.as_ref())
+                .filter(|_| !self.nav_at_last)
+            {
+                let r: NavRecord = t.record(tr);
+                series.push(&self.rec, last.index, &r)?;
             }
             series.flush(&self.rec)?;
         }
+        self.poses.flush(&self.rec)?;
         for s in self
             .env_series
             .iter_mut()

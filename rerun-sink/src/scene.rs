@@ -86,6 +86,71 @@ pub fn log_gimbal(rec: &RecordingStream, outer_rad: f64, inner_rad: f64) -> Resu
     Ok(())
 }
 
+/// The gimbal rotations at each bucket end, sent as column chunks like the series (one `log`
+/// per row would cost more than the plant itself on a week-long run).
+#[derive(Default)]
+pub struct PoseColumns {
+    steps: Vec<i64>,
+    nanos: Vec<i64>,
+    outer: Vec<rerun::datatypes::Quaternion>,
+    inner: Vec<rerun::datatypes::Quaternion>,
+}
+
+impl PoseColumns {
+    /// Adds the pose at output sample `step`, time `t_ns`.
+    pub fn push(
+        &mut self,
+        rec: &RecordingStream,
+        step: u64,
+        t_ns: i64,
+        outer_rad: f64,
+        inner_rad: f64,
+    ) -> Result<()> {
+        self.steps.push(step as i64);
+        self.nanos.push(t_ns);
+        self.outer.push(quat(&UnitQuaternion::from_axis_angle(
+            &Vector3::z_axis(),
+            outer_rad,
+        )));
+        self.inner.push(quat(&UnitQuaternion::from_axis_angle(
+            &Vector3::x_axis(),
+            inner_rad,
+        )));
+        if self.steps.len() >= crate::series::FLUSH_ROWS {
+            self.flush(rec)?;
+        }
+        Ok(())
+    }
+
+    /// Sends the buffered poses.
+    pub fn flush(&mut self, rec: &RecordingStream) -> Result<()> {
+        let n = self.steps.len();
+        if n == 0 {
+            return Ok(());
+        }
+        let index = || {
+            [
+                rerun::TimeColumn::new_sequence(crate::series::STEP, self.steps.iter().copied()),
+                rerun::TimeColumn::new_duration_nanos(
+                    crate::series::SIM_TIME,
+                    self.nanos.iter().copied(),
+                ),
+            ]
+        };
+        let outer = Transform3D::update_fields()
+            .with_many_quaternion(self.outer.drain(..))
+            .columns(std::iter::repeat_n(1, n))?;
+        rec.send_columns(OUTER, index(), outer)?;
+        let inner = Transform3D::update_fields()
+            .with_many_quaternion(self.inner.drain(..))
+            .columns(std::iter::repeat_n(1, n))?;
+        rec.send_columns(INNER, index(), inner)?;
+        self.steps.clear();
+        self.nanos.clear();
+        Ok(())
+    }
+}
+
 /// Logs the IMU body box with the dwell label (at the current time).
 pub fn log_imu_label(rec: &RecordingStream, label: &str) -> Result<()> {
     let color = if label.contains("down") {
