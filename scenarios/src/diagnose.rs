@@ -275,6 +275,7 @@ pub fn write_report(
         &panels,
     )?;
     files.push(f.display().to_string());
+    files.push(f.with_extension("png").display().to_string());
 
     // Bias by position with the noise floor as error bars, before and after.
     let positions = ["z-up", "z-down", "tilted", "moving"];
@@ -333,6 +334,7 @@ pub fn write_report(
     let f = dir.join("bias_by_position.svg");
     write_svg(&f, "Residual bias per table position", "position", &panels)?;
     files.push(f.display().to_string());
+    files.push(f.with_extension("png").display().to_string());
 
     // Allan deviation of the residual (log10 axes).
     let mut panels = Vec::new();
@@ -377,6 +379,7 @@ pub fn write_report(
         &panels,
     )?;
     files.push(f.display().to_string());
+    files.push(f.with_extension("png").display().to_string());
 
     // Navigation on measured vs modelled increments (the first segments).
     let mut panels = Vec::new();
@@ -420,6 +423,7 @@ pub fn write_report(
             &panels,
         )?;
         files.push(f.display().to_string());
+        files.push(f.with_extension("png").display().to_string());
     }
     Ok(files)
 }

@@ -104,13 +104,22 @@ fn draw<DB: DrawingBackend>(
         if x0 > x1 {
             continue;
         }
+        // Panels of error bars only (estimates at categorical x) keep their outer bars off the frame.
+        let x_pad = if p.lines.iter().all(|l| l.error_bars) {
+            0.5
+        } else {
+            0.0
+        };
         let pad = ((y1 - y0) * 0.05).max(1e-12);
         let mut chart = ChartBuilder::on(area)
             .caption(&p.title, ("sans-serif", 15))
             .margin(8)
             .x_label_area_size(35)
             .y_label_area_size(70)
-            .build_cartesian_2d(x0..x1.max(x0 + 1e-9), (y0 - pad)..(y1 + pad))
+            .build_cartesian_2d(
+                (x0 - x_pad)..(x1 + x_pad).max(x0 + 1e-9),
+                (y0 - pad)..(y1 + pad),
+            )
             .map_err(|e| err(&e))?;
         chart
             .configure_mesh()

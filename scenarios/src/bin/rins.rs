@@ -122,6 +122,9 @@ struct CalibrateArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    /// Output folder: calibration.json and calibration_beta.svg/.png.
+    #[arg(long, default_value = "out/calibrate")]
+    out: PathBuf,
 }
 
 #[derive(Args)]
@@ -1151,10 +1154,59 @@ fn calibration_config(sc: &Scenario, estimator: &str) -> rins_nav::calibration::
     }
 }
 
+/// calibration.json and the figure: β at Z-up and Z-down and δβ per axis with ±1 SE.
+fn write_calibration(r: &rins_nav::calibration::Calibration, out: &std::path::Path) -> Result<()> {
+    use plotters::style::RGBColor;
+    use rins_scenarios::plots::{Line, Panel, write_svg};
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    std::fs::write(
+        out.join("calibration.json"),
+        serde_json::to_string_pretty(r)?,
+    )?;
+    let bar = |x: f64, v: f64, e: f64| vec![(x, v - e), (x, v + e)];
+    let panels: Vec<Panel> = ["x", "y", "z"]
+        .iter()
+        .enumerate()
+        .map(|(i, a)| Panel {
+            title: format!(
+                "{a}-axis gyro: 0 = beta Z-up (Eq. 17), 1 = beta Z-down (Eq. 19), 2 = delta-beta"
+            ),
+            y_label: "deg/h",
+            lines: vec![
+                Line {
+                    label: "Z-up +- 1 SE",
+                    points: bar(0.0, r.up.beta_dph[i], r.up.se_dph[i]),
+                    color: RGBColor(31, 119, 180),
+                    error_bars: true,
+                },
+                Line {
+                    label: "Z-down +- 1 SE",
+                    points: bar(1.0, r.down.beta_dph[i], r.down.se_dph[i]),
+                    color: RGBColor(214, 39, 40),
+                    error_bars: true,
+                },
+                Line {
+                    label: "delta-beta +- 1 SE",
+                    points: bar(2.0, r.delta_beta_dph[i], r.delta_beta_se_dph[i]),
+                    color: RGBColor(44, 160, 44),
+                    error_bars: true,
+                },
+            ],
+        })
+        .collect();
+    write_svg(
+        &out.join("calibration_beta.svg"),
+        "System-level indirect calibration: estimated gyro bias",
+        "estimate",
+        &panels,
+    )
+}
+
 fn cmd_calibrate(a: &CalibrateArgs) -> Result<()> {
     let sc = Scenario::load(&a.scenario)?;
     let cfg = calibration_config(&sc, &a.estimator);
     let r = rins_nav::calibration::calibrate(&sc.plant, &cfg)?;
+    write_calibration(&r, &a.out)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
