@@ -7,6 +7,9 @@ cd "$(dirname "$0")/.."
 # The `rins` binary is built with Rerun support here (the README's first command builds without it).
 features=(--features rins-scenarios/rerun)
 
+echo "== cargo fmt --check =="
+cargo fmt --all --check
+
 echo "== cargo build (the FMI shared libraries are loaded by the tests) =="
 cargo build --workspace --release "${features[@]}"
 target_dir="${CARGO_TARGET_DIR:-target}"

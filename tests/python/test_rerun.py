@@ -1,6 +1,7 @@
 """A Rerun recording read back with rerun-sdk==0.36.3: entity paths, row counts, time columns and
 every logged value against the run's own CSV (bucket statistics recomputed here from the rows);
-`rerun rrd verify`; same seed, same logged values; Ctrl-C still leaves a readable recording.
+`rerun rrd verify`; same seed, same logged values; Ctrl-C still leaves a readable recording;
+`rins paper table4`, `rins diagnose` and `rins serve` recordings against their own outputs.
 
 Usage: python test_rerun.py RINS_BINARY WORK_DIR
 """
@@ -45,6 +46,14 @@ def read_csv(path):
     with open(path) as f:
         rd = csv.DictReader(f)
         return rd.fieldnames, list(rd)
+
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def verify(path):
+    v = subprocess.run([RERUN_CLI, "rrd", "verify", path], capture_output=True, text=True)
+    assert v.returncode == 0, v.stdout + v.stderr
 
 
 def run(args, **kw):
@@ -162,6 +171,45 @@ def main():
     with open(f"{out4}/imu.csv", "rb") as f:
         data = f.read()
     assert data.endswith(b"\n"), "the CSV ends on a whole row"
+    # 5. The result commands record too: Table 4 (both cases, as many rows as the JSON's first
+    #    seed has records), diagnose (one row per analysis window), serve (the served stream).
+    t4 = os.path.join(WORK, "rr-t4")
+    out = run(["paper", "table4", "--runs", "1", "--days", "0.05", "--json", "--out", t4, "--rerun", f"save:{t4}/t4.rrd"]).stdout
+    import json
+    d = json.loads(out)
+    verify(f"{t4}/t4.rrd")
+    rows5, _ = read_rrd(f"{t4}/t4.rrd")
+    for k, case in ((1, "uncompensated"), (2, "compensated")):
+        # One record per 60 s of navigation; the last equals the first seed's end figures.
+        assert len(rows5[f"/nav/{case}/trms_nmi"]) == round(0.05 * 86400 / 60), (case, len(rows5[f"/nav/{case}/trms_nmi"]))
+        end = d["per_seed"][0][k]
+        assert abs(rows5[f"/nav/{case}/trms_nmi"][-1][2][0] - end["trms_nm"]) <= 1e-12 * end["trms_nm"], case
+        assert abs(rows5[f"/nav/{case}/position_error_nmi"][-1][2][2] - end["horizontal_nm"]) <= 1e-12 * end["horizontal_nm"], case
+    assert len(rows5["/imu/dtheta_rad/x"]) > 0 and len(rows5["/status/position"]) > 1
+    unit = os.path.join(WORK, "rr-unit.csv")
+    run(["measure", "docs/examples/diagnosis-truth.toml", "--out", unit, "--duration-s", "3600"], cwd=ROOT)
+    dg = run(["diagnose", "--model", "docs/examples/diagnosis-model.toml", "--data", unit, "--json", "--rerun", f"save:{WORK}/rr-diag.rrd"], cwd=ROOT).stdout
+    verify(f"{WORK}/rr-diag.rrd")
+    rows6, _ = read_rrd(f"{WORK}/rr-diag.rrd")
+    windows = json.loads(run(["compare", "--model", "docs/examples/diagnosis-model.toml", "--data", unit, "--json"], cwd=ROOT).stdout)["windows"]
+    for ch in ("gyro_x", "gyro_y", "gyro_z", "accel_x", "accel_y", "accel_z"):
+        assert len(rows6[f"/diagnosis/residual/{ch}"]) == windows, (ch, len(rows6[f"/diagnosis/residual/{ch}"]), windows)
+        assert len(rows6[f"/diagnosis/residual/{ch}"][0][2]) == 3, "residual, fitted, up_z"
+    assert json.loads(dg)["ranking"], "diagnose still prints its report"
+    session = f"rr{os.getpid()}"
+    plant = subprocess.Popen([RINS, "serve", "builtin:paper-16pos-week", "--session", session, "--duration-s", "600",
+                              "--rerun", f"save:{WORK}/rr-serve.rrd", "--rerun-bucket-s", "1"], stderr=subprocess.PIPE, text=True)
+    nav = subprocess.run([RINS, "nav", "--connect", session, "builtin:paper-16pos-week", "--duration-s", "600"], capture_output=True, text=True, timeout=120)
+    _, err = plant.communicate(timeout=60)
+    assert nav.returncode == 0 and plant.returncode == 0, (nav.stderr, err)
+    verify(f"{WORK}/rr-serve.rrd")
+    rows7, _ = read_rrd(f"{WORK}/rr-serve.rrd")
+    assert len(rows7["/imu/dtheta_rad/x"]) == 600, len(rows7["/imu/dtheta_rad/x"])
+    # The served stream is the in-process plant's: same first-bucket statistics as `rins run`.
+    ref = os.path.join(WORK, "rr-serve-ref")
+    run(["run", "builtin:paper-16pos-week", "--out", ref, "--duration-s", "600", "--rerun", f"save:{ref}/run.rrd", "--rerun-bucket-s", "1"])
+    rows8, _ = read_rrd(f"{ref}/run.rrd")
+    assert rows7["/imu/dtheta_rad/x"] == rows8["/imu/dtheta_rad/x"]
     print(f"1 passed, 0 failed: rerun recordings (exact {checked1} values, bucketed {checked2} values, "
           f"deterministic, interrupted after {n4} of 60480 rows and still readable)")
 
