@@ -353,3 +353,61 @@ pub fn eq11(delta_beta_dph: [f64; 3], dwell_s: f64) -> Eq11Report {
         rotation_phases_cancel: rotation.norm() <= 1e-9 * expected.abs(),
     }
 }
+
+/// One sample of [`cycle_trace`].
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct CyclePoint {
+    /// Time since the cycle start, s.
+    pub t_s: f64,
+    /// φ from the constant bias so far (E, N, U), rad.
+    pub bias_rad: [f64; 3],
+    /// φ from the position-dependent bias δβ so far (E, N, U), rad.
+    pub delta_beta_rad: [f64; 3],
+}
+
+/// φ(t) = ∫₀ᵗ C_b^n·δ dt through one cycle of the 16-position scheme with constant-rate moves
+/// (as Eq. 6; no Earth rate), by the midpoint rule with step `dt_s`: for a constant gyro bias
+/// `bias_dph` it returns to zero at the cycle end (Eq. 8), for δβ it ends near
+/// [0, 0, −8·T_s·δβ_z] plus the rotation-phase term (Eq. 11). For figures; [`eq8`] and [`eq11`]
+/// integrate the same quantities exactly by quadrature.
+pub fn cycle_trace(
+    bias_dph: [f64; 3],
+    delta_beta_dph: [f64; 3],
+    dwell_s: f64,
+    dt_s: f64,
+) -> Vec<CyclePoint> {
+    let mut gb = GyroSpec::default();
+    gb.bias.enabled = true;
+    gb.bias.dph = bias_dph;
+    let mut gd = GyroSpec::default();
+    gd.position_bias.enabled = true;
+    gd.position_bias.dph = delta_beta_dph;
+    let (mb, md) = (GyroModel::new(&gb), GyroModel::new(&gd));
+    let spec = SchemeSpec {
+        accel_dps2: f64::INFINITY,
+        dwell_s,
+        ..SchemeSpec::default()
+    };
+    let sched = Schedule::new(&spec.resolve());
+    let n = (sched.cycle_s() / dt_s).round() as usize;
+    let dt = sched.cycle_s() / n as f64;
+    let (mut pb, mut pd) = (Vector3::zeros(), Vector3::zeros());
+    let mut out = Vec::with_capacity(n + 1);
+    out.push(CyclePoint {
+        t_s: 0.0,
+        bias_rad: [0.0; 3],
+        delta_beta_rad: [0.0; 3],
+    });
+    let mut terms = [Vector3::zeros(); 13];
+    for k in 0..n {
+        let (c, ctx) = context(&sched, sched.lead_s() + (k as f64 + 0.5) * dt, 9.8);
+        pb += c * mb.increment_error(&ctx, &mut terms) * dt;
+        pd += c * md.increment_error(&ctx, &mut terms) * dt;
+        out.push(CyclePoint {
+            t_s: (k + 1) as f64 * dt,
+            bias_rad: pb.into(),
+            delta_beta_rad: pd.into(),
+        });
+    }
+    out
+}

@@ -1,6 +1,6 @@
 //! The analytic harness figures required of the plant (Eq. 8, Eq. 11, Table 2).
 
-use rins_verify::analytic::{eq8, eq11};
+use rins_verify::analytic::{cycle_trace, eq8, eq11};
 use rins_verify::report::AnalyticReport;
 use rins_verify::table2::compare;
 
@@ -101,4 +101,37 @@ fn accel_scale_factor_on_gravity_is_rectified_not_cancelled() {
         .find(|c| c.errors == "accel scale_factor")
         .unwrap();
     assert!(sf.cancellation_ratio < 1e-9);
+}
+
+#[test]
+fn cycle_trace_ends_where_the_quadrature_says() {
+    // Midpoint rule at 0.05 s against the Gauss–Legendre integrals of eq11: a second method.
+    let (bias, dbeta, dwell) = ([0.01, -0.02, 0.015], [0.003, -0.004, 0.005], 180.0);
+    let tr = cycle_trace(bias, dbeta, dwell, 0.05);
+    let end = tr.last().unwrap();
+    let r = eq11(dbeta, dwell);
+    let full = r.full_cycle_rad;
+    for i in 0..3 {
+        assert!(
+            (end.delta_beta_rad[i] - full[i]).abs() <= 1e-3 * r.expected_z_rad.abs(),
+            "axis {i}: {} vs {}",
+            end.delta_beta_rad[i],
+            full[i]
+        );
+    }
+    // Eq. 8: a constant bias integrates back to zero; halfway through it does not.
+    let scale = 0.02 * rins_plant::units::DPH * dwell;
+    for i in 0..3 {
+        assert!(
+            end.bias_rad[i].abs() <= 1e-3 * scale,
+            "axis {i}: {}",
+            end.bias_rad[i]
+        );
+    }
+    let mid = &tr[tr.len() / 4];
+    assert!(
+        mid.bias_rad.iter().any(|v| v.abs() > 0.1 * scale),
+        "{:?}",
+        mid.bias_rad
+    );
 }

@@ -344,12 +344,18 @@ enum VerifyCommand {
         /// Monte Carlo runs for the ARW check.
         #[arg(long, default_value_t = 64)]
         runs: usize,
+        /// Write the checks figure (SVG and PNG) into this folder.
+        #[arg(long)]
+        figures: Option<PathBuf>,
     },
     /// Eq. 8 cancellation, Eq. 11 residual and Table 2 against the plant's kinematics.
     Analytic {
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
+        /// Write the one-cycle φ(t) figure (Eq. 8, Eq. 11) and the checks figure into this folder.
+        #[arg(long)]
+        figures: Option<PathBuf>,
     },
 }
 
@@ -949,6 +955,90 @@ fn cmd_paper(a: &PaperArgs) -> Result<()> {
     Ok(())
 }
 
+/// φ(t) through one 16-position cycle for a constant bias (Eq. 8) and for δβ (Eq. 11), with the
+/// paper's −8·T_s·δβ_z marked.
+fn write_cycle_figure(dir: &std::path::Path) -> Result<()> {
+    use plotters::style::RGBColor;
+    use rins_scenarios::plots::{Line, Panel, write_svg};
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let (bias, dbeta, dwell) = ([0.005; 3], [0.005; 3], 180.0);
+    let tr = rins_verify::analytic::cycle_trace(bias, dbeta, dwell, 0.5);
+    let arcsec = |r: f64| r.to_degrees() * 3600.0;
+    let t_end = tr.last().map_or(0.0, |p| p.t_s) / 60.0;
+    let expected = arcsec(-8.0 * dwell * dbeta[2] * rins_plant::units::DPH);
+    let panels: Vec<Panel> = ["East", "North", "Up"]
+        .iter()
+        .enumerate()
+        .map(|(i, axis)| {
+            let mut lines = vec![
+                Line { label: "constant bias 0.005 deg/h on each axis (Eq. 8)", points: tr.iter().map(|p| (p.t_s / 60.0, arcsec(p.bias_rad[i]))).collect(), color: RGBColor(31, 119, 180), error_bars: false },
+                Line { label: "delta-beta 0.005 deg/h on each axis (Eq. 11)", points: tr.iter().map(|p| (p.t_s / 60.0, arcsec(p.delta_beta_rad[i]))).collect(), color: RGBColor(214, 39, 40), error_bars: false },
+            ];
+            if i == 2 {
+                lines.push(Line { label: "-8 Ts delta-beta_z (stationary phases, Eq. 11)", points: vec![(0.0, expected), (t_end, expected)], color: RGBColor(120, 120, 120), error_bars: false });
+            }
+            Panel { title: format!("{axis}: attitude error accumulated through one cycle (T_s = 180 s, constant-rate moves)"), y_label: "arcsec", lines }
+        })
+        .collect();
+    write_svg(
+        &dir.join("eq8_eq11_cycle.svg"),
+        "One 16-position cycle: a constant bias cancels, delta-beta leaves -8 Ts delta-beta_z",
+        "time in the cycle (min)",
+        &panels,
+    )
+}
+
+/// Each check's value against its limit (log10 of value / limit; ≤ 0 passes).
+fn write_checks_figure(
+    path: &std::path::Path,
+    title: &str,
+    checks: &[rins_verify::report::Check],
+) -> Result<()> {
+    use plotters::style::RGBColor;
+    use rins_scenarios::plots::{Line, Panel, write_svg};
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    const PALETTE: [RGBColor; 6] = [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+        RGBColor(255, 127, 14),
+        RGBColor(148, 103, 189),
+        RGBColor(140, 86, 75),
+    ];
+    // An exact zero (e.g. an integral that cancels to the bit) is drawn at 1e-16 of the limit.
+    let margin = |c: &rins_verify::report::Check| {
+        (c.value.abs().max(1e-16 * c.limit.abs()) / c.limit.abs().max(f64::MIN_POSITIVE)).log10()
+    };
+    let mut lines: Vec<Line> = checks
+        .iter()
+        .enumerate()
+        .map(|(k, c)| Line {
+            label: c.name.as_str(),
+            points: vec![(k as f64, margin(c)), (k as f64, margin(c))],
+            color: PALETTE[k % PALETTE.len()],
+            error_bars: true,
+        })
+        .collect();
+    lines.push(Line {
+        label: "limit",
+        points: vec![(-0.5, 0.0), (checks.len() as f64 - 0.5, 0.0)],
+        color: RGBColor(0, 0, 0),
+        error_bars: false,
+    });
+    let panel = Panel {
+        title: format!(
+            "{} checks, {} passed (below the line)",
+            checks.len(),
+            checks.iter().filter(|c| c.pass).count()
+        ),
+        y_label: "log10(value / limit)",
+        lines,
+    };
+    write_svg(path, title, "check", &[panel])
+}
+
 /// Checks `--runs` and `--days` of the paired paper runs.
 fn check_runs_days(runs: usize, days: f64) -> Result<()> {
     if runs == 0 {
@@ -1509,15 +1599,34 @@ fn dispatch(cli: Cli) -> Result<()> {
         } => cmd_table5(&a),
         Command::Calibrate(a) => cmd_calibrate(&a),
         Command::Campaign(a) => cmd_campaign(&a),
-        Command::Verify(VerifyCommand::Analytic { json }) => {
+        Command::Verify(VerifyCommand::Analytic { json, figures }) => {
             let r = rins_verify::report::AnalyticReport::run();
+            if let Some(dir) = &figures {
+                write_cycle_figure(dir)?;
+                write_checks_figure(
+                    &dir.join("analytic_checks.svg"),
+                    "Analytic verification: each check against its limit",
+                    &r.checks,
+                )?;
+            }
             emit_report(&r, json, &r.to_text(), r.passed(), "analytic verification")
         }
-        Command::Verify(VerifyCommand::Ins { json, runs }) => {
+        Command::Verify(VerifyCommand::Ins {
+            json,
+            runs,
+            figures,
+        }) => {
             if runs < 8 {
                 anyhow::bail!("--runs: expected at least 8 Monte Carlo runs, got {runs}");
             }
             let r = rins_verify::ins::InsReport::run(runs);
+            if let Some(dir) = &figures {
+                write_checks_figure(
+                    &dir.join("ins_checks.svg"),
+                    "INS closed forms: each check against its limit",
+                    &r.checks,
+                )?;
+            }
             emit_report(
                 &r,
                 json,
