@@ -46,11 +46,14 @@ for case in ("uncompensated", "compensated"):
             assert isinstance(d[case][k][q], float), (case, k, q)
 assert "lon_nm" in d["noise_free"]["compensated"]'
 test -s "$tmp/t4/fig2_attitude_error.svg" && test -s "$tmp/t4/fig3_position_error.svg"
-"${rins[@]}" calibrate builtin:calibration-z-down --json | python3 -c '
+"${rins[@]}" verify analytic --figures "$tmp/verify" > /dev/null
+test -s "$tmp/verify/eq8_eq11_cycle.svg" && test -s "$tmp/verify/eq8_eq11_cycle.png" && test -s "$tmp/verify/analytic_checks.png"
+"${rins[@]}" calibrate builtin:calibration-z-down --json --out "$tmp/calib" | python3 -c '
 import json, sys
 d = json.load(sys.stdin)
 assert len(d["delta_beta_dph"]) == 3 and len(d["delta_beta_se_dph"]) == 3
 assert d["down"]["position"] == "z-down" and len(d["up"]["segments"]) == 2'
+test -s "$tmp/calib/calibration.json" && test -s "$tmp/calib/calibration_beta.png"
 cat > "$tmp/camp.toml" <<'TOML'
 [scenario]
 name = "smoke-campaign"
