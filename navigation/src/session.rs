@@ -205,7 +205,9 @@ impl Tracker {
         }
         self.nav.update(&dtheta, &s.dv_mps);
         self.k += 1;
-        (self.k % self.every == 0).then(|| self.record(truth))
+        self.k
+            .is_multiple_of(self.every)
+            .then(|| self.record(truth))
     }
 
     /// The error record now, against `truth` (the plant's truth after the last pushed sample).

@@ -22,6 +22,7 @@ impl<const N: usize> Default for MinMaxMean<N> {
 impl<const N: usize> MinMaxMean<N> {
     /// Adds one sample of every channel.
     #[inline]
+    #[allow(clippy::needless_range_loop, reason = "one index over four arrays")]
     pub fn push(&mut self, v: &[f64; N]) {
         // Plain comparisons (not f64::min/max) so the loop vectorises; the plant emits no NaN.
         for i in 0..N {

@@ -100,7 +100,7 @@ impl RunRecorder {
         let slow = if stride == 1 {
             format!("mean over {span} bucket")
         } else {
-            format!("mean over {span} bucket, every {stride}th sample")
+            format!("mean over {span} bucket, one sample in {stride}")
         };
         let env_names = |unit: &str| -> Vec<String> {
             vec![

@@ -368,7 +368,7 @@ mod with_rerun {
              **Decimation.** Every series has one row per bucket of {bucket} samples ({span} s). \
              `imu/*` and `gimbal/*` rows hold the bucket's mean, minimum and maximum (Δθ and Δv per \
              sample, rad and m/s); `thermal/temps_c` and `effects/*` rows hold the bucket mean \
-             over up to 64 evenly spaced samples (every {stride}th; effects as rates, deg/h and \
+             over up to 64 evenly spaced samples (one in {stride}; effects as rates, deg/h and \
              µg). The 3D pose is logged at each dwell change and at the \
              end of each bucket; `status/position` logs every dwell change.{nav}\n\n\
              Timelines: `sim_time` (simulated time) and `step` (output sample number of the row's \

@@ -269,6 +269,9 @@ enum FmuCommand {
         /// Output folder.
         #[arg(long, default_value = "out/fmu-run")]
         out: PathBuf,
+        /// Also write the run's figures (SVG and PNG) into the output folder.
+        #[arg(long)]
+        figures: bool,
         #[command(flatten)]
         overrides: Overrides,
     },
@@ -466,11 +469,22 @@ fn cmd_fmu_run(
     scenario: &std::path::Path,
     out: &std::path::Path,
     overrides: &Overrides,
+    figures: bool,
 ) -> Result<()> {
     let sc = load(scenario, overrides)?;
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let mut csv = CsvSink::create(&out.join("imu.csv"), sc.outputs, &sc.plant)?;
-    let summary = rins_scenarios::fmu::run(fmu, &sc, sc.samples(), &mut [&mut csv])?;
+    let mut figs = rins_scenarios::report::RunFigures::new(&sc.plant, sc.samples());
+    let summary = if figures {
+        rins_scenarios::fmu::run(fmu, &sc, sc.samples(), &mut [&mut csv, &mut figs])?
+    } else {
+        rins_scenarios::fmu::run(fmu, &sc, sc.samples(), &mut [&mut csv])?
+    };
+    if figures {
+        for p in figs.write(out, &sc.meta.name)? {
+            eprintln!("wrote {}", p.display());
+        }
+    }
     eprintln!(
         "{} via {}: {} samples in {:.2} s, {:.1} ns/sample -> {}",
         sc.meta.name,
@@ -1646,8 +1660,9 @@ fn dispatch(cli: Cli) -> Result<()> {
             fmu,
             scenario,
             out,
+            figures,
             overrides,
-        }) => cmd_fmu_run(&fmu, &scenario, &out, &overrides),
+        }) => cmd_fmu_run(&fmu, &scenario, &out, &overrides, figures),
         #[cfg(feature = "transport")]
         Command::Serve(a) => cmd_serve(&a),
         #[cfg(feature = "transport")]
