@@ -42,6 +42,23 @@ def read_rrd(path):
     return rows, static
 
 
+def check_blueprint(path, entities, plant=True):
+    """The recording carries a blueprint whose every view shows entities that exist."""
+    reader = rr.experimental.RrdReader(path)
+    stores = reader.blueprints()
+    assert len(stores) == 1, stores
+    views = []
+    for ch in reader.stream(store=stores[0]).to_chunks():
+        b = ch.to_record_batch()
+        if "ViewBlueprint:space_origin" in b.schema.names:
+            views.append((b.column("ViewBlueprint:class_identifier").to_pylist()[0][0], b.column("ViewBlueprint:space_origin").to_pylist()[0][0]))
+    assert (("3D", "/world") in views) == plant, views
+    for kind, origin in views:
+        if kind in ("3D", "TimeSeries"):
+            assert any(e == origin or e.startswith(origin + "/") for e in entities), (kind, origin)
+    return views
+
+
 def read_csv(path):
     with open(path) as f:
         rd = csv.DictReader(f)
@@ -139,6 +156,8 @@ def main():
     out2 = os.path.join(WORK, "rr-bucket")
     run(["run", "builtin:paper-16pos-short", "--out", out2, "--duration-s", "400", "--rerun", f"save:{out2}/run.rrd", "--rerun-bucket-s", "0.5", "--nav"])
     checked2, rows2 = check_against_csv(out2, 50)
+    views = check_blueprint(os.path.join(out2, "run.rrd"), set(rows2))
+    assert ("TimeSeries", "/nav/reference/trms_nmi") in views, views
     for q in ("attitude_error_deg", "velocity_error_mps", "position_error_nmi", "trms_nmi"):
         assert len(rows2[f"/nav/reference/{q}"]) == 800, (q, len(rows2[f"/nav/reference/{q}"]))
     # 2b. Buckets of 200 samples: temperatures and effects from every 3rd sample.
@@ -179,6 +198,7 @@ def main():
     d = json.loads(out)
     verify(f"{t4}/t4.rrd")
     rows5, _ = read_rrd(f"{t4}/t4.rrd")
+    check_blueprint(f"{t4}/t4.rrd", set(rows5))
     for k, case in ((1, "uncompensated"), (2, "compensated")):
         # One record per 60 s of navigation; the last equals the first seed's end figures.
         assert len(rows5[f"/nav/{case}/trms_nmi"]) == round(0.05 * 86400 / 60), (case, len(rows5[f"/nav/{case}/trms_nmi"]))
@@ -191,6 +211,8 @@ def main():
     dg = run(["diagnose", "--model", "docs/examples/diagnosis-model.toml", "--data", unit, "--json", "--rerun", f"save:{WORK}/rr-diag.rrd"], cwd=ROOT).stdout
     verify(f"{WORK}/rr-diag.rrd")
     rows6, _ = read_rrd(f"{WORK}/rr-diag.rrd")
+    views = check_blueprint(f"{WORK}/rr-diag.rrd", set(rows6), plant=False)
+    assert ("TimeSeries", "/diagnosis/residual/gyro_x") in views, views
     windows = json.loads(run(["compare", "--model", "docs/examples/diagnosis-model.toml", "--data", unit, "--json"], cwd=ROOT).stdout)["windows"]
     for ch in ("gyro_x", "gyro_y", "gyro_z", "accel_x", "accel_y", "accel_z"):
         assert len(rows6[f"/diagnosis/residual/{ch}"]) == windows, (ch, len(rows6[f"/diagnosis/residual/{ch}"]), windows)
