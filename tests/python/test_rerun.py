@@ -1,7 +1,8 @@
 """A Rerun recording read back with rerun-sdk==0.36.3: entity paths, row counts, time columns and
 every logged value against the run's own CSV (bucket statistics recomputed here from the rows);
 `rerun rrd verify`; same seed, same logged values; Ctrl-C still leaves a readable recording;
-`rins paper table4`, `rins diagnose` and `rins serve` recordings against their own outputs.
+`rins paper table4`, `rins diagnose` and `rins serve` recordings against their own outputs;
+`--rerun connect` to a headless viewer (`rerun --port P --save FILE`) receives what a save holds.
 
 Usage: python test_rerun.py RINS_BINARY WORK_DIR
 """
@@ -12,6 +13,7 @@ import signal
 import subprocess
 import sys
 import time
+import warnings
 from collections import defaultdict
 
 import pyarrow as pa
@@ -232,8 +234,30 @@ def main():
     run(["run", "builtin:paper-16pos-week", "--out", ref, "--duration-s", "600", "--rerun", f"save:{ref}/run.rrd", "--rerun-bucket-s", "1"])
     rows8, _ = read_rrd(f"{ref}/run.rrd")
     assert rows7["/imu/dtheta_rad/x"] == rows8["/imu/dtheta_rad/x"]
+    # 6. --rerun connect: a headless `rerun --port P --save FILE` receives the same rows as a save.
+    port = 20000 + os.getpid() % 20000
+    got = os.path.join(WORK, "rr-connect.rrd")
+    server = subprocess.Popen([RERUN_CLI, "--port", str(port), "--save", got], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        for _ in range(100):
+            line = server.stderr.readline()
+            if "Saving incoming log stream" in line or server.poll() is not None:
+                break
+        out6 = os.path.join(WORK, "rr-connect")
+        run(["run", "builtin:paper-16pos-short", "--out", out6, "--duration-s", "20", "--rerun", f"connect:127.0.0.1:{port}", "--rerun-bucket-s", "0.1"])
+        time.sleep(1.0)
+    finally:
+        server.send_signal(signal.SIGINT)
+        server.wait(timeout=30)
+    with warnings.catch_warnings():
+        # The viewer's own --save file ends without a footer when it is stopped; not ours.
+        warnings.simplefilter("ignore")
+        rows9, _ = read_rrd(got)
+    run(["run", "builtin:paper-16pos-short", "--out", out6, "--duration-s", "20", "--rerun", f"save:{out6}/run.rrd", "--rerun-bucket-s", "0.1"])
+    rows10, _ = read_rrd(f"{out6}/run.rrd")
+    assert len(rows9["/imu/dtheta_rad/x"]) == 200 and rows9["/imu/dtheta_rad/x"] == rows10["/imu/dtheta_rad/x"]
     print(f"1 passed, 0 failed: rerun recordings (exact {checked1} values, bucketed {checked2} values, "
-          f"deterministic, interrupted after {n4} of 60480 rows and still readable)")
+          f"deterministic, interrupted after {n4} of 60480 rows and still readable; paper, diagnose, serve and connect)")
 
 
 if __name__ == "__main__":
