@@ -139,14 +139,8 @@ impl RunRecorder {
         tnames.push(format!("chamber ({slow}), °C"));
         let temp_series = Series::new(rec, "thermal/temps_c", &tnames, &[])?;
         let s = &cfg.sensor;
-        let gyro_on: Vec<GyroTerm> = GyroTerm::ALL
-            .into_iter()
-            .filter(|t| s.gyro.is_enabled(*t))
-            .collect();
-        let accel_on: Vec<AccelTerm> = AccelTerm::ALL
-            .into_iter()
-            .filter(|t| s.accel.is_enabled(*t))
-            .collect();
+        let gyro_on: Vec<GyroTerm> = s.gyro.enabled_terms();
+        let accel_on: Vec<AccelTerm> = s.accel.enabled_terms();
         let xyz = |unit: &str| -> Vec<String> {
             AXES.iter()
                 .map(|a| format!("{a} ({slow}), {unit}"))

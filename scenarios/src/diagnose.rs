@@ -150,15 +150,7 @@ pub fn write_measurements(path: &Path, runs: &[(String, PlantConfig, u64)]) -> R
     };
     for (i, (label, cfg, samples)) in runs.iter().enumerate() {
         let mut sink = CsvSink::for_run(&mut out, opts, cfg, Some(label), i == 0)?;
-        let mut plant = rins_plant::Plant::new(cfg).map_err(|e| {
-            anyhow::anyhow!(
-                "{label}: {}",
-                e.iter()
-                    .map(|x| x.to_string())
-                    .collect::<Vec<_>>()
-                    .join("; ")
-            )
-        })?;
+        let mut plant = crate::runner::new_plant(cfg, label)?;
         for _ in 0..*samples {
             let s = plant.step();
             crate::runner::Sink::sample(&mut sink, &s, plant.truth())?;

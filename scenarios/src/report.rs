@@ -64,14 +64,8 @@ impl RunFigures {
     /// For a run of `samples` output samples of `cfg`.
     pub fn new(cfg: &PlantConfig, samples: u64) -> Self {
         let s = &cfg.sensor;
-        let gyro_on: Vec<GyroTerm> = GyroTerm::ALL
-            .into_iter()
-            .filter(|t| s.gyro.is_enabled(*t))
-            .collect();
-        let accel_on: Vec<AccelTerm> = AccelTerm::ALL
-            .into_iter()
-            .filter(|t| s.accel.is_enabled(*t))
-            .collect();
+        let gyro_on: Vec<GyroTerm> = s.gyro.enabled_terms();
+        let accel_on: Vec<AccelTerm> = s.accel.enabled_terms();
         Self {
             bucket: samples.div_ceil(POINTS).max(1),
             n: 0,

@@ -30,18 +30,23 @@ pub struct RunSummary {
     pub interrupted: bool,
 }
 
-/// Runs `scenario` for `samples` output samples, feeding `sinks`.
-pub fn run(scenario: &Scenario, samples: u64, sinks: &mut [&mut dyn Sink]) -> Result<RunSummary> {
-    let mut plant = Plant::new(&scenario.plant).map_err(|errs| {
+/// Builds the plant of `cfg`, every configuration error joined into one message after `what`
+/// (the scenario's source or a run label).
+pub fn new_plant(cfg: &rins_plant::PlantConfig, what: &str) -> Result<Plant> {
+    Plant::new(cfg).map_err(|errs| {
         anyhow::anyhow!(
-            "{}: {}",
-            scenario.source,
+            "{what}: {}",
             errs.iter()
                 .map(|e| e.to_string())
                 .collect::<Vec<_>>()
                 .join("; ")
         )
-    })?;
+    })
+}
+
+/// Runs `scenario` for `samples` output samples, feeding `sinks`.
+pub fn run(scenario: &Scenario, samples: u64, sinks: &mut [&mut dyn Sink]) -> Result<RunSummary> {
+    let mut plant = new_plant(&scenario.plant, &scenario.source)?;
     let pb = progress::bar(samples, &scenario.meta.name);
     let t0 = Instant::now();
     // About 1-7 ms of wall time between checks of the progress bar and of Ctrl-C.

@@ -47,7 +47,7 @@ pub use with_rerun::*;
 #[cfg(feature = "rerun")]
 mod with_rerun {
     use anyhow::Result;
-    use rins_plant::{ImuSample, Plant, Truth};
+    use rins_plant::{ImuSample, Truth};
     use rins_rerun::{Layout, Recorder, RunOptions, RunRecorder, Target};
 
     use crate::file::Scenario;
@@ -70,16 +70,7 @@ mod with_rerun {
             navigate: bool,
         ) -> Result<Self> {
             let recorder = Recorder::open(target, &scenario.meta.name)?;
-            let plant = Plant::new(&scenario.plant).map_err(|e| {
-                anyhow::anyhow!(
-                    "{}: {}",
-                    scenario.source,
-                    e.iter()
-                        .map(|x| x.to_string())
-                        .collect::<Vec<_>>()
-                        .join("; ")
-                )
-            })?;
+            let plant = crate::runner::new_plant(&scenario.plant, &scenario.source)?;
             let bucket_samples =
                 rins_rerun::bucket::samples_per_bucket(bucket_s, scenario.plant.rate_hz, samples);
             let tracker = navigate.then(|| {
@@ -173,16 +164,7 @@ mod with_rerun {
     ) -> Result<()> {
         let recorder = Recorder::open(target, &scenario.meta.name)?;
         let rec = recorder.stream();
-        let mut plant = Plant::new(plant_cfg).map_err(|e| {
-            anyhow::anyhow!(
-                "{}: {}",
-                scenario.source,
-                e.iter()
-                    .map(|x| x.to_string())
-                    .collect::<Vec<_>>()
-                    .join("; ")
-            )
-        })?;
+        let mut plant = crate::runner::new_plant(plant_cfg, &scenario.source)?;
         let n = (duration_s * plant_cfg.rate_hz).round() as u64;
         let bucket_samples = rins_rerun::bucket::samples_per_bucket(bucket_s, plant_cfg.rate_hz, n);
         let mut run = RunRecorder::new(

@@ -93,6 +93,14 @@ pub struct AccelSpec {
 }
 
 impl AccelSpec {
+    /// The switched-on terms, in [`AccelTerm::ALL`] order (the order of output columns and series).
+    pub fn enabled_terms(&self) -> Vec<AccelTerm> {
+        AccelTerm::ALL
+            .into_iter()
+            .filter(|t| self.is_enabled(*t))
+            .collect()
+    }
+
     /// Whether `term` is switched on.
     pub fn is_enabled(&self, term: AccelTerm) -> bool {
         match term {

@@ -268,6 +268,14 @@ pub struct GyroSpec {
 }
 
 impl GyroSpec {
+    /// The switched-on terms, in [`GyroTerm::ALL`] order (the order of output columns and series).
+    pub fn enabled_terms(&self) -> Vec<GyroTerm> {
+        GyroTerm::ALL
+            .into_iter()
+            .filter(|t| self.is_enabled(*t))
+            .collect()
+    }
+
     /// Whether `term` is switched on.
     pub fn is_enabled(&self, term: GyroTerm) -> bool {
         match term {

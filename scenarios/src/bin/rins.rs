@@ -818,16 +818,7 @@ fn cmd_serve(a: &ServeArgs) -> Result<()> {
         peer_timeout: positive_timeout(a.peer_timeout_s)?,
         wait_for_restart: a.wait_for_restart,
     };
-    let mut plant = rins_plant::Plant::new(&sc.plant).map_err(|e| {
-        anyhow::anyhow!(
-            "{}: {}",
-            sc.source,
-            e.iter()
-                .map(|x| x.to_string())
-                .collect::<Vec<_>>()
-                .join("; ")
-        )
-    })?;
+    let mut plant = rins_scenarios::runner::new_plant(&sc.plant, &sc.source)?;
     let target = a.viz.target()?;
     #[cfg(feature = "rerun")]
     let mut rerun = match &target {

@@ -101,14 +101,8 @@ impl<W: Write> CsvSink<W> {
         write_header: bool,
     ) -> Result<Self> {
         let s = &plant_cfg.sensor;
-        let gyro_terms: Vec<GyroTerm> = GyroTerm::ALL
-            .into_iter()
-            .filter(|t| s.gyro.is_enabled(*t))
-            .collect();
-        let accel_terms: Vec<AccelTerm> = AccelTerm::ALL
-            .into_iter()
-            .filter(|t| s.accel.is_enabled(*t))
-            .collect();
+        let gyro_terms: Vec<GyroTerm> = s.gyro.enabled_terms();
+        let accel_terms: Vec<AccelTerm> = s.accel.enabled_terms();
         if write_header {
             let mut h = header(&opts, &gyro_terms, &accel_terms);
             if run.is_some() {
