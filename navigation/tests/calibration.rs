@@ -60,7 +60,10 @@ fn misalignment_and_scale_factor_on_earth_rate_add_their_closed_form_to_dbeta() 
 }
 
 #[test]
-#[allow(clippy::needless_range_loop, reason = "one axis index over the estimate and the truth")]
+#[allow(
+    clippy::needless_range_loop,
+    reason = "one axis index over the estimate and the truth"
+)]
 fn noise_free_recovery_of_known_dbeta_within_one_percent_or_2e_4_dph() {
     let c = plant(false, 1);
     let r = calibrate(&c, &CalibrationConfig::default()).unwrap();
