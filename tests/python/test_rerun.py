@@ -237,18 +237,28 @@ def main():
     # 6. --rerun connect: a headless `rerun --port P --save FILE` receives the same rows as a save.
     port = 20000 + os.getpid() % 20000
     got = os.path.join(WORK, "rr-connect.rrd")
-    server = subprocess.Popen([RERUN_CLI, "--port", str(port), "--save", got], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    log_path = os.path.join(WORK, "rr-connect-server.log")
+    # The server's log goes to a file: a pipe nobody reads fills up and blocks its shutdown.
+    with open(log_path, "w") as log:
+        server = subprocess.Popen([RERUN_CLI, "--port", str(port), "--save", got], stdout=log, stderr=subprocess.STDOUT)
     try:
-        for _ in range(100):
-            line = server.stderr.readline()
-            if "Saving incoming log stream" in line or server.poll() is not None:
-                break
+        for _ in range(300):
+            with open(log_path) as f:
+                if "Saving incoming log stream" in f.read():
+                    break
+            assert server.poll() is None, open(log_path).read()
+            time.sleep(0.1)
         out6 = os.path.join(WORK, "rr-connect")
         run(["run", "builtin:paper-16pos-short", "--out", out6, "--duration-s", "20", "--rerun", f"connect:127.0.0.1:{port}", "--rerun-bucket-s", "0.1"])
         time.sleep(1.0)
     finally:
         server.send_signal(signal.SIGINT)
-        server.wait(timeout=30)
+        try:
+            server.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            server.kill()
+            server.wait()
+            raise AssertionError("the receiving viewer did not stop on SIGINT:\n" + open(log_path).read())
     with warnings.catch_warnings():
         # The viewer's own --save file ends without a footer when it is stopped; not ours.
         warnings.simplefilter("ignore")
