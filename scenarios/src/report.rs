@@ -5,30 +5,16 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use nalgebra::Vector3;
-use plotters::style::RGBColor;
 use rins_plant::effects::{AccelTerm, GyroTerm};
 use rins_plant::thermal::node;
 use rins_plant::units::{DPH, UG};
 use rins_plant::{ImuSample, PlantConfig, Truth};
 
-use crate::plots::{Line, Panel, write_figure};
+use crate::plots::{Line, PALETTE, Panel, write_figure};
 use crate::runner::Sink;
 
 /// Buckets per figure line.
 pub const POINTS: u64 = 2000;
-
-const PALETTE: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
 
 /// One bucket's means.
 #[derive(Clone, Debug, Default)]

@@ -1000,18 +1000,10 @@ fn write_checks_figure(
     checks: &[rins_verify::report::Check],
 ) -> Result<()> {
     use plotters::style::RGBColor;
-    use rins_scenarios::plots::{Line, Panel, write_svg};
+    use rins_scenarios::plots::{Line, PALETTE, Panel, write_svg};
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
-    const PALETTE: [RGBColor; 6] = [
-        RGBColor(31, 119, 180),
-        RGBColor(214, 39, 40),
-        RGBColor(44, 160, 44),
-        RGBColor(255, 127, 14),
-        RGBColor(148, 103, 189),
-        RGBColor(140, 86, 75),
-    ];
     // An exact zero (e.g. an integral that cancels to the bit) is drawn at 1e-16 of the limit.
     let margin = |c: &rins_verify::report::Check| {
         (c.value.abs().max(1e-16 * c.limit.abs()) / c.limit.abs().max(f64::MIN_POSITIVE)).log10()
