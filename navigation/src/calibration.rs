@@ -334,14 +334,15 @@ pub fn calibrate_position(
         hyp(s1.dvdd_e.se, s2.dvdd_e.se) / (2.0 * g),
         hyp(s1.phi_u_rate.se, s2.phi_u_rate.se) / 2.0,
     ];
-    let temps = plant.truth().temps;
+    // The gyro temperatures the unit reports; the chamber set point is the experimenter's.
+    let readings = plant.temp_readings_c();
     Ok(PositionEstimate {
         position: pos,
         beta_dph: beta.map(|b| b / DPH),
         se_dph: se.map(|e| e / DPH),
         segments: [s1, s2],
-        gyro_temp_c: temps.gyro_c().into(),
-        chamber_c: temps.chamber_c,
+        gyro_temp_c: [readings[1], readings[2], readings[3]],
+        chamber_c: plant.chamber_now_c(),
     })
 }
 

@@ -140,6 +140,8 @@ pub struct Tracker {
     trms: Trms,
     up_sum: f64,
     records: u64,
+    /// Encoder angles of the last pushed sample: the navigator's view of the table.
+    encoder: rins_plant::table::GimbalAngles,
 }
 
 impl Tracker {
@@ -165,6 +167,7 @@ impl Tracker {
             trms: Trms::default(),
             up_sum: 0.0,
             records: 0,
+            encoder: rins_plant::table::GimbalAngles::default(),
         }
     }
 
@@ -201,9 +204,10 @@ impl Tracker {
                 .state()
                 .q_bn
                 .inverse_transform_vector(&Vector3::z());
-            dtheta -= c.correction(self.dt_s, &up_b, &truth.temps.gyro_c());
+            dtheta -= c.correction(self.dt_s, &up_b, &s.gyro_temps_c());
         }
         self.nav.update(&dtheta, &s.dv_mps);
+        self.encoder = s.encoder;
         self.k += 1;
         self.k
             .is_multiple_of(self.every)
@@ -216,7 +220,8 @@ impl Tracker {
         let c_bn_true = rins_plant::table::body_to_nav(&self.c_vn, truth.gimbal.angles);
         let c_bn_nav = st.q_bn.to_rotation_matrix().into_inner();
         let phi = attitude_error(&c_bn_nav, &c_bn_true);
-        let c_vn_nav = vehicle_attitude(&c_bn_nav, truth.gimbal.angles);
+        // The carrier attitude as the navigation computer knows it: through the encoders.
+        let c_vn_nav = vehicle_attitude(&c_bn_nav, self.encoder);
         let phi_v = attitude_error(&c_vn_nav, &self.c_vn);
         let (north, east) =
             position_error_m(st, self.site.lat_rad, self.site.lon_rad, self.site.height_m);
@@ -321,9 +326,16 @@ fn self_align(
     let dt = plant.dt_s();
     let n_coarse = (coarse_s / dt).round() as u64;
     let (mut f_sum, mut w_sum) = (Vector3::zeros(), Vector3::zeros());
+    // The navigation computer sees the table through its encoders: a changed reading is motion.
+    let mut last_encoder = None;
+    let mut moved = |s: &ImuSample| {
+        let m = last_encoder.is_some_and(|e| e != s.encoder);
+        last_encoder = Some(s.encoder);
+        m
+    };
     for _ in 0..n_coarse {
         let s = plant.step();
-        if plant.truth().gimbal.moving {
+        if moved(&s) {
             return Err(SessionError::TableMovedDuringAlignment { t_s: s.t_s });
         }
         f_sum += s.dv_mps;
@@ -357,7 +369,7 @@ fn self_align(
     let n_fine = (fine_s / dt).round() as u64;
     for k in 1..=n_fine {
         let s = plant.step();
-        if plant.truth().gimbal.moving {
+        if moved(&s) {
             return Err(SessionError::TableMovedDuringAlignment { t_s: s.t_s });
         }
         nav.update(&s.dtheta_rad, &s.dv_mps);

@@ -3,6 +3,8 @@
 use serde::{Deserialize, Serialize};
 
 use crate::earth::{EarthSpec, SiteSpec};
+use crate::effects::encoder::EncoderSpec;
+use crate::effects::temp_sensor::TempSensorSpec;
 use crate::effects::{AccelSpec, GyroSpec};
 use crate::params::ParamValue;
 use crate::table::{SchemeKind, SchemeSpec};
@@ -38,6 +40,10 @@ pub struct SensorSpec {
     pub gyro: GyroSpec,
     /// Accelerometer terms (Eq. 4).
     pub accel: AccelSpec,
+    /// Gimbal angle encoders.
+    pub encoder: EncoderSpec,
+    /// Temperature sensors.
+    pub temperature: TempSensorSpec,
 }
 
 /// Everything the plant needs.

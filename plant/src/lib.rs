@@ -10,6 +10,7 @@
 //! [`effects`] → noise → quantisation, and returns the Δθ/Δv increments an RLG IMU reports.
 //! Time is an integer tick counter; every random term draws from its own named stream of the seed.
 
+pub mod command;
 pub mod config;
 pub mod earth;
 pub mod effects;
@@ -21,5 +22,6 @@ pub mod table;
 pub mod thermal;
 pub mod units;
 
+pub use command::GimbalCommand;
 pub use config::{ConfigError, PlantConfig, SensorSpec, VehicleSpec};
-pub use plant::{GimbalCommand, ImuSample, Plant, Truth};
+pub use plant::{ImuSample, Plant, Truth};

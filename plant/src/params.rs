@@ -89,6 +89,16 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("sensor.accel.temperature_bias.per_k3", -1e2, 1e2),
     ("sensor.accel.velocity_random_walk.ug_per_sqrthz", 0.0, 1e4),
     ("sensor.accel.quantization.pulse", 0.0, 10.0),
+    ("sensor.encoder.scale_factor.ppm", -1e5, 1e5),
+    ("sensor.encoder.offset.arcsec", -36_000.0, 36_000.0),
+    (
+        "sensor.encoder.quantization.resolution_arcsec",
+        1e-6,
+        3600.0,
+    ),
+    ("sensor.temperature.offset.k", -50.0, 50.0),
+    ("sensor.temperature.noise.sigma_k", 0.0, 10.0),
+    ("sensor.temperature.resolution.lsb_k", 1e-6, 10.0),
     ("thermal.step_s", 1e-3, 3600.0),
     (
         "thermal.chamber.temp_c",
@@ -216,6 +226,7 @@ pub fn unit_for(path: &str) -> &'static str {
             ("_w_per_k", "W/K"),
             ("_j_per_k", "J/K"),
             ("_w", "W"),
+            ("_k", "K"),
         ]
         .iter()
         .find(|(suffix, _)| last == suffix.trim_start_matches('_') || last.ends_with(suffix))

@@ -3,17 +3,19 @@
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
+use crate::command::ActiveCommand;
 use crate::config::{ConfigError, PlantConfig};
 use crate::earth::Site;
 use crate::effects::accel::ACCEL_TERMS;
+use crate::effects::encoder::Encoders;
 use crate::effects::gyro::{GYRO_TERMS, GyroThermalRates};
 use crate::effects::noise::NoiseState;
 use crate::effects::quantize::Quantizer;
+use crate::effects::temp_sensor::TempSensors;
 use crate::effects::{AccelModel, GyroModel, TermContext};
 use crate::table::gimbal::gimbal_rotation;
-use crate::table::scheme::{GimbalAxis, ResolvedScheme, ResolvedStep};
 use crate::table::{Cursor, GimbalAngles, GimbalState, Schedule, body_to_nav};
-use crate::thermal::{Temperatures, ThermalNetwork};
+use crate::thermal::{Temperatures, ThermalNetwork, node};
 use crate::units::ARCSEC;
 
 /// One IMU output: increments over the interval ending at `t_s`.
@@ -27,6 +29,23 @@ pub struct ImuSample {
     pub dtheta_rad: Vector3<f64>,
     /// Velocity increment Δv, m/s.
     pub dv_mps: Vector3<f64>,
+    /// Gimbal encoder readings at the end of the interval, rad.
+    pub encoder: GimbalAngles,
+    /// Temperature-sensor readings (board, gyro x, y, z, accelerometers, housing), °C: the
+    /// reading of the last thermal update.
+    pub temps_c: [f64; node::COUNT],
+}
+
+impl ImuSample {
+    /// The gyro block temperature readings (x, y, z), °C.
+    pub fn gyro_temps_c(&self) -> Vector3<f64> {
+        Vector3::new(self.temps_c[1], self.temps_c[2], self.temps_c[3])
+    }
+
+    /// The accelerometer cluster temperature reading, °C.
+    pub fn accel_temp_c(&self) -> f64 {
+        self.temps_c[node::ACCEL]
+    }
 }
 
 /// What really happened over the last interval.
@@ -48,38 +67,6 @@ pub struct Truth {
     pub position_weight: f64,
 }
 
-/// A table command from the navigation computer (a real RINS navigation computer drives its own
-/// table). It takes effect at the start of the next output interval: the table leaves its
-/// current angles at rest and follows the commanded moves with the scheme's acceleration limit.
-#[derive(Clone, Debug, PartialEq)]
-pub enum GimbalCommand {
-    /// Move to these angles, outer gimbal first, then inner, at `rate_rps`; then hold.
-    MoveTo {
-        /// Target outer (azimuth) angle, rad.
-        outer_rad: f64,
-        /// Target inner angle, rad.
-        inner_rad: f64,
-        /// Cruise rate, rad/s.
-        rate_rps: f64,
-    },
-    /// Run these moves from the current angles, then hold the last attitude (or repeat them).
-    Steps {
-        /// Moves and dwells.
-        steps: Vec<ResolvedStep>,
-        /// Repeat the list forever.
-        repeat: bool,
-    },
-}
-
-/// The commanded motion that replaced the configured scheme, kept so a saved state can rebuild it.
-#[derive(Clone, Debug, PartialEq)]
-struct ActiveCommand {
-    start_tick: u64,
-    initial: GimbalAngles,
-    steps: Vec<ResolvedStep>,
-    repeat: bool,
-}
-
 /// Last internal tick at or before `hold_s` (a dwell end); whether the boundary tick itself is
 /// held or evaluated does not matter, the table is still there either way.
 fn hold_tick(hold_s: f64, internal_rate_hz: f64) -> u64 {
@@ -97,7 +84,7 @@ fn hold_tick(hold_s: f64, internal_rate_hz: f64) -> u64 {
 /// every input of the deterministic path is constant during a dwell, so later intervals of the
 /// same dwell reuse these bit for bit.
 #[derive(Clone, Copy, Debug)]
-struct DwellCache {
+pub(crate) struct DwellCache {
     dtheta_true: Vector3<f64>,
     dv_true: Vector3<f64>,
     gyro_err: Vector3<f64>,
@@ -108,7 +95,7 @@ struct DwellCache {
 /// Attitude at the last evaluated midpoint, reused while the gimbal angles do not change; the
 /// sine and cosine of each angle are cached separately because only one gimbal moves at a time.
 #[derive(Clone, Copy, Debug)]
-struct MidCache {
+pub(crate) struct MidCache {
     outer_rad: f64,
     inner_rad: f64,
     c_nb: Matrix3<f64>,
@@ -121,49 +108,55 @@ struct MidCache {
 /// The rotating IMU.
 #[derive(Clone, Debug)]
 pub struct Plant {
-    cfg: PlantConfig,
-    site: Site,
-    c_vn: Matrix3<f64>,
-    f_n: Vector3<f64>,
-    schedule: Schedule,
-    thermal: ThermalNetwork,
-    gyro: GyroModel,
-    accel: AccelModel,
-    noise: NoiseState,
-    gyro_quant: Quantizer,
-    accel_quant: Quantizer,
-    internal_rate_hz: f64,
-    dt_s: f64,
-    sqrt_dt: f64,
-    h_s: f64,
-    slow_every: u64,
+    pub(crate) cfg: PlantConfig,
+    pub(crate) site: Site,
+    pub(crate) c_vn: Matrix3<f64>,
+    pub(crate) f_n: Vector3<f64>,
+    pub(crate) schedule: Schedule,
+    pub(crate) thermal: ThermalNetwork,
+    pub(crate) gyro: GyroModel,
+    pub(crate) accel: AccelModel,
+    pub(crate) noise: NoiseState,
+    pub(crate) gyro_quant: Quantizer,
+    pub(crate) accel_quant: Quantizer,
+    pub(crate) internal_rate_hz: f64,
+    pub(crate) dt_s: f64,
+    pub(crate) sqrt_dt: f64,
+    pub(crate) h_s: f64,
+    pub(crate) slow_every: u64,
     /// Internal ticks since start (substeps × output samples).
-    tick: u64,
+    pub(crate) tick: u64,
     /// Output samples since start.
-    samples: u64,
+    pub(crate) samples: u64,
     /// Output samples left before the next thermal / slow-noise update.
-    slow_countdown: u64,
-    chamber_override_c: Option<f64>,
+    pub(crate) slow_countdown: u64,
+    pub(crate) chamber_override_c: Option<f64>,
     /// Temperature-dependent error rates at the current node temperatures.
-    gyro_thermal: GyroThermalRates,
-    accel_thermal_mps2: Vector3<f64>,
-    gimbal_now: GimbalState,
+    pub(crate) gyro_thermal: GyroThermalRates,
+    pub(crate) accel_thermal_mps2: Vector3<f64>,
+    pub(crate) gimbal_now: GimbalState,
     /// C_v^n is the identity (the usual level, azimuth-0 mount): skip one matrix product.
-    vehicle_level: bool,
+    pub(crate) vehicle_level: bool,
     /// The table holds `gimbal_now` up to this internal tick (end of the current dwell).
-    hold_until_tick: u64,
-    mid_cache: MidCache,
+    pub(crate) hold_until_tick: u64,
+    pub(crate) mid_cache: MidCache,
     /// Segment of the last schedule evaluation.
-    cursor: Cursor,
+    pub(crate) cursor: Cursor,
     /// Reusable deterministic interval while dwelling; cleared on motion and thermal updates.
-    dwell_cache: Option<DwellCache>,
+    pub(crate) dwell_cache: Option<DwellCache>,
     /// Disable the dwell cache (tests compare against the uncached path).
-    use_dwell_cache: bool,
+    pub(crate) use_dwell_cache: bool,
     /// Motion commanded by the navigation side, replacing the scheme from its start tick.
-    command: Option<ActiveCommand>,
+    pub(crate) command: Option<ActiveCommand>,
     /// Seed of the noise streams (the configured seed until [`Plant::reseed_noise`]).
-    noise_seed: u64,
-    truth: Truth,
+    pub(crate) noise_seed: u64,
+    pub(crate) truth: Truth,
+    /// Gimbal angle encoders.
+    pub(crate) encoders: Encoders,
+    /// Temperature sensors (read at each thermal update, held in between).
+    pub(crate) temp_sensors: TempSensors,
+    /// The sensors' last readings, °C.
+    pub(crate) temp_readings_c: [f64; node::COUNT],
 }
 
 impl Plant {
@@ -190,7 +183,12 @@ impl Plant {
         let temps = thermal.temperatures();
         let gyro = GyroModel::new(&s.gyro);
         let accel = AccelModel::new(&s.accel);
+        let mut temp_sensors = TempSensors::new(&s.temperature, cfg.seed);
+        let temp_readings_c = temp_sensors.read(&temps.nodes_c);
         Ok(Self {
+            encoders: Encoders::new(&s.encoder),
+            temp_sensors,
+            temp_readings_c,
             gyro_thermal: gyro.thermal_rates(&temps.gyro_c(), &temps.gyro_gradient_k()),
             accel_thermal_mps2: accel.thermal_bias_mps2(temps.accel_c()),
             site,
@@ -283,6 +281,16 @@ impl Plant {
         &self.truth
     }
 
+    /// The temperature-sensor readings of the last sample (a measured output), °C.
+    pub fn temp_readings_c(&self) -> [f64; node::COUNT] {
+        self.temp_readings_c
+    }
+
+    /// The chamber temperature over the last interval (the test set-up's, not the unit's), °C.
+    pub fn chamber_now_c(&self) -> f64 {
+        self.truth.temps.chamber_c
+    }
+
     /// The compiled table schedule.
     pub fn schedule(&self) -> &Schedule {
         &self.schedule
@@ -319,221 +327,9 @@ impl Plant {
         self.dwell_cache = None;
     }
 
-    /// Writes every evolving field (caches excluded) for [`crate::state`].
-    pub(crate) fn write_state(&self, w: &mut crate::state::Writer) {
-        w.u64(self.tick);
-        w.u64(self.samples);
-        w.u64(self.slow_countdown);
-        w.u64(self.chamber_override_c.is_some() as u64);
-        w.f64(self.chamber_override_c.unwrap_or(0.0));
-        let t = self.thermal.temperatures();
-        t.nodes_c.iter().for_each(|x| w.f64(*x));
-        w.f64(t.chamber_c);
-        w.v3(&self.noise.gm_bias_rps);
-        w.v3(&self.noise.rrw_bias_rps);
-        for s in [
-            &self.noise.arw,
-            &self.noise.gm,
-            &self.noise.rrw,
-            &self.noise.vrw,
-        ] {
-            w.u128(s.word_pos());
-        }
-        w.v3(&self.gyro_quant.residual);
-        w.v3(&self.accel_quant.residual);
-        let tr = &self.truth;
-        w.v3(&tr.dtheta_true_rad);
-        w.v3(&tr.dv_true_mps);
-        tr.temps.nodes_c.iter().for_each(|x| w.f64(*x));
-        w.f64(tr.temps.chamber_c);
-        tr.gyro_terms_rad.iter().for_each(|v| w.v3(v));
-        tr.accel_terms_mps.iter().for_each(|v| w.v3(v));
-        w.f64(tr.position_weight);
-        w.u64(self.command.is_some() as u64);
-        if let Some(c) = &self.command {
-            w.u64(c.start_tick);
-            w.f64(c.initial.outer_rad);
-            w.f64(c.initial.inner_rad);
-            w.u64(c.repeat as u64);
-            w.u64(c.steps.len() as u64);
-            for s in &c.steps {
-                w.u64(matches!(s.axis, GimbalAxis::Inner) as u64);
-                w.f64(s.angle_rad);
-                w.f64(s.rate_rps);
-                w.f64(s.dwell_s);
-            }
-        }
-        w.u64(self.noise_seed);
-    }
-
-    /// Reads what [`Plant::write_state`] wrote into a freshly built plant of the same
-    /// configuration, then rebuilds the derived quantities.
-    pub(crate) fn read_state(
-        &mut self,
-        r: &mut crate::state::Reader<'_>,
-    ) -> Result<(), crate::state::StateError> {
-        self.tick = r.u64()?;
-        self.samples = r.u64()?;
-        self.slow_countdown = r.u64()?;
-        let has_override = r.u64()? != 0;
-        let ov = r.f64()?;
-        self.chamber_override_c = has_override.then_some(ov);
-        let mut nodes = [0.0; 6];
-        for n in nodes.iter_mut() {
-            *n = r.f64()?;
-        }
-        let chamber = r.f64()?;
-        self.thermal.set_state(nodes, chamber);
-        self.noise.gm_bias_rps = r.v3()?;
-        self.noise.rrw_bias_rps = r.v3()?;
-        let mut word_pos = [0u128; 4];
-        for w in word_pos.iter_mut() {
-            *w = r.u128()?;
-        }
-        self.gyro_quant.residual = r.v3()?;
-        self.accel_quant.residual = r.v3()?;
-        self.truth.dtheta_true_rad = r.v3()?;
-        self.truth.dv_true_mps = r.v3()?;
-        for n in self.truth.temps.nodes_c.iter_mut() {
-            *n = r.f64()?;
-        }
-        self.truth.temps.chamber_c = r.f64()?;
-        for v in self.truth.gyro_terms_rad.iter_mut() {
-            *v = r.v3()?;
-        }
-        for v in self.truth.accel_terms_mps.iter_mut() {
-            *v = r.v3()?;
-        }
-        self.truth.position_weight = r.f64()?;
-        if r.u64()? != 0 {
-            let start_tick = r.u64()?;
-            let initial = GimbalAngles::new(r.f64()?, r.f64()?);
-            let repeat = r.u64()? != 0;
-            let n = r.u64()?;
-            let mut steps = Vec::new();
-            for _ in 0..n {
-                let axis = if r.u64()? != 0 {
-                    GimbalAxis::Inner
-                } else {
-                    GimbalAxis::Outer
-                };
-                steps.push(ResolvedStep {
-                    axis,
-                    angle_rad: r.f64()?,
-                    rate_rps: r.f64()?,
-                    dwell_s: r.f64()?,
-                });
-            }
-            self.install_command(ActiveCommand {
-                start_tick,
-                initial,
-                steps,
-                repeat,
-            });
-        }
-        let noise_seed = r.u64()?;
-        if noise_seed != self.noise_seed {
-            self.noise.reseed(noise_seed);
-            self.noise_seed = noise_seed;
-        }
-        for (s, w) in [
-            &mut self.noise.arw,
-            &mut self.noise.gm,
-            &mut self.noise.rrw,
-            &mut self.noise.vrw,
-        ]
-        .into_iter()
-        .zip(word_pos)
-        {
-            s.set_word_pos(w);
-        }
-        // Derived: table state at the current tick, temperature-dependent rates; caches reset.
-        let t = self.time_s();
-        self.gimbal_now = self.schedule.eval(t);
-        self.truth.gimbal = self.gimbal_now;
-        self.hold_until_tick = 0;
-        self.dwell_cache = None;
-        self.cursor = Cursor::default();
-        let temps = self.thermal.temperatures();
-        self.gyro_thermal = self
-            .gyro
-            .thermal_rates(&temps.gyro_c(), &temps.gyro_gradient_k());
-        self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(temps.accel_c());
-        Ok(())
-    }
-
     /// Overrides the chamber temperature (an FMU input); `None` returns to the scenario profile.
     pub fn set_chamber_temp_c(&mut self, temp_c: Option<f64>) {
         self.chamber_override_c = temp_c;
-    }
-
-    /// Applies a table command from the next output interval on (see [`GimbalCommand`]).
-    /// Rejects non-finite or out-of-range angles and rates with the reason.
-    pub fn command_gimbal(&mut self, cmd: &GimbalCommand) -> Result<(), String> {
-        let now = self.gimbal_now.angles;
-        let rate_ok = |r: f64| r.is_finite() && r > 0.0 && r <= 100f64.to_radians();
-        let (steps, repeat) = match cmd {
-            GimbalCommand::MoveTo {
-                outer_rad,
-                inner_rad,
-                rate_rps,
-            } => {
-                if !outer_rad.is_finite() || !inner_rad.is_finite() {
-                    return Err(format!(
-                        "gimbal target must be finite, got outer {outer_rad} rad, inner {inner_rad} rad"
-                    ));
-                }
-                if !rate_ok(*rate_rps) {
-                    return Err(format!(
-                        "gimbal rate must be in (0, 100] deg/s, got {} deg/s",
-                        rate_rps.to_degrees()
-                    ));
-                }
-                let moves = [
-                    (GimbalAxis::Outer, outer_rad - now.outer_rad),
-                    (GimbalAxis::Inner, inner_rad - now.inner_rad),
-                ];
-                let steps = moves
-                    .into_iter()
-                    .filter(|(_, d)| *d != 0.0)
-                    .map(|(axis, angle_rad)| ResolvedStep {
-                        axis,
-                        angle_rad,
-                        rate_rps: *rate_rps,
-                        dwell_s: 0.0,
-                    })
-                    .collect();
-                (steps, false)
-            }
-            GimbalCommand::Steps { steps, repeat } => {
-                for (i, s) in steps.iter().enumerate() {
-                    if !(s.angle_rad.is_finite()
-                        && s.angle_rad.abs() <= 3600f64.to_radians()
-                        && rate_ok(s.rate_rps)
-                        && s.dwell_s >= 0.0
-                        && s.dwell_s.is_finite())
-                    {
-                        return Err(format!(
-                            "gimbal step {i}: angle must be finite within ±3600 deg, rate in (0, 100] deg/s, dwell ≥ 0 s; got {} deg, {} deg/s, {} s",
-                            s.angle_rad.to_degrees(),
-                            s.rate_rps.to_degrees(),
-                            s.dwell_s
-                        ));
-                    }
-                }
-                if *repeat && steps.iter().all(|s| s.angle_rad == 0.0 && s.dwell_s == 0.0) {
-                    return Err("a repeating gimbal step list needs a non-zero duration".into());
-                }
-                (steps.clone(), *repeat)
-            }
-        };
-        self.install_command(ActiveCommand {
-            start_tick: self.tick,
-            initial: now,
-            steps,
-            repeat,
-        });
-        Ok(())
     }
 
     /// Restarts every noise stream from `seed` at the current tick, keeping the current
@@ -541,6 +337,7 @@ impl Plant {
     /// save the state, and give each run its own noise from there.
     pub fn reseed_noise(&mut self, seed: u64) {
         self.noise.reseed(seed);
+        self.temp_sensors.reseed(seed);
         self.noise_seed = seed;
     }
 
@@ -549,22 +346,7 @@ impl Plant {
         self.noise_seed
     }
 
-    fn install_command(&mut self, c: ActiveCommand) {
-        self.schedule = Schedule::new(&ResolvedScheme {
-            initial: c.initial,
-            lead_dwell_s: c.start_tick as f64 / self.internal_rate_hz,
-            steps: c.steps.clone(),
-            repeat: c.repeat,
-            continuous: None,
-            accel_rps2: self.cfg.scheme.accel_dps2.to_radians(),
-        });
-        self.command = Some(c);
-        self.cursor = Cursor::default();
-        self.hold_until_tick = 0;
-        self.dwell_cache = None;
-    }
-
-    fn chamber_c(&self, t_s: f64) -> f64 {
+    pub(crate) fn chamber_c(&self, t_s: f64) -> f64 {
         self.chamber_override_c
             .unwrap_or_else(|| self.cfg.thermal.chamber.temp_at(t_s))
     }
@@ -695,6 +477,7 @@ impl Plant {
             self.thermal.step(h, ch, &up_b);
             self.noise.step_slow(h);
             let t = self.thermal.temperatures();
+            self.temp_readings_c = self.temp_sensors.read(&t.nodes_c);
             self.gyro_thermal = self.gyro.thermal_rates(&t.gyro_c(), &t.gyro_gradient_k());
             self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(t.accel_c());
             self.dwell_cache = None;
@@ -762,6 +545,8 @@ impl Plant {
             t_s: self.time_s(),
             dtheta_rad: dtheta_out,
             dv_mps: dv_out,
+            encoder: self.encoders.read(self.gimbal_now.angles),
+            temps_c: self.temp_readings_c,
         }
     }
 }

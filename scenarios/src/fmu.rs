@@ -139,14 +139,17 @@ fn read_outputs(
     let mut moving = [0];
     inst.get_boolean(&[refs.moving], &mut moving)?;
     let v3 = |k: usize| Vector3::new(buf[k], buf[k + 1], buf[k + 2]);
+    let mut nodes_c = [0.0; node::COUNT];
+    nodes_c.copy_from_slice(&buf[11..11 + node::COUNT]);
+    // Interim: the FMU reports the true angles and temperatures until its measured outputs land.
     let sample = ImuSample {
         index,
         t_s: buf[6],
         dtheta_rad: v3(0),
         dv_mps: v3(3),
+        encoder: GimbalAngles::new(buf[7], buf[8]),
+        temps_c: nodes_c,
     };
-    let mut nodes_c = [0.0; node::COUNT];
-    nodes_c.copy_from_slice(&buf[11..11 + node::COUNT]);
     let k = 11 + node::COUNT;
     let mut gyro = [Vector3::zeros(); GyroTerm::ALL.len()];
     for (t, g) in gyro.iter_mut().enumerate() {

@@ -26,25 +26,26 @@ pub struct ImuRecord {
     pub dtheta_rad: [f64; 3],
     /// Velocity increment, body axes, m/s.
     pub dv_mps: [f64; 3],
-    /// Outer (azimuth) gimbal angle at the end of the interval, rad.
+    /// Outer (azimuth) gimbal encoder reading at the end of the interval, rad.
     pub outer_rad: f64,
-    /// Inner gimbal angle, rad.
+    /// Inner gimbal encoder reading, rad.
     pub inner_rad: f64,
-    /// Node temperatures (board, gyro x, y, z, accelerometers, housing), °C.
+    /// Temperature-sensor readings (board, gyro x, y, z, accelerometers, housing), °C.
     pub temps_c: [f64; 6],
 }
 
 impl ImuRecord {
-    /// The record of one plant output sample and the truth over it.
-    pub fn from_plant(s: &rins_plant::ImuSample, tr: &rins_plant::Truth) -> Self {
+    /// The record of one plant output sample: only what the unit outputs (increments, encoder
+    /// angles, temperature-sensor readings).
+    pub fn from_sample(s: &rins_plant::ImuSample) -> Self {
         Self {
             tick: s.index,
             t_s: s.t_s,
             dtheta_rad: s.dtheta_rad.into(),
             dv_mps: s.dv_mps.into(),
-            outer_rad: tr.gimbal.angles.outer_rad,
-            inner_rad: tr.gimbal.angles.inner_rad,
-            temps_c: tr.temps.nodes_c,
+            outer_rad: s.encoder.outer_rad,
+            inner_rad: s.encoder.inner_rad,
+            temps_c: s.temps_c,
         }
     }
 }

@@ -34,7 +34,7 @@ pub fn reference(
         let n = (samples - done).min(batch);
         for _ in 0..n {
             let s = plant.step();
-            nav.push(&layout::ImuRecord::from_plant(&s, plant.truth()));
+            nav.push(&layout::ImuRecord::from_sample(&s));
         }
         done += n;
         if let Some(c) = commands.iter().find(|c| c.after_seq == seq) {

@@ -144,7 +144,7 @@ pub fn serve_observed(
         for r in batch.records[..n].iter_mut() {
             let s = plant.step();
             observe(&s, plant.truth());
-            *r = ImuRecord::from_plant(&s, plant.truth());
+            *r = ImuRecord::from_sample(&s);
         }
         batch.count = n as u32;
         done += n as u64;

@@ -6,9 +6,11 @@
 //! and the coefficients θ, so one definition serves simulation, FMU parameters and diagnosis.
 
 pub mod accel;
+pub mod encoder;
 pub mod gyro;
 pub mod noise;
 pub mod quantize;
+pub mod temp_sensor;
 
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};

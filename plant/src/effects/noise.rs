@@ -21,6 +21,8 @@ pub mod stream {
     pub const GYRO_RRW: u64 = 3;
     /// Accelerometer velocity random walk.
     pub const ACCEL_VRW: u64 = 4;
+    /// Temperature-sensor reading noise.
+    pub const TEMP_SENSOR: u64 = 5;
 }
 
 /// A seeded normal source on one named stream.

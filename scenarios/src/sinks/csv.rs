@@ -151,14 +151,16 @@ impl<W: Write> CsvSink<W> {
         for v in [&self.dtheta, &self.dv] {
             write!(l, ",{},{},{}", v.x, v.y, v.z)?;
         }
+        // Angles and temperatures as the unit reports them (encoders, temperature sensors); the
+        // position label and the chamber temperature describe the test set-up.
         write!(
             l,
             ",{},{},{}",
-            g.angles.outer_rad.to_degrees(),
-            g.angles.inner_rad.to_degrees(),
+            s.encoder.outer_rad.to_degrees(),
+            s.encoder.inner_rad.to_degrees(),
             label
         )?;
-        for t in tr.temps.nodes_c {
+        for t in s.temps_c {
             write!(l, ",{t}")?;
         }
         write!(l, ",{}", tr.temps.chamber_c)?;
