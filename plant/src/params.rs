@@ -3,7 +3,7 @@
 //! scenario validation, FMU parameter lists (name, unit, min, max) and tools that sweep
 //! parameters: a key's range is written once, here.
 
-use serde_json::Value;
+use ciborium::Value;
 
 use crate::config::PlantConfig;
 
@@ -243,10 +243,24 @@ fn section_of(field: &str) -> String {
     }
 }
 
+/// The configuration as a value tree. CBOR's data model keeps what JSON cannot: NaN and ±inf
+/// (`scheme.accel_dps2 = inf`) and the whole u64 range (`run.seed`), so the tree round-trips
+/// every configuration exactly.
+fn tree(cfg: &PlantConfig) -> Value {
+    Value::serialized(cfg).expect("PlantConfig serialises")
+}
+
 fn walk(prefix: &str, v: &Value, out: &mut Vec<Param>) {
+    let number = |value: ParamValue| Param {
+        path: prefix.into(),
+        value,
+        unit: unit_for(prefix),
+        range: range_for(prefix),
+    };
     match v {
-        Value::Object(m) => {
+        Value::Map(m) => {
             for (k, v) in m {
+                let k = k.as_text().unwrap_or_default();
                 let p = if prefix.is_empty() {
                     section_of(k)
                 } else {
@@ -266,39 +280,26 @@ fn walk(prefix: &str, v: &Value, out: &mut Vec<Param>) {
             unit: "1",
             range: None,
         }),
-        Value::String(s) => out.push(Param {
+        Value::Text(s) => out.push(Param {
             path: prefix.into(),
             value: ParamValue::Enum(s.clone()),
             unit: "1",
             range: None,
         }),
-        Value::Number(n) => {
-            let value = match (n.as_u64(), prefix == "run.seed" || prefix == "run.substeps") {
-                (Some(u), true) => ParamValue::Integer(u),
-                _ => ParamValue::Real(n.as_f64().unwrap_or(f64::NAN)),
-            };
-            out.push(Param {
-                path: prefix.into(),
-                value,
-                unit: unit_for(prefix),
-                range: range_for(prefix),
-            });
-        }
-        // Non-finite numbers (accel_dps2 = inf) serialise as null.
-        Value::Null => out.push(Param {
-            path: prefix.into(),
-            value: ParamValue::Real(f64::INFINITY),
-            unit: unit_for(prefix),
-            range: range_for(prefix),
-        }),
+        Value::Integer(i) => out.push(number(match u64::try_from(*i) {
+            Ok(u) if prefix == "run.seed" || prefix == "run.substeps" => ParamValue::Integer(u),
+            _ => ParamValue::Real(i128::from(*i) as f64),
+        })),
+        Value::Float(x) => out.push(number(ParamValue::Real(*x))),
+        // Nothing in a PlantConfig serialises to anything else.
+        _ => {}
     }
 }
 
 /// Every scalar parameter of `cfg`, in a stable order.
 pub fn flatten(cfg: &PlantConfig) -> Vec<Param> {
-    let v = serde_json::to_value(cfg).expect("PlantConfig serialises");
     let mut out = Vec::new();
-    walk("", &v, &mut out);
+    walk("", &tree(cfg), &mut out);
     out
 }
 
@@ -328,13 +329,13 @@ pub fn apply<'a>(
     cfg: &PlantConfig,
     values: impl IntoIterator<Item = (&'a str, ParamValue)>,
 ) -> Result<PlantConfig, ParamError> {
-    let mut v = serde_json::to_value(cfg).expect("PlantConfig serialises");
+    let mut v = tree(cfg);
     let mut last = String::new();
     for (path, value) in values {
         set_node(&mut v, path, value)?;
         last = path.to_string();
     }
-    serde_json::from_value(v).map_err(|e| ParamError::Invalid {
+    v.deserialized().map_err(|e| ParamError::Invalid {
         path: last,
         message: e.to_string(),
     })
@@ -351,31 +352,44 @@ fn set_node(v: &mut Value, path: &str, value: ParamValue) -> Result<(), ParamErr
             Some(i) => (&part[..i], &part[i..]),
             None => (part, ""),
         };
-        node = node
-            .get_mut(name)
-            .ok_or_else(|| ParamError::Unknown(path.into()))?;
+        node = match node {
+            Value::Map(m) => m
+                .iter_mut()
+                .find(|(k, _)| k.as_text() == Some(name))
+                .map(|(_, v)| v),
+            _ => None,
+        }
+        .ok_or_else(|| ParamError::Unknown(path.into()))?;
         for ix in idx.split(']').filter(|s| !s.is_empty()) {
             let i: usize = ix
                 .trim_start_matches('[')
                 .parse()
                 .map_err(|_| ParamError::Unknown(path.into()))?;
-            node = node
-                .get_mut(i)
-                .ok_or_else(|| ParamError::Unknown(path.into()))?;
+            node = match node {
+                Value::Array(a) => a.get_mut(i),
+                _ => None,
+            }
+            .ok_or_else(|| ParamError::Unknown(path.into()))?;
         }
     }
     let kind_ok = matches!(
         (&*node, &value),
         (
-            Value::Number(_) | Value::Null,
+            Value::Integer(_) | Value::Float(_),
             ParamValue::Real(_) | ParamValue::Integer(_)
         ) | (Value::Bool(_), ParamValue::Bool(_))
-            | (Value::String(_), ParamValue::Enum(_))
+            | (Value::Text(_), ParamValue::Enum(_))
     );
     if !kind_ok {
+        let like = match &*node {
+            Value::Bool(_) => "a switch (true/false)",
+            Value::Text(_) => "an enumeration name",
+            Value::Integer(_) | Value::Float(_) => "a number",
+            _ => "a scalar",
+        };
         return Err(ParamError::Invalid {
             path: path.into(),
-            message: format!("expected a value like {node}, got {value:?}"),
+            message: format!("expected {like}, got {value:?}"),
         });
     }
     if let (ParamValue::Enum(name), Some(choices)) = (&value, enum_choices(path))
@@ -386,13 +400,22 @@ fn set_node(v: &mut Value, path: &str, value: ParamValue) -> Result<(), ParamErr
             message: format!("unknown variant {name:?}, expected one of {choices:?}"),
         });
     }
-    *node = match value {
-        ParamValue::Real(x) => serde_json::Number::from_f64(x)
-            .map(Value::Number)
-            .unwrap_or(Value::Null),
-        ParamValue::Integer(u) => Value::from(u),
-        ParamValue::Bool(b) => Value::Bool(b),
-        ParamValue::Enum(s) => Value::String(s),
+    *node = match (value, &*node) {
+        // A whole-number field (`run.seed`, `run.substeps`) given as a real: only whole values.
+        (ParamValue::Real(x), Value::Integer(_)) => {
+            if !(x >= 0.0 && x.fract() == 0.0 && x <= u64::MAX as f64) {
+                return Err(ParamError::Invalid {
+                    path: path.into(),
+                    message: format!("expected a whole number ≥ 0, got {x}"),
+                });
+            }
+            Value::Integer((x as u64).into())
+        }
+        (ParamValue::Real(x), _) => Value::Float(x),
+        (ParamValue::Integer(u), Value::Integer(_)) => Value::Integer(u.into()),
+        (ParamValue::Integer(u), _) => Value::Float(u as f64),
+        (ParamValue::Bool(b), _) => Value::Bool(b),
+        (ParamValue::Enum(s), _) => Value::Text(s),
     };
     Ok(())
 }
@@ -400,6 +423,34 @@ fn set_node(v: &mut Value, path: &str, value: ParamValue) -> Result<(), ParamErr
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn non_finite_and_large_whole_values_keep_their_identity() {
+        // NaN is reported as NaN (JSON made it null and the check said "inf").
+        let mut cfg = PlantConfig::default();
+        cfg.site.lat_deg = f64::NAN;
+        let errs = cfg.validate().unwrap_err();
+        let e = errs.iter().find(|e| e.path == "site.lat_deg").unwrap();
+        assert_eq!(e.got, "NaN", "{e}");
+        // inf (a documented value of scheme.accel_dps2) survives a set of another parameter.
+        let mut cfg = PlantConfig::default();
+        cfg.scheme.accel_dps2 = f64::INFINITY;
+        cfg.seed = u64::MAX;
+        let c2 = set(&cfg, "sensor.gyro.bias.dph[0]", ParamValue::Real(0.5)).unwrap();
+        assert_eq!(c2.scheme.accel_dps2, f64::INFINITY);
+        assert_eq!(c2.seed, u64::MAX);
+        assert!(c2.validate().is_ok());
+        let p = flatten(&c2);
+        let get = |k: &str| p.iter().find(|x| x.path == k).unwrap().value.clone();
+        assert_eq!(get("scheme.accel_dps2"), ParamValue::Real(f64::INFINITY));
+        assert_eq!(get("run.seed"), ParamValue::Integer(u64::MAX));
+        // Whole-number fields take whole reals only.
+        assert_eq!(
+            set(&cfg, "run.seed", ParamValue::Real(7.0)).unwrap().seed,
+            7
+        );
+        assert!(set(&cfg, "run.seed", ParamValue::Real(7.5)).is_err());
+    }
 
     #[test]
     fn every_number_has_a_unit_and_a_range() {

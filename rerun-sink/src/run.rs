@@ -217,8 +217,10 @@ impl RunRecorder {
             v.x,
             v.y,
             v.z,
-            g.angles.outer_rad.to_degrees(),
-            g.angles.inner_rad.to_degrees(),
+            // The series show what the unit reports (encoders, temperature sensors); the 3D
+            // scene and the dwell label show the true table.
+            s.encoder.outer_rad.to_degrees(),
+            s.encoder.inner_rad.to_degrees(),
         ]);
         // Temperatures and effect contributions are averaged over evenly spaced samples of the
         // bucket (every sample when the bucket has at most SLOW_SAMPLES): reading the ~60
@@ -231,7 +233,7 @@ impl RunRecorder {
             for (acc, t) in self
                 .temps
                 .iter_mut()
-                .zip(tr.temps.nodes_c.iter().chain([&tr.temps.chamber_c]))
+                .zip(s.temps_c.iter().chain([&tr.temps.chamber_c]))
             {
                 *acc += t;
             }

@@ -11,7 +11,10 @@ use rins_plant::thermal::ThermalSpec;
 use rins_plant::{PlantConfig, presets};
 use serde::{Deserialize, Serialize};
 
-use crate::locate::locate_key;
+use rins_plant::effects::encoder::EncoderSpec;
+use rins_plant::effects::temp_sensor::TempSensorSpec;
+
+use crate::spans::SpanIndex;
 
 /// `[scenario]`: what the run is.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -68,6 +71,22 @@ pub struct SensorSection {
     pub gyro: GyroSpec,
     /// Accelerometer term overrides.
     pub accel: AccelSpec,
+    /// Encoder term overrides.
+    pub encoder: EncoderSpec,
+    /// Temperature-sensor term overrides.
+    pub temperature: TempSensorSpec,
+}
+
+/// A value given on the command line for a scenario key (`--seed` → `run.seed`). It is laid
+/// over the file's text before the one validation, and errors about it name the flag.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Override {
+    /// The flag as typed, e.g. `--duration-s`.
+    pub flag: &'static str,
+    /// Scenario key path, e.g. `scenario.duration_s`.
+    pub path: &'static str,
+    /// The value.
+    pub value: toml::Value,
 }
 
 /// `[outputs]`: what `rins run` writes.
@@ -223,6 +242,11 @@ pub const BUILTIN: [(&str, &str); 6] = [
 impl Scenario {
     /// Loads `path`, or a built-in scenario when `path` is `builtin:NAME` or a bare built-in name.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
+        Self::load_with(path, &[])
+    }
+
+    /// [`Scenario::load`] with command-line overrides laid over the file before validation.
+    pub fn load_with(path: &Path, overrides: &[Override]) -> Result<Self, ScenarioError> {
         let s = path.to_string_lossy();
         let name = s.strip_prefix("builtin:").unwrap_or(&s);
         let explicit = s.starts_with("builtin:");
@@ -231,7 +255,7 @@ impl Scenario {
             .find(|(n, _)| *n == name)
             .filter(|_| explicit || !path.exists())
         {
-            return Self::from_toml(text, &format!("builtin:{n}"));
+            return Self::from_toml_with(text, &format!("builtin:{n}"), overrides);
         }
         if explicit {
             let names: Vec<&str> = BUILTIN.iter().map(|(n, _)| *n).collect();
@@ -244,23 +268,46 @@ impl Scenario {
             path: path.into(),
             source: e,
         })?;
-        Self::from_toml(&text, &path.display().to_string())
+        Self::from_toml_with(&text, &path.display().to_string(), overrides)
     }
 
     /// Parses scenario text; `source_name` appears in every error.
     pub fn from_toml(text: &str, source_name: &str) -> Result<Self, ScenarioError> {
+        Self::from_toml_with(text, source_name, &[])
+    }
+
+    /// [`Scenario::from_toml`] with command-line overrides.
+    pub fn from_toml_with(
+        text: &str,
+        source_name: &str,
+        overrides: &[Override],
+    ) -> Result<Self, ScenarioError> {
         let parse_err = |e: toml::de::Error| ScenarioError::Parse {
             source_name: source_name.into(),
             message: e.to_string(),
         };
         // Pass 1 on the text itself: unknown keys and wrong types get toml's line and column.
-        let raw: ScenarioFile = toml::from_str(text).map_err(parse_err)?;
-        // Pass 2: lay the user's [sensor] over the preset, key by key.
         let mut table: toml::Table = toml::from_str(text).map_err(parse_err)?;
+        if table.is_empty() {
+            // An empty file would silently run every default: refuse it.
+            return Err(ScenarioError::Invalid {
+                source_name: source_name.into(),
+                problems: vec![
+                    "  the file has no keys (empty or only comments); write at least a [scenario] section, or use builtin:NAME (see `rins scenarios`)".into(),
+                ],
+            });
+        }
+        let _: ScenarioFile = toml::from_str(text).map_err(parse_err)?;
+        for o in overrides {
+            set_path(&mut table, o.path, o.value.clone());
+        }
+        let raw: ScenarioFile = table.clone().try_into().map_err(parse_err)?;
+        // Pass 2: lay the user's [sensor] over the preset, key by key.
         let preset_name = raw.sensor.preset.clone().unwrap_or_else(|| "ideal".into());
         let Some(preset) = presets::preset(&preset_name) else {
-            let line = locate_key(text, "sensor.preset")
-                .map(|l| format!("line {l}: "))
+            let line = SpanIndex::new(text)
+                .find("sensor.preset")
+                .map(|p| format!("{p}: "))
                 .unwrap_or_default();
             return Err(ScenarioError::Invalid {
                 source_name: source_name.into(),
@@ -295,12 +342,18 @@ impl Scenario {
             outputs: raw.outputs,
             campaign: raw.campaign,
         };
-        scenario.validate(Some(text))?;
+        scenario.validate_at(Some(text), overrides)?;
         Ok(scenario)
     }
 
     /// Range-checks everything; `text` (when given) lets errors name the line.
     pub fn validate(&self, text: Option<&str>) -> Result<(), ScenarioError> {
+        self.validate_at(text, &[])
+    }
+
+    /// Range-checks everything; errors name the line and column in `text`, or the flag of an
+    /// override that set the key.
+    fn validate_at(&self, text: Option<&str>, overrides: &[Override]) -> Result<(), ScenarioError> {
         let mut problems: Vec<(String, String)> = Vec::new();
         if !(self.meta.duration_s > 0.0 && self.meta.duration_s <= 1e7) {
             problems.push((
@@ -342,13 +395,16 @@ impl Scenario {
         if problems.is_empty() {
             return Ok(());
         }
+        let spans = text.map(SpanIndex::new).unwrap_or_default();
         let lines = problems
             .into_iter()
             .map(|(path, msg)| {
-                let at = text
-                    .and_then(|t| locate_key(t, &path))
-                    .map(|l| format!("line {l}: "))
-                    .unwrap_or_else(|| "(default or preset value) ".into());
+                let flag = overrides.iter().find(|o| o.path == path).map(|o| o.flag);
+                let at = match (flag, spans.find(&path)) {
+                    (Some(f), _) => format!("{f}: "),
+                    (None, Some(p)) => format!("{p}: "),
+                    (None, None) => "(default or preset value) ".into(),
+                };
                 format!("  {at}{path}: {msg}")
             })
             .collect();
@@ -361,6 +417,25 @@ impl Scenario {
     /// Number of output samples in the scenario.
     pub fn samples(&self) -> u64 {
         (self.meta.duration_s * self.plant.rate_hz).round() as u64
+    }
+}
+
+/// Sets the dotted `path` in `table`, creating tables on the way.
+fn set_path(table: &mut toml::Table, path: &str, value: toml::Value) {
+    let mut t = table;
+    let mut parts = path.split('.').peekable();
+    while let Some(p) = parts.next() {
+        if parts.peek().is_none() {
+            t.insert(p.to_string(), value);
+            return;
+        }
+        let next = t
+            .entry(p.to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        if !next.is_table() {
+            *next = toml::Value::Table(toml::Table::new());
+        }
+        t = next.as_table_mut().expect("made a table");
     }
 }
 

@@ -7,14 +7,14 @@ pub mod diagnose;
 pub mod file;
 pub mod fmu;
 pub mod interrupt;
-pub mod locate;
 pub mod measurement;
 pub mod plots;
 pub mod progress;
 pub mod report;
 pub mod runner;
 pub mod sinks;
+pub mod spans;
 pub mod viz;
 
-pub use file::{Scenario, ScenarioError};
+pub use file::{Override, Scenario, ScenarioError};
 pub use runner::{RunSummary, Sink, run};
