@@ -8,7 +8,6 @@ pub mod file;
 pub mod fmu;
 pub mod interrupt;
 pub mod locate;
-pub mod measurement;
 pub mod plots;
 pub mod progress;
 pub mod report;
