@@ -3,6 +3,9 @@
 //! diagnostics (VIF, condition number). The forward selection that uses them is in
 //! [`crate::selection`].
 
+// Six channels and coefficient columns indexed in parallel arrays: index loops read best.
+#![allow(clippy::needless_range_loop)]
+
 use nalgebra::{DMatrix, DVector};
 
 use crate::replay::{Group, Window};

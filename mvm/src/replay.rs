@@ -5,6 +5,9 @@
 //! windows (the effects are linear in their coefficients, so sums lose nothing), and the
 //! residual's Allan variance is accumulated on the way.
 
+// Six channels and coefficient columns indexed in parallel arrays: index loops read best.
+#![allow(clippy::needless_range_loop)]
+
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use rayon::prelude::*;
 use rins_plant::PlantConfig;
