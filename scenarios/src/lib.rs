@@ -7,7 +7,6 @@ pub mod diagnose;
 pub mod file;
 pub mod fmu;
 pub mod interrupt;
-pub mod measurement;
 pub mod plots;
 pub mod progress;
 pub mod report;

@@ -248,12 +248,12 @@ mod with_rerun {
     /// measured vs the model's increments, with the report text.
     pub fn record_diagnosis(
         target: &Target,
-        an: &rins_verify::diagnosis::Analysis,
+        an: &rins_mvm::Analysis,
         pred: Option<&[Vec<f64>]>,
         source: &str,
         text: &str,
     ) -> Result<()> {
-        use rins_verify::diagnosis::replay::CHANNELS;
+        use rins_mvm::CHANNELS;
         let recorder = Recorder::open(target, &format!("diagnosis of {source}"))?;
         let rec = recorder.stream();
         let ws = &an.replay.windows;

@@ -5,14 +5,11 @@
 //! and a residual within 10 % of the noise floor. Controls: nothing hidden (nothing claimed),
 //! an effect outside the catalogue (nothing claimed, remainder localised) and a confusable pair.
 
+use rins_mvm::reader as measurement;
+use rins_mvm::{Attitude, DiagnoseReport, Effect, History, Options, analyse, to_history};
 use rins_plant::PlantConfig;
 use rins_plant::effects::{GyroTerm, gyro};
-use rins_scenarios::diagnose::to_history;
 use rins_scenarios::file::Scenario;
-use rins_scenarios::measurement;
-use rins_verify::diagnosis::history::{Attitude, History};
-use rins_verify::diagnosis::replay::Effect;
-use rins_verify::diagnosis::{DiagnoseReport, Options, analyse, apply, diagnose};
 
 /// The model: bias, scale factor and white noise known. The table's 12-step cycle (about
 /// 950 s) dwells equally at Z-up and Z-down and at both tilts (inner ±90°), and turns both ways
@@ -100,11 +97,30 @@ fn rand_tag(c: &PlantConfig, temps: &[f64]) -> u64 {
 
 const TEMPS: [f64; 5] = [10.0, 20.0, 30.0, 40.0, 50.0];
 
+/// `rins diagnose` of `model` on `h` (default options).
+fn diagnose(model: &PlantConfig, h: &History) -> DiagnoseReport {
+    let opts = Options {
+        diagnose: true,
+        ..Options::default()
+    };
+    analyse(model, h, &opts)
+        .diagnosis
+        .expect("asked for")
+        .report
+}
+
 /// Checks the hidden effect ranks first, passes the gate with every identifiable true
 /// coefficient inside its interval, and that fitting it clears the map.
 fn hidden_effect_found(truth: &PlantConfig, h: &History, effect: Effect) -> DiagnoseReport {
     let m = model();
-    let (report, analysis, _) = diagnose(&m, h, Options::default());
+    // The diagnosis and `--apply` of the hidden effect from the one analysis.
+    let opts = Options {
+        diagnose: true,
+        apply: vec![effect],
+        ..Options::default()
+    };
+    let analysis = analyse(&m, h, &opts);
+    let report = analysis.diagnosis.clone().expect("asked for").report;
     let top = &report.ranking[0];
     assert_eq!(
         top.effect,
@@ -145,9 +161,9 @@ fn hidden_effect_found(truth: &PlantConfig, h: &History, effect: Effect) -> Diag
         "the hidden effect must show in the map"
     );
     // --apply: the fitted model clears the flagged cells and brings the residual to the floor.
-    let (m2, _) = apply(&m, &analysis, &[effect]).unwrap();
-    let after = analyse(&m2, h, Options::default());
-    let r = after.compare_report("after", &after.zero_pred());
+    let m2 = analysis.applied.expect("asked for").unwrap().model;
+    let after = analyse(&m2, h, &Options::default());
+    let r = &after.comparison;
     let gyro_flags: Vec<_> = r
         .flagged_cells
         .iter()
@@ -226,7 +242,7 @@ fn misalignment_is_found() {
 fn control_with_nothing_hidden_claims_nothing() {
     let truth = model();
     let h = dataset(&truth, &TEMPS, None);
-    let (report, _, _) = diagnose(&model(), &h, Options::default());
+    let report = diagnose(&model(), &h);
     assert!(report.accepted.is_empty(), "{:#?}", report.accepted);
     assert!(
         report.ranking.iter().all(|r| !r.passes_gate),
@@ -262,7 +278,7 @@ fn an_effect_outside_the_catalogue_is_not_claimed_but_localised() {
             h.dtheta_rad[0][k] += a * (l.sin().powi(2) - 1.0 / 3.0) * dt;
         }
     }
-    let (report, _, _) = diagnose(&model(), &h, Options::default());
+    let report = diagnose(&model(), &h);
     assert!(report.accepted.is_empty(), "claimed {:#?}", report.accepted);
     assert!(!report.flagged_cells_after.is_empty());
     assert!(
@@ -301,7 +317,7 @@ fn temperature_and_gradient_bias_are_reported_confusable_on_a_settling_run() {
     t.per_k = [0.002, 0.0, 0.0];
     let settle = |t: f64| vec![[0.0, t], [1.0, t + 20.0]];
     let h = dataset(&truth, &[20.0], Some(&settle));
-    let (report, _, _) = diagnose(&model(), &h, Options::default());
+    let report = diagnose(&model(), &h);
     let x: Vec<_> = report
         .ranking
         .iter()
@@ -315,7 +331,7 @@ fn temperature_and_gradient_bias_are_reported_confusable_on_a_settling_run() {
         .iter()
         .find(|r| r.effect == "gyro.temperature_gradient_bias")
         .expect("ranked");
-    let says = |a: &rins_verify::diagnosis::RankedEffect, b: &str| {
+    let says = |a: &rins_mvm::RankedEffect, b: &str| {
         a.confusable_with
             .iter()
             .find(|c| c.effect.starts_with(b))

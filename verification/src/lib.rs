@@ -5,7 +5,6 @@
 //! modules) closed-form INS error responses and the paper's tables side by side with ours.
 
 pub mod analytic;
-pub mod diagnosis;
 pub mod ins;
 pub mod paper;
 pub mod quadrature;

@@ -502,16 +502,16 @@ fn load_data(
 ) -> Result<(
     Scenario,
     rins_plant::PlantConfig,
-    rins_verify::diagnosis::history::History,
-    rins_verify::diagnosis::Options,
+    rins_mvm::History,
+    rins_mvm::Options,
 )> {
     let sc = Scenario::load(&a.model)?;
-    let m = rins_scenarios::measurement::read(&a.data)?;
-    let (model, note) = rins_scenarios::diagnose::with_data_site(&sc.plant, &m);
+    let m = rins_mvm::reader::read(&a.data)?;
+    let (model, note) = rins_mvm::with_data_site(&sc.plant, &m);
     if let Some(n) = note {
         eprintln!("{}", n);
     }
-    let h = rins_scenarios::diagnose::to_history(m, &a.data.display().to_string())?;
+    let h = rins_mvm::to_history(m, &a.data.display().to_string())?;
     for (name, v) in [
         ("--window-s", a.window_s),
         ("--temp-bin-k", a.temp_bin_k),
@@ -521,7 +521,7 @@ fn load_data(
             anyhow::bail!("{name} must be a positive number, got {v}");
         }
     }
-    let opts = rins_verify::diagnosis::Options {
+    let opts = rins_mvm::Options {
         window_s: a.window_s,
         temp_bin_k: a.temp_bin_k,
         time_window_s: a.time_window_s,
@@ -532,17 +532,17 @@ fn load_data(
 
 fn cmd_compare(a: &CompareArgs) -> Result<()> {
     let (_, model, h, opts) = load_data(&a.data)?;
-    let an = rins_verify::diagnosis::analyse(&model, &h, opts);
-    let report = an.compare_report(&h.source, &an.zero_pred());
+    let an = rins_mvm::analyse(&model, &h, &opts);
+    let report = &an.comparison;
     record_analysis(
         &a.data.viz,
         &an,
         None,
         &h.source,
-        &serde_json::to_string_pretty(&report)?,
+        &serde_json::to_string_pretty(report)?,
     )?;
     if let Some(dir) = &a.data.report {
-        for f in rins_scenarios::diagnose::write_report(dir, &an, None, &report, None)? {
+        for f in rins_scenarios::diagnose::write_report(dir, &an)? {
             eprintln!("wrote {f}");
         }
     }
@@ -606,7 +606,7 @@ fn cmd_compare(a: &CompareArgs) -> Result<()> {
 /// `--rerun` of compare/diagnose: the residual windows, the fitted prediction, navigation.
 fn record_analysis(
     viz: &rins_scenarios::viz::RerunArgs,
-    an: &rins_verify::diagnosis::Analysis,
+    an: &rins_mvm::Analysis,
     pred: Option<&[Vec<f64>]>,
     source: &str,
     text: &str,
@@ -626,56 +626,58 @@ fn record_analysis(
 }
 
 fn cmd_diagnose(a: &DiagnoseArgs) -> Result<()> {
-    let (_, model, h, opts) = load_data(&a.data)?;
-    let (report, an, selected) = rins_verify::diagnosis::diagnose(&model, &h, opts);
+    let (_, model, h, mut opts) = load_data(&a.data)?;
+    opts.diagnose = true;
     if let Some(effect) = &a.apply {
-        let e = rins_verify::diagnosis::replay::Effect::parse(effect).with_context(|| {
-            let names: Vec<String> = rins_verify::diagnosis::replay::Effect::all()
-                .iter()
-                .map(|e| e.name())
-                .collect();
+        let e = rins_mvm::Effect::parse(effect).with_context(|| {
+            let names: Vec<String> = rins_mvm::Effect::all().iter().map(|e| e.name()).collect();
             format!("--apply {effect:?}: not an effect of the catalogue; one of {names:?}")
         })?;
-        let (cfg2, set) =
-            rins_verify::diagnosis::apply(&model, &an, &[e]).map_err(anyhow::Error::msg)?;
+        opts.apply.push(e);
+    }
+    let an = rins_mvm::analyse(&model, &h, &opts);
+    let report = &an.diagnosis.as_ref().expect("opts.diagnose is set").report;
+    if let Some(effect) = &a.apply {
+        let applied = (an.applied.clone())
+            .expect("opts.apply is set")
+            .map_err(anyhow::Error::msg)?;
         let out = a.out.clone().unwrap_or_else(|| {
             let stem = a.data.model.file_stem().map_or("model".into(), |s| {
                 s.to_string_lossy().replace("builtin:", "")
             });
             a.data.model.with_file_name(format!("{stem}-fitted.toml"))
         });
-        let text = rins_scenarios::diagnose::model_with_sensor(
-            &rins_scenarios::diagnose::model_text(&a.data.model)?,
-            &cfg2,
-            &format!(
-                "{} with {effect} fitted on {}",
-                a.data.model.display(),
-                h.source
-            ),
-        )?;
+        let text = applied
+            .model_file(
+                &rins_scenarios::diagnose::model_text(&a.data.model)?,
+                &format!(
+                    "{} with {effect} fitted on {}",
+                    a.data.model.display(),
+                    h.source
+                ),
+            )
+            .map_err(anyhow::Error::msg)?;
         std::fs::write(&out, text).with_context(|| format!("cannot write {}", out.display()))?;
-        eprintln!("wrote {} ({} coefficients)", out.display(), set.len());
-        for (k, v) in &set {
+        eprintln!(
+            "wrote {} ({} coefficients)",
+            out.display(),
+            applied.set.len()
+        );
+        for (k, v) in &applied.set {
             eprintln!("  {k} = {v}");
         }
     }
     if a.data.report.is_some() || a.data.viz.rerun.is_some() {
-        let pred = rins_verify::diagnosis::predictions(&an, &selected);
         record_analysis(
             &a.data.viz,
             &an,
-            Some(&pred),
+            an.predictions(),
             &h.source,
-            &serde_json::to_string_pretty(&report)?,
+            &serde_json::to_string_pretty(report)?,
         )?;
     }
     if let Some(dir) = &a.data.report {
-        let pred = rins_verify::diagnosis::predictions(&an, &selected);
-        let before = an.compare_report(&h.source, &an.zero_pred());
-        let after = an.compare_report(&h.source, &pred);
-        for f in
-            rins_scenarios::diagnose::write_report(dir, &an, Some(&pred), &before, Some(&after))?
-        {
+        for f in rins_scenarios::diagnose::write_report(dir, &an)? {
             eprintln!("wrote {f}");
         }
     }

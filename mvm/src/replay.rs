@@ -5,6 +5,9 @@
 //! windows (the effects are linear in their coefficients, so sums lose nothing), and the
 //! residual's Allan variance is accumulated on the way.
 
+// Six channels and coefficient columns indexed in parallel arrays: index loops read best.
+#![allow(clippy::needless_range_loop)]
+
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use rayon::prelude::*;
 use rins_plant::PlantConfig;
@@ -12,8 +15,8 @@ use rins_plant::earth::Site;
 use rins_plant::effects::{AccelModel, AccelTerm, GyroModel, GyroTerm, TermContext};
 use rins_plant::table::{GimbalAngles, body_to_nav};
 
-use super::history::{Attitude, History};
-use super::stats::AllanAcc;
+use crate::history::{Attitude, History};
+use crate::stats::AllanAcc;
 
 /// The six measured channels.
 pub const CHANNELS: [&str; 6] = [
@@ -50,6 +53,15 @@ impl Effect {
     /// Parses [`Effect::name`].
     pub fn parse(s: &str) -> Option<Effect> {
         Effect::all().into_iter().find(|e| e.name() == s)
+    }
+
+    /// Scenario keys of the effect's coefficients on `channel` (0–2 gyro, 3–5 accelerometer),
+    /// each with the size of its file unit in SI (the file holds θ / unit).
+    pub fn coefficient_keys(self, channel: usize) -> Vec<(String, f64)> {
+        match self {
+            Effect::Gyro(t) => rins_plant::effects::gyro::coefficient_keys(t, channel),
+            Effect::Accel(t) => rins_plant::effects::accel::coefficient_keys(t, channel - 3),
+        }
     }
 
     /// Whether the effect acts on `channel` (0–2 gyro, 3–5 accelerometer).
@@ -201,6 +213,75 @@ fn layout(
     (groups, unavailable)
 }
 
+/// True increments over one row and the row's mid attitude.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RowKinematics {
+    /// True angular increment in body axes (gimbal motion plus Earth rate), rad.
+    pub dtheta_rad: Vector3<f64>,
+    /// True velocity increment in body axes (specific force at rest on the table), m/s.
+    pub dv_mps: Vector3<f64>,
+    /// Navigation-to-body matrix C_n^b at the middle of the row.
+    pub c_nb: Matrix3<f64>,
+    /// The table moved during the row.
+    pub moving: bool,
+}
+
+/// The replay's gimbal kinematics: true increments of a table-mounted IMU over one row from the
+/// gimbal angles at the row's start (`a0`) and end (`a1`), C_b^n = C_v^n R_z(outer) R_x(inner).
+/// Midpoint rule: the inner gimbal turns about body x, the outer one about the vehicle's up axis,
+/// which the mid inner angle resolves onto body y and z; the Earth rate `omega_ie_n` and the
+/// specific force `f_n` (navigation frame) are resolved through the mid attitude.
+///
+/// The plant integrates the same kinematics for its true increments (plant/src/plant.rs). This
+/// function is the replay's only copy, so it can be swapped for the plant's function once that
+/// is shared (issue 13 §4); keep the two in step until then.
+pub fn gimbal_true_increments(
+    c_vn: &Matrix3<f64>,
+    omega_ie_n: &Vector3<f64>,
+    f_n: &Vector3<f64>,
+    a0: GimbalAngles,
+    a1: GimbalAngles,
+    dt_s: f64,
+) -> RowKinematics {
+    let mid = GimbalAngles::new(
+        0.5 * (a0.outer_rad + a1.outer_rad),
+        0.5 * (a0.inner_rad + a1.inner_rad),
+    );
+    let (d_outer, d_inner) = (a1.outer_rad - a0.outer_rad, a1.inner_rad - a0.inner_rad);
+    let (s, c) = mid.inner_rad.sin_cos();
+    let gimbal_inc = Vector3::new(d_inner, s * d_outer, c * d_outer);
+    let c_nb = body_to_nav(c_vn, mid).transpose();
+    RowKinematics {
+        dtheta_rad: gimbal_inc + c_nb * omega_ie_n * dt_s,
+        dv_mps: c_nb * f_n * dt_s,
+        c_nb,
+        moving: d_outer != 0.0 || d_inner != 0.0,
+    }
+}
+
+/// True increments over one row when the attitude is given as body-to-ENU quaternions `qa`
+/// (row start) and `qb` (row end): the relative rotation plus the Earth rate, resolved through
+/// the mid (slerp) attitude.
+fn quaternion_true_increments(
+    omega_ie_n: &Vector3<f64>,
+    f_n: &Vector3<f64>,
+    qa: &[f64; 4],
+    qb: &[f64; 4],
+    dt_s: f64,
+) -> RowKinematics {
+    let qa = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(qa[0], qa[1], qa[2], qa[3]));
+    let qb = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(qb[0], qb[1], qb[2], qb[3]));
+    let rel = qa.inverse() * qb;
+    let mid = qa.slerp(&qb, 0.5);
+    let c_nb = mid.to_rotation_matrix().matrix().transpose();
+    RowKinematics {
+        dtheta_rad: rel.scaled_axis() + c_nb * omega_ie_n * dt_s,
+        dv_mps: c_nb * f_n * dt_s,
+        c_nb,
+        moving: rel.angle() > 1e-12,
+    }
+}
+
 struct Kinematics {
     c_vn: Matrix3<f64>,
     omega_ie_n: Vector3<f64>,
@@ -208,49 +289,25 @@ struct Kinematics {
 }
 
 impl Kinematics {
-    /// True increments over row k and the mid attitude C_n^b.
-    fn row(
-        &self,
-        h: &History,
-        k: usize,
-        dt: f64,
-    ) -> (Vector3<f64>, Vector3<f64>, Matrix3<f64>, bool) {
+    /// True increments over row k (from the attitude at the ends of rows k − 1 and k).
+    fn row(&self, h: &History, k: usize, dt: f64) -> RowKinematics {
         let j = k - 1;
-        let (gimbal_inc, c_nb, moving) = match &h.attitude {
+        match &h.attitude {
             Attitude::Gimbal {
                 outer_rad,
                 inner_rad,
-            } => {
-                let (o0, i0, o1, i1) = (outer_rad[j], inner_rad[j], outer_rad[k], inner_rad[k]);
-                let mid = GimbalAngles::new(0.5 * (o0 + o1), 0.5 * (i0 + i1));
-                let (d_outer, d_inner) = (o1 - o0, i1 - i0);
-                let (s, c) = mid.inner_rad.sin_cos();
-                let inc = Vector3::new(d_inner, s * d_outer, c * d_outer);
-                (
-                    inc,
-                    body_to_nav(&self.c_vn, mid).transpose(),
-                    d_outer != 0.0 || d_inner != 0.0,
-                )
-            }
+            } => gimbal_true_increments(
+                &self.c_vn,
+                &self.omega_ie_n,
+                &self.f_n,
+                GimbalAngles::new(outer_rad[j], inner_rad[j]),
+                GimbalAngles::new(outer_rad[k], inner_rad[k]),
+                dt,
+            ),
             Attitude::Quaternion(q) => {
-                let qa = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
-                    q[j][0], q[j][1], q[j][2], q[j][3],
-                ));
-                let qb = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
-                    q[k][0], q[k][1], q[k][2], q[k][3],
-                ));
-                let rel = qa.inverse() * qb;
-                let mid = qa.slerp(&qb, 0.5);
-                (
-                    rel.scaled_axis(),
-                    mid.to_rotation_matrix().matrix().transpose(),
-                    rel.angle() > 1e-12,
-                )
+                quaternion_true_increments(&self.omega_ie_n, &self.f_n, &q[j], &q[k], dt)
             }
-        };
-        let dtheta = gimbal_inc + c_nb * self.omega_ie_n * dt;
-        let dv = c_nb * self.f_n * dt;
-        (dtheta, dv, c_nb, moving)
+        }
     }
 }
 
@@ -342,7 +399,12 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
             // is unknown (the table may already be moving), so it is not compared.
             for k in seg.start + 1..seg.end {
                 let dt = h.t_s[k] - h.t_s[k - 1];
-                let (dtheta, dv, c_nb, moving) = kin.row(h, k, dt);
+                let RowKinematics {
+                    dtheta_rad: dtheta,
+                    dv_mps: dv,
+                    c_nb,
+                    moving,
+                } = kin.row(h, k, dt);
                 let up_b = c_nb.column(2).into_owned();
                 let f_b = c_nb * kin.f_n;
                 let gt = Vector3::new(

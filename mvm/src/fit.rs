@@ -1,11 +1,15 @@
-//! Weighted least squares on window sums, forward selection of candidate effects with a gate
-//! (ΔBIC, nested F test, cross-validated error), confidence intervals and collinearity
-//! diagnostics (VIF, condition number).
+//! Weighted least squares on window sums, candidate tests against the current model with the
+//! gate (ΔBIC, nested F test, cross-validated error), confidence intervals and collinearity
+//! diagnostics (VIF, condition number). The forward selection that uses them is in
+//! [`crate::selection`].
+
+// Six channels and coefficient columns indexed in parallel arrays: index loops read best.
+#![allow(clippy::needless_range_loop)]
 
 use nalgebra::{DMatrix, DVector};
 
-use super::replay::{Group, Window};
-use super::stats::f_sf;
+use crate::replay::{Group, Window};
+use crate::stats::f_sf;
 
 /// One channel's windows: residual sums, their noise variances, durations and fold labels.
 #[derive(Clone, Debug)]

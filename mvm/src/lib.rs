@@ -1,0 +1,144 @@
+//! # rins-mvm: model vs measurements
+//!
+//! Replays a model on measured data, shows where it fails, ranks the candidate effects of the
+//! plant's catalogue that explain the residual, and fits the chosen ones into the model
+//! (docs/model-vs-measurements.md).
+//!
+//! The steps, each in its own module: [`reader`] (the strict measurement CSV reader,
+//! docs/measurement-format.md), [`history`] (the measured rows in SI), [`replay`] (model
+//! expectation, residual and regressors per row, summed into windows, in one pass over the
+//! rows), [`fit`] (weighted least squares, candidate tests, gate, collinearity), [`stats`]
+//! (Allan variance, correlations, test distributions), `prepare` (noise floors and folds),
+//! `compare` (cell map, correlations, Allan, navigation level), [`selection`] (ranking and
+//! forward selection), [`apply`] (fitting chosen effects into the model) and [`report`] (the
+//! report types).
+//!
+//! [`analyse`] is the one entry: it returns everything the `rins compare` / `rins diagnose`
+//! commands, their figures and the Rerun recording use, so none of them recomputes anything.
+
+pub mod apply;
+mod compare;
+pub mod fit;
+pub mod history;
+mod prepare;
+pub mod reader;
+pub mod replay;
+pub mod report;
+pub mod selection;
+pub mod stats;
+
+use rins_plant::PlantConfig;
+
+pub use apply::Applied;
+pub use fit::ChannelData;
+pub use history::{Attitude, History, to_history, with_data_site};
+pub use replay::{CHANNELS, Effect, Group, Replay};
+pub use report::{
+    Cell, ChannelSummary, CompareReport, Confusable, Correlation, DiagnoseReport, NavComparison,
+    NoiseFloor, RankedEffect,
+};
+pub use selection::Diagnosis;
+
+/// What to compute and how.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    /// Longest window, s.
+    pub window_s: f64,
+    /// Width of the temperature bins of the cell map, K.
+    pub temp_bin_k: f64,
+    /// Length of the time windows of the cell map, s.
+    pub time_window_s: f64,
+    /// Family-wise level of the cell flags and of the gate.
+    pub alpha: f64,
+    /// Rank the catalogue's effects, select by the gate and compare again with the selected
+    /// effects removed (`rins diagnose`); `false` compares the model as given only
+    /// (`rins compare`).
+    pub diagnose: bool,
+    /// Effects to switch on and fit into the model (`rins diagnose --apply`); empty: none.
+    pub apply: Vec<Effect>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            window_s: 30.0,
+            temp_bin_k: 5.0,
+            time_window_s: 3600.0,
+            alpha: 0.01,
+            diagnose: false,
+            apply: Vec::new(),
+        }
+    }
+}
+
+/// Everything a comparison (and, when asked, a diagnosis) produced.
+#[derive(Clone, Debug)]
+pub struct Analysis {
+    /// Where the data came from (the history's `source`).
+    pub source: String,
+    /// Run names.
+    pub run_names: Vec<String>,
+    /// The replay: windows (inputs, residual and regressor sums), candidate groups, residual
+    /// Allan accumulators and the navigation tracks on measured vs modelled increments.
+    pub replay: Replay,
+    /// Noise floors.
+    pub noise: Vec<NoiseFloor>,
+    /// Per-channel window data the fits use (residual sums, noise variances, durations, folds).
+    pub data: Vec<ChannelData>,
+    /// The options it was computed with.
+    pub opts: Options,
+    /// Runs.
+    pub runs: usize,
+    /// The model as given against the measurements (`rins compare`).
+    pub comparison: CompareReport,
+    /// Ranking, selection, fitted predictions and the comparison after them (`opts.diagnose`).
+    pub diagnosis: Option<Diagnosis>,
+    /// The model with `opts.apply` fitted (`None` when `opts.apply` is empty; `Err` says why
+    /// the effects cannot be fitted on this data).
+    pub applied: Option<Result<Applied, String>>,
+}
+
+impl Analysis {
+    /// Per channel and window, the selected effects' fitted contribution (`None` without a
+    /// diagnosis): what the figures and the Rerun recording draw against the residual.
+    pub fn predictions(&self) -> Option<&[Vec<f64>]> {
+        self.diagnosis.as_ref().map(|d| d.predictions.as_slice())
+    }
+
+    /// The comparison after the selected effects (`None` without a diagnosis).
+    pub fn after(&self) -> Option<&CompareReport> {
+        self.diagnosis.as_ref().map(|d| &d.after)
+    }
+}
+
+/// Replays `model` on `h` once and computes what `opts` asks: the comparison of the model as
+/// given, and with `opts.diagnose` the ranking, forward selection, fitted predictions and the
+/// comparison after them, and with `opts.apply` the model with those effects fitted.
+pub fn analyse(model: &PlantConfig, h: &History, opts: &Options) -> Analysis {
+    let p = prepare::prepare(model, h, opts);
+    let comparison = p.compare_report(&h.source, &p.zero_pred());
+    let diagnosis = opts
+        .diagnose
+        .then(|| selection::diagnose(&p, &h.source, &comparison));
+    let applied = (!opts.apply.is_empty()).then(|| apply::apply(model, &p, &opts.apply));
+    let prepare::Prepared {
+        run_names,
+        replay,
+        noise,
+        data,
+        opts,
+        runs,
+    } = p;
+    Analysis {
+        source: h.source.clone(),
+        run_names,
+        replay,
+        noise,
+        data,
+        opts,
+        runs,
+        comparison,
+        diagnosis,
+        applied,
+    }
+}

@@ -1,0 +1,123 @@
+//! The replay prepared for fitting: per-channel window sums, their noise floors (from the
+//! model's noise terms when the data agree, else from the data's Allan deviation) and the
+//! cross-validation folds.
+
+// Six channels indexed in parallel arrays: index loops read best.
+#![allow(clippy::needless_range_loop)]
+
+use rins_plant::PlantConfig;
+use rins_plant::units::{DPSH, UG};
+
+use crate::Options;
+use crate::fit::ChannelData;
+use crate::history::History;
+use crate::replay::{CHANNELS, Replay, replay};
+use crate::report::{NoiseFloor, unit_of};
+use crate::stats;
+
+/// `model` replayed on a history, with per-channel data for the fits.
+pub(crate) struct Prepared {
+    /// Run names.
+    pub run_names: Vec<String>,
+    /// The replay.
+    pub replay: Replay,
+    /// Noise floors.
+    pub noise: Vec<NoiseFloor>,
+    /// Per-channel window data.
+    pub data: Vec<ChannelData>,
+    /// Options.
+    pub opts: Options,
+    /// Runs.
+    pub runs: usize,
+}
+
+fn model_density(model: &PlantConfig, channel: usize) -> f64 {
+    let s = &model.sensor;
+    if channel < 3 {
+        if s.gyro.angle_random_walk.enabled {
+            s.gyro.angle_random_walk.dpsh[channel] * DPSH
+        } else {
+            0.0
+        }
+    } else if s.accel.velocity_random_walk.enabled {
+        s.accel.velocity_random_walk.ug_per_sqrthz[channel - 3] * UG
+    } else {
+        0.0
+    }
+}
+
+/// Replays `model` on `h` (one pass over the rows) and sets up the noise floors and folds.
+pub(crate) fn prepare(model: &PlantConfig, h: &History, opts: &Options) -> Prepared {
+    let rep = replay(model, h, opts.window_s);
+    let runs = h.run_names.len();
+    let mut noise = Vec::new();
+    let mut data = Vec::new();
+    // Folds: leave one run out with three runs or more, else five contiguous blocks.
+    let n = rep.windows.len();
+    let (fold, folds): (Vec<usize>, usize) = if runs >= 3 {
+        (rep.windows.iter().map(|w| w.run as usize).collect(), runs)
+    } else {
+        ((0..n).map(|i| i * 5 / n.max(1)).collect(), 5)
+    };
+    for c in 0..6 {
+        let (unit, scale) = unit_of(c);
+        let adev = rep.allan[c].deviation(rep.row_dt_s, 30);
+        let data_n = stats::white_density(&adev, 1.0).unwrap_or(0.0);
+        let model_n = model_density(model, c);
+        let (used, source) = if model_n > 0.0 && data_n <= 1.5 * model_n && data_n >= model_n / 1.5
+        {
+            (
+                model_n,
+                "model noise terms (the data's Allan deviation agrees within 1.5x)".to_string(),
+            )
+        } else if model_n > 0.0 {
+            (
+                data_n.max(f64::MIN_POSITIVE),
+                format!(
+                    "data: the model's noise density is {:.2}x the data's; the data's is used",
+                    model_n / data_n.max(f64::MIN_POSITIVE)
+                ),
+            )
+        } else {
+            (
+                data_n.max(f64::MIN_POSITIVE),
+                "data: the model has no white-noise term on this channel".to_string(),
+            )
+        };
+        noise.push(NoiseFloor {
+            channel: CHANNELS[c].into(),
+            model_density: model_n / scale,
+            data_density: data_n / scale,
+            used_density: used / scale,
+            source: format!("{source} ({unit}·√s)"),
+        });
+        let v: Vec<f64> = rep
+            .windows
+            .iter()
+            .map(|w| used * used * w.duration_s)
+            .collect();
+        data.push(ChannelData {
+            channel: c,
+            y: rep.windows.iter().map(|w| w.y[c]).collect(),
+            v,
+            dur: rep.windows.iter().map(|w| w.duration_s).collect(),
+            fold: fold.clone(),
+            folds,
+        });
+    }
+    Prepared {
+        run_names: h.run_names.clone(),
+        replay: rep,
+        noise,
+        data,
+        opts: opts.clone(),
+        runs,
+    }
+}
+
+impl Prepared {
+    /// Zero predictions (the model as is).
+    pub(crate) fn zero_pred(&self) -> Vec<Vec<f64>> {
+        vec![vec![0.0; self.replay.windows.len()]; 6]
+    }
+}
