@@ -151,3 +151,6 @@ pub fn unsupported<M: rins_fmi::model::Model>(
 
 #[doc(hidden)]
 pub use rins_fmi as __rins_fmi;
+
+#[cfg(test)]
+mod tests;

@@ -128,22 +128,12 @@ impl RinsImu {
     }
 
     fn view<'a>(&'a self, plant: &'a Plant) -> View<'a> {
-        let truth = plant.truth();
-        let summed = self.steps_in_last > 1;
         View {
             plant,
-            truth,
+            truth: plant.truth(),
             sample: self.sample.as_ref(),
-            dtheta_true_rad: if summed {
-                self.dtheta_true_rad
-            } else {
-                truth.dtheta_true_rad
-            },
-            dv_true_mps: if summed {
-                self.dv_true_mps
-            } else {
-                truth.dv_true_mps
-            },
+            true_sums: (self.steps_in_last > 1)
+                .then_some((&self.dtheta_true_rad, &self.dv_true_mps)),
         }
     }
 }

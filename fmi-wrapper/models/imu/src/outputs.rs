@@ -21,10 +21,21 @@ pub struct View<'a> {
     /// The last IMU sample, its increments summed over the communication step (`None` before
     /// the first step).
     pub sample: Option<&'a ImuSample>,
+    /// True increments summed over the communication step when it held more than one sample
+    /// (with one, the truth's own are the step's).
+    pub true_sums: Option<(&'a Vector3<f64>, &'a Vector3<f64>)>,
+}
+
+impl View<'_> {
     /// Error-free angular increment over the communication step, rad.
-    pub dtheta_true_rad: Vector3<f64>,
+    pub fn dtheta_true_rad(&self) -> &Vector3<f64> {
+        self.true_sums.map_or(&self.truth.dtheta_true_rad, |s| s.0)
+    }
+
     /// Error-free velocity increment over the communication step, m/s.
-    pub dv_true_mps: Vector3<f64>,
+    pub fn dv_true_mps(&self) -> &Vector3<f64> {
+        self.true_sums.map_or(&self.truth.dv_true_mps, |s| s.1)
+    }
 }
 
 /// What an importer rebuilds from the outputs of one communication step: what the sinks take.
@@ -129,18 +140,18 @@ pub fn sample_real(
     len: Option<usize>,
     unit: &'static str,
     description: &str,
-    read: impl Fn(&ImuSample, usize) -> f64 + Send + Sync + 'static,
-    store: impl Fn(&mut ImuSample, usize, f64) + Send + Sync + 'static,
+    read: impl Fn(&ImuSample, usize) -> f64 + Clone + Send + Sync + 'static,
+    store: impl Fn(&mut ImuSample, usize, f64) + Clone + Send + Sync + 'static,
 ) -> Output {
     let field = SampleField {
-        get: Arc::new(read),
-        set: Arc::new(store),
+        get: Arc::new(read.clone()),
+        set: Arc::new(store.clone()),
     };
-    let (get, set) = (field.get.clone(), field.set.clone());
     Output {
         decl: decl(name, len, Kind::Real, unit, description),
-        read: Box::new(move |v, i| Value::Real(v.sample.map_or(0.0, |s| get(s, i)))),
-        store: Some(Box::new(move |r, i, x| set(&mut r.sample, i, real(x)))),
+        // Its own copy of the reader: one dynamic call per read on the doStep path.
+        read: Box::new(move |v, i| Value::Real(v.sample.map_or(0.0, |s| read(s, i)))),
+        store: Some(Box::new(move |r, i, x| store(&mut r.sample, i, real(x)))),
         sample_field: Some(field),
     }
 }
@@ -278,7 +289,7 @@ fn build() -> Vec<Output> {
             Some(3),
             "rad",
             "error-free angular increment over the last communication step",
-            |v, i| v.dtheta_true_rad[i],
+            |v, i| v.dtheta_true_rad()[i],
             |r, i, x| r.truth.dtheta_true_rad[i] = x,
         ),
         plant_real(
@@ -286,7 +297,7 @@ fn build() -> Vec<Output> {
             Some(3),
             "m/s",
             "error-free velocity increment over the last communication step",
-            |v, i| v.dv_true_mps[i],
+            |v, i| v.dv_true_mps()[i],
             |r, i, x| r.truth.dv_true_mps[i] = x,
         ),
     ]);
