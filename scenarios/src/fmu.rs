@@ -5,15 +5,14 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
-use nalgebra::Vector3;
-use rins_fmi::importer::{Fmu2, Instance2};
 use rins_fmi::package;
+use rins_fmi::vars::{Kind, Value};
 use rins_fmi::xml::FmiVersion;
-use rins_plant::effects::{AccelTerm, GyroTerm};
+use rins_fmi_import::{Fmu2, Instance2};
+use rins_imu_fmu::outputs::{Output, Record, outputs};
+use rins_imu_fmu::{RinsImu, library_file};
+use rins_plant::PlantConfig;
 use rins_plant::params::{self, ParamValue};
-use rins_plant::table::{GimbalAngles, GimbalState};
-use rins_plant::thermal::{Temperatures, node};
-use rins_plant::{ImuSample, PlantConfig, Truth};
 
 use crate::file::Scenario;
 use crate::progress;
@@ -32,15 +31,15 @@ pub fn default_lib_dir() -> PathBuf {
 pub fn build(out: &Path, lib_dir: &Path) -> Result<Vec<PathBuf>> {
     let mut made = Vec::new();
     for v in [FmiVersion::V2, FmiVersion::V3] {
-        let lib = lib_dir.join(package::library_file(v));
+        let lib = lib_dir.join(library_file(v));
         if !lib.exists() {
             bail!(
-                "{} not found: build the FMI libraries first with `cargo build --release -p rins-fmi2 -p rins-fmi3` (or pass --lib-dir)",
+                "{} not found: build the FMI libraries first with `cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3` (or pass --lib-dir)",
                 lib.display()
             );
         }
         made.push(
-            package::build_fmu(v, &lib, out)
+            package::build_fmu::<RinsImu>(v, &lib, out)
                 .with_context(|| format!("packaging {}", lib.display()))?,
         );
     }
@@ -82,103 +81,67 @@ fn set_parameters(fmu: &Fmu2, inst: &Instance2<'_>, cfg: &PlantConfig) -> Result
     Ok(())
 }
 
-/// Value references of the outputs the sinks need, in one block per call.
+/// The outputs the sinks take, by the output table: value references grouped by type, each
+/// with the row and element it stores (the names come from the table, not typed here).
 struct OutputRefs {
     reals: Vec<u32>,
-    moving: u32,
+    real_rows: Vec<(&'static Output, usize)>,
+    integers: Vec<u32>,
+    integer_rows: Vec<(&'static Output, usize)>,
+    booleans: Vec<u32>,
+    boolean_rows: Vec<(&'static Output, usize)>,
 }
-
-const N_FIXED: usize = 3 + 3 + 1 + 4 + node::COUNT + 1 + 3 + 3 + 1;
 
 impl OutputRefs {
     fn new(fmu: &Fmu2) -> Result<Self> {
-        let mut names: Vec<String> = Vec::new();
-        names.extend((0..3).map(|i| format!("imu.dtheta_rad[{i}]")));
-        names.extend((0..3).map(|i| format!("imu.dv_mps[{i}]")));
-        names.push("imu.time_s".into());
-        names.extend(
-            [
-                "gimbal.outer_rad",
-                "gimbal.inner_rad",
-                "gimbal.outer_rate_rps",
-                "gimbal.inner_rate_rps",
-            ]
-            .map(String::from),
-        );
-        names.extend(node::NAMES.iter().map(|n| format!("thermal.{n}_c")));
-        names.push("thermal.chamber_c".into());
-        names.extend((0..3).map(|i| format!("truth.dtheta_rad[{i}]")));
-        names.extend((0..3).map(|i| format!("truth.dv_mps[{i}]")));
-        names.push("effect.position_weight".into());
-        for t in GyroTerm::ALL {
-            names.extend((0..3).map(|i| format!("effect.gyro.{}_rad[{i}]", t.key())));
+        let mut r = Self {
+            reals: Vec::new(),
+            real_rows: Vec::new(),
+            integers: Vec::new(),
+            integer_rows: Vec::new(),
+            booleans: Vec::new(),
+            boolean_rows: Vec::new(),
+        };
+        for o in outputs().iter().filter(|o| o.store.is_some()) {
+            for i in 0..o.decl.count() {
+                let vr = fmu
+                    .vr(&o.decl.element_name(i))
+                    .map_err(anyhow::Error::msg)?;
+                let (vrs, rows) = match o.decl.kind {
+                    Kind::Real => (&mut r.reals, &mut r.real_rows),
+                    Kind::Boolean => (&mut r.booleans, &mut r.boolean_rows),
+                    _ => (&mut r.integers, &mut r.integer_rows),
+                };
+                vrs.push(vr);
+                rows.push((o, i));
+            }
         }
-        for t in AccelTerm::ALL {
-            names.extend((0..3).map(|i| format!("effect.accel.{}_mps[{i}]", t.key())));
-        }
-        let reals = names
-            .iter()
-            .map(|n| fmu.vr(n))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(anyhow::Error::msg)?;
-        Ok(Self {
-            reals,
-            moving: fmu.vr("gimbal.moving").map_err(anyhow::Error::msg)?,
-        })
+        Ok(r)
     }
-}
 
-/// The sample and truth of the last communication step, rebuilt from the FMU's outputs.
-fn read_outputs(
-    inst: &Instance2<'_>,
-    refs: &OutputRefs,
-    buf: &mut [f64],
-    index: u64,
-) -> Result<(ImuSample, Truth)> {
-    inst.get_real(&refs.reals, buf)?;
-    let mut moving = [0];
-    inst.get_boolean(&[refs.moving], &mut moving)?;
-    let v3 = |k: usize| Vector3::new(buf[k], buf[k + 1], buf[k + 2]);
-    let mut nodes_c = [0.0; node::COUNT];
-    nodes_c.copy_from_slice(&buf[11..11 + node::COUNT]);
-    // Interim: the FMU reports the true angles and temperatures until its measured outputs land.
-    let sample = ImuSample {
-        index,
-        t_s: buf[6],
-        dtheta_rad: v3(0),
-        dv_mps: v3(3),
-        encoder: GimbalAngles::new(buf[7], buf[8]),
-        temps_c: nodes_c,
-    };
-    let k = 11 + node::COUNT;
-    let mut gyro = [Vector3::zeros(); GyroTerm::ALL.len()];
-    for (t, g) in gyro.iter_mut().enumerate() {
-        *g = v3(N_FIXED + 3 * t);
+    /// Reads the outputs of the last communication step into `rec`.
+    fn read(&self, inst: &Instance2<'_>, rec: &mut Record, buf: &mut Vec<f64>) -> Result<()> {
+        let store = |rec: &mut Record, (o, i): &(&Output, usize), v: Value| {
+            if let Some(s) = &o.store {
+                s(rec, *i, v);
+            }
+        };
+        buf.resize(self.reals.len(), 0.0);
+        inst.get_real(&self.reals, buf)?;
+        for (row, x) in self.real_rows.iter().zip(buf.iter()) {
+            store(rec, row, Value::Real(*x));
+        }
+        let mut ints = vec![0; self.integers.len().max(self.booleans.len())];
+        inst.get_integer(&self.integers, &mut ints[..self.integers.len()])?;
+        for (row, n) in self.integer_rows.iter().zip(&ints) {
+            store(rec, row, Value::Integer(*n as u64));
+        }
+        inst.get_boolean(&self.booleans, &mut ints[..self.booleans.len()])?;
+        for (row, b) in self.boolean_rows.iter().zip(&ints) {
+            store(rec, row, Value::Boolean(*b != 0));
+        }
+        Ok(())
     }
-    let mut accel = [Vector3::zeros(); AccelTerm::ALL.len()];
-    let a0 = N_FIXED + 3 * GyroTerm::ALL.len();
-    for (t, a) in accel.iter_mut().enumerate() {
-        *a = v3(a0 + 3 * t);
-    }
-    let truth = Truth {
-        gimbal: GimbalState {
-            angles: GimbalAngles::new(buf[7], buf[8]),
-            outer_rate_rps: buf[9],
-            inner_rate_rps: buf[10],
-            step_index: 0,
-            moving: moving[0] != 0,
-        },
-        dtheta_true_rad: v3(k + 1),
-        dv_true_mps: v3(k + 4),
-        temps: Temperatures {
-            nodes_c,
-            chamber_c: buf[k],
-        },
-        gyro_terms_rad: gyro,
-        accel_terms_mps: accel,
-        position_weight: buf[k + 7],
-    };
-    Ok((sample, truth))
 }
 
 /// Runs `scenario` through the FMI 2 FMU at `fmu_path` for `samples` IMU samples, one
@@ -207,7 +170,8 @@ pub fn run(
     inst.enter_initialization_mode()?;
     inst.exit_initialization_mode()?;
     let refs = OutputRefs::new(&fmu)?;
-    let mut buf = vec![0.0; refs.reals.len()];
+    let mut buf = Vec::new();
+    let mut rec = Record::template(&scenario.plant).map_err(anyhow::Error::msg)?;
     let dt = 1.0 / scenario.plant.rate_hz;
     let pb = progress::bar(samples, &scenario.meta.name);
     let t0 = std::time::Instant::now();
@@ -219,10 +183,10 @@ pub fn run(
             inst.set_real(&[chamber_vr], &[chamber.temp_at(t)])?;
         }
         inst.do_step(t, dt)?;
-        let (s, tr) = read_outputs(&inst, &refs, &mut buf, k)?;
-        t = s.t_s;
+        refs.read(&inst, &mut rec, &mut buf)?;
+        t = rec.sample.t_s;
         for sink in sinks.iter_mut() {
-            sink.sample(&s, &tr)?;
+            sink.sample(&rec.sample, &rec.truth)?;
         }
         if k % (1 << 16) == 0 {
             pb.set_position(k);

@@ -1,7 +1,7 @@
 //! `rins fmu run` against `rins run`: the packaged FMI 2 FMU, driven through its C API one
 //! communication step per sample, writes the same imu.csv bytes as the in-process plant, with
 //! every effect, the truth columns and a chamber profile (fed through the chamber input).
-//! Needs the cdylibs (`cargo build --release -p rins-fmi2 -p rins-fmi3`).
+//! Needs the cdylibs (`cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3`).
 
 use rins_scenarios::file::Scenario;
 use rins_scenarios::sinks::CsvSink;
@@ -31,7 +31,7 @@ fn the_fmu_writes_the_same_csv_bytes_as_the_in_process_plant() {
     let lib_dir = exe.parent().and_then(|d| d.parent()).unwrap().to_path_buf();
     let out = std::env::temp_dir().join(format!("rins-fmu-test-{}", std::process::id()));
     let fmus = rins_scenarios::fmu::build(&out, &lib_dir)
-        .expect("FMI libraries built (cargo build --release -p rins-fmi2 -p rins-fmi3)");
+        .expect("FMI libraries built (cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3)");
     let sc = Scenario::from_toml(SCENARIO, "test").unwrap();
 
     let mut direct = CsvSink::new(Vec::new(), sc.outputs, &sc.plant).unwrap();

@@ -1,39 +1,47 @@
-//! The two FMUs this project ships: their identifiers, headers and instantiation tokens.
+//! A model's FMU headers and instantiation tokens, from its [`ModelInfo`] and variable table.
 
-use std::sync::OnceLock;
+use std::any::TypeId;
+use std::sync::Mutex;
 
 use crate::model::Model;
-use crate::rins::RinsModel;
 use crate::xml::{FmiVersion, Header, model_description};
 
-/// Model identifier (binary name) of the FMI 2 FMU.
-pub const FMI2_ID: &str = "RinsImu";
-/// Model identifier (binary name) of the FMI 3 FMU.
-pub const FMI3_ID: &str = "RinsImu3";
-
-/// The header of the FMU for `version`: the paper's headline experiment (one week at 100 Hz)
-/// as the default experiment.
-pub fn header(version: FmiVersion) -> Header {
-    Header {
-        model_identifier: match version {
-            FmiVersion::V2 => FMI2_ID,
-            FmiVersion::V3 => FMI3_ID,
-        }
-        .into(),
-        description: "Dual-axis rotating RLG IMU (Seo et al., Sensors 2022, 22, 8355): 16-position table, Earth, thermal network and every gyro/accelerometer error term".into(),
-        generation_tool: format!("rins-fmi {}", env!("CARGO_PKG_VERSION")),
-        stop_time_s: 604_800.0,
-        step_size_s: 0.01,
+/// Model identifier (binary and `.fmu` name) of `M`'s FMU for `version`.
+pub fn model_identifier<M: Model>(version: FmiVersion) -> &'static str {
+    match version {
+        FmiVersion::V2 => M::INFO.fmi2_id,
+        FmiVersion::V3 => M::INFO.fmi3_id,
     }
 }
 
-/// modelDescription.xml and token for `version`, computed once (a pure function of the code).
-pub fn description(version: FmiVersion) -> &'static (String, String) {
-    static V2: OnceLock<(String, String)> = OnceLock::new();
-    static V3: OnceLock<(String, String)> = OnceLock::new();
-    let cell = match version {
-        FmiVersion::V2 => &V2,
-        FmiVersion::V3 => &V3,
-    };
-    cell.get_or_init(|| model_description(version, RinsModel::table(), &header(version)))
+/// The modelDescription header of `M`'s FMU for `version`.
+pub fn header<M: Model>(version: FmiVersion) -> Header {
+    Header {
+        model_identifier: model_identifier::<M>(version).into(),
+        description: M::INFO.description.into(),
+        generation_tool: format!("rins-fmi {}", env!("CARGO_PKG_VERSION")),
+        stop_time_s: M::INFO.stop_time_s,
+        step_size_s: M::INFO.step_size_s,
+    }
+}
+
+/// modelDescription.xml and token of `M`'s FMU for `version`, computed once per model and
+/// version (a pure function of the code; instantiation compares tokens on every call).
+pub fn description<M: Model>(version: FmiVersion) -> &'static (String, String) {
+    // A `static` in a generic function is shared by every `M`: key the memo by type. Entries
+    // are computed once and never change, so leaking them gives plain `&'static` references.
+    type Memo = Vec<(TypeId, FmiVersion, &'static (String, String))>;
+    static MEMO: Mutex<Memo> = Mutex::new(Vec::new());
+    let key = TypeId::of::<M>();
+    let mut memo = MEMO.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, _, d)) = memo.iter().find(|(t, v, _)| *t == key && *v == version) {
+        return d;
+    }
+    let d: &'static (String, String) = Box::leak(Box::new(model_description(
+        version,
+        M::table(),
+        &header::<M>(version),
+    )));
+    memo.push((key, version, d));
+    d
 }

@@ -3,6 +3,7 @@
 //! values are rejected with an [`FmiError`] that the C glue logs; nothing here touches C.
 
 use crate::model::Model;
+use crate::state::{StateReader, StateWriter};
 use crate::vars::{Causality, Value, VariableTable};
 
 /// FMI status codes (the same numbers in FMI 2 and 3).
@@ -135,12 +136,10 @@ impl<M: Model> Instance<M> {
         }
     }
 
-    /// Records the start time (FMI 2 setupExperiment / FMI 3 enterInitializationMode).
+    /// Records the start time (FMI 2 setupExperiment / FMI 3 enterInitializationMode). Only
+    /// right after instantiation: both standards fix the start time before initialisation.
     pub fn setup(&mut self, start_time_s: f64) -> Result<(), FmiError> {
-        self.expect(
-            &[Mode::Instantiated, Mode::Initialization],
-            "setting the start time",
-        )?;
+        self.expect(&[Mode::Instantiated], "setting the start time")?;
         if !start_time_s.is_finite() {
             return Err(FmiError::error(format!(
                 "start time must be finite, got {start_time_s}"
@@ -303,39 +302,49 @@ impl<M: Model> Instance<M> {
         *self = s.clone();
     }
 
-    /// The state as bytes: magic, mode, start time, then the model's own bytes.
+    /// The state as bytes: magic, model identifier, mode, start time, rate, steps done, then
+    /// the model's own fields.
     pub fn serialize(&self) -> Vec<u8> {
-        let mut out = b"RINSFMU1".to_vec();
-        out.extend_from_slice(&(self.mode as u8 as u64).to_le_bytes());
-        out.extend_from_slice(&self.start_time_s.to_le_bytes());
-        out.extend_from_slice(&self.rate_hz.to_le_bytes());
-        out.extend_from_slice(&self.steps_done.to_le_bytes());
-        out.extend(self.model.save());
-        out
+        let mut w = StateWriter(MAGIC.to_vec());
+        w.bytes(M::INFO.fmi2_id.as_bytes());
+        w.u64(self.mode as u64);
+        w.f64(self.start_time_s);
+        w.f64(self.rate_hz);
+        w.u64(self.steps_done);
+        self.model.save(&mut w);
+        w.0
     }
 
     /// An instance from [`Instance::serialize`] bytes.
     pub fn deserialize(bytes: &[u8]) -> Result<Self, FmiError> {
-        if bytes.len() < 40 || &bytes[..8] != b"RINSFMU1" {
+        let bad = |e: String| FmiError::error(format!("cannot restore the serialized state: {e}"));
+        if bytes.len() < MAGIC.len() || &bytes[..MAGIC.len()] != MAGIC {
             return Err(FmiError::error(
                 "not a serialized state of this FMU (bad header)",
             ));
         }
-        let mode = match u64::from_le_bytes(bytes[8..16].try_into().expect("8 bytes")) {
+        let mut r = StateReader::new(&bytes[MAGIC.len()..]);
+        let model_id = r.bytes().map_err(bad)?;
+        if model_id != M::INFO.fmi2_id.as_bytes() {
+            return Err(bad(format!(
+                "the state is of model {:?}, this FMU is {:?}",
+                String::from_utf8_lossy(model_id),
+                M::INFO.fmi2_id
+            )));
+        }
+        let mode = match r.u64().map_err(bad)? {
             0 => Mode::Instantiated,
             1 => Mode::Initialization,
             2 => Mode::Step,
             3 => Mode::Terminated,
             _ => Mode::Error,
         };
-        let word = |k: usize| <[u8; 8]>::try_from(&bytes[8 * k..8 * k + 8]).expect("8 bytes");
-        let start_time_s = f64::from_le_bytes(word(2));
-        let rate_hz = f64::from_le_bytes(word(3));
-        let steps_done = u64::from_le_bytes(word(4));
+        let start_time_s = r.f64().map_err(bad)?;
+        let rate_hz = r.f64().map_err(bad)?;
+        let steps_done = r.u64().map_err(bad)?;
         let mut model = M::new();
-        model
-            .restore(&bytes[40..])
-            .map_err(|e| FmiError::error(format!("cannot restore the serialized state: {e}")))?;
+        model.restore(&mut r).map_err(bad)?;
+        r.finish().map_err(bad)?;
         Ok(Self {
             model,
             mode,
@@ -345,3 +354,6 @@ impl<M: Model> Instance<M> {
         })
     }
 }
+
+/// First bytes of a serialized FMU state (layout version 2: model identifier, codec fields).
+const MAGIC: &[u8; 8] = b"RINSFMU2";

@@ -1,18 +1,18 @@
 //! # rins-fmi
 //!
-//! The rins plant as FMI 2.0 and FMI 3.0 co-simulation FMUs, without C: the variable table
-//! ([`vars`]), the model interface the FMI glue is generic over ([`model`]), the rins plant behind
-//! it ([`rins`]), the FMI state machine ([`instance`]), modelDescription.xml ([`xml`]), `.fmu`
-//! packaging ([`package`], [`zip`]) and an FMI 2 importer for tests and `rins fmu run`
-//! ([`importer`]). The exported C functions live in the `rins-fmi2` and `rins-fmi3` cdylibs.
+//! A generic FMI 2.0 / 3.0 co-simulation layer, without C: the model interface it is generic
+//! over ([`model`]), the variable table ([`vars`]), the FMI state machine ([`instance`]), the FMU
+//! state codec ([`state`]), modelDescription.xml ([`xml`], [`fmu`]), `.fmu` packaging
+//! ([`package`], [`zip`]) and the C-ABI helpers both FMI versions share ([`ffi`]). It knows no
+//! model: the exported C functions are in `rins-fmi2` / `rins-fmi3`, generic too, and each model
+//! is exported by a one-line cdylib crate (`rins_fmi2::export_fmi2!(Model)`).
 
 pub mod ffi;
 pub mod fmu;
-pub mod importer;
 pub mod instance;
 pub mod model;
 pub mod package;
-pub mod rins;
+pub mod state;
 pub mod vars;
 pub mod xml;
 pub mod zip;

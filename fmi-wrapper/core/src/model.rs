@@ -1,16 +1,38 @@
-//! What a model must provide to be wrapped as a co-simulation FMU. The FMI glue
+//! What a model must provide to be exported as a co-simulation FMU. The FMI glue
 //! ([`crate::instance`], the `rins-fmi2`/`rins-fmi3` libraries) knows nothing else about it,
 //! as in modelica/Reference-FMUs where `model.c` sits apart from `fmi2Functions.c`.
 
+use crate::state::{StateReader, StateWriter};
 use crate::vars::{Value, VariableTable};
+
+/// Identity and defaults of a model's FMUs: everything modelDescription.xml says besides the
+/// variables.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModelInfo {
+    /// Model identifier of the FMI 2 FMU: its binary and `.fmu` file name.
+    pub fmi2_id: &'static str,
+    /// Model identifier of the FMI 3 FMU.
+    pub fmi3_id: &'static str,
+    /// One-line description.
+    pub description: &'static str,
+    /// Default experiment: stop time, s.
+    pub stop_time_s: f64,
+    /// Default experiment: communication step, s.
+    pub step_size_s: f64,
+}
 
 /// A fixed-step co-simulation model.
 pub trait Model: Clone + Send + 'static {
-    /// Model name and FMI model identifier (the shared library's name inside the FMU).
-    const NAME: &'static str;
+    /// Identifiers and default experiment.
+    const INFO: ModelInfo;
 
-    /// The variable table (the same on every call).
+    /// The variable table: parameters, inputs and outputs (the same on every call).
     fn table() -> &'static VariableTable;
+
+    /// Markdown placed in the FMU's `documentation/index.md` before the variable list.
+    fn documentation() -> String {
+        String::new()
+    }
 
     /// A model with every variable at its start value.
     fn new() -> Self;
@@ -30,9 +52,9 @@ pub trait Model: Clone + Send + 'static {
     /// Advances `n` internal steps (inputs as last set).
     fn advance(&mut self, n: u64) -> Result<(), String>;
 
-    /// Everything needed to resume, by value.
-    fn save(&self) -> Vec<u8>;
+    /// Writes everything needed to resume, by value.
+    fn save(&self, w: &mut StateWriter);
 
-    /// Resumes from [`Model::save`] output.
-    fn restore(&mut self, bytes: &[u8]) -> Result<(), String>;
+    /// Resumes from what [`Model::save`] wrote.
+    fn restore(&mut self, r: &mut StateReader<'_>) -> Result<(), String>;
 }

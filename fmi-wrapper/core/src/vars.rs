@@ -169,6 +169,53 @@ impl VariableTable {
     }
 }
 
+/// An output as a model declares it: one FMI 3 variable, a scalar or a 1-D array, whose
+/// elements become consecutive slots (`name[0]`, `name[1]`, … in FMI 2).
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutputDecl {
+    /// Variable name (FMI 3 name; the FMI 2 names add `[i]` for arrays).
+    pub name: String,
+    /// Number of elements for an array, `None` for a scalar.
+    pub len: Option<usize>,
+    /// Type of every element.
+    pub kind: Kind,
+    /// Unit symbol (`None` when dimensionless).
+    pub unit: Option<&'static str>,
+    /// Value of each element before the first step.
+    pub start: Vec<Value>,
+    /// One line for the user.
+    pub description: String,
+}
+
+impl OutputDecl {
+    /// Number of scalars (slots) it covers.
+    pub fn count(&self) -> usize {
+        self.len.unwrap_or(1)
+    }
+
+    /// FMI 2 (scalar) name of element `i`.
+    pub fn element_name(&self, i: usize) -> String {
+        match self.len {
+            Some(_) => format!("{}[{i}]", self.name),
+            None => self.name.clone(),
+        }
+    }
+
+    /// Its rows of the variable table.
+    pub fn scalars(&self) -> impl Iterator<Item = ScalarVar> + '_ {
+        (0..self.count()).map(|i| ScalarVar {
+            name: self.element_name(i),
+            array: self.name.clone(),
+            kind: self.kind,
+            causality: Causality::Output,
+            unit: self.unit,
+            start: self.start[i.min(self.start.len() - 1)],
+            range: None,
+            description: self.description.clone(),
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -219,5 +266,22 @@ mod tests {
         );
         assert!(t.check(2, Value::Boolean(true)).is_err());
         assert!(t.check(2, Value::Real(-1.0)).is_ok());
+    }
+
+    #[test]
+    fn output_declarations_expand_to_named_elements() {
+        let d = OutputDecl {
+            name: "q".into(),
+            len: Some(2),
+            kind: Kind::Real,
+            unit: None,
+            start: vec![Value::Real(1.0), Value::Real(0.0)],
+            description: "d".into(),
+        };
+        let t = VariableTable::new(d.scalars().collect());
+        assert_eq!(t.slot("q[1]"), Some(1));
+        assert_eq!(t.scalars[0].start, Value::Real(1.0));
+        assert_eq!(t.arrays[0].dims, [2]);
+        assert_eq!(t.scalars[1].causality, Causality::Output);
     }
 }

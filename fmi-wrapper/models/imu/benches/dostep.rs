@@ -1,6 +1,6 @@
 //! Per-doStep overhead of the FMI 2.0 binary through its C ABI against the in-process plant, for
 //! a 10 ms communication step (one IMU sample at 100 Hz) of the paper's plant (the FMU default).
-//! Needs `cargo build --release -p rins-fmi2`.
+//! Needs `cargo build --release -p rins-imu-fmi2`.
 
 // criterion_group! generates an undocumented function.
 #![allow(missing_docs)]
@@ -9,8 +9,9 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use rins_fmi::fmu;
-use rins_fmi::importer::{Fmu2, parse_model_description};
 use rins_fmi::xml::FmiVersion;
+use rins_fmi_import::{Fmu2, parse_model_description};
+use rins_imu_fmu::{RinsImu, library_file};
 use rins_plant::Plant;
 
 fn bench(c: &mut Criterion) {
@@ -19,10 +20,11 @@ fn bench(c: &mut Criterion) {
         .parent()
         .and_then(|d| d.parent())
         .unwrap()
-        .join("librins_fmi2.so");
-    let (guid, _, vars) = parse_model_description(&fmu::description(FmiVersion::V2).0).unwrap();
+        .join(library_file(FmiVersion::V2));
+    let (guid, _, vars) =
+        parse_model_description(&fmu::description::<RinsImu>(FmiVersion::V2).0).unwrap();
     let lib = Fmu2::load(&so, guid, vars)
-        .unwrap_or_else(|e| panic!("{e}: build it with cargo build --release -p rins-fmi2"));
+        .unwrap_or_else(|e| panic!("{e}: build it with cargo build --release -p rins-imu-fmi2"));
 
     let mut g = c.benchmark_group("10ms_step");
     let mut plant = Plant::new(&rins_plant::presets::paper_16pos_config()).unwrap();
@@ -31,7 +33,7 @@ fn bench(c: &mut Criterion) {
     });
 
     // The same FMI state machine and model, called directly: separates the C ABI from the glue.
-    let mut direct = rins_fmi::instance::Instance::<rins_fmi::rins::RinsModel>::new();
+    let mut direct = rins_fmi::instance::Instance::<RinsImu>::new();
     direct.enter_initialization().unwrap();
     direct.exit_initialization().unwrap();
     let mut j: u64 = 0;

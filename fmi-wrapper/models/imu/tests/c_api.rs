@@ -1,25 +1,28 @@
 //! The FMI 2.0 binary tested from the outside through its C API (the importer loads the built
-//! `librins_fmi2.so`): independence of instances, state save/restore and serialisation (also
+//! `librins_imu_fmi2.so`): independence of instances, state save/restore and serialisation (also
 //! across processes), and every kind of refused call with its logged reason.
 //!
-//! Needs the cdylib: `cargo build --release -p rins-fmi2` (tests/run-all.sh does it first).
+//! Needs the cdylibs: `cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3`
+//! (tests/run-all.sh builds the workspace first).
 
 use std::path::PathBuf;
 
 use rins_fmi::fmu;
-use rins_fmi::importer::{Fmu2, Instance2, parse_model_description};
 use rins_fmi::xml::FmiVersion;
+use rins_fmi_import::{CallError, Fmu2, Instance2, parse_model_description};
+use rins_imu_fmu::{RinsImu, library_file};
 
 fn library() -> Fmu2 {
     let exe = std::env::current_exe().unwrap();
     let dir = exe.parent().and_then(|d| d.parent()).unwrap();
-    let so: PathBuf = dir.join("librins_fmi2.so");
+    let so: PathBuf = dir.join(library_file(FmiVersion::V2));
     assert!(
         so.exists(),
-        "{} missing: run `cargo build --release -p rins-fmi2` before the tests",
+        "{} missing: run `cargo build --release -p rins-imu-fmi2` before the tests",
         so.display()
     );
-    let (guid, _, vars) = parse_model_description(&fmu::description(FmiVersion::V2).0).unwrap();
+    let (guid, _, vars) =
+        parse_model_description(&fmu::description::<RinsImu>(FmiVersion::V2).0).unwrap();
     Fmu2::load(&so, guid, vars).unwrap()
 }
 
@@ -145,7 +148,7 @@ fn serialized_state_restores_in_a_new_process() {
     let _ = std::fs::remove_file(format!("{}.out", path.display()));
 }
 
-fn refused(r: Result<(), rins_fmi::importer::CallError>, reason: &str) {
+fn refused(r: Result<(), CallError>, reason: &str) {
     let e = r.expect_err("the call must be refused");
     assert_eq!(e.status, 3, "{e}");
     assert!(
@@ -328,7 +331,7 @@ fn exported(lib: &str) -> Vec<String> {
 
 #[test]
 fn the_libraries_export_exactly_the_fmi_functions() {
-    let mut fmi2 = exported("librins_fmi2.so");
+    let mut fmi2 = exported(library_file(FmiVersion::V2));
     fmi2.sort();
     let mut want: Vec<String> = FMI2_FUNCTIONS.iter().map(|s| s.to_string()).collect();
     want.sort();
@@ -336,7 +339,7 @@ fn the_libraries_export_exactly_the_fmi_functions() {
         fmi2, want,
         "the FMI 2 library exports the 34 functions and nothing else"
     );
-    let fmi3 = exported("librins_fmi3.so");
+    let fmi3 = exported(library_file(FmiVersion::V3));
     assert_eq!(fmi3.len(), 75, "{fmi3:?}");
     assert!(fmi3.iter().all(|s| s.starts_with("fmi3")), "{fmi3:?}");
     for f in [
@@ -349,4 +352,82 @@ fn the_libraries_export_exactly_the_fmi_functions() {
     ] {
         assert!(fmi3.iter().any(|s| s == f), "{f} missing");
     }
+}
+
+/// B1: `scheme.accel_dps2 = inf` is valid (as in scenario files) and must initialise; the FMU
+/// then equals the in-process plant with the same configuration through a move.
+#[test]
+fn infinite_gimbal_acceleration_initialises_and_matches_the_plant() {
+    let fmu = library();
+    let inst = fmu.instantiate("inf", false).unwrap();
+    inst.setup_experiment(0.0, None).unwrap();
+    inst.set_real(&[fmu.vr("scheme.accel_dps2").unwrap()], &[f64::INFINITY])
+        .unwrap();
+    inst.enter_initialization_mode().unwrap();
+    inst.exit_initialization_mode().unwrap();
+    let mut cfg = rins_plant::presets::paper_16pos_config();
+    cfg.scheme.accel_dps2 = f64::INFINITY;
+    let mut plant = rins_plant::Plant::new(&cfg).unwrap();
+    let vrs: Vec<u32> = DTHETA.iter().map(|n| fmu.vr(n).unwrap()).collect();
+    let rate = [fmu.vr("gimbal.outer_rate_rps").unwrap()];
+    let (mut v, mut r, mut peak_rate) = ([0.0; 3], [0.0], 0.0f64);
+    // The first dwell is 180 s; the move after it starts at full rate (no ramp).
+    for k in 0..19_000u64 {
+        let s = plant.step();
+        inst.do_step(k as f64 * 0.01, 0.01).unwrap();
+        inst.get_real(&vrs, &mut v).unwrap();
+        assert_eq!(
+            v,
+            [s.dtheta_rad.x, s.dtheta_rad.y, s.dtheta_rad.z],
+            "sample {k}"
+        );
+        inst.get_real(&rate, &mut r).unwrap();
+        peak_rate = peak_rate.max(r[0].abs());
+    }
+    assert!(peak_rate > 0.0, "the run covers a move");
+}
+
+/// B2: fmi2SetupExperiment is allowed only right after instantiation: in initialization mode
+/// it is refused with a logged reason and the start time stays.
+#[test]
+fn setup_experiment_in_initialization_mode_is_refused_and_keeps_the_start_time() {
+    let fmu = library();
+    let inst = fmu.instantiate("setup", false).unwrap();
+    inst.setup_experiment(0.0, None).unwrap();
+    inst.enter_initialization_mode().unwrap();
+    refused(
+        inst.setup_experiment(5.0, None),
+        "setting the start time is not allowed in Initialization mode",
+    );
+    inst.exit_initialization_mode().unwrap();
+    assert_eq!(inst.last_successful_time().unwrap(), 0.0);
+    inst.do_step(0.0, 0.01).unwrap();
+    assert_eq!(inst.last_successful_time().unwrap(), 0.01);
+}
+
+/// B3: fmi2GetString with valid arrays names the real problem (the variable is not a String),
+/// not a NULL array; zero references are fine.
+#[test]
+fn get_string_with_valid_arrays_reports_the_type() {
+    let fmu = library();
+    let inst = fmu.instantiate("str", false).unwrap();
+    inst.enter_initialization_mode().unwrap();
+    let mut out = [std::ptr::null(); 1];
+    let e = inst
+        .get_string(&[fmu.vr("imu.time_s").unwrap()], &mut out)
+        .expect_err("no String variables");
+    assert_eq!(e.status, 3, "{e}");
+    assert!(
+        e.log
+            .iter()
+            .any(|l| l.contains("(imu.time_s) is Real, not a String")),
+        "{:?}",
+        e.log
+    );
+    assert!(
+        !e.log.iter().any(|l| l.contains("NULL array")),
+        "{:?}",
+        e.log
+    );
+    inst.get_string(&[], &mut []).unwrap();
 }

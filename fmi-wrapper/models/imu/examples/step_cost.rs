@@ -19,12 +19,13 @@ fn main() {
                 .parent()
                 .and_then(|d| d.parent())
                 .unwrap()
-                .join("librins_fmi2.so");
-            let (guid, _, vars) = rins_fmi::importer::parse_model_description(
-                &rins_fmi::fmu::description(rins_fmi::xml::FmiVersion::V2).0,
+                .join(rins_imu_fmu::library_file(rins_fmi::xml::FmiVersion::V2));
+            let (guid, _, vars) = rins_fmi_import::parse_model_description(
+                &rins_fmi::fmu::description::<rins_imu_fmu::RinsImu>(rins_fmi::xml::FmiVersion::V2)
+                    .0,
             )
             .unwrap();
-            let lib = rins_fmi::importer::Fmu2::load(&so, guid, vars).unwrap();
+            let lib = rins_fmi_import::Fmu2::load(&so, guid, vars).unwrap();
             let inst = lib.instantiate("cost", false).unwrap();
             inst.setup_experiment(0.0, None).unwrap();
             inst.enter_initialization_mode().unwrap();

@@ -1,0 +1,316 @@
+//! # rins-imu-fmu
+//!
+//! The rins plant as a [`rins_fmi::model::Model`], named `RinsImu` (FMI 2) / `RinsImu3` (FMI 3):
+//! every fixed-shape scenario parameter is a parameter (from the plant's own parameter table),
+//! the chamber temperature, gimbal commands and a noise reseed are inputs ([`table`]), and the
+//! outputs are the rows of the output table ([`outputs`]). The FMI code is generic and lives in
+//! `rins-fmi`, `rins-fmi2` and `rins-fmi3`; the shared libraries are the one-line crates
+//! `rins-imu-fmi2` and `rins-imu-fmi3` beside this one.
+
+use nalgebra::Vector3;
+use rins_fmi::model::{Model, ModelInfo};
+use rins_fmi::state::{StateReader, StateWriter};
+use rins_fmi::vars::{Value, VariableTable};
+use rins_fmi::xml::FmiVersion;
+use rins_plant::{GimbalCommand, ImuSample, Plant, PlantConfig};
+
+pub mod config;
+pub mod outputs;
+mod table;
+
+use outputs::{Record, View, outputs};
+use table::{Input, Role, table, to_param};
+
+/// File name of the shared library cargo builds for `version` (the crates `rins-imu-fmi2` /
+/// `rins-imu-fmi3`).
+pub fn library_file(version: FmiVersion) -> &'static str {
+    match version {
+        FmiVersion::V2 => "librins_imu_fmi2.so",
+        FmiVersion::V3 => "librins_imu_fmi3.so",
+    }
+}
+
+/// Every scenario key the FMU cannot carry as a parameter, with what to use instead.
+pub const NOT_PARAMETERS: [(&str, &str); 2] = [
+    (
+        "scheme.steps",
+        "gimbal commands (input.gimbal_command, input.gimbal_outer_deg/inner_deg)",
+    ),
+    (
+        "thermal.chamber.profile",
+        "the input input.chamber_temp_c with input.chamber_override = true",
+    ),
+];
+
+/// The plant as an FMU model.
+#[derive(Clone, Debug)]
+pub struct RinsImu {
+    /// Parameter and input values by slot (outputs are read from the plant).
+    values: Vec<Value>,
+    plant: Option<Plant>,
+    /// The last IMU sample, its increments summed over the last communication step.
+    sample: Option<ImuSample>,
+    /// True increments summed over the last communication step (used when it held more than
+    /// one sample; with one, the plant's truth is read directly).
+    dtheta_true_rad: Vector3<f64>,
+    dv_true_mps: Vector3<f64>,
+    /// IMU samples in the last communication step.
+    steps_in_last: u64,
+    /// Last gimbal command sent to the plant (outer, inner, rate in degrees).
+    applied_command: Option<[f64; 3]>,
+    /// Last noise seed applied through `input.noise_seed` (0: none).
+    applied_noise_seed: u64,
+    /// An input changed since the last step: apply the inputs before stepping (skipping this
+    /// when nothing changed keeps doStep within a few ns of the in-process plant).
+    inputs_dirty: bool,
+}
+
+impl RinsImu {
+    fn input(&self, which: Input) -> Value {
+        self.values[table().input_slots[which as usize]]
+    }
+
+    /// The plant configuration the parameters describe.
+    pub fn config(&self) -> Result<PlantConfig, String> {
+        let t = table();
+        let pairs = t
+            .roles
+            .iter()
+            .zip(&t.vars.scalars)
+            .zip(&self.values)
+            .filter_map(|((r, s), v)| match r {
+                Role::Param(path) if *v != s.start => Some((path.as_str(), to_param(s, *v))),
+                _ => None,
+            });
+        config::apply(&t.defaults, pairs)
+    }
+
+    /// The running plant (after initialisation).
+    pub fn plant(&self) -> Option<&Plant> {
+        self.plant.as_ref()
+    }
+
+    fn apply_inputs(&mut self) -> Result<(), String> {
+        let on = |v: Value| matches!(v, Value::Boolean(true));
+        let real = |v: Value| if let Value::Real(x) = v { x } else { f64::NAN };
+        let chamber =
+            on(self.input(Input::ChamberOverride)).then(|| real(self.input(Input::ChamberTemp)));
+        let command = on(self.input(Input::GimbalEnable)).then(|| {
+            [
+                real(self.input(Input::GimbalOuter)),
+                real(self.input(Input::GimbalInner)),
+                real(self.input(Input::GimbalRate)),
+            ]
+        });
+        let noise_seed = if let Value::Integer(u) = self.input(Input::NoiseSeed) {
+            u
+        } else {
+            0
+        };
+        let plant = self.plant.as_mut().ok_or("the plant is not initialised")?;
+        plant.set_chamber_temp_c(chamber);
+        if noise_seed != 0 && noise_seed != self.applied_noise_seed {
+            plant.reseed_noise(noise_seed);
+            self.applied_noise_seed = noise_seed;
+        }
+        if let Some(c) = command
+            && self.applied_command != Some(c)
+        {
+            plant.command_gimbal(&GimbalCommand::MoveTo {
+                outer_rad: c[0].to_radians(),
+                inner_rad: c[1].to_radians(),
+                rate_rps: c[2].to_radians(),
+            })?;
+            self.applied_command = Some(c);
+        }
+        self.inputs_dirty = false;
+        Ok(())
+    }
+
+    fn view<'a>(&'a self, plant: &'a Plant) -> View<'a> {
+        View {
+            plant,
+            truth: plant.truth(),
+            sample: self.sample.as_ref(),
+            true_sums: (self.steps_in_last > 1)
+                .then_some((&self.dtheta_true_rad, &self.dv_true_mps)),
+        }
+    }
+}
+
+impl Model for RinsImu {
+    const INFO: ModelInfo = ModelInfo {
+        fmi2_id: "RinsImu",
+        fmi3_id: "RinsImu3",
+        description: "Dual-axis rotating RLG IMU (Seo et al., Sensors 2022, 22, 8355): 16-position table, Earth, thermal network and every gyro/accelerometer error term",
+        // The paper's headline experiment: one week at 100 Hz.
+        stop_time_s: 604_800.0,
+        step_size_s: 0.01,
+    };
+
+    fn table() -> &'static VariableTable {
+        &table().vars
+    }
+
+    fn documentation() -> String {
+        let mut s = String::from(
+            "Default experiment: the paper's headline scenario (one week, 100 Hz, 16-position scheme, Table 3 sensors).\n\nScenario keys that are lists cannot be fixed FMU parameters:\n\n",
+        );
+        for (k, instead) in NOT_PARAMETERS {
+            s.push_str(&format!("- `{k}`: use {instead}\n"));
+        }
+        s
+    }
+
+    fn new() -> Self {
+        Self {
+            values: table().vars.scalars.iter().map(|s| s.start).collect(),
+            plant: None,
+            sample: None,
+            dtheta_true_rad: Vector3::zeros(),
+            dv_true_mps: Vector3::zeros(),
+            steps_in_last: 1,
+            applied_command: None,
+            applied_noise_seed: 0,
+            inputs_dirty: true,
+        }
+    }
+
+    fn set(&mut self, slot: usize, v: Value) -> Result<(), String> {
+        self.values[slot] = v;
+        self.inputs_dirty |= matches!(table().roles[slot], Role::Input(_));
+        Ok(())
+    }
+
+    fn get(&self, slot: usize) -> Value {
+        match (&table().roles[slot], &self.plant) {
+            (Role::Output(k, i), Some(p)) => (outputs()[*k].read)(&self.view(p), *i),
+            // Before initialisation outputs report their start values.
+            _ => self.values[slot],
+        }
+    }
+
+    fn initialize(&mut self) -> Result<(), String> {
+        let cfg = self.config()?;
+        let plant = Plant::new(&cfg).map_err(|errs| {
+            errs.iter()
+                .map(|e| e.to_string())
+                .collect::<Vec<_>>()
+                .join("; ")
+        })?;
+        self.plant = Some(plant);
+        self.apply_inputs()
+    }
+
+    fn internal_rate_hz(&self) -> f64 {
+        self.plant.as_ref().map_or(100.0, |p| p.config().rate_hz)
+    }
+
+    fn advance(&mut self, n: u64) -> Result<(), String> {
+        if self.inputs_dirty {
+            self.apply_inputs()?;
+        }
+        let plant = self.plant.as_mut().ok_or("the plant is not initialised")?;
+        let mut s = plant.step();
+        self.steps_in_last = n;
+        if n > 1 {
+            // Sums over the communication step; with one sample the truth is read directly.
+            let (mut dth, mut dv) = (s.dtheta_rad, s.dv_mps);
+            let mut dth_true = plant.truth().dtheta_true_rad;
+            let mut dv_true = plant.truth().dv_true_mps;
+            for _ in 1..n {
+                s = plant.step();
+                dth += s.dtheta_rad;
+                dv += s.dv_mps;
+                dth_true += plant.truth().dtheta_true_rad;
+                dv_true += plant.truth().dv_true_mps;
+            }
+            (s.dtheta_rad, s.dv_mps) = (dth, dv);
+            (self.dtheta_true_rad, self.dv_true_mps) = (dth_true, dv_true);
+        }
+        self.sample = Some(s);
+        Ok(())
+    }
+
+    fn save(&self, w: &mut StateWriter) {
+        w.u64(self.values.len() as u64);
+        self.values.iter().for_each(|v| w.value(*v));
+        // The last sample, by the fields the outputs carry (rebuilt on restore).
+        w.u64(self.sample.is_some() as u64);
+        if let Some(s) = &self.sample {
+            for o in outputs() {
+                if let Some(f) = &o.sample_field {
+                    (0..o.decl.count()).for_each(|i| w.f64((f.get)(s, i)));
+                }
+            }
+        }
+        for x in self.dtheta_true_rad.iter().chain(&self.dv_true_mps) {
+            w.f64(*x);
+        }
+        w.u64(self.steps_in_last);
+        w.u64(self.applied_command.is_some() as u64);
+        self.applied_command
+            .unwrap_or_default()
+            .iter()
+            .for_each(|x| w.f64(*x));
+        w.u64(self.applied_noise_seed);
+        // The plant in its own codec (it checks the configuration fingerprint on restore).
+        w.bytes(
+            &self
+                .plant
+                .as_ref()
+                .map_or(Vec::new(), Plant::serialize_state),
+        );
+    }
+
+    fn restore(&mut self, r: &mut StateReader<'_>) -> Result<(), String> {
+        let n = r.u64()? as usize;
+        let expected = table().vars.scalars.len();
+        if n != expected {
+            return Err(format!("state has {n} variables, this FMU has {expected}"));
+        }
+        self.values = (0..n).map(|_| r.value()).collect::<Result<_, _>>()?;
+        let mut fields = Vec::new();
+        if r.u64()? != 0 {
+            for o in outputs().iter().filter(|o| o.sample_field.is_some()) {
+                for i in 0..o.decl.count() {
+                    fields.push((o, i, r.f64()?));
+                }
+            }
+        }
+        let mut sums = [0.0; 6];
+        for x in sums.iter_mut() {
+            *x = r.f64()?;
+        }
+        self.dtheta_true_rad = Vector3::new(sums[0], sums[1], sums[2]);
+        self.dv_true_mps = Vector3::new(sums[3], sums[4], sums[5]);
+        self.steps_in_last = r.u64()?;
+        let has_cmd = r.u64()? != 0;
+        let cmd = [r.f64()?, r.f64()?, r.f64()?];
+        self.applied_command = has_cmd.then_some(cmd);
+        self.applied_noise_seed = r.u64()?;
+        self.inputs_dirty = true;
+        let plant = r.bytes()?;
+        if plant.is_empty() {
+            (self.plant, self.sample) = (None, None);
+            return Ok(());
+        }
+        let cfg = self.config()?;
+        self.plant = Some(Plant::from_serialized_state(&cfg, plant).map_err(|e| e.to_string())?);
+        self.sample = if fields.is_empty() {
+            None
+        } else {
+            // A sample of the right shape, then every field the outputs carry.
+            let mut s = Record::template(&cfg)?.sample;
+            for (o, i, x) in fields {
+                let f = o.sample_field.as_ref().expect("filtered on sample fields");
+                (f.set)(&mut s, i, x);
+            }
+            Some(s)
+        };
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests;
