@@ -86,9 +86,12 @@ impl<'a> Link<'a> {
         })
     }
 
-    /// Waits for a navigator: samples sent before a subscriber connects are lost.
-    pub fn wait_for_navigator(&mut self) -> Result<(), TransportError> {
+    /// Waits for a navigator before batch `seq`: samples sent before a subscriber connects are
+    /// lost. A navigator that dies before its first batch is cleaned up (and reported to the
+    /// probe) here.
+    pub fn wait_for_navigator(&mut self, seq: u64) -> Result<(), TransportError> {
         let start = Instant::now();
+        (self.probe)(Stage::PlantWaiting(seq));
         while self.session.imu_subscribers() == 0 {
             if self.session.interrupted() {
                 return Err(TransportError::Interrupted);
@@ -99,7 +102,9 @@ impl<'a> Link<'a> {
                     timeout_s: self.opts.peer_timeout.as_secs_f64(),
                 });
             }
-            self.session.peer_died();
+            if self.session.peer_died() {
+                (self.probe)(Stage::PlantLostNavigator(seq));
+            }
             std::thread::sleep(Duration::from_millis(2));
         }
         Ok(())
@@ -210,7 +215,7 @@ impl<'a> Link<'a> {
                 format!("navigator gone (exited) at batch {seq}; waiting for a new one")
             }
         });
-        self.wait_for_navigator()?;
+        self.wait_for_navigator(seq)?;
         summary.restarts += 1;
         Ok(())
     }
@@ -253,6 +258,9 @@ impl<'a> Link<'a> {
                         self.stop_requested = true;
                         return Ok(true);
                     }
+                    // After a stop the navigator may still acknowledge the batches it had
+                    // received before it saw the end: not an error.
+                    _ if self.stop_requested && c.ack_seq < seq => {}
                     _ => {
                         if c.ack_seq != seq {
                             return Err(TransportError::WrongAck {

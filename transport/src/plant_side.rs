@@ -141,7 +141,7 @@ pub fn serve_probed(
     let mut summary = ServeSummary::default();
     let batch_len = opts.batch.clamp(1, BATCH_CAPACITY);
     let mut pacer = Pacer::new(opts.pace, plant.time_s());
-    link.wait_for_navigator()?;
+    link.wait_for_navigator(0)?;
     (link.probe)(Stage::PlantConnected);
     pacer.rebase(plant.time_s());
     let mut seq: u64 = 0;

@@ -5,6 +5,8 @@
 /// A lifecycle point of the plant (`Plant…`) or the navigator (`Nav…`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {
+    /// Plant: waiting for a navigator to connect, before batch `seq` (0: the first).
+    PlantWaiting(u64),
     /// Plant: a navigator is connected, no batch sent yet.
     PlantConnected,
     /// Plant: batch `seq` is sent, its acknowledgement awaited (lockstep).
@@ -33,6 +35,7 @@ impl Stage {
             None => (s, 0),
         };
         Some(match name {
+            "plant-waiting" => Self::PlantWaiting(seq),
             "plant-connected" => Self::PlantConnected,
             "plant-awaiting-ack" => Self::PlantAwaitingAck(seq),
             "plant-resending" => Self::PlantResending(seq),
@@ -49,6 +52,7 @@ impl Stage {
     /// `name:seq`.
     pub fn label(&self) -> String {
         let (name, seq) = match *self {
+            Self::PlantWaiting(s) => ("plant-waiting", s),
             Self::PlantConnected => ("plant-connected", 0),
             Self::PlantAwaitingAck(s) => ("plant-awaiting-ack", s),
             Self::PlantResending(s) => ("plant-resending", s),
@@ -70,6 +74,7 @@ mod tests {
     #[test]
     fn labels_parse_back() {
         for s in [
+            Stage::PlantWaiting(4),
             Stage::PlantConnected,
             Stage::PlantAwaitingAck(7),
             Stage::PlantResending(3),

@@ -9,7 +9,8 @@
 //! ```
 //!
 //! Prints `STALL <stage> <unix ms>` when it freezes, `LOST <stage> <unix ms>` when it finds its
-//! peer lost, `RESULT key=value …` at a normal end and `ERROR <unix ms> <message>` (exit 1).
+//! peer lost, `WAITING <stage> <unix ms>` when the plant waits for a navigator,
+//! `END <stage> <unix ms>` when the plant has sent the end of the run, `RESULT key=value …` at a normal end and `ERROR <unix ms> <message>` (exit 1).
 
 use std::io::Write;
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
@@ -35,6 +36,12 @@ fn probe(stall: Option<Stage>) -> impl FnMut(Stage) {
         if matches!(s, Stage::PlantLostNavigator(_) | Stage::NavLostPlant(_)) {
             say(format!("LOST {} {}", s.label(), now_ms()));
         }
+        if matches!(s, Stage::PlantWaiting(_)) {
+            say(format!("WAITING {} {}", s.label(), now_ms()));
+        }
+        if matches!(s, Stage::PlantEndSent(_)) {
+            say(format!("END {} {}", s.label(), now_ms()));
+        }
         if Some(s) == stall {
             say(format!("STALL {} {}", s.label(), now_ms()));
             loop {
@@ -49,7 +56,7 @@ fn main() {
     let flag = |f: &str| args.iter().any(|a| a == f);
     let value = |f: &str| {
         args.iter()
-            .position(|a| a == f)
+            .rposition(|a| a == f)
             .and_then(|i| args.get(i + 1))
             .cloned()
     };
