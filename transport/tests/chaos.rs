@@ -288,7 +288,7 @@ fn repeated_kill9_restarts_into_one_session() {
 fn two_plants_and_two_navigators_at_once() {
     let s = session("two");
     // Paced so that the runs overlap (0.3 s each).
-    let mut peers = vec![
+    let mut peers = [
         plant(&s, &["--pace", "100"]),
         plant(&s, &["--pace", "100"]),
         nav(&s, &[]),
