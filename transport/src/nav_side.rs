@@ -14,6 +14,7 @@ use crate::layout::{
 };
 use crate::probe::Stage;
 use crate::session::{Session, TransportError, ipc};
+use iceoryx2::service::port_factory::PortFactory as _;
 
 /// Static navigation over the stream, with a digest of every state it passes through.
 #[derive(Debug)]
@@ -177,13 +178,17 @@ pub fn navigate_probed(
     let session = Session::open(name, "navigator")?;
     // The command publisher first: its single slot makes this the session's only navigator,
     // and a refused second one never subscribes (it would hold the plant back).
-    let cmd = session.exclusive("navigator", || {
-        session
-            .cmd
-            .publisher_builder()
-            .backpressure_strategy(iceoryx2::prelude::BackpressureStrategy::RetryUntilDelivered)
-            .create()
-    })?;
+    let cmd = session.exclusive(
+        "navigator",
+        || {
+            session
+                .cmd
+                .publisher_builder()
+                .backpressure_strategy(iceoryx2::prelude::BackpressureStrategy::RetryUntilDelivered)
+                .create()
+        },
+        || session.cmd.dynamic_config().number_of_publishers(),
+    )?;
     let sub = session
         .imu
         .subscriber_builder()

@@ -57,18 +57,22 @@ impl<'a> Link<'a> {
         probe: &'a mut dyn FnMut(Stage),
     ) -> Result<Self, TransportError> {
         let send_failure = Arc::new(AtomicU8::new(SEND_OK));
-        let publisher = session.exclusive("plant", || {
-            session
-                .imu
-                .publisher_builder()
-                .backpressure_strategy(BackpressureStrategy::RetryUntilDelivered)
-                .set_backpressure_handler(backpressure(
-                    session.config().clone(),
-                    opts.peer_timeout,
-                    send_failure.clone(),
-                ))
-                .create()
-        })?;
+        let publisher = session.exclusive(
+            "plant",
+            || {
+                session
+                    .imu
+                    .publisher_builder()
+                    .backpressure_strategy(BackpressureStrategy::RetryUntilDelivered)
+                    .set_backpressure_handler(backpressure(
+                        session.config().clone(),
+                        opts.peer_timeout,
+                        send_failure.clone(),
+                    ))
+                    .create()
+            },
+            || session.imu_publishers(),
+        )?;
         let commands = session
             .cmd
             .subscriber_builder()

@@ -234,41 +234,41 @@ impl Session {
     }
 
     /// Creates this process's port with `create`, which fails while the service's publisher
-    /// slots are taken. A slot held by a dead process is freed by cleaning up dead nodes (a
-    /// peer may be cleaning it up at this moment: retried for up to a second while dead nodes
-    /// remain); one held by a live process means the session already has a `role`.
+    /// slots are taken; `holders()` counts the publishers after creation (more than one: a
+    /// peer created the service with more slots, and another `role` holds one). A slot held by
+    /// a dead process is freed by cleaning up dead nodes (a peer may be cleaning it up at this
+    /// moment: retried for up to a second while dead nodes remain); one held by a live process
+    /// means the session already has a `role`.
     pub fn exclusive<P, E: std::fmt::Debug>(
         &self,
         role: &'static str,
         mut create: impl FnMut() -> Result<P, E>,
+        holders: impl Fn() -> usize,
     ) -> Result<P, TransportError> {
         let start = Instant::now();
         let mut last_try = false;
         loop {
             match create() {
-                Ok(p) => return Ok(p),
-                Err(e) => {
-                    let full = format!("{e:?}").contains("ExceedsMax");
-                    if !full {
-                        return Err(ipc(role)(&e));
-                    }
-                    // Only a dead holder is worth waiting for (its cleanup may be under way in
-                    // another process); a live one makes this process the second `role`.
-                    // (One more attempt when none is left: the last may just have been removed.)
-                    let dead = cleanup_dead_nodes(&self.config);
-                    if dead == 0 && !last_try {
-                        last_try = true;
-                        continue;
-                    }
-                    if dead == 0 || start.elapsed() > Duration::from_secs(1) {
-                        return Err(TransportError::Busy {
-                            session: self.name.clone(),
-                            role,
-                        });
-                    }
-                    std::thread::sleep(Duration::from_millis(5));
-                }
+                Ok(p) if holders() <= 1 => return Ok(p),
+                Ok(p) => drop(p), // a second holder: released, then decided below
+                Err(e) if format!("{e:?}").contains("ExceedsMax") => {}
+                Err(e) => return Err(ipc(role)(&e)),
             }
+            // Only a dead holder is worth waiting for (its cleanup may be under way in another
+            // process); a live one makes this process the second `role`. (One more attempt
+            // when none is left: the last may just have been removed.)
+            let dead = cleanup_dead_nodes(&self.config);
+            if dead == 0 && !last_try {
+                last_try = true;
+                continue;
+            }
+            if dead == 0 || start.elapsed() > Duration::from_secs(1) {
+                return Err(TransportError::Busy {
+                    session: self.name.clone(),
+                    role,
+                });
+            }
+            std::thread::sleep(Duration::from_millis(5));
         }
     }
 
