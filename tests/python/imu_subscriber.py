@@ -4,6 +4,8 @@ dwell position (A/B/C/D of Eq. 5) as JSON.
 
 Usage: python imu_subscriber.py SESSION
 The plant: rins serve builtin:paper-16pos-week --session SESSION --mode free --duration-s 4320
+(before or after this client: it opens or creates the service with the documented settings and
+prints "subscribed" on stderr once it is connected)
 """
 
 import ctypes
@@ -98,13 +100,18 @@ def main(session: str) -> None:
     deadline = time.time() + 30
     while True:
         try:
-            service = node.service_builder(name).publish_subscribe(ImuBatch).open()
+            # The documented settings of rins/S/imu (docs/transport.md, Services): this client
+            # may start before `rins serve` and create the service itself.
+            service = (node.service_builder(name).publish_subscribe(ImuBatch)
+                       .enable_safe_overflow(False).subscriber_max_buffer_size(16).history_size(0)
+                       .max_publishers(1).max_subscribers(8).open_or_create())
             break
-        except Exception:  # the plant has not created the service yet
+        except Exception:  # being created or removed by another process at this moment
             if time.time() > deadline:
                 raise
             time.sleep(0.05)
     subscriber = service.subscriber_builder().create()
+    print("subscribed", file=sys.stderr, flush=True)
     means = DwellMeans()
     expected = None
     samples = 0

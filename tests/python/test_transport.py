@@ -1,5 +1,6 @@
-"""The Python subscriber against a served stream: no gap, and its per-position mean rates equal
-the in-process plant's (from `rins run`) to rounding.
+"""The Python subscriber against a served stream: it starts before the plant (creating the
+services with the documented settings), sees no gap, and its per-position mean rates equal the
+in-process plant's (from `rins run`) to rounding.
 
 Usage: python test_transport.py RINS_BINARY WORK_DIR
 """
@@ -21,13 +22,19 @@ DURATION = "4320"  # one 16-position cycle at 100 Hz: 432,000 samples
 
 def main():
     session = f"py{os.getpid()}"
+    # The client starts first and creates the services with the documented settings; the plant
+    # must accept them (issue 16, A1).
+    sub = subprocess.Popen([sys.executable, os.path.join(HERE, "imu_subscriber.py"), session],
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    ready = sub.stderr.readline()
+    assert ready.strip() == "subscribed", ready + sub.stderr.read()
     plant = subprocess.Popen([RINS, "serve", "builtin:paper-16pos-week", "--session", session, "--mode", "free",
                               "--duration-s", DURATION], stderr=subprocess.PIPE, text=True)
-    sub = subprocess.run([sys.executable, os.path.join(HERE, "imu_subscriber.py"), session], capture_output=True, text=True, timeout=300)
+    out, sub_err = sub.communicate(timeout=300)
     _, err = plant.communicate(timeout=60)
-    assert sub.returncode == 0, sub.stderr
+    assert sub.returncode == 0, sub_err
     assert plant.returncode == 0, err
-    got = json.loads(sub.stdout)
+    got = json.loads(out)
     assert got["samples"] == 432000, got
     # The same figure from the in-process plant's CSV.
     out = os.path.join(WORK, "inproc-transport")
@@ -47,7 +54,7 @@ def main():
     for p, w in want.items():
         g = got["mean_rate_z_rps"][p]
         assert abs(g - w) <= 1e-12 * max(abs(w), 1e-9), (p, g, w)
-    print(f"ok   python subscriber: {got['samples']} samples, no gap, per-position mean rates equal the in-process run: {want}")
+    print(f"ok   python subscriber (started before the plant): {got['samples']} samples, no gap, per-position mean rates equal the in-process run: {want}")
     print("1 passed, 0 failed")
 
 

@@ -10,11 +10,19 @@
 
 pub mod layout;
 pub mod nav_side;
+pub mod pace;
+pub mod plant_link;
 pub mod plant_side;
+pub mod probe;
+pub mod services;
 pub mod session;
+pub mod signals;
 
-pub use nav_side::{NavOptions, NavProcessor, NavSummary, ScheduledCommand, navigate};
-pub use plant_side::{Mode, ServeOptions, ServeSummary, serve, serve_observed};
+pub use nav_side::{
+    NavOptions, NavProcessor, NavSummary, ScheduledCommand, navigate, navigate_probed,
+};
+pub use plant_side::{Mode, ServeOptions, ServeSummary, serve, serve_observed, serve_probed};
+pub use probe::Stage;
 pub use session::{Session, TransportError};
 
 /// The in-process reference: the same plant and navigator without the transport, with the same

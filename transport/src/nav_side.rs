@@ -12,7 +12,9 @@ use rins_plant::table::{GimbalAngles, body_to_nav};
 use crate::layout::{
     FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, LAYOUT_VERSION, NavCommand, NavSolution, kind,
 };
+use crate::probe::Stage;
 use crate::session::{Session, TransportError, ipc};
+use iceoryx2::service::port_factory::PortFactory as _;
 
 /// Static navigation over the stream, with a digest of every state it passes through.
 #[derive(Debug)]
@@ -139,7 +141,8 @@ pub struct NavOptions {
     pub acknowledge: bool,
     /// Table commands to send.
     pub commands: Vec<ScheduledCommand>,
-    /// Give up when nothing arrives for this long and no plant is connected.
+    /// Give up when nothing arrives for this long: no plant connected, or a live plant that
+    /// stalled.
     pub peer_timeout: Duration,
 }
 
@@ -162,18 +165,35 @@ pub fn navigate(
     cfg: &PlantConfig,
     opts: &NavOptions,
 ) -> Result<NavSummary, TransportError> {
+    navigate_probed(name, cfg, opts, &mut |_| {})
+}
+
+/// [`navigate`], reporting each lifecycle [`Stage`] to `probe` as it is reached.
+pub fn navigate_probed(
+    name: &str,
+    cfg: &PlantConfig,
+    opts: &NavOptions,
+    probe: &mut dyn FnMut(Stage),
+) -> Result<NavSummary, TransportError> {
     let session = Session::open(name, "navigator")?;
+    // The command publisher first: its single slot makes this the session's only navigator,
+    // and a refused second one never subscribes (it would hold the plant back).
+    let cmd = session.exclusive(
+        "navigator",
+        || {
+            session
+                .cmd
+                .publisher_builder()
+                .backpressure_strategy(iceoryx2::prelude::BackpressureStrategy::RetryUntilDelivered)
+                .create()
+        },
+        || session.cmd.dynamic_config().number_of_publishers(),
+    )?;
     let sub = session
         .imu
         .subscriber_builder()
         .create()
         .map_err(|e| ipc("creating the IMU subscriber")(&e))?;
-    let cmd = session
-        .cmd
-        .publisher_builder()
-        .backpressure_strategy(iceoryx2::prelude::BackpressureStrategy::RetryUntilDelivered)
-        .create()
-        .map_err(|e| ipc("creating the command publisher")(&e))?;
     let sol = session
         .nav
         .publisher_builder()
@@ -186,6 +206,7 @@ pub fn navigate(
         ..NavCommand::default()
     })
     .map_err(|e| ipc("sending hello")(&e))?;
+    probe(Stage::NavJoined);
     let mut nav = NavProcessor::new(cfg);
     let mut duplicates = 0u64;
     let mut expected: Option<u64> = None;
@@ -204,16 +225,37 @@ pub fn navigate(
                 if session.interrupted() {
                     return Err(TransportError::Interrupted);
                 }
+                let next = expected.unwrap_or(0);
+                let silent_ms = last_message.elapsed().as_millis() as u64;
                 if session.peer_died() {
+                    probe(Stage::NavLostPlant(next));
                     return Err(TransportError::PeerDied {
                         peer: "plant",
-                        after_ms: last_message.elapsed().as_millis() as u64,
+                        after_ms: silent_ms,
                     });
                 }
-                if session.imu_publishers() == 0 && last_message.elapsed() > opts.peer_timeout {
-                    return Err(TransportError::NoPeer {
+                let plants = session.imu_publishers();
+                if plants == 0 && expected.is_some() {
+                    // The plant that served us is gone and did not die: it exited normally.
+                    probe(Stage::NavLostPlant(next));
+                    return Err(TransportError::PeerLeft {
                         peer: "plant",
-                        timeout_s: opts.peer_timeout.as_secs_f64(),
+                        seq: next,
+                    });
+                }
+                if last_message.elapsed() > opts.peer_timeout {
+                    probe(Stage::NavLostPlant(next));
+                    return Err(if plants == 0 {
+                        TransportError::NoPeer {
+                            peer: "plant",
+                            timeout_s: opts.peer_timeout.as_secs_f64(),
+                        }
+                    } else {
+                        TransportError::Stalled {
+                            peer: "plant",
+                            seq: next,
+                            after_ms: silent_ms,
+                        }
                     });
                 }
             }
@@ -264,6 +306,11 @@ pub fn navigate(
         }
         let (seq, flags) = (b.seq, b.flags);
         drop(sample);
+        probe(if flags & FLAG_END != 0 {
+            Stage::NavEndReceived(seq)
+        } else {
+            Stage::NavReceived(seq)
+        });
         let _ = sol.send_copy(nav.solution(seq));
         if opts.acknowledge || flags & FLAG_END != 0 {
             let mut c = NavCommand {

@@ -3,13 +3,16 @@
 
 use std::time::{Duration, Instant};
 
-use iceoryx2::prelude::BackpressureStrategy;
 use rins_plant::{GimbalCommand, ImuSample, Plant, Truth};
 
 use crate::layout::{
-    BATCH_CAPACITY, FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, NavCommand, kind,
+    BATCH_CAPACITY, FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, LAYOUT_VERSION, NavCommand,
+    kind,
 };
-use crate::session::{Session, TransportError, ipc};
+use crate::pace::Pacer;
+use crate::plant_link::Link;
+use crate::probe::Stage;
+use crate::session::{Session, TransportError};
 
 /// Delivery mode.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,7 +34,8 @@ pub struct ServeOptions {
     pub batch: usize,
     /// Real-time factor (simulated seconds per wall second); `None` runs as fast as possible.
     pub pace: Option<f64>,
-    /// How long to wait for a navigator to connect (also after it dies).
+    /// How long to wait for a navigator to connect (also after it dies), and for a live
+    /// navigator to take or acknowledge a batch before it counts as stalled.
     pub peer_timeout: Duration,
     /// After the navigator dies, wait for a new one and resend from the first unacknowledged
     /// batch (instead of failing).
@@ -57,7 +61,27 @@ pub struct ServeSummary {
     pub interrupted: bool,
 }
 
-fn apply(
+/// Refuses a command of another layout version or an unknown kind (docs/transport.md).
+pub(crate) fn check_command(c: &NavCommand) -> Result<(), TransportError> {
+    if c.layout_version != LAYOUT_VERSION {
+        return Err(TransportError::CommandVersion {
+            got: c.layout_version,
+            want: LAYOUT_VERSION,
+        });
+    }
+    if c.kind > kind::HELLO {
+        return Err(TransportError::Ipc {
+            what: "navigator command".into(),
+            detail: format!(
+                "kind {} is unknown (0 acknowledge, 1 move-to, 2 stop, 3 hello)",
+                c.kind
+            ),
+        });
+    }
+    Ok(())
+}
+
+pub(crate) fn apply(
     plant: &mut Plant,
     c: &NavCommand,
     summary: &mut ServeSummary,
@@ -98,49 +122,44 @@ pub fn serve_observed(
     opts: &ServeOptions,
     observe: &mut dyn FnMut(&ImuSample, &Truth),
 ) -> Result<ServeSummary, TransportError> {
+    serve_probed(name, plant, samples, opts, observe, &mut |_| {})
+}
+
+/// [`serve_observed`], reporting each lifecycle [`Stage`] to `probe` as it is reached (the
+/// chaos tests stop the process there).
+pub fn serve_probed(
+    name: &str,
+    plant: &mut Plant,
+    samples: u64,
+    opts: &ServeOptions,
+    observe: &mut dyn FnMut(&ImuSample, &Truth),
+    probe: &mut dyn FnMut(Stage),
+) -> Result<ServeSummary, TransportError> {
     let t0 = Instant::now();
     let session = Session::open(name, "plant")?;
-    let publisher = session
-        .imu
-        .publisher_builder()
-        .backpressure_strategy(BackpressureStrategy::RetryUntilDelivered)
-        .create()
-        .map_err(|e| ipc("creating the IMU publisher")(&e))?;
-    let commands = session
-        .cmd
-        .subscriber_builder()
-        .create()
-        .map_err(|e| ipc("creating the command subscriber")(&e))?;
+    let mut link = Link::new(&session, opts, probe)?;
     let mut summary = ServeSummary::default();
     let batch_len = opts.batch.clamp(1, BATCH_CAPACITY);
-    let wait_for_navigator = |session: &Session| -> Result<(), TransportError> {
-        // Samples sent before a subscriber connects are lost: wait for one.
-        let start = Instant::now();
-        while session.imu_subscribers() == 0 {
-            if session.interrupted() {
-                return Err(TransportError::Interrupted);
-            }
-            if start.elapsed() > opts.peer_timeout {
-                return Err(TransportError::NoPeer {
-                    peer: "navigator",
-                    timeout_s: opts.peer_timeout.as_secs_f64(),
-                });
-            }
-            session.peer_died();
-            std::thread::sleep(Duration::from_millis(2));
-        }
-        Ok(())
-    };
-    wait_for_navigator(&session)?;
+    let mut pacer = Pacer::new(opts.pace, plant.time_s());
+    link.wait_for_navigator(0)?;
+    (link.probe)(Stage::PlantConnected);
+    pacer.rebase(plant.time_s());
     let mut seq: u64 = 0;
     let mut done: u64 = 0;
     let mut batch = ImuBatch::default();
     let mut stop = false;
     loop {
-        // Fill the next batch (or the end marker).
+        // Checked every batch (a signal also cuts the pacing sleep and every wait short): the
+        // plant stops within one batch.
+        let interrupted = session.interrupted();
+        // Fill the next batch, or an empty end marker after a stop request or a signal.
         batch.seq = seq;
         batch.flags = 0;
-        let n = (samples - done).min(batch_len as u64) as usize;
+        let n = if stop || interrupted {
+            0
+        } else {
+            (samples - done).min(batch_len as u64) as usize
+        };
         for r in batch.records[..n].iter_mut() {
             let s = plant.step();
             observe(&s, plant.truth());
@@ -148,7 +167,6 @@ pub fn serve_observed(
         }
         batch.count = n as u32;
         done += n as u64;
-        let interrupted = seq.is_multiple_of(256) && session.interrupted();
         if done >= samples || stop || interrupted {
             batch.flags |= FLAG_END;
         }
@@ -156,110 +174,22 @@ pub fn serve_observed(
             batch.flags |= FLAG_INTERRUPTED;
             summary.interrupted = true;
         }
-        // Send; in lockstep, wait for the acknowledgement (resending after a navigator restart).
-        loop {
-            let receivers = publisher
-                .send_copy(batch)
-                .map_err(|e| ipc("sending a batch")(&e))?;
-            if receivers == 0 {
-                session.peer_died();
-                if !opts.wait_for_restart {
-                    return Err(TransportError::PeerDied {
-                        peer: "navigator",
-                        after_ms: 0,
-                    });
-                }
-                summary.events.push(format!(
-                    "navigator gone at batch {seq}; waiting for a new one"
-                ));
-                wait_for_navigator(&session)?;
-                summary.restarts += 1;
-                continue;
-            }
-            if opts.mode != Mode::Lockstep && batch.flags & FLAG_END == 0 {
-                break;
-            }
-            // Wait for the acknowledgement of this batch.
-            let sent = Instant::now();
-            let mut last_check = Instant::now();
-            let mut polls: u32 = 0;
-            let acked = loop {
-                if let Some(c) = commands
-                    .receive()
-                    .map_err(|e| ipc("receiving commands")(&e))?
-                {
-                    let c = *c.payload();
-                    if c.kind == kind::HELLO {
-                        if seq > 0 {
-                            summary.events.push(format!("a navigator joined while batch {seq} was unacknowledged; resending it"));
-                            summary.restarts += 1;
-                        }
-                        break false;
-                    }
-                    if c.ack_seq == seq {
-                        apply(plant, &c, &mut summary)?;
-                        stop |= c.kind == kind::STOP;
-                        break true;
-                    }
-                    continue;
-                }
-                polls = polls.wrapping_add(1);
-                if polls.is_multiple_of(64) {
-                    std::thread::yield_now();
-                }
-                if last_check.elapsed() > Duration::from_millis(50) {
-                    last_check = Instant::now();
-                    // Free-running: a subscriber that does not acknowledge is done once it has
-                    // read the end marker and left.
-                    if opts.mode == Mode::FreeRunning && session.imu_subscribers() == 0 {
-                        session.peer_died();
-                        break true;
-                    }
-                    if session.peer_died() || session.imu_subscribers() == 0 {
-                        let after_ms = sent.elapsed().as_millis() as u64;
-                        if !opts.wait_for_restart {
-                            return Err(TransportError::PeerDied {
-                                peer: "navigator",
-                                after_ms,
-                            });
-                        }
-                        summary.events.push(format!("navigator died {after_ms} ms after batch {seq} was sent; waiting for a new one"));
-                        wait_for_navigator(&session)?;
-                        summary.restarts += 1;
-                        break false;
-                    }
-                    if session.interrupted() {
-                        summary.interrupted = true;
-                        break true;
-                    }
-                }
-            };
-            if acked {
-                break;
-            }
+        let paused = link.deliver(&batch, plant, &mut summary, opts.mode)?;
+        stop |= link.stop_requested;
+        if paused {
+            pacer.rebase(plant.time_s());
         }
         summary.batches += 1;
         summary.samples += n as u64;
         if opts.mode == Mode::FreeRunning {
-            while let Some(c) = commands
-                .receive()
-                .map_err(|e| ipc("receiving commands")(&e))?
-            {
-                let c = *c.payload();
-                apply(plant, &c, &mut summary)?;
-                stop |= c.kind == kind::STOP;
-            }
-        }
-        if let Some(k) = opts.pace {
-            let ahead = plant.time_s() / k - t0.elapsed().as_secs_f64();
-            if ahead > 0.0 {
-                std::thread::sleep(Duration::from_secs_f64(ahead));
-            }
+            link.drain_commands(plant, &mut summary)?;
+            stop |= link.stop_requested;
         }
         seq += 1;
         if batch.flags & FLAG_END != 0 {
             break;
         }
+        pacer.wait(plant.time_s(), &|| session.interrupted());
     }
     summary.wall_s = t0.elapsed().as_secs_f64();
     Ok(summary)

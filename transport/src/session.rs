@@ -1,7 +1,7 @@
 //! A named session: its iceoryx2 configuration (a prefix of its own, so sessions and tests run
 //! side by side), its services, dead-node cleanup and peer-liveness checks.
 
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use iceoryx2::config::Config;
 use iceoryx2::prelude::*;
@@ -9,6 +9,7 @@ use iceoryx2::service::port_factory::PortFactory as _;
 use iceoryx2::service::port_factory::publish_subscribe::PortFactory;
 
 use crate::layout::{ImuBatch, NavCommand, NavSolution};
+use crate::services;
 
 /// Why a transport run stopped.
 #[derive(Debug, thiserror::Error)]
@@ -30,6 +31,72 @@ pub enum TransportError {
         service: String,
         /// The iceoryx2 error.
         detail: String,
+    },
+    /// A service a peer created has a setting rins cannot work with.
+    #[error(
+        "service {service} exists with {setting} = {existing}, but rins needs {required}: the peer that created it must use the settings in docs/transport.md (Services), or start after rins serve"
+    )]
+    Setting {
+        /// Service name.
+        service: String,
+        /// The setting (with its iceoryx2 builder method).
+        setting: String,
+        /// The existing service's value.
+        existing: String,
+        /// What rins needs.
+        required: String,
+    },
+    /// The session already has a live plant or navigator.
+    #[error(
+        "session {session} already has a {role} (a live process holds its port); one {role} per session: stop it or use another --session"
+    )]
+    Busy {
+        /// Session name.
+        session: String,
+        /// "plant" or "navigator".
+        role: &'static str,
+    },
+    /// A command with another layout version.
+    #[error(
+        "the navigator sends commands with layout_version {got}; this plant uses layout version {want} (docs/transport.md)"
+    )]
+    CommandVersion {
+        /// Navigator's version.
+        got: u32,
+        /// Ours.
+        want: u32,
+    },
+    /// An acknowledgement of another batch than the one awaiting it.
+    #[error(
+        "the navigator acknowledged batch {got} (ack_seq), but batch {expected} is the one awaiting acknowledgement: ack_seq must be the seq of the last batch received"
+    )]
+    WrongAck {
+        /// The batch awaiting acknowledgement.
+        expected: u64,
+        /// The navigator's `ack_seq`.
+        got: u64,
+    },
+    /// The peer ended its process normally (its node left the session) while the run went on.
+    #[error(
+        "the {peer} exited normally (it left the session; not a crash) while batch {seq} was unfinished"
+    )]
+    PeerLeft {
+        /// Which peer.
+        peer: &'static str,
+        /// The batch in flight.
+        seq: u64,
+    },
+    /// The peer process lives but makes no progress.
+    #[error(
+        "the {peer} process is alive but stalled: batch {seq} unfinished for {after_ms} ms (--peer-timeout-s)"
+    )]
+    Stalled {
+        /// Which peer.
+        peer: &'static str,
+        /// The batch in flight.
+        seq: u64,
+        /// How long it waited.
+        after_ms: u64,
     },
     /// A message with another layout version or record size.
     #[error(
@@ -134,7 +201,8 @@ pub fn cleanup_dead_nodes(config: &Config) -> usize {
 }
 
 impl Session {
-    /// Joins (or creates) session `name` as node `role`, after cleaning up dead nodes.
+    /// Joins (or creates) session `name` as node `role`, after cleaning up dead nodes. Services
+    /// a peer created first are accepted if their settings serve rins ([`crate::services`]).
     pub fn open(name: &str, role: &str) -> Result<Self, TransportError> {
         let config = config(name)?;
         cleanup_dead_nodes(&config);
@@ -144,51 +212,17 @@ impl Session {
             .signal_handling_mode(SignalHandlingMode::HandleTerminationRequests)
             .create::<ipc::Service>()
             .map_err(|e| ipc("creating the node")(&e))?;
+        // Registers iceoryx2's SIGINT/SIGTERM handler now, not at the first check.
+        crate::signals::termination_requested();
         let service = |suffix: &str| -> Result<ServiceName, TransportError> {
             format!("rins/{name}/{suffix}")
                 .as_str()
                 .try_into()
                 .map_err(|e| ipc("service name")(&e))
         };
-        let mismatch = |s: String| {
-            move |e: &dyn std::fmt::Debug| TransportError::Mismatch {
-                service: s.clone(),
-                detail: format!("{e:?}"),
-            }
-        };
-        let imu_name = service("imu")?;
-        let imu = node
-            .service_builder(&imu_name)
-            .publish_subscribe::<ImuBatch>()
-            .enable_safe_overflow(false)
-            .subscriber_max_buffer_size(BUFFER)
-            .history_size(0)
-            .max_publishers(2)
-            .max_subscribers(8)
-            .open_or_create()
-            .map_err(|e| mismatch(imu_name.as_str().to_string())(&e))?;
-        let cmd_name = service("cmd")?;
-        let cmd = node
-            .service_builder(&cmd_name)
-            .publish_subscribe::<NavCommand>()
-            .enable_safe_overflow(false)
-            .subscriber_max_buffer_size(BUFFER)
-            .history_size(0)
-            .max_publishers(4)
-            .max_subscribers(2)
-            .open_or_create()
-            .map_err(|e| mismatch(cmd_name.as_str().to_string())(&e))?;
-        let nav_name = service("nav")?;
-        let nav = node
-            .service_builder(&nav_name)
-            .publish_subscribe::<NavSolution>()
-            .enable_safe_overflow(true)
-            .subscriber_max_buffer_size(BUFFER)
-            .history_size(1)
-            .max_publishers(2)
-            .max_subscribers(8)
-            .open_or_create()
-            .map_err(|e| mismatch(nav_name.as_str().to_string())(&e))?;
+        let imu = services::open::<ImuBatch>(&node, &config, &service("imu")?, &services::IMU)?;
+        let cmd = services::open::<NavCommand>(&node, &config, &service("cmd")?, &services::CMD)?;
+        let nav = services::open::<NavSolution>(&node, &config, &service("nav")?, &services::NAV)?;
         Ok(Self {
             name: name.into(),
             node,
@@ -197,6 +231,45 @@ impl Session {
             nav,
             config,
         })
+    }
+
+    /// Creates this process's port with `create`, which fails while the service's publisher
+    /// slots are taken; `holders()` counts the publishers after creation (more than one: a
+    /// peer created the service with more slots, and another `role` holds one). A slot held by
+    /// a dead process is freed by cleaning up dead nodes (a peer may be cleaning it up at this
+    /// moment: retried for up to a second while dead nodes remain); one held by a live process
+    /// means the session already has a `role`.
+    pub fn exclusive<P, E: std::fmt::Debug>(
+        &self,
+        role: &'static str,
+        mut create: impl FnMut() -> Result<P, E>,
+        holders: impl Fn() -> usize,
+    ) -> Result<P, TransportError> {
+        let start = Instant::now();
+        let mut last_try = false;
+        loop {
+            match create() {
+                Ok(p) if holders() <= 1 => return Ok(p),
+                Ok(p) => drop(p), // a second holder: released, then decided below
+                Err(e) if format!("{e:?}").contains("ExceedsMax") => {}
+                Err(e) => return Err(ipc(role)(&e)),
+            }
+            // Only a dead holder is worth waiting for (its cleanup may be under way in another
+            // process); a live one makes this process the second `role`. (One more attempt
+            // when none is left: the last may just have been removed.)
+            let dead = cleanup_dead_nodes(&self.config);
+            if dead == 0 && !last_try {
+                last_try = true;
+                continue;
+            }
+            if dead == 0 || start.elapsed() > Duration::from_secs(1) {
+                return Err(TransportError::Busy {
+                    session: self.name.clone(),
+                    role,
+                });
+            }
+            std::thread::sleep(Duration::from_millis(5));
+        }
     }
 
     /// Whether a node of the session has died since the last check (its resources are then
@@ -215,8 +288,14 @@ impl Session {
         self.imu.dynamic_config().number_of_publishers()
     }
 
-    /// Checks for SIGINT/SIGTERM without sleeping.
+    /// Whether SIGINT/SIGTERM arrived (latched: every later call says so too). An atomic
+    /// load, cheap enough to check once per batch.
     pub fn interrupted(&self) -> bool {
-        self.node.wait(Duration::ZERO).is_err()
+        crate::signals::termination_requested()
+    }
+
+    /// The session's iceoryx2 configuration.
+    pub fn config(&self) -> &Config {
+        &self.config
     }
 }
