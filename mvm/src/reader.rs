@@ -466,6 +466,8 @@ pub fn read(path: &Path) -> Result<Measurement, MeasurementError> {
     let mut buf: Vec<u8> = Vec::with_capacity(PIECE + (1 << 16));
     let mut layout: Option<Layout> = None;
     let mut acc: Option<Acc> = None;
+    // Bytes of the file before `buf`, for error positions.
+    let mut consumed: u64 = 0;
     loop {
         let have = buf.len();
         buf.resize(have + PIECE, 0);
@@ -479,15 +481,14 @@ pub fn read(path: &Path) -> Result<Measurement, MeasurementError> {
             buf.iter().rposition(|b| *b == b'\n').map_or(0, |k| k + 1)
         };
         if end > 0 {
-            let row = acc.as_ref().map_or(0, |a| a.rows) + 1;
-            let text = std::str::from_utf8(&buf[..end]).map_err(|e| MeasurementError {
-                source_name: source.clone(),
-                row,
-                column: String::new(),
-                message: format!(
-                    "not UTF-8 text (byte {} of this piece): {e}",
-                    e.valid_up_to()
-                ),
+            let text = std::str::from_utf8(&buf[..end]).map_err(|e| {
+                not_utf8(
+                    &buf[..end],
+                    e,
+                    consumed,
+                    acc.as_ref().map(|a| a.rows),
+                    &source,
+                )
             })?;
             let mut body = text;
             if layout.is_none() {
@@ -507,6 +508,7 @@ pub fn read(path: &Path) -> Result<Measurement, MeasurementError> {
                 a.add(l, body)?;
             }
             buf.drain(..end);
+            consumed += end as u64;
         }
         if eof {
             break;
@@ -520,4 +522,45 @@ pub fn read(path: &Path) -> Result<Measurement, MeasurementError> {
     })?;
     let acc = acc.expect("created with the layout");
     finish(layout, acc)
+}
+
+/// The error for a piece that is not UTF-8: the file byte offset of the bad byte (`piece`
+/// starts at byte `start` of the file) and its data row (`rows` were parsed before the piece;
+/// None while the header has not been found).
+fn not_utf8(
+    piece: &[u8],
+    e: std::str::Utf8Error,
+    start: u64,
+    rows: Option<usize>,
+    source: &str,
+) -> MeasurementError {
+    let bad = e.valid_up_to();
+    // The complete lines before the bad one are valid text.
+    let before = piece[..bad]
+        .iter()
+        .rposition(|b| *b == b'\n')
+        .map_or("", |k| {
+            std::str::from_utf8(&piece[..=k]).expect("a prefix of the valid part")
+        });
+    let row = match rows {
+        Some(r) => r + count_rows(before) + 1,
+        // The header is the first data line; rows count from the line after it.
+        None => match before.split_inclusive('\n').position(is_data) {
+            Some(h) => {
+                let after: usize = before.split_inclusive('\n').take(h + 1).map(str::len).sum();
+                count_rows(&before[after..]) + 1
+            }
+            None => 0,
+        },
+    };
+    MeasurementError {
+        source_name: source.into(),
+        row,
+        column: String::new(),
+        message: format!(
+            "not UTF-8 text: byte 0x{:02x} at byte {} of the file",
+            piece[bad],
+            start + bad as u64
+        ),
+    }
 }

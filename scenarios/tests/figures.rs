@@ -2,7 +2,7 @@
 //! SVG and PNG files are real (PNG signature and size, SVG text with the titles).
 
 use rins_scenarios::Scenario;
-use rins_scenarios::report::RunFigures;
+use rins_scenarios::figures::RunFigures;
 
 const STATIC_IDEAL: &str = r#"
 [scenario]

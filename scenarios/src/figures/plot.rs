@@ -46,7 +46,7 @@ pub struct Panel<'a> {
 }
 
 /// DejaVu Sans, registered as the `sans-serif` family for both backends.
-static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+static FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
 
 fn register_font() {

@@ -10,7 +10,7 @@ use rins_plant::thermal::node;
 use rins_plant::units::{DPH, UG};
 use rins_plant::{ImuSample, PlantConfig, Truth};
 
-use crate::plots::{Line, PALETTE, Panel, write_figure};
+use super::plot::{Line, PALETTE, Panel, write_figure};
 use crate::runner::Sink;
 
 /// Buckets per figure line.

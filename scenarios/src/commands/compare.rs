@@ -1,0 +1,111 @@
+//! `rins compare`: replay a model on measured logs and map where it fails. The work is in
+//! `rins_mvm` (and the figures in `crate::diagnose`); this module reads the arguments, and the
+//! data and model arguments it shares with `rins diagnose`.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use rins_mvm::{Analysis, History, Options};
+use rins_plant::PlantConfig;
+
+use super::args::{RerunArgs, positive};
+use crate::report::RenderText;
+
+/// The model, the measurements and the analysis settings of `compare` and `diagnose`.
+#[derive(clap::Args, Debug)]
+pub struct DataArgs {
+    /// Model: a scenario file (or builtin:NAME) whose plant is the model.
+    #[arg(long)]
+    pub model: PathBuf,
+    /// Measurement file (docs/measurement-format.md).
+    #[arg(long)]
+    pub data: PathBuf,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+    /// Write SVG figures into this folder.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// Longest window the rows are summed over, s.
+    #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
+    pub window_s: f64,
+    /// Temperature bin of the cell map, K.
+    #[arg(long, default_value_t = 5.0, allow_negative_numbers = true)]
+    pub temp_bin_k: f64,
+    /// Time window of the cell map, s.
+    #[arg(long, default_value_t = 3600.0, allow_negative_numbers = true)]
+    pub time_window_s: f64,
+    /// `--rerun DEST` and its bucket length.
+    #[command(flatten)]
+    pub viz: RerunArgs,
+}
+
+/// Arguments of `rins compare`.
+#[derive(clap::Args, Debug)]
+pub struct CompareArgs {
+    /// Model, data and analysis settings.
+    #[command(flatten)]
+    pub data: DataArgs,
+}
+
+/// The model (at the data's site), the measured history and the analysis options.
+pub fn load_data(a: &DataArgs) -> Result<(PlantConfig, History, Options)> {
+    let sc = crate::file::Scenario::load(&a.model)?;
+    let m = rins_mvm::reader::read(&a.data)?;
+    let (model, note) = rins_mvm::with_data_site(&sc.plant, &m);
+    if let Some(n) = note {
+        eprintln!("{}", n);
+    }
+    let h = rins_mvm::to_history(m, &a.data.display().to_string())?;
+    let opts = Options {
+        window_s: positive("--window-s", a.window_s)?,
+        temp_bin_k: positive("--temp-bin-k", a.temp_bin_k)?,
+        time_window_s: positive("--time-window-s", a.time_window_s)?,
+        ..Default::default()
+    };
+    Ok((model, h, opts))
+}
+
+/// Replays the model on the data and prints (or writes) where it fails.
+pub fn run(a: &CompareArgs) -> Result<()> {
+    let (model, h, opts) = load_data(&a.data)?;
+    let an = rins_mvm::analyse(&model, &h, &opts);
+    let report = &an.comparison;
+    record_analysis(
+        &a.data.viz,
+        &an,
+        None,
+        &h.source,
+        &serde_json::to_string_pretty(report)?,
+    )?;
+    if let Some(dir) = &a.data.report {
+        for f in crate::diagnose::write_report(dir, &an)? {
+            eprintln!("wrote {f}");
+        }
+    }
+    if a.data.json {
+        println!("{}", serde_json::to_string_pretty(report)?);
+    } else {
+        print!("{}", report.render_text());
+    }
+    Ok(())
+}
+
+/// `--rerun` of compare/diagnose: the residual windows, the fitted prediction, navigation.
+pub fn record_analysis(
+    viz: &RerunArgs,
+    an: &Analysis,
+    pred: Option<&[Vec<f64>]>,
+    source: &str,
+    text: &str,
+) -> Result<()> {
+    let target = viz.target()?;
+    #[cfg(feature = "rerun")]
+    if let Some(t) = &target {
+        crate::figures::rerun::record_diagnosis(t, an, pred, source, text)?;
+        eprintln!("rerun: recorded -> {}", viz.dest());
+    }
+    #[cfg(not(feature = "rerun"))]
+    let _ = (target, an, pred, source, text);
+    Ok(())
+}

@@ -1,0 +1,153 @@
+//! Text of the model-vs-measurement reports: `rins compare` (where the model fails) and
+//! `rins diagnose` (which effects explain it). These go with the diagnosis when it moves.
+
+use std::fmt::Write;
+
+use rins_mvm::{CompareReport, DiagnoseReport};
+
+use super::RenderText;
+
+impl RenderText for CompareReport {
+    fn render_text(&self) -> String {
+        let mut s = String::new();
+        // Writing to a String cannot fail.
+        let _ = writeln!(
+            s,
+            "{}: {} rows, {} windows, {} runs",
+            self.source, self.rows, self.windows, self.runs
+        );
+        let _ = writeln!(
+            s,
+            "{:<8} {:>12} {:>12} {:>12}  unit",
+            "channel", "resid RMS", "noise RMS", "resid mean"
+        );
+        for c in &self.channels {
+            let _ = writeln!(
+                s,
+                "{:<8} {:>12.5} {:>12.5} {:>12.5}  {}",
+                c.channel, c.residual_rms, c.noise_floor_rms, c.residual_mean, c.unit
+            );
+        }
+        for n in &self.noise {
+            let _ = writeln!(s, "noise {}: {}", n.channel, n.source);
+        }
+        let _ = writeln!(
+            s,
+            "{} of {} cells flagged (|z| > {:.2})",
+            self.flagged_cells.len(),
+            self.cells.len(),
+            self.z_critical
+        );
+        for c in self.flagged_cells.iter().take(20) {
+            let _ = writeln!(
+                s,
+                "  {:<8} {:<7} {:>5.1}-{:<5.1} C  {:>7.0}-{:<7.0} s  residual {:>10.5} ± {:.5}  z = {:>6.1}",
+                c.channel,
+                c.position,
+                c.temp_bin_c[0],
+                c.temp_bin_c[1],
+                c.time_window_s[0],
+                c.time_window_s[1],
+                c.residual,
+                c.noise_floor,
+                c.z
+            );
+        }
+        for c in self.correlations.iter().filter(|c| c.significant) {
+            let _ = writeln!(
+                s,
+                "  {}: residual correlates with {} (|rho| = {:.2} > {:.2}, lag {})",
+                c.channel, c.with, c.max_abs_rho, c.band99, c.lag
+            );
+        }
+        let _ = writeln!(
+            s,
+            "navigation (static, horizontal error at the end of each segment):"
+        );
+        for n in self.navigation.iter().take(12) {
+            let _ = writeln!(
+                s,
+                "  {:<16} {:>7.0} s  measured {:>9.2} m  model {:>9.2} m  (difference RMS {:.2} m)",
+                n.run, n.duration_s, n.measured_final_m, n.model_final_m, n.difference_rms_m
+            );
+        }
+        s
+    }
+}
+
+impl RenderText for DiagnoseReport {
+    fn render_text(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "{}: candidates ranked by delta-BIC (gate: delta-BIC < -10, Bonferroni p < 0.01, CV gain > 0)",
+            self.source
+        );
+        let _ = writeln!(
+            s,
+            "{:<36} {:<8} {:>10} {:>10} {:>8}  gate  coefficient (95 % CI)",
+            "effect", "channel", "dBIC", "p", "CV %"
+        );
+        for r in self.ranking.iter().take(15) {
+            let coef: Vec<String> = r
+                .coefficient
+                .iter()
+                .zip(&r.ci95)
+                .zip(&r.keys)
+                .map(|((c, ci), k)| {
+                    format!(
+                        "{}={c:.4} [{:.4}, {:.4}]",
+                        k.rsplit('.').next().unwrap_or(k),
+                        ci[0],
+                        ci[1]
+                    )
+                })
+                .collect();
+            let _ = writeln!(
+                s,
+                "{:<36} {:<8} {:>10.1} {:>10.2e} {:>8.2}  {}  {}",
+                r.effect,
+                r.channel,
+                r.delta_bic,
+                r.p_value,
+                r.cv_rmse_gain_pct,
+                if r.passes_gate { "PASS" } else { "-   " },
+                coef.join(" ")
+            );
+            for c in &r.confusable_with {
+                let _ = writeln!(
+                    s,
+                    "    confusable with {} (gap {:.1}, rho {:.2}, VIF {:.0}): separate by {}",
+                    c.effect, c.delta_bic_gap, c.correlation, c.vif, c.separate_by
+                );
+            }
+        }
+        let accepted = if self.accepted.is_empty() {
+            "none".to_string()
+        } else {
+            self.accepted
+                .iter()
+                .map(|r| format!("{} on {}", r.effect, r.channel))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let _ = writeln!(s, "accepted: {accepted}");
+        for (ch, b) in &self.residual_rms_before {
+            let _ = writeln!(
+                s,
+                "  {ch}: residual RMS {b:.5} -> {:.5} (noise floor {:.5})",
+                self.residual_rms_after[ch], self.noise_floor_rms[ch]
+            );
+        }
+        let _ = writeln!(
+            s,
+            "flagged cells: {} before, {} after",
+            self.flagged_cells.len(),
+            self.flagged_cells_after.len()
+        );
+        for u in &self.unexplained {
+            let _ = writeln!(s, "  {u}");
+        }
+        s
+    }
+}
