@@ -13,6 +13,7 @@ use rayon::prelude::*;
 use rins_plant::PlantConfig;
 use rins_plant::earth::Site;
 use rins_plant::effects::{AccelModel, AccelTerm, GyroModel, GyroTerm, TermContext};
+use rins_plant::kinematics::table_increments;
 use rins_plant::table::{GimbalAngles, body_to_nav};
 
 use crate::history::{Attitude, History};
@@ -226,15 +227,9 @@ pub struct RowKinematics {
     pub moving: bool,
 }
 
-/// The replay's gimbal kinematics: true increments of a table-mounted IMU over one row from the
-/// gimbal angles at the row's start (`a0`) and end (`a1`), C_b^n = C_v^n R_z(outer) R_x(inner).
-/// Midpoint rule: the inner gimbal turns about body x, the outer one about the vehicle's up axis,
-/// which the mid inner angle resolves onto body y and z; the Earth rate `omega_ie_n` and the
-/// specific force `f_n` (navigation frame) are resolved through the mid attitude.
-///
-/// The plant integrates the same kinematics for its true increments (plant/src/plant.rs). This
-/// function is the replay's only copy, so it can be swapped for the plant's function once that
-/// is shared (issue 13 §4); keep the two in step until then.
+/// True increments of a table-mounted IMU over one row from the gimbal angles at the row's
+/// start (`a0`) and end (`a1`): the plant's own kinematics ([`table_increments`]) at the mid
+/// angles, so the replay and the simulation integrate the same physics.
 pub fn gimbal_true_increments(
     c_vn: &Matrix3<f64>,
     omega_ie_n: &Vector3<f64>,
@@ -249,11 +244,11 @@ pub fn gimbal_true_increments(
     );
     let (d_outer, d_inner) = (a1.outer_rad - a0.outer_rad, a1.inner_rad - a0.inner_rad);
     let (s, c) = mid.inner_rad.sin_cos();
-    let gimbal_inc = Vector3::new(d_inner, s * d_outer, c * d_outer);
     let c_nb = body_to_nav(c_vn, mid).transpose();
+    let inc = table_increments(&c_nb, s, c, d_outer, d_inner, omega_ie_n, f_n, dt_s);
     RowKinematics {
-        dtheta_rad: gimbal_inc + c_nb * omega_ie_n * dt_s,
-        dv_mps: c_nb * f_n * dt_s,
+        dtheta_rad: inc.dtheta_rad,
+        dv_mps: inc.dv_mps,
         c_nb,
         moving: d_outer != 0.0 || d_inner != 0.0,
     }

@@ -98,3 +98,17 @@ mod tests {
         assert_relative_eq!(est, c_bn, epsilon = 1e-12);
     }
 }
+
+/// How the navigator gets its initial attitude.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Alignment {
+    /// From the plant's truth (a perfect alignment; what a simulation study usually assumes).
+    Truth,
+    /// Self-alignment on the static IMU: coarse for `coarse_s`, then fine (Kalman) for `fine_s`.
+    SelfAlign {
+        /// Coarse-alignment averaging time, s.
+        coarse_s: f64,
+        /// Fine-alignment time, s.
+        fine_s: f64,
+    },
+}

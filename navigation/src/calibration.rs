@@ -25,14 +25,14 @@
 //! plus exactly a random walk (ARW) and white noise (VRW), which the GLS fit weighs correctly.
 //! [`Estimator::Paper`] fits the raw series as Eq. 13–15 do.
 
-use rins_plant::earth::normal_gravity;
-use rins_plant::table::SchemeKind;
+use rins_plant::SensorSpec;
+use rins_plant::earth::{Site, normal_gravity};
 use rins_plant::units::{DPH, DPSH, UG};
-use rins_plant::{Plant, PlantConfig};
 use serde::Serialize;
 
+use crate::alignment::Alignment;
+use crate::errors::NavRecord;
 use crate::fit::{DriftFit, fit_drift};
-use crate::session::{Alignment, NavRecord, NavRunConfig, SessionError, run};
 
 /// The two calibration attitudes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -101,12 +101,9 @@ pub enum CalibrationError {
         /// Shortest usable segment, s.
         min_s: f64,
     },
-    /// The navigation run failed.
-    #[error(transparent)]
-    Session(#[from] SessionError),
-    /// The plant configuration was rejected.
-    #[error("plant configuration: {0}")]
-    Plant(String),
+    /// The calibration run itself failed (plant configuration, navigation session).
+    #[error("{0}")]
+    Run(String),
     /// A fit failed (degenerate data).
     #[error("the {what} fit of the {position:?} calibration failed (degenerate data)")]
     Fit {
@@ -156,33 +153,6 @@ pub struct Calibration {
     pub delta_beta_dph: [f64; 3],
     /// Standard errors of δβ, °/h.
     pub delta_beta_se_dph: [f64; 3],
-}
-
-/// Mixed into the seed of the Z-down run (the golden-ratio constant).
-pub const Z_DOWN_SEED_MIX: u64 = 0x9E37_79B9_7F4A_7C15;
-
-/// The plant configuration of a calibration run at `pos`, from the scenario's plant `base`.
-pub fn calibration_plant(
-    base: &PlantConfig,
-    pos: CalPosition,
-    cfg: &CalibrationConfig,
-) -> PlantConfig {
-    let mut p = base.clone();
-    p.scheme.kind = match pos {
-        CalPosition::ZUp => SchemeKind::ZUpCalibration,
-        CalPosition::ZDown => SchemeKind::ZDownCalibration,
-    };
-    p.scheme.dwell_s = cfg.segment_s;
-    if pos == CalPosition::ZDown {
-        // The two calibrations are separate runs with independent noise; sharing the seed would
-        // replay the same noise in both and cancel it from δβ (a false precision).
-        p.seed ^= Z_DOWN_SEED_MIX;
-    }
-    p.scheme.lead_dwell_s = match cfg.alignment {
-        Alignment::SelfAlign { coarse_s, fine_s } => coarse_s + fine_s,
-        Alignment::Truth => 0.0,
-    };
-    p
 }
 
 /// Series whose drifts are δV̈_E, δV̈_N and φ̇_U (see the module notes), at the record times
@@ -235,42 +205,26 @@ fn series(recs: &[&NavRecord], coupled: bool, lat: f64, g: f64, r_m: f64) -> Ser
     out
 }
 
-/// Runs the calibration sequence at `pos` and estimates β with Eq. 17 or 19.
-pub fn calibrate_position(
-    base: &PlantConfig,
+/// Estimates β at `pos` with Eq. 17 or 19 from the error records of one calibration run
+/// (alignment done, then `segment_s` of navigation, the turn of `move_s`, `segment_s` more),
+/// the site, the sensor noise levels the GLS weights come from, and the gyro temperatures the
+/// unit reported and the chamber temperature, which are carried into the estimate.
+#[allow(clippy::too_many_arguments)]
+pub fn estimate_position(
+    records: &[NavRecord],
     pos: CalPosition,
     cfg: &CalibrationConfig,
+    site: &Site,
+    sensor: &SensorSpec,
+    move_s: f64,
+    gyro_temp_c: [f64; 3],
+    chamber_c: f64,
 ) -> Result<PositionEstimate, CalibrationError> {
-    let samples = (cfg.segment_s * cfg.fit_rate_hz) as usize;
-    if samples < 30 {
-        return Err(CalibrationError::SegmentTooShort {
-            segment_s: cfg.segment_s,
-            rate_hz: cfg.fit_rate_hz,
-            samples,
-            min_s: 30.0 / cfg.fit_rate_hz,
-        });
-    }
-    let pcfg = calibration_plant(base, pos, cfg);
-    let mut plant = Plant::new(&pcfg).map_err(|e| {
-        CalibrationError::Plant(
-            e.iter()
-                .map(|x| x.to_string())
-                .collect::<Vec<_>>()
-                .join("; "),
-        )
-    })?;
-    let move_s = plant.schedule().cycle_s() - cfg.segment_s;
     let total = 2.0 * cfg.segment_s + move_s;
-    let nav = NavRunConfig {
-        alignment: cfg.alignment,
-        record_every_s: 1.0 / cfg.fit_rate_hz,
-        ..NavRunConfig::default()
-    };
-    let run = run(&mut plant, total, &nav)?;
-    let g = normal_gravity(plant.site().lat_rad, plant.site().height_m);
-    let lat = plant.site().lat_rad;
-    let r_m = (plant.site().rm_m * plant.site().rn_m).sqrt() + plant.site().height_m;
-    let s = &pcfg.sensor;
+    let g = normal_gravity(site.lat_rad, site.height_m);
+    let lat = site.lat_rad;
+    let r_m = (site.rm_m * site.rn_m).sqrt() + site.height_m;
+    let s = sensor;
     let arw = if s.gyro.angle_random_walk.enabled {
         s.gyro
             .angle_random_walk
@@ -293,8 +247,7 @@ pub fn calibrate_position(
     };
     let dt = 1.0 / cfg.fit_rate_hz;
     let fits = |from: f64, to: f64| -> Result<SegmentFit, CalibrationError> {
-        let recs: Vec<&NavRecord> = run
-            .records
+        let recs: Vec<&NavRecord> = records
             .iter()
             .filter(|r| r.t_s > from && r.t_s <= to)
             .collect();
@@ -334,31 +287,12 @@ pub fn calibrate_position(
         hyp(s1.dvdd_e.se, s2.dvdd_e.se) / (2.0 * g),
         hyp(s1.phi_u_rate.se, s2.phi_u_rate.se) / 2.0,
     ];
-    // The gyro temperatures the unit reports; the chamber set point is the experimenter's.
-    let readings = plant.temp_readings_c();
     Ok(PositionEstimate {
         position: pos,
         beta_dph: beta.map(|b| b / DPH),
         se_dph: se.map(|e| e / DPH),
         segments: [s1, s2],
-        gyro_temp_c: [readings[1], readings[2], readings[3]],
-        chamber_c: plant.chamber_now_c(),
-    })
-}
-
-/// Z-up then Z-down calibration of the same plant; δβ = β_down − β_up (Section 3.2).
-pub fn calibrate(
-    base: &PlantConfig,
-    cfg: &CalibrationConfig,
-) -> Result<Calibration, CalibrationError> {
-    let up = calibrate_position(base, CalPosition::ZUp, cfg)?;
-    let down = calibrate_position(base, CalPosition::ZDown, cfg)?;
-    let delta_beta_dph = [0, 1, 2].map(|i| down.beta_dph[i] - up.beta_dph[i]);
-    let delta_beta_se_dph = [0, 1, 2].map(|i| down.se_dph[i].hypot(up.se_dph[i]));
-    Ok(Calibration {
-        up,
-        down,
-        delta_beta_dph,
-        delta_beta_se_dph,
+        gyro_temp_c,
+        chamber_c,
     })
 }

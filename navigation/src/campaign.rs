@@ -6,13 +6,10 @@
 //! it reads), referenced to `ref_temp_c`.
 
 use nalgebra::{DMatrix, DVector, Matrix4, Vector4};
-use rayon::prelude::*;
-use rins_plant::PlantConfig;
 use rins_plant::effects::gyro::PositionBiasSpec;
-use rins_plant::thermal::{CHAMBER_MAX_C, CHAMBER_MIN_C};
 use serde::Serialize;
 
-use crate::calibration::{Calibration, CalibrationConfig, CalibrationError, calibrate};
+use crate::calibration::{Calibration, CalibrationError};
 
 /// One campaign point.
 #[derive(Clone, Debug, Serialize)]
@@ -89,51 +86,15 @@ pub enum CampaignError {
     },
 }
 
-/// Runs the campaign at `temps_c` on both cores and fits δβ(T).
-pub fn run_campaign(
-    base: &PlantConfig,
-    temps_c: &[f64],
-    cfg: &CalibrationConfig,
-    ref_temp_c: f64,
-) -> Result<Campaign, CampaignError> {
-    for (index, &t) in temps_c.iter().enumerate() {
-        if !(CHAMBER_MIN_C..=CHAMBER_MAX_C).contains(&t) {
-            return Err(CampaignError::TemperatureOutOfRange {
-                temp_c: t,
-                index,
-                min: CHAMBER_MIN_C,
-                max: CHAMBER_MAX_C,
-            });
-        }
-    }
-    if temps_c.len() < 5 {
-        return Err(CampaignError::TooFewRuns(temps_c.len()));
-    }
-    let t0 = std::time::Instant::now();
-    let runs: Vec<CampaignRun> = temps_c
-        .par_iter()
-        .enumerate()
-        .map(|(k, &t)| {
-            let mut p = base.clone();
-            p.thermal.chamber.temp_c = t;
-            p.thermal.chamber.profile.clear();
-            p.seed = base.seed.wrapping_add(k as u64 * 7919);
-            let calibration =
-                calibrate(&p, cfg).map_err(|source| CampaignError::Run { temp_c: t, source })?;
-            Ok(CampaignRun {
-                chamber_c: t,
-                block_temp_c: calibration.down.gyro_temp_c,
-                calibration,
-            })
-        })
-        .collect::<Result<_, _>>()?;
+/// The third-order δβ(T) fit per axis over the campaign's runs (`wall_s`: how long they took).
+pub fn fit_campaign(runs: Vec<CampaignRun>, ref_temp_c: f64, wall_s: f64) -> Campaign {
     let fits = [0, 1, 2].map(|i| fit_axis(&runs, i, ref_temp_c));
-    Ok(Campaign {
+    Campaign {
         runs,
         ref_temp_c,
         fits,
-        wall_s: t0.elapsed().as_secs_f64(),
-    })
+        wall_s,
+    }
 }
 
 /// Weighted least-squares cubic (weights 1/SE²); covariance scaled by χ²/dof when above 1.

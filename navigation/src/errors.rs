@@ -1,4 +1,4 @@
-//! Navigation errors against the plant's truth (static vehicle).
+//! Navigation error measures: attitude φ, position, tRMS (Eq. 20) and the error record of a run.
 
 use nalgebra::{Matrix3, Vector3};
 use rins_plant::earth::radii_of_curvature;
@@ -76,4 +76,35 @@ mod tests {
         }
         assert_relative_eq!(t.value(), (12.5f64).sqrt());
     }
+}
+
+/// Navigation errors at one instant.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct NavRecord {
+    /// Time since navigation start, s.
+    pub t_s: f64,
+    /// Attitude error φ (E, N, U), rad.
+    pub att_err_rad: [f64; 3],
+    /// Carrier (vehicle) attitude error (E, N, U), rad: the navigator's C_b^n with the gimbal
+    /// encoder angles removed, C_v^n = C_b^n·(C_b^v)ᵀ, against the true mount.
+    pub vehicle_att_err_rad: [f64; 3],
+    /// Velocity error (E, N, U), m/s.
+    pub vel_err_mps: [f64; 3],
+    /// Latitude error as north distance, m.
+    pub north_m: f64,
+    /// Longitude error as east distance, m.
+    pub east_m: f64,
+    /// Horizontal error, m.
+    pub horizontal_m: f64,
+    /// tRMS of the horizontal error so far (Eq. 20), m.
+    pub trms_m: f64,
+}
+
+/// The carrier (vehicle) attitude C_v^n from the navigator's IMU attitude and the gimbal
+/// encoder angles: C_v^n = C_b^n·(R_z(outer)·R_x(inner))ᵀ.
+pub fn vehicle_attitude(
+    c_bn: &nalgebra::Matrix3<f64>,
+    gimbal: rins_plant::table::GimbalAngles,
+) -> nalgebra::Matrix3<f64> {
+    c_bn * rins_plant::table::body_to_nav(&nalgebra::Matrix3::identity(), gimbal).transpose()
 }

@@ -3,7 +3,9 @@
 //! The reference "external navigation software" for the rins plant: a strapdown navigator in
 //! ENU on WGS-84 consuming Δθ/Δv increments with coning and sculling compensation, coarse and
 //! fine self-alignment, real-time compensation of the position-dependent gyro bias δβ, and error
-//! measures against the plant's truth (attitude φ, position, tRMS of Eq. 20).
+//! measures (attitude φ, position, tRMS of Eq. 20), and the calibration maths (Eq. 13–19, the
+//! δβ(T) fit). It sees only what the IMU outputs; the experiments that drive a plant through it
+//! are in rins-experiments.
 
 pub mod alignment;
 pub mod calibration;
@@ -11,8 +13,8 @@ pub mod campaign;
 pub mod compensation;
 pub mod errors;
 pub mod fit;
-pub mod session;
 pub mod strapdown;
 
-pub use session::{Alignment, NavRecord, NavRun, NavRunConfig, Tracker, run};
+pub use alignment::Alignment;
+pub use errors::NavRecord;
 pub use strapdown::{NavState, Strapdown, VerticalChannel};

@@ -14,6 +14,7 @@ pub mod command;
 pub mod config;
 pub mod earth;
 pub mod effects;
+pub mod kinematics;
 pub mod params;
 pub mod plant;
 pub mod presets;

@@ -13,6 +13,7 @@ use crate::effects::noise::NoiseState;
 use crate::effects::quantize::Quantizer;
 use crate::effects::temp_sensor::TempSensors;
 use crate::effects::{AccelModel, GyroModel, TermContext};
+use crate::kinematics::table_increments;
 use crate::table::gimbal::gimbal_rotation;
 use crate::table::{Cursor, GimbalAngles, GimbalState, Schedule, body_to_nav};
 use crate::thermal::{Temperatures, ThermalNetwork, node};
@@ -413,13 +414,18 @@ impl Plant {
             let m = self.mid_attitude(&gm);
             // Gimbal part from exact angle differences (one axis moves at a time); Earth rate
             // and specific force at the midpoint.
-            let d_outer = g1.angles.outer_rad - g0.angles.outer_rad;
-            let d_inner = g1.angles.inner_rad - g0.angles.inner_rad;
-            let gimbal_inc = Vector3::new(d_inner, m.sin_inner * d_outer, m.cos_inner * d_outer);
-            let dtheta = gimbal_inc + m.c_nb * self.site.omega_ie_n * h;
+            let inc = table_increments(
+                &m.c_nb,
+                m.sin_inner,
+                m.cos_inner,
+                g1.angles.outer_rad - g0.angles.outer_rad,
+                g1.angles.inner_rad - g0.angles.inner_rad,
+                &self.site.omega_ie_n,
+                &self.f_n,
+                h,
+            );
+            let (dtheta, dv, f_b) = (inc.dtheta_rad, inc.dv_mps, inc.f_b_mps2);
             let up_b = m.c_nb.column(2).into_owned();
-            let f_b = m.c_nb * self.f_n;
-            let dv = f_b * h;
             let ctx = TermContext {
                 dt_s: h,
                 dtheta_rad: dtheta,

@@ -32,8 +32,8 @@ fn with_rerun(
     let t0 = Instant::now();
     let rec = Recorder::open(&Target::Save(path.to_path_buf()), "bench").expect("open");
     let bucket_samples = bucket::samples_per_bucket(None, cfg.rate_hz, n);
-    let tracker =
-        navigate.then(|| rins_nav::Tracker::at_truth(&p, bucket_samples as f64 / cfg.rate_hz));
+    let tracker = navigate
+        .then(|| rins_experiments::Tracker::at_truth(&p, bucket_samples as f64 / cfg.rate_hz));
     let mut r = RunRecorder::new(
         rec.stream(),
         cfg,

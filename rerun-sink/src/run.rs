@@ -3,7 +3,7 @@
 use anyhow::Result;
 use nalgebra::{Matrix3, Vector3};
 use rerun::{RecordingStream, TextLog};
-use rins_nav::{NavRecord, Tracker};
+use rins_experiments::{NavRecord, Tracker};
 use rins_plant::effects::accel::ACCEL_TERMS;
 use rins_plant::effects::gyro::GYRO_TERMS;
 use rins_plant::effects::{AccelTerm, GyroTerm};

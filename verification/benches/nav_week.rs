@@ -4,7 +4,7 @@
 //! `RINS_BENCH_SKIP_WEEK=1` skips the week runs.
 
 use criterion::{Criterion, Throughput};
-use rins_nav::{NavRunConfig, run};
+use rins_experiments::{NavRunConfig, run};
 use rins_plant::{Plant, PlantConfig};
 use std::hint::black_box;
 use std::time::Instant;

@@ -1,5 +1,5 @@
 //! Development aid: the noise-free Table 4 pair under different modelling choices.
-use rins_nav::{Alignment, NavRunConfig};
+use rins_experiments::{Alignment, NavRunConfig};
 use rins_plant::effects::gyro::Transition;
 use rins_verify::paper::{Table4Options, table4};
 

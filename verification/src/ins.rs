@@ -5,7 +5,7 @@
 
 use nalgebra::{SMatrix, Vector3};
 use rayon::prelude::*;
-use rins_nav::{NavRecord, NavRunConfig, run};
+use rins_experiments::{NavRecord, NavRunConfig, run};
 use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity, radii_of_curvature};
 use rins_plant::table::SchemeKind;
 use rins_plant::units::{DPH, DPSH, UG};

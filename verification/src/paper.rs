@@ -2,7 +2,7 @@
 //! compensated navigation of the 16-position RINS over several seeds, side by side with the paper.
 
 use rayon::prelude::*;
-use rins_nav::{NavRecord, NavRunConfig, run};
+use rins_experiments::{NavRecord, NavRunConfig, run};
 use rins_plant::effects::GyroTerm;
 use rins_plant::{Plant, PlantConfig};
 use serde::Serialize;
@@ -69,7 +69,7 @@ pub struct EndFigures {
 }
 
 impl EndFigures {
-    fn from_run(r: &rins_nav::NavRun) -> Self {
+    fn from_run(r: &rins_experiments::NavRun) -> Self {
         let e = r.end();
         let nm = rins_nav::errors::nmi;
         Self {
@@ -208,7 +208,7 @@ fn one_run(
     opt: &Table4Options,
     compensated: bool,
     progress: &(dyn Fn(u64) + Sync),
-) -> rins_nav::NavRun {
+) -> rins_experiments::NavRun {
     let (nav, duration_s) = (&opt.nav, opt.duration_s);
     let mut plant = Plant::new(plant_cfg).expect("validated scenario");
     let mut cfg = nav.clone();
@@ -233,7 +233,7 @@ pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Rep
     }
     tasks.push((None, false));
     tasks.push((None, true));
-    let results: Vec<((Option<u64>, bool), rins_nav::NavRun)> = tasks
+    let results: Vec<((Option<u64>, bool), rins_experiments::NavRun)> = tasks
         .into_par_iter()
         .map(|(seed, comp)| {
             let mut cfg = opt.plant.clone();

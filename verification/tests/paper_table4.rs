@@ -1,6 +1,6 @@
 //! The Section 3.1 reproduction tied to independent references.
 
-use rins_nav::{NavRunConfig, run};
+use rins_experiments::{NavRunConfig, run};
 use rins_plant::effects::GyroTerm;
 use rins_plant::{Plant, PlantConfig};
 use rins_verify::analytic::eq11;
@@ -151,7 +151,7 @@ fn fitted_campaign_compensation_reduces_the_static_navigation_error() {
     }
     base.sensor.accel.velocity_random_walk.enabled = false;
     let temps: Vec<f64> = (0..7).map(|k| 10.0 + 40.0 * k as f64 / 6.0).collect();
-    let camp = rins_nav::campaign::run_campaign(
+    let camp = rins_experiments::campaign::run_campaign(
         &base,
         &temps,
         &rins_nav::calibration::CalibrationConfig::default(),

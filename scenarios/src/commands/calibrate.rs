@@ -32,7 +32,7 @@ pub struct CalibrateArgs {
 pub fn run(a: &CalibrateArgs) -> Result<()> {
     let sc = Scenario::load(&a.scenario)?;
     let cfg = calibration_config(&sc, &a.estimator);
-    let r = rins_nav::calibration::calibrate(&sc.plant, &cfg)?;
+    let r = rins_experiments::calibration::calibrate(&sc.plant, &cfg)?;
     super::create_dir(&a.out)?;
     std::fs::write(
         a.out.join("calibration.json"),

@@ -53,7 +53,7 @@ pub fn run_campaign_from(sc: &Scenario, ref_temp_c: f64) -> Result<Campaign> {
         )
     })?;
     let cfg = calibration_config(sc, "coupled");
-    Ok(rins_nav::campaign::run_campaign(
+    Ok(rins_experiments::campaign::run_campaign(
         &sc.plant,
         &camp.temperatures_c(),
         &cfg,

@@ -49,7 +49,7 @@ pub fn run(a: &Table4Args) -> Result<()> {
         runs,
         duration_s: a.days * 86_400.0,
         compensation: None,
-        nav: rins_nav::NavRunConfig {
+        nav: rins_experiments::NavRunConfig {
             alignment: if a.align == "self" {
                 rins_nav::Alignment::SelfAlign {
                     coarse_s: 300.0,
@@ -58,7 +58,7 @@ pub fn run(a: &Table4Args) -> Result<()> {
             } else {
                 rins_nav::Alignment::Truth
             },
-            ..rins_nav::NavRunConfig::default()
+            ..rins_experiments::NavRunConfig::default()
         },
     };
     let r = run_paired(&opt, "table4", &a.out, &sc, &a.viz)?;

@@ -53,7 +53,7 @@ pub fn run(a: &Table5Args) -> Result<()> {
         plant: sc.plant.clone(),
         runs,
         duration_s: a.days * 86_400.0,
-        nav: rins_nav::NavRunConfig::default(),
+        nav: rins_experiments::NavRunConfig::default(),
         compensation: Some(comp),
     };
     let r = run_paired(&opt, "table5", &a.out, &sc, &a.viz)?;

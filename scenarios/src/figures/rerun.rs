@@ -31,7 +31,10 @@ impl RerunSink {
         let bucket_samples =
             rins_rerun::bucket::samples_per_bucket(bucket_s, scenario.plant.rate_hz, samples);
         let tracker = navigate.then(|| {
-            rins_nav::Tracker::at_truth(&plant, bucket_samples as f64 / scenario.plant.rate_hz)
+            rins_experiments::Tracker::at_truth(
+                &plant,
+                bucket_samples as f64 / scenario.plant.rate_hz,
+            )
         });
         let run = RunRecorder::new(
             recorder.stream(),

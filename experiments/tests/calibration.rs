@@ -1,7 +1,8 @@
 //! System-level indirect calibration (Section 3.2) recovers the position-dependent bias.
 
 use rayon::prelude::*;
-use rins_nav::calibration::{CalibrationConfig, Estimator, calibrate};
+use rins_experiments::calibration::calibrate;
+use rins_nav::calibration::{CalibrationConfig, Estimator};
 use rins_plant::PlantConfig;
 use rins_plant::effects::GyroTerm;
 

@@ -5,7 +5,7 @@
 //! so to first order φ_v = δi·(cos o, sin o, 0) + δo·(0, 0, 1), with δ = reading − true angle.
 
 use nalgebra::{Matrix3, Rotation3, Vector3};
-use rins_nav::Tracker;
+use rins_experiments::Tracker;
 use rins_nav::errors::attitude_error;
 use rins_plant::table::SchemeKind;
 use rins_plant::units::{ARCSEC, PPM};

@@ -1,5 +1,5 @@
 //! Development aid: static, non-rotating navigation with one gyro bias against the closed form.
-use rins_nav::{NavRunConfig, run};
+use rins_experiments::{NavRunConfig, run};
 use rins_plant::{Plant, PlantConfig, table::SchemeKind, units::DPH};
 
 fn main() {

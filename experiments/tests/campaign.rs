@@ -1,7 +1,8 @@
 //! The temperature campaign recovers δβ(T) and refuses bad inputs.
 
+use rins_experiments::campaign::run_campaign;
 use rins_nav::calibration::CalibrationConfig;
-use rins_nav::campaign::{CampaignError, run_campaign};
+use rins_nav::campaign::CampaignError;
 use rins_plant::PlantConfig;
 use rins_plant::effects::GyroTerm;
 

@@ -1,6 +1,6 @@
 //! Self-alignment reaches the classical static alignment limits (closed form).
 
-use rins_nav::{Alignment, NavRunConfig, run};
+use rins_experiments::{Alignment, NavRunConfig, run};
 use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity};
 use rins_plant::table::SchemeKind;
 use rins_plant::units::{DPH, UG};

@@ -1,5 +1,6 @@
 //! Runs the plant and the reference navigator together: alignment, navigation, δβ compensation,
-//! and error records against the plant's truth.
+//! and error records against the plant's truth. The navigator sees only the samples (increments,
+//! encoder angles, temperature readings); the truth is read here, for the error records.
 
 use nalgebra::{Matrix3, Vector2, Vector3};
 use rins_plant::earth::Site;
@@ -7,24 +8,12 @@ use rins_plant::effects::gyro::PositionBiasSpec;
 use rins_plant::units::{DPSH, UG};
 use rins_plant::{ImuSample, Plant, Truth};
 
-use crate::alignment::{FineAlignment, coarse, correct_attitude};
-use crate::compensation::PositionBiasCompensation;
-use crate::errors::{Trms, attitude_error, position_error_m};
-use crate::strapdown::{NavState, Strapdown, VerticalChannel};
-
-/// How the navigator gets its initial attitude.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Alignment {
-    /// From the plant's truth (a perfect alignment; what a simulation study usually assumes).
-    Truth,
-    /// Self-alignment on the static IMU: coarse for `coarse_s`, then fine (Kalman) for `fine_s`.
-    SelfAlign {
-        /// Coarse-alignment averaging time, s.
-        coarse_s: f64,
-        /// Fine-alignment time, s.
-        fine_s: f64,
-    },
-}
+pub use rins_nav::alignment::Alignment;
+use rins_nav::alignment::{FineAlignment, coarse, correct_attitude};
+use rins_nav::compensation::PositionBiasCompensation;
+pub use rins_nav::errors::{NavRecord, vehicle_attitude};
+use rins_nav::errors::{Trms, attitude_error, position_error_m};
+use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
 
 /// Options of a navigation run.
 #[derive(Clone, Debug)]
@@ -48,28 +37,6 @@ impl Default for NavRunConfig {
             record_every_s: 60.0,
         }
     }
-}
-
-/// Navigation errors at one instant.
-#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
-pub struct NavRecord {
-    /// Time since navigation start, s.
-    pub t_s: f64,
-    /// Attitude error φ (E, N, U), rad.
-    pub att_err_rad: [f64; 3],
-    /// Carrier (vehicle) attitude error (E, N, U), rad: the navigator's C_b^n with the gimbal
-    /// encoder angles removed, C_v^n = C_b^n·(C_b^v)ᵀ, against the true mount.
-    pub vehicle_att_err_rad: [f64; 3],
-    /// Velocity error (E, N, U), m/s.
-    pub vel_err_mps: [f64; 3],
-    /// Latitude error as north distance, m.
-    pub north_m: f64,
-    /// Longitude error as east distance, m.
-    pub east_m: f64,
-    /// Horizontal error, m.
-    pub horizontal_m: f64,
-    /// tRMS of the horizontal error so far (Eq. 20), m.
-    pub trms_m: f64,
 }
 
 /// What the alignment achieved.
@@ -115,15 +82,6 @@ pub enum SessionError {
     /// Zero or negative times.
     #[error("{0}")]
     BadTimes(String),
-}
-
-/// The carrier (vehicle) attitude C_v^n from the navigator's IMU attitude and the gimbal
-/// encoder angles: C_v^n = C_b^n·(R_z(outer)·R_x(inner))ᵀ.
-pub fn vehicle_attitude(
-    c_bn: &nalgebra::Matrix3<f64>,
-    gimbal: rins_plant::table::GimbalAngles,
-) -> nalgebra::Matrix3<f64> {
-    c_bn * rins_plant::table::body_to_nav(&nalgebra::Matrix3::identity(), gimbal).transpose()
 }
 
 /// The reference navigator fed one sample at a time, with error records against the plant's
