@@ -8,6 +8,7 @@
 pub mod accel;
 pub mod encoder;
 pub mod gyro;
+pub mod gyro_term;
 pub mod noise;
 pub mod quantize;
 pub mod temp_sensor;

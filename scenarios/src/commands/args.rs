@@ -5,9 +5,9 @@
 
 use std::path::Path;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 
-use crate::file::{Scenario, ScenarioError};
+use crate::file::{Override, Scenario};
 
 /// `--seed`, `--duration-s`, `--rate-hz`: override the scenario file's values.
 #[derive(clap::Args, Clone, Debug, Default)]
@@ -29,55 +29,30 @@ fn seed(s: &str) -> Result<u64, String> {
         .map_err(|_| format!("expected a whole number in [0, {}]", u64::MAX))
 }
 
-/// Loads a scenario and applies command-line overrides, re-validating the result. A value out
-/// of range is reported with the flag that set it.
+/// Loads a scenario with the command-line overrides laid over its text, so the file and the
+/// flags are validated once, together; a value out of range is reported with the flag that set
+/// it. `--seed` is set afterwards: every u64 is a valid seed, and TOML integers stop at 2^63.
 pub fn load(path: &Path, o: &Overrides) -> Result<Scenario> {
-    let mut sc = Scenario::load(path)?;
-    let mut given: Vec<(&str, &str)> = Vec::new();
-    if let Some(s) = o.seed {
-        sc.plant.seed = s;
-        given.push(("--seed", "run.seed"));
-    }
+    let mut given = Vec::new();
     if let Some(d) = o.duration_s {
-        sc.meta.duration_s = d;
-        given.push(("--duration-s", "scenario.duration_s"));
+        given.push(Override {
+            flag: "--duration-s",
+            path: "scenario.duration_s",
+            value: toml::Value::Float(d),
+        });
     }
     if let Some(r) = o.rate_hz {
-        sc.plant.rate_hz = r;
-        given.push(("--rate-hz", "run.rate_hz"));
+        given.push(Override {
+            flag: "--rate-hz",
+            path: "run.rate_hz",
+            value: toml::Value::Float(r),
+        });
     }
-    sc.validate(None)
-        .map_err(|e| name_flags(e, &given))
-        .context("after applying command-line overrides")?;
+    let mut sc = Scenario::load_with(path, &given)?;
+    if let Some(s) = o.seed {
+        sc.plant.seed = s;
+    }
     Ok(sc)
-}
-
-/// Attributes the problems of an overridden key to its flag: validation without the file's
-/// text calls every value a default or preset one, which a flag's value is not.
-fn name_flags(e: ScenarioError, given: &[(&str, &str)]) -> ScenarioError {
-    match e {
-        ScenarioError::Invalid {
-            source_name,
-            problems,
-        } => ScenarioError::Invalid {
-            source_name,
-            problems: problems
-                .into_iter()
-                .map(|line| {
-                    match given
-                        .iter()
-                        .find(|(_, key)| line.contains(&format!("{key}:")))
-                    {
-                        Some((flag, _)) => {
-                            line.replacen("(default or preset value) ", &format!("{flag}: "), 1)
-                        }
-                        None => line,
-                    }
-                })
-                .collect(),
-        },
-        other => other,
-    }
 }
 
 /// Checks a positive, finite number given to `flag`.

@@ -1,0 +1,76 @@
+//! The names and reporting order of the gyro error terms.
+
+use serde::{Deserialize, Serialize};
+
+/// Gyro error terms, in the order their contributions are reported.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GyroTerm {
+    /// Constant bias β (Eq. 3).
+    Bias,
+    /// Scale-factor error β_ii (Eq. 3).
+    ScaleFactor,
+    /// Scale-factor asymmetry: error a_i·|ω_i|.
+    ScaleFactorAsymmetry,
+    /// Misalignment β_ij (Eq. 3).
+    Misalignment,
+    /// Third-order polynomial in block temperature.
+    TemperatureBias,
+    /// Linear in the temperature gradient across the block.
+    TemperatureGradientBias,
+    /// Bias proportional to specific force (g-sensitivity).
+    GSensitivity,
+    /// Position-dependent bias δβ (Eq. 9), Z-down relative to Z-up, optionally temperature-dependent.
+    PositionBias,
+    /// Bias from the dither amplitude, which changes with the gravity load on the dither spring.
+    DitherBias,
+    /// Angle random walk (white rate noise).
+    AngleRandomWalk,
+    /// Bias instability as a first-order Gauss–Markov process.
+    BiasInstability,
+    /// Rate random walk.
+    RateRandomWalk,
+    /// Output quantisation (pulse weight, residual carried).
+    Quantization,
+}
+
+impl GyroTerm {
+    /// All terms in reporting order.
+    pub const ALL: [GyroTerm; 13] = [
+        GyroTerm::Bias,
+        GyroTerm::ScaleFactor,
+        GyroTerm::ScaleFactorAsymmetry,
+        GyroTerm::Misalignment,
+        GyroTerm::TemperatureBias,
+        GyroTerm::TemperatureGradientBias,
+        GyroTerm::GSensitivity,
+        GyroTerm::PositionBias,
+        GyroTerm::DitherBias,
+        GyroTerm::AngleRandomWalk,
+        GyroTerm::BiasInstability,
+        GyroTerm::RateRandomWalk,
+        GyroTerm::Quantization,
+    ];
+    /// Deterministic terms, linear in their coefficients (the diagnosis catalogue): the first
+    /// nine of [`GyroTerm::ALL`]; the rest are stochastic or quantisation.
+    pub const DETERMINISTIC: &'static [GyroTerm] = Self::ALL.split_at(9).0;
+
+    /// Key of the term in scenario files and output columns.
+    pub fn key(self) -> &'static str {
+        match self {
+            GyroTerm::Bias => "bias",
+            GyroTerm::ScaleFactor => "scale_factor",
+            GyroTerm::ScaleFactorAsymmetry => "scale_factor_asymmetry",
+            GyroTerm::Misalignment => "misalignment",
+            GyroTerm::TemperatureBias => "temperature_bias",
+            GyroTerm::TemperatureGradientBias => "temperature_gradient_bias",
+            GyroTerm::GSensitivity => "g_sensitivity",
+            GyroTerm::PositionBias => "position_bias",
+            GyroTerm::DitherBias => "dither_bias",
+            GyroTerm::AngleRandomWalk => "angle_random_walk",
+            GyroTerm::BiasInstability => "bias_instability",
+            GyroTerm::RateRandomWalk => "rate_random_walk",
+            GyroTerm::Quantization => "quantization",
+        }
+    }
+}
