@@ -270,6 +270,14 @@ impl Model for RinsImu {
             return Err(format!("state has {n} variables, this FMU has {expected}"));
         }
         self.values = (0..n).map(|_| r.value()).collect::<Result<_, _>>()?;
+        // A corrupted state must not put a value of the wrong kind, out of range or past an
+        // enumeration's items into a slot (that indexed out of bounds; tests/fmi_property.rs).
+        for (slot, v) in self.values.iter().enumerate() {
+            table()
+                .vars
+                .check(slot, *v)
+                .map_err(|e| format!("variable {slot}: {e}"))?;
+        }
         let mut fields = Vec::new();
         if r.u64()? != 0 {
             for o in outputs().iter().filter(|o| o.sample_field.is_some()) {
