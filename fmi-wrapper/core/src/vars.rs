@@ -1,5 +1,5 @@
 //! The FMU's variable table: one row per scalar ("slot"). FMI 2 gives every slot its own value
-//! reference; FMI 3 groups the slots of one array (`sensor.gyro.bias.dph[0..3]`) into one
+//! reference; FMI 3 groups the slots of one array (`a.b[0..3]`) into one
 //! Float64 array variable. Both modelDescriptions and both C APIs are generated from this table.
 
 use std::ops::Range;
@@ -49,7 +49,7 @@ pub enum Value {
 /// One scalar.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ScalarVar {
-    /// FMI 2 name, structured: `sensor.gyro.bias.dph[2]`.
+    /// FMI 2 name, structured: `a.b[2]`.
     pub name: String,
     /// Name of the FMI 3 variable holding it (the array name without index).
     pub array: String,
