@@ -19,56 +19,14 @@ use rand::{Rng, RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rins_fmi::fmu;
 use rins_fmi::xml::FmiVersion;
-use rins_imu_fmu::{RinsImu, library_file};
+use rins_imu_fmu::RinsImu;
+
+mod common;
+use common::{Fmi3, Inst};
 
 const SEED: u64 = 0x5eed_0016;
 const SEQUENCES: usize = 600;
 const CALLS: usize = 200;
-
-type Inst = *mut c_void;
-type LogFn = unsafe extern "C" fn(*mut c_void, i32, *const c_char, *const c_char);
-
-/// The FMI 3 functions used (fmi3Functions.h signatures).
-struct Fmi3 {
-    _lib: libloading::Library,
-    instantiate: unsafe extern "C" fn(
-        *const c_char,
-        *const c_char,
-        *const c_char,
-        bool,
-        bool,
-        bool,
-        bool,
-        *const u32,
-        usize,
-        *mut c_void,
-        Option<LogFn>,
-        *const c_void,
-    ) -> Inst,
-    free: unsafe extern "C" fn(Inst),
-    enter_init: unsafe extern "C" fn(Inst, bool, f64, f64, bool, f64) -> i32,
-    exit_init: unsafe extern "C" fn(Inst) -> i32,
-    terminate: unsafe extern "C" fn(Inst) -> i32,
-    reset: unsafe extern "C" fn(Inst) -> i32,
-    do_step: unsafe extern "C" fn(
-        Inst,
-        f64,
-        f64,
-        bool,
-        *mut bool,
-        *mut bool,
-        *mut bool,
-        *mut f64,
-    ) -> i32,
-    get_f64: unsafe extern "C" fn(Inst, *const u32, usize, *mut f64, usize) -> i32,
-    set_f64: unsafe extern "C" fn(Inst, *const u32, usize, *const f64, usize) -> i32,
-    get_state: unsafe extern "C" fn(Inst, *mut *mut c_void) -> i32,
-    state_size: unsafe extern "C" fn(Inst, *mut c_void, *mut usize) -> i32,
-    serialize: unsafe extern "C" fn(Inst, *mut c_void, *mut u8, usize) -> i32,
-    deserialize: unsafe extern "C" fn(Inst, *const u8, usize, *mut *mut c_void) -> i32,
-    set_state: unsafe extern "C" fn(Inst, *mut c_void) -> i32,
-    free_state: unsafe extern "C" fn(Inst, *mut *mut c_void) -> i32,
-}
 
 unsafe extern "C" fn logger(
     env: *mut c_void,
@@ -86,50 +44,6 @@ unsafe extern "C" fn logger(
         .into_owned();
     if let Ok(mut v) = sink.lock() {
         v.push(format!("[{status}] {m}"));
-    }
-}
-
-impl Fmi3 {
-    fn load() -> Self {
-        let exe = std::env::current_exe().unwrap();
-        let so = exe
-            .parent()
-            .and_then(|d| d.parent())
-            .unwrap()
-            .join(library_file(FmiVersion::V3));
-        assert!(
-            so.exists(),
-            "{} missing: build rins-imu-fmi3 first",
-            so.display()
-        );
-        // SAFETY: each symbol is read with the type fmi3Functions.h declares for it; the
-        // pointers live as long as `_lib`.
-        unsafe {
-            let lib = libloading::Library::new(&so).unwrap();
-            macro_rules! f {
-                ($name:literal) => {
-                    *lib.get($name.as_bytes()).unwrap()
-                };
-            }
-            Self {
-                instantiate: f!("fmi3InstantiateCoSimulation"),
-                free: f!("fmi3FreeInstance"),
-                enter_init: f!("fmi3EnterInitializationMode"),
-                exit_init: f!("fmi3ExitInitializationMode"),
-                terminate: f!("fmi3Terminate"),
-                reset: f!("fmi3Reset"),
-                do_step: f!("fmi3DoStep"),
-                get_f64: f!("fmi3GetFloat64"),
-                set_f64: f!("fmi3SetFloat64"),
-                get_state: f!("fmi3GetFMUState"),
-                state_size: f!("fmi3SerializedFMUStateSize"),
-                serialize: f!("fmi3SerializeFMUState"),
-                deserialize: f!("fmi3DeserializeFMUState"),
-                set_state: f!("fmi3SetFMUState"),
-                free_state: f!("fmi3FreeFMUState"),
-                _lib: lib,
-            }
-        }
     }
 }
 

@@ -14,31 +14,18 @@
 #![allow(unsafe_code)] // the FMI 3 binary is called through a local table of C function pointers
 
 use std::ffi::{CString, c_char, c_void};
-use std::path::PathBuf;
 
 use rins_fmi::fmu;
 use rins_fmi::xml::FmiVersion;
 use rins_fmi_import::{Fmu2, parse_model_description};
-use rins_imu_fmu::{RinsImu, library_file};
+use rins_imu_fmu::RinsImu;
+
+mod common;
+use common::{Fmi3, Inst, library_path};
 
 const WARM_UP: usize = 50;
 const CYCLES: usize = 1000;
 const HELD: usize = 50;
-
-fn so(version: FmiVersion) -> PathBuf {
-    let exe = std::env::current_exe().unwrap();
-    let p = exe
-        .parent()
-        .and_then(|d| d.parent())
-        .unwrap()
-        .join(library_file(version));
-    assert!(
-        p.exists(),
-        "{} missing: run `cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3` first",
-        p.display()
-    );
-    p
-}
 
 /// VmRSS of this process in kB.
 fn rss_kb() -> i64 {
@@ -86,7 +73,7 @@ fn instantiate_free_cycles_keep_rss_flat() {
 fn fmi2_cycles() {
     let (guid, _, vars) =
         parse_model_description(&fmu::description::<RinsImu>(FmiVersion::V2).0).unwrap();
-    let lib = Fmu2::load(&so(FmiVersion::V2), guid, vars).unwrap();
+    let lib = Fmu2::load(&library_path(FmiVersion::V2), guid, vars).unwrap();
     let start = |name: &str| {
         let inst = lib.instantiate(name, false).unwrap();
         inst.setup_experiment(0.0, None).unwrap();
@@ -114,77 +101,14 @@ fn fmi2_cycles() {
     check_flat("FMI 2", cycle, hold);
 }
 
-type Inst = *mut c_void;
-type LogFn = unsafe extern "C" fn(*mut c_void, i32, *const c_char, *const c_char);
-
-/// The FMI 3 functions a cycle needs (fmi3Functions.h signatures).
-struct Fmi3 {
-    _lib: libloading::Library,
-    instantiate: unsafe extern "C" fn(
-        *const c_char,
-        *const c_char,
-        *const c_char,
-        bool,
-        bool,
-        bool,
-        bool,
-        *const u32,
-        usize,
-        *mut c_void,
-        Option<LogFn>,
-        *const c_void,
-    ) -> Inst,
-    free: unsafe extern "C" fn(Inst),
-    enter_init: unsafe extern "C" fn(Inst, bool, f64, f64, bool, f64) -> i32,
-    exit_init: unsafe extern "C" fn(Inst) -> i32,
-    do_step: unsafe extern "C" fn(
-        Inst,
-        f64,
-        f64,
-        bool,
-        *mut bool,
-        *mut bool,
-        *mut bool,
-        *mut f64,
-    ) -> i32,
-    get_state: unsafe extern "C" fn(Inst, *mut *mut c_void) -> i32,
-    state_size: unsafe extern "C" fn(Inst, *mut c_void, *mut usize) -> i32,
-    serialize: unsafe extern "C" fn(Inst, *mut c_void, *mut u8, usize) -> i32,
-    deserialize: unsafe extern "C" fn(Inst, *const u8, usize, *mut *mut c_void) -> i32,
-    set_state: unsafe extern "C" fn(Inst, *mut c_void) -> i32,
-    free_state: unsafe extern "C" fn(Inst, *mut *mut c_void) -> i32,
-}
-
 unsafe extern "C" fn ignore_log(_: *mut c_void, _: i32, _: *const c_char, _: *const c_char) {}
 
-impl Fmi3 {
-    fn load() -> Self {
-        // SAFETY: the library has no initialisers beyond Rust's; each symbol is read with the
-        // type fmi3Functions.h declares for it, and the pointers live as long as `_lib`.
-        unsafe {
-            let lib = libloading::Library::new(so(FmiVersion::V3)).unwrap();
-            macro_rules! f {
-                ($name:literal) => {
-                    *lib.get($name.as_bytes()).unwrap()
-                };
-            }
-            Self {
-                instantiate: f!("fmi3InstantiateCoSimulation"),
-                free: f!("fmi3FreeInstance"),
-                enter_init: f!("fmi3EnterInitializationMode"),
-                exit_init: f!("fmi3ExitInitializationMode"),
-                do_step: f!("fmi3DoStep"),
-                get_state: f!("fmi3GetFMUState"),
-                state_size: f!("fmi3SerializedFMUStateSize"),
-                serialize: f!("fmi3SerializeFMUState"),
-                deserialize: f!("fmi3DeserializeFMUState"),
-                set_state: f!("fmi3SetFMUState"),
-                free_state: f!("fmi3FreeFMUState"),
-                _lib: lib,
-            }
-        }
-    }
+/// The cycle's instance set-up.
+trait Start {
+    fn start(&self, token: &CString) -> Inst;
+}
 
+impl Start for Fmi3 {
     /// An instance initialised and stepped by 0.1 s.
     fn start(&self, token: &CString) -> Inst {
         let name = CString::new("rss").unwrap();
