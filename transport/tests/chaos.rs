@@ -58,7 +58,8 @@ fn next_run(s: &str) -> usize {
         (SAMPLES, 0, 0),
         "the next run on {s}: {r}"
     );
-    assert!(p.finish(WAIT) && n.finish(WAIT));
+    let (p_ok, n_ok) = (p.finish(WAIT), n.finish(WAIT));
+    assert!(p_ok && n_ok, "{r}\n{}\n{}", p.said(), n.said());
     let files = left(s);
     assert!(files.is_empty(), "{s} left {files:?}");
     remove_counter(s);
@@ -103,7 +104,8 @@ fn navigator_killed(stage: &'static str, tag: &str, stall: &str, restart: u64, h
     }
     let mut last = nav(&s, &[]);
     let r = last.expect("RESULT", WAIT);
-    assert!(p.finish(WAIT) && last.finish(WAIT), "{r}");
+    let (p_ok, n_ok) = (p.finish(WAIT), last.finish(WAIT));
+    assert!(p_ok && n_ok, "{r}\n{}\n{}", p.said(), last.said());
     let (lost, duplicated) = restart_figures(&r, restart);
     let left_after = left(&s).len();
     next_run(&s);

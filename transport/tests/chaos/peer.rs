@@ -114,6 +114,12 @@ impl Peer {
         }
     }
 
+    /// Everything the peer printed that was not taken by [`Peer::expect`]: its name and lines,
+    /// for failure messages.
+    pub fn said(&self) -> String {
+        format!("{}: {:?}", self.name, self.seen)
+    }
+
     pub fn pid(&self) -> u32 {
         self.child.id()
     }
