@@ -327,6 +327,7 @@ pub fn navigate_probed(
                 .map_err(|e| ipc("sending the acknowledgement")(&e))?;
         }
         if flags & FLAG_END != 0 {
+            linger_until_plant_left(&session, opts.peer_timeout);
             return Ok(NavSummary {
                 nav,
                 batches,
@@ -334,5 +335,21 @@ pub fn navigate_probed(
                 interrupted: flags & FLAG_INTERRUPTED != 0,
             });
         }
+    }
+}
+
+/// After acknowledging the end of the run, stays until the plant has left (or died, or
+/// `timeout` passed, or a signal came). iceoryx2 drops the samples of a publisher that is gone
+/// before the subscriber has connected to it (iceoryx2 issue #39): a replacement navigator that
+/// acknowledged a resent end and exited at once could leave the plant without that
+/// acknowledgement, waiting for a navigator that never came.
+fn linger_until_plant_left(session: &Session, timeout: Duration) {
+    let start = Instant::now();
+    while session.imu_publishers() > 0
+        && start.elapsed() < timeout
+        && !session.interrupted()
+        && !session.peer_died()
+    {
+        std::thread::sleep(Duration::from_millis(1));
     }
 }

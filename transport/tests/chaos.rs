@@ -413,3 +413,28 @@ fn field_str<'a>(line: &'a str, key: &str) -> &'a str {
         .find_map(|kv| kv.strip_prefix(key).and_then(|v| v.strip_prefix('=')))
         .unwrap_or("")
 }
+
+#[test]
+fn a_plant_slow_to_read_the_end_acknowledgement_still_gets_it() {
+    // iceoryx2 drops the samples of a publisher that is gone before the subscriber has
+    // connected to it (iceoryx2 issue #39). A replacement navigator that acknowledged the resent
+    // end of the run and exited at once lost that acknowledgement when the plant had not read
+    // its commands since the navigator joined: the plant waited for a navigator that never came
+    // (seen under CI load). The navigator now stays until the plant has left; here the plant
+    // pauses 500 ms after sending the end to make the race certain.
+    let s = session("slowend");
+    let end = SAMPLES / BATCH - 1;
+    let sleep = format!("plant-end-sent:{end}=500");
+    let mut p = plant(&s, &["--wait", "--sleep", &sleep]);
+    let mut n1 = nav(&s, &["--stall", &format!("nav-end-received:{end}")]);
+    n1.expect("STALL", WAIT);
+    n1.kill9();
+    p.expect("LOST", WAIT);
+    let mut n2 = nav(&s, &[]);
+    let r = n2.expect("RESULT", WAIT);
+    let (p_ok, n_ok) = (p.finish(WAIT), n2.finish(WAIT));
+    assert!(p_ok && n_ok, "{r}\n{}\n{}", p.said(), n2.said());
+    assert_eq!(restart_figures(&r, end), (0, 0), "{r}");
+    assert!(left(&s).is_empty());
+    remove_counter(&s);
+}

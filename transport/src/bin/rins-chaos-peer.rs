@@ -4,9 +4,12 @@
 //!
 //! ```text
 //! rins-chaos-peer plant SESSION --samples N --batch B [--free] [--pace K] [--wait]
-//!                 [--timeout-s T] [--stall STAGE[:SEQ]]
+//!                 [--timeout-s T] [--stall STAGE[:SEQ]] [--sleep STAGE[:SEQ]=MS]
 //! rins-chaos-peer nav SESSION [--no-ack] [--timeout-s T] [--stall STAGE[:SEQ]]
+//!                 [--sleep STAGE[:SEQ]=MS]
 //! ```
+//!
+//! `--sleep` pauses MS milliseconds at the stage and goes on (a slow peer, not a frozen one).
 //!
 //! Prints `STALL <stage> <unix ms>` when it freezes, `LOST <stage> <unix ms>` when it finds its
 //! peer lost, `WAITING <stage> <unix ms>` when the plant waits for a navigator,
@@ -30,9 +33,14 @@ fn say(line: String) {
     let _ = out.flush();
 }
 
-/// Freezes at `stall`; reports peer losses as they are found.
-fn probe(stall: Option<Stage>) -> impl FnMut(Stage) {
+/// Freezes at `stall`, pauses at `sleep`; reports peer losses as they are found.
+fn probe(stall: Option<Stage>, sleep: Option<(Stage, Duration)>) -> impl FnMut(Stage) {
     move |s: Stage| {
+        if let Some((at, pause)) = sleep
+            && at == s
+        {
+            std::thread::sleep(pause);
+        }
         if matches!(s, Stage::PlantLostNavigator(_) | Stage::NavLostPlant(_)) {
             say(format!("LOST {} {}", s.label(), now_ms()));
         }
@@ -75,9 +83,18 @@ fn main() {
         },
         None => None,
     };
+    let sleep = value("--sleep").map(|v| {
+        let parsed = v.split_once('=').and_then(|(st, ms)| {
+            Some((Stage::parse(st)?, Duration::from_millis(ms.parse().ok()?)))
+        });
+        parsed.unwrap_or_else(|| {
+            eprintln!("--sleep {v:?}: expected STAGE[:SEQ]=MS");
+            std::process::exit(2);
+        })
+    });
     let timeout = Duration::from_secs_f64(num("--timeout-s", 10.0));
     let cfg = rins_plant::presets::paper_16pos_config();
-    let mut p = probe(stall);
+    let mut p = probe(stall, sleep);
     let result = if role == "plant" {
         let opts = ServeOptions {
             mode: if flag("--free") {
