@@ -147,6 +147,19 @@ fn a_chamber_input_is_taken_by_the_next_thermal_update_and_held_over_it() {
     assert_eq!(read(&b, chamber), 25.0, "until 101.00 s");
     run(&b, 10_100, 10_101);
     assert_eq!(read(&b, chamber), 40.0, "from the update at 101.00 s");
+    // With thermal updates every communication step (thermal.step_s = 0.01 s) the input set
+    // at 100.37 s is in effect in the step from 100.37 s.
+    let c = fmu.instantiate("c", false).unwrap();
+    c.setup_experiment(0.0, None).unwrap();
+    c.set_real(&[fmu.vr("thermal.step_s").unwrap()], &[0.01])
+        .unwrap();
+    c.enter_initialization_mode().unwrap();
+    c.exit_initialization_mode().unwrap();
+    run(&c, 0, 10_037);
+    set_chamber(&fmu, &c, 40.0);
+    assert_eq!(read(&c, chamber), 25.0);
+    run(&c, 10_037, 10_038);
+    assert_eq!(read(&c, chamber), 40.0, "in the step from 100.37 s");
 }
 
 #[test]
