@@ -21,10 +21,11 @@ cargo test --workspace --release --no-fail-fast "${features[@]}"
 echo "== Python clients (pinned, in a venv this script creates) =="
 venv="${RINS_VENV:-${HOME:-/root}/.cache/rins-venv}"
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
-"$venv/bin/pip" install -q --disable-pip-version-check fmpy==0.3.32 'dask[distributed]==2026.8.0' iceoryx2==0.10.0 rerun-sdk==0.36.3
+"$venv/bin/pip" install -q --disable-pip-version-check fmpy==0.3.32 'dask[distributed]==2026.8.0' iceoryx2==0.10.0 rerun-sdk==0.36.3 libcosimpy==0.0.6 ecospy==0.7.2 tbb==2023.2.0
 pytmp=$(mktemp -d)
 "$bin/rins" fmu build --out "$pytmp/fmu" > /dev/null
 "$venv/bin/python" tests/python/test_fmu.py "$pytmp/fmu" "$bin/rins" "$pytmp"
+"$venv/bin/python" tests/python/test_masters.py "$pytmp/fmu" "$bin/rins" "$pytmp"
 "$venv/bin/python" tests/python/test_transport.py "$bin/rins" "$pytmp"
 "$venv/bin/python" tests/python/test_rerun.py "$bin/rins" "$pytmp"
 rm -rf "$pytmp"

@@ -27,9 +27,13 @@ pub fn default_lib_dir() -> PathBuf {
         .unwrap_or_default()
 }
 
-/// Writes both FMUs into `out`; returns their paths.
+/// Writes both FMUs into `out`, each with its reference results beside it as
+/// modelica/Reference-FMUs ship them (`<Model>_ref.opt`, `<Model>_in.csv`, `<Model>_ref.csv`:
+/// [`rins_imu_fmu::reference`]); returns the FMU paths.
 pub fn build(out: &Path, lib_dir: &Path) -> Result<Vec<PathBuf>> {
     let mut made = Vec::new();
+    let (opt, input, reference) =
+        rins_imu_fmu::reference::reference_results().map_err(anyhow::Error::msg)?;
     for v in [FmiVersion::V2, FmiVersion::V3] {
         let lib = lib_dir.join(library_file(v));
         if !lib.exists() {
@@ -42,6 +46,15 @@ pub fn build(out: &Path, lib_dir: &Path) -> Result<Vec<PathBuf>> {
             package::build_fmu::<RinsImu>(v, &lib, out)
                 .with_context(|| format!("packaging {}", lib.display()))?,
         );
+        let id = rins_fmi::fmu::model_identifier::<RinsImu>(v);
+        for (suffix, text) in [
+            ("_ref.opt", &opt),
+            ("_in.csv", &input),
+            ("_ref.csv", &reference),
+        ] {
+            let path = out.join(format!("{id}{suffix}"));
+            std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
+        }
     }
     Ok(made)
 }

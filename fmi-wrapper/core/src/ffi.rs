@@ -89,6 +89,20 @@ impl<M: Model, L: Logger> Component<M, L> {
         self.logger.emit(status, category, message);
     }
 
+    /// The logEvents message of an accepted doStep (callers test `logging_on` first, so the
+    /// message is only formatted when it is sent).
+    #[cold]
+    pub fn log_step(&self, t_s: f64, h_s: f64) {
+        self.log(
+            Status::Ok,
+            "logEvents",
+            &format!(
+                "doStep from t = {t_s} s by {h_s} s; now at t = {} s",
+                self.inst.time_s()
+            ),
+        );
+    }
+
     /// A new component on the heap, as the opaque handle instantiate returns.
     pub fn into_handle(self) -> *mut c_void {
         Box::into_raw(Box::new(self)) as *mut c_void
@@ -119,6 +133,19 @@ pub fn with<M: Model, L: Logger>(
     what: &str,
     f: impl FnOnce(&mut Component<M, L>) -> Result<(), FmiError>,
 ) -> Status {
+    with_errors(c, what, false, f)
+}
+
+/// [`with`], and when `sticky` a call that fails (Error or Fatal) leaves the instance in
+/// [`crate::instance::Mode::Error`], so that only reset, free, state restore and reads are
+/// accepted until reset, as the standard says after an error (FMI 3: ecos carries on
+/// after an error status, and must not step an instance whose last call was refused).
+pub fn with_errors<M: Model, L: Logger>(
+    c: *mut c_void,
+    what: &str,
+    sticky: bool,
+    f: impl FnOnce(&mut Component<M, L>) -> Result<(), FmiError>,
+) -> Status {
     if c.is_null() {
         return Status::Error;
     }
@@ -128,6 +155,9 @@ pub fn with<M: Model, L: Logger>(
         Ok(Ok(())) => Status::Ok,
         Ok(Err(e)) => {
             comp.log(e.status, e.category, &format!("{what}: {}", e.message));
+            if sticky && e.status >= Status::Error {
+                comp.inst.fail();
+            }
             e.status
         }
         Err(panic) => {
@@ -137,6 +167,9 @@ pub fn with<M: Model, L: Logger>(
                 "logStatusError",
                 &format!("{what}: internal error: {msg}"),
             );
+            if sticky {
+                comp.inst.fail();
+            }
             Status::Fatal
         }
     }

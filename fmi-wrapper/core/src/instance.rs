@@ -54,7 +54,10 @@ pub const LOG_CATEGORIES: [(&str, &str); 3] = [
         "logStatusWarning",
         "Calls that succeed with a remark (always reported)",
     ),
-    ("logEvents", "Mode changes and steps (only with loggingOn)"),
+    (
+        "logEvents",
+        "Instantiation, mode changes (initialization, step mode, terminate, reset) and every doStep with its start time and size (only with loggingOn)",
+    ),
 ];
 
 /// Where the instance is in its life.
@@ -180,6 +183,13 @@ impl<M: Model> Instance<M> {
         Ok(())
     }
 
+    /// Puts the instance in [`Mode::Error`] after a failed call: the standards allow only
+    /// reset, free, state restore and reads from there, so a master that ignores the error
+    /// status cannot step on with an instance whose last call was not carried out.
+    pub fn fail(&mut self) {
+        self.mode = Mode::Error;
+    }
+
     /// Back to a fresh instance with start values.
     pub fn reset(&mut self) {
         *self = Self::new();
@@ -198,14 +208,38 @@ impl<M: Model> Instance<M> {
         }
     }
 
+    /// Whether the scalar at value reference `vr` may be set to `v` now ([`Self::check_set`]).
+    pub fn check_vr(&self, vr: u32, v: Value) -> Result<(), FmiError> {
+        let slot = self.slot_of(vr)?;
+        self.check_set(slot, v)
+    }
+
     /// Sets the scalar at value reference `vr` (its slot).
     pub fn set(&mut self, vr: u32, v: Value) -> Result<(), FmiError> {
         let slot = self.slot_of(vr)?;
         self.set_slot(slot, v)
     }
 
-    /// Sets slot `slot`, checking causality against the mode, then type and range.
+    /// Sets slot `slot`, checking causality against the mode, then type and range. An
+    /// enumeration's Integer code sets the enumeration.
     pub fn set_slot(&mut self, slot: usize, v: Value) -> Result<(), FmiError> {
+        if let Some(target) = M::table().code_target(slot) {
+            M::table().check(slot, v).map_err(FmiError::error)?;
+            // The check passed: an Integer in 1…n.
+            let code = if let Value::Integer(c) = v { c } else { 1 };
+            return self.set_slot(target, Value::Enumeration(code as usize - 1));
+        }
+        self.check_set(slot, v)?;
+        self.model.set(slot, v).map_err(FmiError::error)
+    }
+
+    /// Whether slot `slot` may be set to `v` now (causality against the mode, type, range),
+    /// without setting it: callers setting several values check them all first.
+    pub fn check_set(&self, slot: usize, v: Value) -> Result<(), FmiError> {
+        if let Some(target) = M::table().code_target(slot) {
+            M::table().check(slot, v).map_err(FmiError::error)?;
+            return self.check_set(target, M::table().scalars[target].start);
+        }
         let s = &M::table().scalars[slot];
         match s.causality {
             Causality::Output => {
@@ -223,8 +257,7 @@ impl<M: Model> Instance<M> {
                 &format!("setting input {}", s.name),
             )?,
         }
-        M::table().check(slot, v).map_err(FmiError::error)?;
-        self.model.set(slot, v).map_err(FmiError::error)
+        M::table().check(slot, v).map_err(FmiError::error)
     }
 
     /// Value at value reference `vr`.
@@ -235,6 +268,12 @@ impl<M: Model> Instance<M> {
 
     /// Value of slot `slot`.
     pub fn get_slot(&self, slot: usize) -> Value {
+        if let Some(target) = M::table().code_target(slot) {
+            return match self.model.get(target) {
+                Value::Enumeration(i) => Value::Integer(i as u64 + 1),
+                v => v,
+            };
+        }
         self.model.get(slot)
     }
 

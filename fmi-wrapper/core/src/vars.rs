@@ -97,6 +97,13 @@ pub struct VariableTable {
     pub scalars: Vec<ScalarVar>,
     /// FMI 3 variables in order (FMI 3 value reference = index + 1; 0 is `time`).
     pub arrays: Vec<ArrayVar>,
+    /// Integer codes of enumeration parameters, `(code slot, enumeration slot)`: masters
+    /// without FMI 2 enumerations (libcosim, ecos) set the code; the instance routes it to
+    /// the enumeration, so both always read the same item ([`VariableTable::with_enum_codes`]).
+    pub enum_codes: Vec<(usize, usize)>,
+    /// Per slot, the slots of the knowns (parameters, inputs) an output's value during
+    /// initialization mode depends on (empty: none; the modelDescription's InitialUnknowns).
+    pub initial_dependencies: Vec<Vec<usize>>,
 }
 
 impl VariableTable {
@@ -129,7 +136,69 @@ impl VariableTable {
                 a.name
             );
         }
-        Self { scalars, arrays }
+        let initial_dependencies = vec![Vec::new(); scalars.len()];
+        Self {
+            scalars,
+            arrays,
+            enum_codes: Vec::new(),
+            initial_dependencies,
+        }
+    }
+
+    /// The table of `scalars` plus, after them, an Integer parameter `<name>_code` for every
+    /// Enumeration parameter, with values 1…n in item order (the enumeration's own values).
+    /// libcosim and ecos skip FMI 2/3 enumerations, so without the code such a parameter
+    /// could not be set from them; tools with enumerations keep using the enumeration.
+    pub fn with_enum_codes(mut scalars: Vec<ScalarVar>) -> Self {
+        let mut codes = Vec::new();
+        let n = scalars.len();
+        for slot in 0..n {
+            let s = &scalars[slot];
+            if let (Kind::Enumeration { items, type_name }, Causality::Parameter) =
+                (s.kind, s.causality)
+            {
+                let Value::Enumeration(start) = s.start else {
+                    continue;
+                };
+                let values: Vec<String> = items
+                    .iter()
+                    .enumerate()
+                    .map(|(i, it)| format!("{}={it}", i + 1))
+                    .collect();
+                let name = format!("{}_code", s.name);
+                codes.push((scalars.len(), slot));
+                scalars.push(ScalarVar {
+                    array: name.clone(),
+                    name,
+                    kind: Kind::Integer,
+                    causality: Causality::Parameter,
+                    unit: None,
+                    start: Value::Integer(start as u64 + 1),
+                    range: Some((1.0, items.len() as f64)),
+                    description: format!(
+                        "{} ({type_name}) as an Integer for masters without enumerations: {}; setting either sets both",
+                        s.name,
+                        values.join(", ")
+                    ),
+                });
+            }
+        }
+        let mut t = Self::new(scalars);
+        t.enum_codes = codes;
+        t
+    }
+
+    /// The enumeration slot whose Integer code is slot `slot`, if it is a code.
+    pub fn code_target(&self, slot: usize) -> Option<usize> {
+        // Codes follow every other slot: one compare on the output-reading path.
+        match self.enum_codes.first() {
+            Some((first, _)) if slot >= *first => {}
+            _ => return None,
+        }
+        self.enum_codes
+            .iter()
+            .find(|(c, _)| *c == slot)
+            .map(|(_, e)| *e)
     }
 
     /// Slot of the scalar called `name`.

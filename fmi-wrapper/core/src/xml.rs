@@ -309,7 +309,15 @@ fn body_v2(table: &VariableTable, h: &Header, out: &mut String) {
     }
     out.push_str("    </Outputs>\n    <InitialUnknowns>\n");
     for i in &outputs {
-        let _ = writeln!(out, "      <Unknown index=\"{i}\" dependencies=\"\"/>");
+        let deps: Vec<String> = table.initial_dependencies[i - 1]
+            .iter()
+            .map(|k| (k + 1).to_string())
+            .collect();
+        let _ = writeln!(
+            out,
+            "      <Unknown index=\"{i}\" dependencies=\"{}\"/>",
+            deps.join(" ")
+        );
     }
     out.push_str("    </InitialUnknowns>\n  </ModelStructure>\n</fmiModelDescription>\n");
 }
@@ -416,10 +424,24 @@ fn body_v3(table: &VariableTable, h: &Header, out: &mut String) {
             "    <Output valueReference=\"{vr}\" dependencies=\"\"/>"
         );
     }
+    // FMI 3 value reference of each slot: its array's index + 1.
+    let mut vr_of = vec![0; table.scalars.len()];
+    for (i, a) in table.arrays.iter().enumerate() {
+        a.slots.clone().for_each(|k| vr_of[k] = i + 1);
+    }
     for vr in &outputs {
+        let mut deps: Vec<usize> = table.arrays[vr - 1]
+            .slots
+            .clone()
+            .flat_map(|k| table.initial_dependencies[k].iter().map(|d| vr_of[*d]))
+            .collect();
+        deps.sort_unstable();
+        deps.dedup();
+        let deps: Vec<String> = deps.iter().map(ToString::to_string).collect();
         let _ = writeln!(
             out,
-            "    <InitialUnknown valueReference=\"{vr}\" dependencies=\"\"/>"
+            "    <InitialUnknown valueReference=\"{vr}\" dependencies=\"{}\"/>",
+            deps.join(" ")
         );
     }
     out.push_str("  </ModelStructure>\n</fmiModelDescription>\n");

@@ -106,7 +106,9 @@ pub unsafe fn setup_experiment<M: Model>(
 /// fmi2EnterInitializationMode.
 pub unsafe fn enter_initialization_mode<M: Model>(c: fmi2Component) -> fmi2Status {
     with::<M>(c, "fmi2EnterInitializationMode", |comp| {
-        comp.inst.enter_initialization()
+        comp.inst.enter_initialization()?;
+        comp.log(Status::Ok, "logEvents", "initialization mode");
+        Ok(())
     })
 }
 
@@ -121,13 +123,22 @@ pub unsafe fn exit_initialization_mode<M: Model>(c: fmi2Component) -> fmi2Status
 
 /// fmi2Terminate.
 pub unsafe fn terminate<M: Model>(c: fmi2Component) -> fmi2Status {
-    with::<M>(c, "fmi2Terminate", |comp| comp.inst.terminate())
+    with::<M>(c, "fmi2Terminate", |comp| {
+        comp.inst.terminate()?;
+        comp.log(Status::Ok, "logEvents", "terminated");
+        Ok(())
+    })
 }
 
 /// fmi2Reset.
 pub unsafe fn reset<M: Model>(c: fmi2Component) -> fmi2Status {
     with::<M>(c, "fmi2Reset", |comp| {
         comp.inst.reset();
+        comp.log(
+            Status::Ok,
+            "logEvents",
+            "reset: instantiated mode, start values",
+        );
         Ok(())
     })
 }
@@ -139,7 +150,13 @@ pub unsafe fn do_step<M: Model>(
     h: fmi2Real,
     _no_set_prior: fmi2Boolean,
 ) -> fmi2Status {
-    with::<M>(c, "fmi2DoStep", |comp| comp.inst.do_step(t, h))
+    with::<M>(c, "fmi2DoStep", |comp| {
+        comp.inst.do_step(t, h)?;
+        if comp.logging_on {
+            comp.log_step(t, h);
+        }
+        Ok(())
+    })
 }
 
 /// fmi2CancelStep.

@@ -62,6 +62,11 @@ fn set_values<M: Model, T: Copy>(
     with::<M>(c, what, |comp| {
         // SAFETY: both arrays have `n` elements per the standard.
         let (vrs, vals) = unsafe { (slice(vr, n)?, slice(vals, n)?) };
+        // All converted and checked before any is set (two passes, no allocation on the
+        // per-step input path): a refused call changes nothing.
+        for (v, x) in vrs.iter().zip(vals) {
+            comp.inst.check_vr(*v, conv(comp, *v, *x)?)?;
+        }
         for (v, x) in vrs.iter().zip(vals) {
             let value = conv(comp, *v, *x)?;
             comp.inst.set(*v, value)?;

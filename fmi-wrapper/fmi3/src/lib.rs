@@ -79,13 +79,14 @@ impl Logger for Fmi3Logger {
 /// What an `fmi3Instance` points at for model `M`.
 pub type Fmi3<M> = Component<M, Fmi3Logger>;
 
-/// Runs `f` on the instance, catching panics and logging refusals (see [`rins_fmi::ffi::with`]).
+/// Runs `f` on the instance, catching panics and logging refusals; a failed call leaves the
+/// instance in error mode until reset or state restore (see [`rins_fmi::ffi::with_errors`]).
 pub fn with<M: Model>(
     c: fmi3Instance,
     what: &str,
     f: impl FnOnce(&mut Fmi3<M>) -> Result<(), FmiError>,
 ) -> fmi3Status {
-    rins_fmi::ffi::with::<M, Fmi3Logger>(c, what, f) as fmi3Status
+    rins_fmi::ffi::with_errors::<M, Fmi3Logger>(c, what, true, f) as fmi3Status
 }
 
 /// Logs why an entry point is not provided and returns `fmi3Error`.

@@ -154,7 +154,9 @@ pub unsafe fn enter_initialization_mode<M: Model>(
             )));
         }
         comp.inst.setup(start)?;
-        comp.inst.enter_initialization()
+        comp.inst.enter_initialization()?;
+        comp.log(Status::Ok, "logEvents", "initialization mode");
+        Ok(())
     })
 }
 
@@ -169,13 +171,22 @@ pub unsafe fn exit_initialization_mode<M: Model>(c: fmi3Instance) -> fmi3Status 
 
 /// fmi3Terminate.
 pub unsafe fn terminate<M: Model>(c: fmi3Instance) -> fmi3Status {
-    with::<M>(c, "fmi3Terminate", |comp| comp.inst.terminate())
+    with::<M>(c, "fmi3Terminate", |comp| {
+        comp.inst.terminate()?;
+        comp.log(Status::Ok, "logEvents", "terminated");
+        Ok(())
+    })
 }
 
 /// fmi3Reset.
 pub unsafe fn reset<M: Model>(c: fmi3Instance) -> fmi3Status {
     with::<M>(c, "fmi3Reset", |comp| {
         comp.inst.reset();
+        comp.log(
+            Status::Ok,
+            "logEvents",
+            "reset: instantiated mode, start values",
+        );
         Ok(())
     })
 }
@@ -204,6 +215,10 @@ pub unsafe fn do_step<M: Model>(
                 *last_successful_time = comp.inst.time_s();
             }
         }
-        r
+        r?;
+        if comp.logging_on {
+            comp.log_step(t, h);
+        }
+        Ok(())
     })
 }

@@ -56,32 +56,40 @@ fn get_typed<M: Model, T: Copy>(
         }
         // SAFETY: the standard gives `n_vr` references and room for `n_values` values.
         let (vrs, out) = unsafe { (slice(vr, n_vr)?, slice_mut(out, n_values)?) };
+        // Count and type-check first: a too-small nValues or a wrong type writes nothing
+        // (ecos reads arrays as scalars and ignores the status, so a partial write would be
+        // taken for the values).
+        let mut k = 0;
+        for &r in vrs {
+            if r == 0 && time.is_some() {
+                k += 1;
+                continue;
+            }
+            let s = slots(comp, r)?;
+            if conv(comp.inst.get_slot(s.start)).is_none() {
+                return Err(type_error(comp, r, wanted));
+            }
+            k += s.len();
+        }
+        if k != n_values {
+            return Err(FmiError::error(format!(
+                "nValues = {n_values}, but the value references hold {k} values (nothing was written)"
+            )));
+        }
         let mut k = 0;
         for &r in vrs {
             if r == 0
                 && let Some(t) = time
             {
-                *out.get_mut(k).ok_or_else(|| {
-                    FmiError::error(format!("nValues = {n_values} is too small"))
-                })? = t(comp.inst.time_s());
+                out[k] = t(comp.inst.time_s());
                 k += 1;
                 continue;
             }
             for slot in slots(comp, r)? {
-                let v =
+                out[k] =
                     conv(comp.inst.get_slot(slot)).ok_or_else(|| type_error(comp, r, wanted))?;
-                *out.get_mut(k).ok_or_else(|| {
-                    FmiError::error(format!(
-                        "nValues = {n_values} is too small for these value references"
-                    ))
-                })? = v;
                 k += 1;
             }
-        }
-        if k != n_values {
-            return Err(FmiError::error(format!(
-                "nValues = {n_values}, but the value references hold {k} values"
-            )));
         }
         Ok(())
     })
@@ -101,24 +109,32 @@ fn set_typed<M: Model, T: Copy>(
     with::<M>(c, what, |comp| {
         // SAFETY: as in get_typed.
         let (vrs, vals) = unsafe { (slice(vr, n_vr)?, slice(vals, n_values)?) };
-        let mut k = 0;
+        // Every value is converted and checked (count, type, range, mode) before any is set:
+        // a refused call changes nothing.
+        let mut total = 0;
         for &r in vrs {
-            for slot in slots(comp, r)? {
-                let kind = comp.inst.table().scalars[slot].kind;
-                let x = *vals.get(k).ok_or_else(|| {
-                    FmiError::error(format!(
-                        "nValues = {n_values} is too small for these value references"
-                    ))
-                })?;
-                let v = conv(kind, x).ok_or_else(|| type_error(comp, r, wanted))?;
-                comp.inst.set_slot(slot, v)?;
-                k += 1;
-            }
+            total += slots(comp, r)?.len();
         }
-        if k != n_values {
+        if total != n_values {
             return Err(FmiError::error(format!(
-                "nValues = {n_values}, but the value references hold {k} values"
+                "nValues = {n_values}, but the value references hold {total} values (nothing was set)"
             )));
+        }
+        // Two passes (no allocation on the per-step input path): check all, then set.
+        for pass in 0..2 {
+            let mut k = 0;
+            for &r in vrs {
+                for slot in slots(comp, r)? {
+                    let kind = comp.inst.table().scalars[slot].kind;
+                    let v = conv(kind, vals[k]).ok_or_else(|| type_error(comp, r, wanted))?;
+                    if pass == 0 {
+                        comp.inst.check_set(slot, v)?;
+                    } else {
+                        comp.inst.set_slot(slot, v)?;
+                    }
+                    k += 1;
+                }
+            }
         }
         Ok(())
     })

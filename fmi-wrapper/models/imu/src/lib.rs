@@ -7,6 +7,8 @@
 //! `rins-fmi`, `rins-fmi2` and `rins-fmi3`; the shared libraries are the one-line crates
 //! `rins-imu-fmi2` and `rins-imu-fmi3` beside this one.
 
+use std::sync::OnceLock;
+
 use nalgebra::Vector3;
 use rins_fmi::model::{Model, ModelInfo};
 use rins_fmi::state::{StateReader, StateWriter};
@@ -16,6 +18,8 @@ use rins_plant::{GimbalCommand, ImuSample, Plant, PlantConfig};
 
 pub mod config;
 pub mod outputs;
+pub mod reference;
+pub mod ssv;
 mod table;
 
 use outputs::{Record, View, outputs};
@@ -63,11 +67,49 @@ pub struct RinsImu {
     /// An input changed since the last step: apply the inputs before stepping (skipping this
     /// when nothing changed keeps doStep within a few ns of the in-process plant).
     inputs_dirty: bool,
+    /// The chamber input the plant started from (`input.chamber_override` set before the end
+    /// of initialisation): part of the configuration, so a restored state rebuilds it.
+    start_chamber_c: Option<f64>,
+    /// Before the end of initialisation: the plant the current parameters and inputs would
+    /// start, built on the first read in initialization mode, so outputs read there are the
+    /// initial values (the thermal steady state, the table's start angles), not zeros.
+    preview: OnceLock<Option<Box<Plant>>>,
 }
 
 impl RinsImu {
     fn input(&self, which: Input) -> Value {
         self.values[table().input_slots[which as usize]]
+    }
+
+    /// The chamber temperature the inputs ask for (`None`: the parameter's).
+    fn chamber_input_c(&self) -> Option<f64> {
+        match (
+            self.input(Input::ChamberOverride),
+            self.input(Input::ChamberTemp),
+        ) {
+            (Value::Boolean(true), Value::Real(x)) => Some(x),
+            _ => None,
+        }
+    }
+
+    /// The configuration the plant starts from: the parameters, with the chamber input set
+    /// before the end of initialisation as the initial chamber temperature (so the thermal
+    /// network starts in its steady state at that temperature).
+    fn start_config(&self, chamber_c: Option<f64>) -> Result<PlantConfig, String> {
+        let mut cfg = self.config()?;
+        if let Some(c) = chamber_c {
+            cfg.thermal.chamber.temp_c = c;
+        }
+        Ok(cfg)
+    }
+
+    fn build_plant(cfg: &PlantConfig) -> Result<Plant, String> {
+        Plant::new(cfg).map_err(|errs| {
+            errs.iter()
+                .map(|e| e.to_string())
+                .collect::<Vec<_>>()
+                .join("; ")
+        })
     }
 
     /// The plant configuration the parameters describe.
@@ -173,32 +215,48 @@ impl Model for RinsImu {
             applied_command: None,
             applied_noise_seed: 0,
             inputs_dirty: true,
+            start_chamber_c: None,
+            preview: OnceLock::new(),
         }
     }
 
     fn set(&mut self, slot: usize, v: Value) -> Result<(), String> {
         self.values[slot] = v;
         self.inputs_dirty |= matches!(table().roles[slot], Role::Input(_));
+        if self.plant.is_none() {
+            self.preview = OnceLock::new();
+        }
         Ok(())
     }
 
     fn get(&self, slot: usize) -> Value {
         match (&table().roles[slot], &self.plant) {
             (Role::Output(k, i), Some(p)) => (outputs()[*k].read)(&self.view(p), *i),
-            // Before initialisation outputs report their start values.
+            (Role::Output(k, i), None) => {
+                // Initialization mode: the initial values of the plant the parameters and
+                // inputs describe (start values if they do not describe one: exiting
+                // initialization mode then says why).
+                let preview = self.preview.get_or_init(|| {
+                    self.start_config(self.chamber_input_c())
+                        .and_then(|c| Self::build_plant(&c))
+                        .ok()
+                        .map(Box::new)
+                });
+                match preview {
+                    Some(p) => (outputs()[*k].read)(&self.view(p), *i),
+                    None => self.values[slot],
+                }
+            }
             _ => self.values[slot],
         }
     }
 
     fn initialize(&mut self) -> Result<(), String> {
-        let cfg = self.config()?;
-        let plant = Plant::new(&cfg).map_err(|errs| {
-            errs.iter()
-                .map(|e| e.to_string())
-                .collect::<Vec<_>>()
-                .join("; ")
-        })?;
+        let chamber = self.chamber_input_c();
+        let plant = Self::build_plant(&self.start_config(chamber)?)?;
+        self.start_chamber_c = chamber;
         self.plant = Some(plant);
+        self.preview = OnceLock::new();
         self.apply_inputs()
     }
 
@@ -254,6 +312,8 @@ impl Model for RinsImu {
             .iter()
             .for_each(|x| w.f64(*x));
         w.u64(self.applied_noise_seed);
+        w.u64(self.start_chamber_c.is_some() as u64);
+        w.f64(self.start_chamber_c.unwrap_or_default());
         // The plant in its own codec (it checks the configuration fingerprint on restore).
         w.bytes(
             &self
@@ -297,13 +357,17 @@ impl Model for RinsImu {
         let cmd = [r.f64()?, r.f64()?, r.f64()?];
         self.applied_command = has_cmd.then_some(cmd);
         self.applied_noise_seed = r.u64()?;
+        let has_start_chamber = r.u64()? != 0;
+        let start_chamber_c = r.f64()?;
+        self.start_chamber_c = has_start_chamber.then_some(start_chamber_c);
+        self.preview = OnceLock::new();
         self.inputs_dirty = true;
         let plant = r.bytes()?;
         if plant.is_empty() {
             (self.plant, self.sample) = (None, None);
             return Ok(());
         }
-        let cfg = self.config()?;
+        let cfg = self.start_config(self.start_chamber_c)?;
         self.plant = Some(Plant::from_serialized_state(&cfg, plant).map_err(|e| e.to_string())?);
         self.sample = if fields.is_empty() {
             None

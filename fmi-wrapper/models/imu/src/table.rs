@@ -222,12 +222,53 @@ fn build_table() -> Table {
             roles.push(Role::Output(k, e));
         }
     }
+    // The Integer codes of the enumerations come last (the instance routes them).
+    let mut vars = VariableTable::with_enum_codes(scalars);
+    for slot in 0..roles.len() {
+        vars.initial_dependencies[slot] = initial_dependencies(&vars, &roles, slot);
+    }
     Table {
-        vars: VariableTable::new(scalars),
+        vars,
         roles,
         defaults,
         input_slots,
     }
+}
+
+/// The knowns an output's value in initialization mode depends on. Outputs of the last
+/// sample (increments, readings, effect terms) are 0 until the first step: none. The plant's
+/// state at the start depends on the start attitude (vehicle and table: `vehicle.*`,
+/// `scheme.*`); the thermal nodes also on the thermal network and the chamber temperature,
+/// the chamber inputs included (tests/… `initial_dependencies_cover_every_known_that_changes_an_initial_output`
+/// checks this list against perturbed parameters).
+fn initial_dependencies(vars: &VariableTable, roles: &[Role], slot: usize) -> Vec<usize> {
+    let Role::Output(k, _) = roles[slot] else {
+        return Vec::new();
+    };
+    let name = outputs()[k].decl.name.as_str();
+    let attitude = |p: &str| p.starts_with("vehicle.") || p.starts_with("scheme.");
+    let depends: Box<dyn Fn(&Role) -> bool> = if name.starts_with("thermal.") {
+        Box::new(move |r| match r {
+            Role::Param(p) => attitude(p) || p.starts_with("thermal."),
+            Role::Input(i) => matches!(i, Input::ChamberOverride | Input::ChamberTemp),
+            Role::Output(..) => false,
+        })
+    } else if name.starts_with("gimbal.")
+        || name == "truth.q_bn"
+        || name == "effect.position_weight"
+    {
+        Box::new(move |r| matches!(r, Role::Param(p) if attitude(p)))
+    } else {
+        return Vec::new();
+    };
+    let mut deps: Vec<usize> = (0..roles.len()).filter(|i| depends(&roles[*i])).collect();
+    // An enumeration's Integer code is a known too.
+    for (code, e) in &vars.enum_codes {
+        if deps.contains(e) {
+            deps.push(*code);
+        }
+    }
+    deps
 }
 
 /// The table (built once from constants: the same on every call, no mutable global state).

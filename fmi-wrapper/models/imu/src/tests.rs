@@ -97,3 +97,112 @@ fn a_restored_state_reports_the_same_outputs() {
 fn t_len() -> usize {
     table().vars.scalars.len()
 }
+
+/// A different valid value for a known: the next enumeration item, the switch flipped, a
+/// number moved inside its range (`None` when the range allows no other value).
+fn perturbed(s: &rins_fmi::vars::ScalarVar) -> Option<Value> {
+    use rins_fmi::vars::Kind;
+    let (lo, hi) = s.range.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+    match (s.kind, s.start) {
+        (Kind::Enumeration { items, .. }, Value::Enumeration(i)) => {
+            Some(Value::Enumeration((i + 1) % items.len()))
+        }
+        (_, Value::Boolean(b)) => Some(Value::Boolean(!b)),
+        (_, Value::Integer(u)) => {
+            let v = if (u + 1) as f64 <= hi {
+                u + 1
+            } else {
+                u.checked_sub(1)?
+            };
+            (v as f64 >= lo).then_some(Value::Integer(v))
+        }
+        (_, Value::Real(x)) => {
+            let step = (x.abs() * 0.1).max(0.05);
+            [x + step, x - step, (x + hi) / 2.0, (x + lo) / 2.0]
+                .into_iter()
+                .find(|y| y.is_finite() && *y >= lo && *y <= hi && *y != x)
+                .map(Value::Real)
+        }
+        _ => None,
+    }
+}
+
+/// The InitialUnknowns dependencies are true: every parameter or input whose change moves an
+/// output's value in initialization mode is listed for that output (each known perturbed in
+/// turn from the defaults), and the chamber inputs do move the thermal outputs.
+#[test]
+fn initial_dependencies_cover_every_known_that_changes_an_initial_output() {
+    use rins_fmi::instance::Instance;
+    let t = table();
+    let outputs: Vec<usize> = (0..t.roles.len())
+        .filter(|s| matches!(t.roles[*s], Role::Output(..)))
+        .collect();
+    let initial = |set: &dyn Fn(&mut Instance<RinsImu>) -> bool| {
+        let mut inst = Instance::<RinsImu>::new();
+        if !set(&mut inst) {
+            return None;
+        }
+        inst.enter_initialization().unwrap();
+        Some(
+            outputs
+                .iter()
+                .map(|s| inst.get_slot(*s))
+                .collect::<Vec<_>>(),
+        )
+    };
+    let base = initial(&|_| true).unwrap();
+    let mut checked = 0;
+    for known in 0..t.vars.scalars.len() {
+        let s = &t.vars.scalars[known];
+        if s.causality == rins_fmi::vars::Causality::Output {
+            continue;
+        }
+        let Some(v) = perturbed(s) else { continue };
+        // The chamber temperature only acts with the override on.
+        let Some(out) = initial(&|i| {
+            if s.name == "input.chamber_temp_c" {
+                i.set(
+                    t.vars.slot("input.chamber_override").unwrap() as u32,
+                    Value::Boolean(true),
+                )
+                .unwrap();
+            }
+            i.set_slot(known, v).is_ok()
+        }) else {
+            continue;
+        };
+        checked += 1;
+        for (k, slot) in outputs.iter().enumerate() {
+            if out[k] != base[k] {
+                assert!(
+                    t.vars.initial_dependencies[*slot].contains(&known),
+                    "{} changes {} in initialization mode but is not listed",
+                    s.name,
+                    t.vars.scalars[*slot].name
+                );
+            }
+        }
+    }
+    assert!(checked > 100, "{checked} knowns perturbed");
+    let housing = t.vars.slot("thermal.housing_c").unwrap();
+    let chamber = t.vars.slot("input.chamber_temp_c").unwrap();
+    assert!(t.vars.initial_dependencies[housing].contains(&chamber));
+    assert!(t.vars.initial_dependencies[t.vars.slot("imu.dtheta_rad[0]").unwrap()].is_empty());
+}
+
+/// The parameter sets shipped in fmi-wrapper/examples/system/ are those of the presets now.
+#[test]
+fn shipped_parameter_sets_are_current() {
+    for preset in ["paper-table3", "nav-grade-full"] {
+        let path = format!(
+            "{}/../../examples/system/{preset}.ssv",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let shipped = std::fs::read_to_string(&path).unwrap_or_default();
+        assert_eq!(
+            shipped,
+            crate::ssv::sensor_parameter_set(preset).unwrap(),
+            "{path} is out of date: regenerate with `cargo run -p rins-imu-fmu --example parameter_sets`"
+        );
+    }
+}

@@ -83,6 +83,8 @@ enum Mode {
     Initialization,
     Step,
     Terminated,
+    /// After a call that returned fmi3Error: only reset (or a state restore) leaves it.
+    Error,
 }
 
 struct Run<'a> {
@@ -91,6 +93,8 @@ struct Run<'a> {
     log: &'a Mutex<Vec<String>>,
     outputs: Vec<u32>,
     n_out: usize,
+    /// A call returned fmi3Error since the last look (the instance is then in error mode).
+    failed: std::cell::Cell<bool>,
 }
 
 impl Run<'_> {
@@ -99,6 +103,9 @@ impl Run<'_> {
         let log = std::mem::take(&mut *self.log.lock().unwrap());
         if s == 0 {
             return true;
+        }
+        if s == 3 {
+            self.failed.set(true);
         }
         assert!((1..=3).contains(&s), "{ctx}: status {s}, log {log:?}");
         assert!(
@@ -229,6 +236,7 @@ fn random_fmi3_call_sequences_follow_the_state_machine_and_never_crash() {
             log: &log,
             outputs: outs.iter().map(|v| v.vr).collect(),
             n_out: outs.iter().map(|v| v.size).sum(),
+            failed: std::cell::Cell::new(false),
         };
         let (mut mode, mut ticks) = (Mode::Instantiated, 0u64);
         let mut saved: Vec<(*mut c_void, u64)> = Vec::new();
@@ -241,6 +249,8 @@ fn random_fmi3_call_sequences_follow_the_state_machine_and_never_crash() {
                 op = 1;
             } else if rng.random_bool(0.3) && mode == Mode::Initialization {
                 op = 2;
+            } else if rng.random_bool(0.5) && mode == Mode::Error {
+                op = 11;
             }
             let ctx = format!("seed {SEED:#x}, sequence {seq}, call {call} (op {op}, {mode:?})");
             // SAFETY (all calls below): fmi3Functions.h signatures on the live instance, arrays
@@ -349,6 +359,8 @@ fn random_fmi3_call_sequences_follow_the_state_machine_and_never_crash() {
                             r.status(s, &ctx);
                             assert!(r.status(unsafe { (f.set_state)(c, saved[k].0) }, &ctx));
                             ticks = saved[k].1;
+                            // The restored state is out of error mode.
+                            r.failed.set(false);
                         }
                         r.free_state(d, &ctx);
                     }
@@ -358,6 +370,11 @@ fn random_fmi3_call_sequences_follow_the_state_machine_and_never_crash() {
                     (mode, ticks) = (Mode::Instantiated, 0);
                 }
                 _ => {}
+            }
+            // The standard: after fmi3Error only reset, free or a state restore; steps and
+            // mode changes are refused until then (checked by the next calls above).
+            if r.failed.take() {
+                mode = Mode::Error;
             }
             if mode == Mode::Terminated && rng.random_bool(0.5) {
                 r.refused(r.step(ticks as f64 * 0.01, 0.01), &ctx);

@@ -1,0 +1,349 @@
+//! What connecting the FMUs in libcosim and ecos exposed (issue 17), tested on the built
+//! binaries: initial outputs in initialization mode, chamber inputs reaching the initial
+//! state and later steps, Integer codes of the enumerations, FMI 3 `nValues` validated before
+//! anything is written and no step after an error, and the logEvents messages.
+//!
+//! Needs the cdylibs: `cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3`.
+
+#![allow(unsafe_code)] // the FMI 3 binary through C function pointers
+
+use std::ffi::{CStr, CString, c_char, c_void};
+use std::sync::Mutex;
+
+use rins_fmi::fmu;
+use rins_fmi::xml::FmiVersion;
+use rins_fmi_import::{Fmu2, Instance2, parse_model_description};
+use rins_imu_fmu::RinsImu;
+use rins_plant::Plant;
+use rins_plant::thermal::node;
+
+mod common;
+use common::{Fmi3, Inst};
+
+fn library() -> Fmu2 {
+    let (guid, _, vars) =
+        parse_model_description(&fmu::description::<RinsImu>(FmiVersion::V2).0).unwrap();
+    Fmu2::load(&common::library_path(FmiVersion::V2), guid, vars).unwrap()
+}
+
+/// The thermal outputs: every node, then the chamber.
+fn thermal_names() -> Vec<String> {
+    node::NAMES
+        .iter()
+        .map(|n| format!("thermal.{n}_c"))
+        .chain(["thermal.chamber_c".to_string()])
+        .collect()
+}
+
+fn thermal(fmu: &Fmu2, inst: &Instance2<'_>) -> Vec<f64> {
+    let vrs: Vec<u32> = thermal_names().iter().map(|n| fmu.vr(n).unwrap()).collect();
+    let mut v = vec![0.0; vrs.len()];
+    inst.get_real(&vrs, &mut v).unwrap();
+    v
+}
+
+/// The in-process plant's initial node and chamber temperatures at chamber `chamber_c`.
+fn plant_initial(chamber_c: f64) -> Vec<f64> {
+    let mut cfg = rins_plant::presets::paper_16pos_config();
+    cfg.thermal.chamber.temp_c = chamber_c;
+    let p = Plant::new(&cfg).unwrap();
+    let t = p.truth().temps;
+    t.nodes_c.iter().copied().chain([t.chamber_c]).collect()
+}
+
+fn set_chamber(fmu: &Fmu2, inst: &Instance2<'_>, temp_c: f64) {
+    inst.set_boolean(&[fmu.vr("input.chamber_override").unwrap()], &[true])
+        .unwrap();
+    inst.set_real(&[fmu.vr("input.chamber_temp_c").unwrap()], &[temp_c])
+        .unwrap();
+}
+
+#[test]
+fn thermal_outputs_read_in_initialization_mode_are_the_initial_state() {
+    let fmu = library();
+    let at25 = plant_initial(25.0);
+    // The steady state is well above the chamber (self-heating): not the start value 0.
+    assert!(at25[node::BOARD] > 26.0, "{at25:?}");
+    let inst = fmu.instantiate("init", false).unwrap();
+    inst.setup_experiment(0.0, None).unwrap();
+    inst.enter_initialization_mode().unwrap();
+    assert_eq!(thermal(&fmu, &inst), at25, "initialization mode, defaults");
+    // A chamber input set during initialization mode is the initial chamber temperature.
+    set_chamber(&fmu, &inst, 35.0);
+    let at35 = plant_initial(35.0);
+    assert_eq!(
+        thermal(&fmu, &inst),
+        at35,
+        "initialization mode, chamber 35"
+    );
+    inst.exit_initialization_mode().unwrap();
+    assert_eq!(thermal(&fmu, &inst), at35, "after initialization");
+    // The first thermal update is after 1 s: the first step keeps the initial state.
+    inst.do_step(0.0, 0.01).unwrap();
+    assert_eq!(thermal(&fmu, &inst), at35, "after the first step");
+}
+
+#[test]
+fn a_chamber_input_set_before_initialization_reaches_the_initial_state() {
+    let fmu = library();
+    let inst = fmu.instantiate("before", false).unwrap();
+    inst.setup_experiment(0.0, None).unwrap();
+    set_chamber(&fmu, &inst, 15.0);
+    inst.enter_initialization_mode().unwrap();
+    inst.exit_initialization_mode().unwrap();
+    assert_eq!(thermal(&fmu, &inst), plant_initial(15.0));
+    // A saved state carries the start temperature (it is part of the configuration).
+    inst.do_step(0.0, 2.0).unwrap();
+    let s = inst.get_state().unwrap();
+    let bytes = inst.serialize_state(&s).unwrap();
+    let other = fmu.instantiate("other", false).unwrap();
+    let d = other.deserialize_state(&bytes).unwrap();
+    other.set_state(&d).unwrap();
+    inst.do_step(2.0, 1.0).unwrap();
+    other.do_step(2.0, 1.0).unwrap();
+    assert_eq!(thermal(&fmu, &inst), thermal(&fmu, &other));
+}
+
+/// Steps of 10 ms from `t0` to `t1` (tick counts, so the times are exact multiples).
+fn run(inst: &Instance2<'_>, from: u64, to: u64) {
+    for k in from..to {
+        inst.do_step(k as f64 / 100.0, 0.01).unwrap();
+    }
+}
+
+#[test]
+fn a_chamber_input_is_taken_by_the_next_thermal_update_and_held_over_it() {
+    let fmu = library();
+    let chamber = fmu.vr("thermal.chamber_c").unwrap();
+    let housing = fmu
+        .vr(&format!("thermal.{}_c", node::NAMES[node::HOUSING]))
+        .unwrap();
+    let read = |inst: &Instance2<'_>, vr| {
+        let mut v = [0.0];
+        inst.get_real(&[vr], &mut v).unwrap();
+        v[0]
+    };
+    let start = |name| {
+        let inst = fmu.instantiate(name, false).unwrap();
+        inst.setup_experiment(0.0, None).unwrap();
+        inst.enter_initialization_mode().unwrap();
+        inst.exit_initialization_mode().unwrap();
+        inst
+    };
+    // Set at t = 100.00 s, a thermal update time: in effect in the step from 100.00 s.
+    let a = start("a");
+    run(&a, 0, 10_000);
+    assert_eq!(read(&a, chamber), 25.0);
+    let h0 = read(&a, housing);
+    set_chamber(&fmu, &a, 40.0);
+    run(&a, 10_000, 10_001);
+    assert_eq!(read(&a, chamber), 40.0, "first step after 100.00 s");
+    assert!(read(&a, housing) > h0, "the housing warms in that step");
+    // Set at t = 100.37 s, between updates: held until the update at 101.00 s.
+    let b = start("b");
+    run(&b, 0, 10_037);
+    set_chamber(&fmu, &b, 40.0);
+    run(&b, 10_037, 10_100);
+    assert_eq!(read(&b, chamber), 25.0, "until 101.00 s");
+    run(&b, 10_100, 10_101);
+    assert_eq!(read(&b, chamber), 40.0, "from the update at 101.00 s");
+    // With thermal updates every communication step (thermal.step_s = 0.01 s) the input set
+    // at 100.37 s is in effect in the step from 100.37 s.
+    let c = fmu.instantiate("c", false).unwrap();
+    c.setup_experiment(0.0, None).unwrap();
+    c.set_real(&[fmu.vr("thermal.step_s").unwrap()], &[0.01])
+        .unwrap();
+    c.enter_initialization_mode().unwrap();
+    c.exit_initialization_mode().unwrap();
+    run(&c, 0, 10_037);
+    set_chamber(&fmu, &c, 40.0);
+    assert_eq!(read(&c, chamber), 25.0);
+    run(&c, 10_037, 10_038);
+    assert_eq!(read(&c, chamber), 40.0, "in the step from 100.37 s");
+}
+
+#[test]
+fn an_enumeration_is_set_through_its_integer_code() {
+    let fmu = library();
+    let outputs: Vec<u32> = ["gimbal.outer_rad", "gimbal.inner_rad", "imu.dtheta_rad[2]"]
+        .iter()
+        .map(|n| fmu.vr(n).unwrap())
+        .collect();
+    let run_with = |set: &dyn Fn(&Instance2<'_>)| {
+        let inst = fmu.instantiate("enum", false).unwrap();
+        inst.setup_experiment(0.0, None).unwrap();
+        set(&inst);
+        inst.enter_initialization_mode().unwrap();
+        inst.exit_initialization_mode().unwrap();
+        inst.do_step(0.0, 400.0).unwrap();
+        let mut v = vec![0.0; outputs.len()];
+        inst.get_real(&outputs, &mut v).unwrap();
+        let mut kind = [0];
+        inst.get_integer(&[fmu.vr("scheme.kind").unwrap()], &mut kind)
+            .unwrap();
+        (v, kind[0])
+    };
+    // 4 = static: the table stays at its start angles.
+    let by_code = run_with(&|i| {
+        i.set_integer(&[fmu.vr("scheme.kind_code").unwrap()], &[4])
+            .unwrap()
+    });
+    let by_enum = run_with(&|i| {
+        i.set_integer(&[fmu.vr("scheme.kind").unwrap()], &[4])
+            .unwrap()
+    });
+    let default = run_with(&|_| {});
+    assert_eq!(by_code, by_enum);
+    assert_eq!(by_code.1, 4);
+    assert_eq!(default.1, 1);
+    assert_ne!(
+        by_code.0, default.0,
+        "the 16-position table has moved by 400 s"
+    );
+    // Codes outside the items are refused with the valid values.
+    let inst = fmu.instantiate("bad", true).unwrap();
+    let e = inst
+        .set_integer(&[fmu.vr("scheme.axis_code").unwrap()], &[3])
+        .unwrap_err();
+    assert!(format!("{e}").contains("outside its range [1, 2]"), "{e}");
+}
+
+unsafe extern "C" fn logger(env: *mut c_void, _s: i32, _c: *const c_char, msg: *const c_char) {
+    if env.is_null() || msg.is_null() {
+        return;
+    }
+    // SAFETY: `env` is the Mutex given at instantiation; the message is NUL-terminated.
+    let sink = unsafe { &*(env as *const Mutex<Vec<String>>) };
+    let m = unsafe { CStr::from_ptr(msg) }
+        .to_string_lossy()
+        .into_owned();
+    sink.lock().unwrap().push(m);
+}
+
+fn attr(xml: &str, name: &str, key: &str) -> String {
+    let tag = &xml[xml.find(&format!("name=\"{name}\"")).unwrap()..];
+    let i = tag.find(&format!(" {key}=\"")).unwrap() + key.len() + 3;
+    tag[i..].split('"').next().unwrap().to_string()
+}
+
+/// A new FMI 3 instance logging into `log`.
+fn fmi3_instance(f: &Fmi3, log: &Mutex<Vec<String>>, logging_on: bool) -> Inst {
+    let xml = &fmu::description::<RinsImu>(FmiVersion::V3).0;
+    let i = xml.find("instantiationToken=\"").unwrap() + 20;
+    let token = CString::new(xml[i..].split('"').next().unwrap()).unwrap();
+    let name = CString::new("fixes").unwrap();
+    // SAFETY: fmi3Functions.h signature; the strings are copied, the log outlives the
+    // instance.
+    let c = unsafe {
+        (f.instantiate)(
+            name.as_ptr(),
+            token.as_ptr(),
+            std::ptr::null(),
+            false,
+            logging_on,
+            false,
+            false,
+            std::ptr::null(),
+            0,
+            log as *const Mutex<Vec<String>> as *mut c_void,
+            Some(logger),
+            std::ptr::null(),
+        )
+    };
+    assert!(!c.is_null());
+    c
+}
+
+fn step3(f: &Fmi3, c: Inst, t: f64) -> i32 {
+    let (mut a, mut b, mut e, mut last) = (false, false, false, 0.0);
+    // SAFETY: live instance, valid out-pointers.
+    unsafe { (f.do_step)(c, t, 0.01, false, &mut a, &mut b, &mut e, &mut last) }
+}
+
+#[test]
+fn log_events_reports_mode_changes_and_every_step() {
+    let f = Fmi3::load();
+    for on in [true, false] {
+        let log = Mutex::new(Vec::new());
+        let c = fmi3_instance(&f, &log, on);
+        // SAFETY: fmi3Functions.h signatures on a live instance.
+        unsafe {
+            assert_eq!((f.enter_init)(c, false, 0.0, 0.0, false, 0.0), 0);
+            assert_eq!((f.exit_init)(c), 0);
+            assert_eq!(step3(&f, c, 0.0), 0);
+            assert_eq!(step3(&f, c, 0.01), 0);
+            assert_eq!((f.terminate)(c), 0);
+            (f.free)(c);
+        }
+        let log = log.lock().unwrap().join("\n");
+        if !on {
+            assert!(log.is_empty(), "without loggingOn: {log}");
+            continue;
+        }
+        for m in [
+            "instantiated",
+            "initialization mode",
+            "initialized; step mode",
+            "doStep from t = 0 s by 0.01 s; now at t = 0.01 s",
+            "doStep from t = 0.01 s by 0.01 s; now at t = 0.02 s",
+            "terminated",
+        ] {
+            assert!(log.contains(m), "{m:?} not in\n{log}");
+        }
+    }
+}
+
+#[test]
+fn fmi3_refuses_a_short_value_count_before_writing_and_steps_after_an_error() {
+    let xml = &fmu::description::<RinsImu>(FmiVersion::V3).0;
+    let vr = |n: &str| attr(xml, n, "valueReference").parse::<u32>().unwrap();
+    let (dtheta, bias, lat) = (
+        vr("imu.dtheta_rad"),
+        vr("sensor.gyro.bias.dph"),
+        vr("site.lat_deg"),
+    );
+    let f = Fmi3::load();
+    let log = Mutex::new(Vec::new());
+    let c = fmi3_instance(&f, &log, false);
+    let step = |t: f64| step3(&f, c, t);
+    // SAFETY (whole test): fmi3Functions.h signatures on a live instance, arrays of the
+    // lengths passed.
+    unsafe {
+        // A set with a valid first value and a bad later one sets nothing.
+        assert_eq!((f.enter_init)(c, false, 0.0, 0.0, false, 0.0), 0);
+        let vrs = [lat, bias];
+        let vals = [10.0, 0.01, f64::NAN, 0.02];
+        assert_eq!((f.set_f64)(c, vrs.as_ptr(), 2, vals.as_ptr(), 4), 3);
+        let mut back = [0.0];
+        assert_eq!((f.get_f64)(c, &lat, 1, back.as_mut_ptr(), 1), 0);
+        assert_eq!(back[0], 36.6, "the valid first value was not set");
+        // Refused from then on until reset.
+        assert_eq!((f.exit_init)(c), 3, "error mode after the refused set");
+        assert_eq!((f.reset)(c), 0);
+        assert_eq!((f.enter_init)(c, false, 0.0, 0.0, false, 0.0), 0);
+        assert_eq!((f.exit_init)(c), 0);
+        assert_eq!(step(0.0), 0);
+        // nValues 1 for a 3-element array (as ecos asks): nothing written, then no step.
+        let mut out = [-7.0; 3];
+        assert_eq!((f.get_f64)(c, &dtheta, 1, out.as_mut_ptr(), 1), 3);
+        assert_eq!(out, [-7.0; 3], "nothing written");
+        assert_eq!(step(0.01), 3, "a step after the error is refused");
+        let msgs = log.lock().unwrap().join("\n");
+        assert!(
+            msgs.contains("nValues = 1, but the value references hold 3 values"),
+            "{msgs}"
+        );
+        assert!(
+            msgs.contains("doStep is not allowed in Error mode"),
+            "{msgs}"
+        );
+        // Reset: usable again.
+        assert_eq!((f.reset)(c), 0);
+        assert_eq!((f.enter_init)(c, false, 0.0, 0.0, false, 0.0), 0);
+        assert_eq!((f.exit_init)(c), 0);
+        assert_eq!(step(0.0), 0);
+        assert_eq!((f.get_f64)(c, &dtheta, 1, out.as_mut_ptr(), 3), 0);
+        assert!(out.iter().all(|x| x.abs() < 1e-3), "{out:?}");
+        (f.free)(c);
+    }
+}

@@ -1,0 +1,364 @@
+"""The IMU FMU in real co-simulation masters: OSP libcosim (FMI 2, libcosimpy 0.0.6) and ecos
+(FMI 2 and 3, ecospy 0.7.2), from the shipped system files in fmi-wrapper/examples/system/
+(OspSystemStructure.xml, SystemStructure.ssd with the .ssv parameter sets, packed into an .ssp).
+
+Checks: the outputs are bit-identical to the in-process plant (`rins run`) and to FMPy for the
+same parameters; an .ssv parameter set reaches the plant (a changed gyro bias shifts the
+angular increments by bias x step); a chamber input set at t = 0 before initialization
+changes the initial temperatures, one set at t = 100.00 s is in effect in the first step
+after 100.00 s. Prints the wall time of a 1-hour run in each master, FMPy and in-process.
+
+Each master runs in its own process (a libcosim error aborts its process; ecos needs
+libtbb preloaded). Adding a component (the carrier FMU) is one entry in SYSTEM below and its
+connections in the two system files.
+
+Usage: python test_masters.py FMU_DIR RINS_BINARY WORK_DIR
+"""
+
+import ctypes
+import json
+import math
+import os
+import shutil
+import stat
+import subprocess
+import sys
+import time
+import zipfile
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+EXAMPLES = os.path.join(HERE, "..", "..", "fmi-wrapper", "examples", "system")
+STEP = 0.01
+
+# The system: component name -> FMU file per FMI version (the carrier FMU joins here).
+SYSTEM = {"imu": {2: "RinsImu.fmu", 3: "RinsImu3.fmu"}}
+
+# Outputs compared (FMI 2 names; FMI 3 reads the array elements of the same names).
+DTHETA = [f"imu.dtheta_rad[{i}]" for i in range(3)]
+THERMAL = ["thermal.chamber_c", "thermal.housing_c", "thermal.board_c"]
+OUTPUTS = DTHETA + THERMAL
+
+# The parameters the OSP file sets (its <InitialValues>); the SSP sets them from the .ssv.
+OSP_START = {"run.seed": 5, "sensor.gyro.bias.dph[2]": 0.02}
+
+SCENARIO = """
+[scenario]
+name = "masters-check"
+duration_s = {duration}
+[run]
+rate_hz = 100.0
+seed = 5
+[sensor]
+preset = "paper-table3"
+gyro.bias.dph = [0.01, 0.01, 0.02]
+[outputs]
+decimation = {decimation}
+truth = {truth}
+"""
+
+
+# ---------------------------------------------------------------- workers (one process each)
+
+def preload_tbb():
+    """ecos's libecosc.so needs libtbb.so.12, which its wheel does not ship: load the one of
+    the `tbb` wheel first (the same as putting the venv's lib/ on LD_LIBRARY_PATH)."""
+    lib = os.path.join(sys.prefix, "lib", "libtbb.so.12")
+    ctypes.CDLL(lib, mode=ctypes.RTLD_GLOBAL)
+    # ecos starts out-of-process FMUs with its proxyfmu binary, shipped without the execute bit.
+    import importlib.util
+    spec = importlib.util.find_spec("ecospy")
+    proxy = os.path.join(os.path.dirname(spec.origin), "binaries", "proxyfmu")
+    if os.path.exists(proxy) and not os.access(proxy, os.X_OK):
+        os.chmod(proxy, os.stat(proxy).st_mode | stat.S_IXUSR | stat.S_IXGRP | stat.S_IXOTH)
+
+
+def run_libcosim(job):
+    """libcosim from an OSP file or an .ssp; records OUTPUTS after every step."""
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimManipulator import CosimManipulator
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    # libcosim instantiates with loggingOn and prints trace messages by default: the FMU's
+    # logEvents line for every doStep would be printed 100 times per simulated second.
+    log_output_level(CosimLogLevel.WARNING)
+    if job["system"].endswith(".xml"):
+        ex = CosimExecution.from_osp_config_file(job["system"])
+    else:
+        ex = CosimExecution.from_ssp_file(job["system"])
+    idx = ex.slave_index_from_instance_name("imu")
+    refs = {v.name.decode(): (v.reference, v.type) for v in ex.slave_variables(idx)}
+    for name, value in job.get("start", {}).items():
+        vr, ty = refs[name]
+        ok = {0: ex.real_initial_value, 1: ex.integer_initial_value, 3: ex.boolean_initial_value}[ty](idx, vr, value)
+        assert ok, (name, value)
+    t0 = time.perf_counter()
+    if not job["record"]:
+        # Timing: no observer. A last-value observer reads every variable after every step;
+        # with it a 600 s run took 28 s instead of 0.2 s here (docs/cosimulation.md).
+        assert ex.simulate_until(int(round(job["steps"] * STEP * 1e9)))
+        return {"wall_s": time.perf_counter() - t0}
+    obs = CosimObserver.create_last_value()
+    ex.add_observer(obs)
+    man = CosimManipulator.create_override()
+    ex.add_manipulator(man)
+    out_refs = [refs[n][0] for n in job["outputs"]]
+    events = {}
+    for at, name, value in job.get("events", []):
+        events.setdefault(at, []).append((name, value))
+    rows = []
+    for k in range(job["steps"]):
+        for name, value in events.get(k, []):
+            vr, ty = refs[name]
+            if ty == 3:
+                man.slave_boolean_values(idx, [vr], [value])
+            else:
+                man.slave_real_values(idx, [vr], [value])
+        assert ex.step(1)
+        rows.append(obs.last_real_values(idx, out_refs))
+    return {"rows": rows, "wall_s": time.perf_counter() - t0}
+
+
+def run_ecos(job):
+    """ecos from an .ssp (with a named parameter set) or a structure built in code."""
+    preload_tbb()
+    from ecospy import EcosLib
+    from ecospy.EcosSimulation import EcosSimulation
+    from ecospy.EcosSimulationStructure import EcosSimulationStructure
+    EcosLib.set_log_level("warn")
+    if job["system"].endswith(".ssp"):
+        sim = EcosSimulation(step_size=STEP, ssp_path=job["system"])
+    else:
+        ss = EcosSimulationStructure()
+        ss.add_model("imu", job["system"])
+        sim = EcosSimulation(step_size=STEP, structure=ss)
+    # Set before init: the master applies them before the FMU's initialization.
+    for name, value in job.get("start", {}).items():
+        setter = sim.set_bool if isinstance(value, bool) else sim.set_integer if isinstance(value, int) else sim.set_real
+        setter(f"imu::{name}", value)
+    sim.init(0.0, job.get("parameter_set"))
+    events = {}
+    for at, name, value in job.get("events", []):
+        events.setdefault(at, []).append((name, value))
+    t0 = time.perf_counter()
+    if not job["record"]:
+        sim.step(job["steps"])
+        wall = time.perf_counter() - t0
+        sim.terminate()
+        return {"wall_s": wall}
+    rows = []
+    names = [f"imu::{n}" for n in job["outputs"]]
+    for k in range(job["steps"]):
+        for name, value in events.get(k, []):
+            (sim.set_bool if isinstance(value, bool) else sim.set_real)(f"imu::{name}", value)
+        sim.step(1)
+        rows.append([sim.get_real(n) for n in names])
+    wall = time.perf_counter() - t0
+    sim.terminate()
+    return {"rows": rows, "wall_s": wall}
+
+
+def worker(path):
+    with open(path) as f:
+        job = json.load(f)
+    res = {"libcosim": run_libcosim, "ecos": run_ecos}[job["master"]](job)
+    with open(path + ".out", "w") as f:
+        # repr of a float round-trips exactly.
+        json.dump({"wall_s": res["wall_s"], "rows": [[repr(x) for x in r] for r in res.get("rows", [])]}, f)
+
+
+# ---------------------------------------------------------------- the test driver
+
+FMU_DIR = RINS = WORK = None
+
+
+def master(name, system, steps, record=True, outputs=OUTPUTS, **extra):
+    """Runs one job in a fresh process; returns (rows as an array, wall time)."""
+    job = dict(master=name, system=system, steps=steps, record=record, outputs=outputs, **extra)
+    path = os.path.join(WORK, f"job-{name}-{len(os.listdir(WORK))}.json")
+    with open(path, "w") as f:
+        json.dump(job, f)
+    r = subprocess.run([sys.executable, __file__, "--worker", path], capture_output=True, text=True)
+    assert r.returncode == 0, (name, system, r.returncode, r.stdout[-3000:], r.stderr[-3000:])
+    with open(path + ".out") as f:
+        res = json.load(f)
+    rows = np.array([[float(x) for x in row] for row in res["rows"]]) if res["rows"] else None
+    return rows, res["wall_s"]
+
+
+def osp_dir():
+    """The shipped OSP file beside the built FMUs (it names them relative to itself)."""
+    d = os.path.join(WORK, "osp")
+    os.makedirs(d, exist_ok=True)
+    shutil.copy(os.path.join(EXAMPLES, "OspSystemStructure.xml"), d)
+    for files in SYSTEM.values():
+        shutil.copy(os.path.join(FMU_DIR, files[2]), d)
+    return os.path.join(d, "OspSystemStructure.xml")
+
+
+def ssp(version, parameter_set="paper-table3", edit=None):
+    """The shipped SystemStructure.ssd and .ssv sets packed with the FMUs into an .ssp; the
+    component binds `parameter_set` (optionally edited: a dict of parameter -> value)."""
+    with open(os.path.join(EXAMPLES, "SystemStructure.ssd")) as f:
+        ssd = f.read().replace("resources/paper-table3.ssv", f"resources/{parameter_set}.ssv")
+    for comp, files in SYSTEM.items():
+        ssd = ssd.replace(f"resources/{files[2]}", f"resources/{files[version]}")
+    tag = f"{version}-{parameter_set}-{len(edit or {})}-{abs(hash(json.dumps(edit, sort_keys=True))) % 10**8}"
+    path = os.path.join(WORK, f"rins-{tag}.ssp")
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
+        z.writestr("SystemStructure.ssd", ssd)
+        for name in ("paper-table3", "nav-grade-full"):
+            with open(os.path.join(EXAMPLES, f"{name}.ssv")) as f:
+                text = f.read()
+            for p, v in (edit or {}).items() if name == parameter_set else ():
+                i = text.index(f'name="{p}"')
+                j = text.index('value="', i) + 7
+                k = text.index('"', j)
+                text = text[:j] + repr(v) + text[k:]
+            z.writestr(f"resources/{name}.ssv", text)
+        for files in SYSTEM.values():
+            z.write(os.path.join(FMU_DIR, files[version]), f"resources/{files[version]}")
+    return path
+
+
+def in_process(duration_s, decimation=1):
+    """The in-process plant's increments for the OSP parameters (`rins run`); with a
+    decimation (timing), every n-th sample is written and the truth columns are left out."""
+    path = os.path.join(WORK, f"inproc-{duration_s}.toml")
+    with open(path, "w") as f:
+        f.write(SCENARIO.format(duration=duration_s, decimation=decimation,
+                                truth="true" if decimation == 1 else "false"))
+    out = os.path.join(WORK, f"inproc-{duration_s}")
+    t0 = time.perf_counter()
+    subprocess.run([RINS, "run", path, "--out", out], check=True, capture_output=True)
+    wall = time.perf_counter() - t0
+    import csv
+    with open(os.path.join(out, "imu.csv")) as f:
+        rows = list(csv.DictReader(f))
+    return np.array([[float(r[f"dtheta_{a}_rad"]) for a in "xyz"] for r in rows]), wall
+
+
+def fmpy_run(fmu, steps, start, outputs=OUTPUTS):
+    from fmpy import simulate_fmu
+    r = simulate_fmu(fmu, stop_time=steps * STEP, output_interval=STEP, start_values=start, output=outputs)
+    return np.column_stack([r[n] for n in outputs])[1:]
+
+
+def test_osp_and_ssp_runs_are_bit_identical_to_in_process_and_fmpy():
+    n = 6000  # 60 s: the first dwell, thermal updates every second
+    ref, _ = in_process(n * STEP)
+    fm = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), n, OSP_START)
+    assert np.array_equal(fm[:, :3], ref[:n]), "FMPy vs in-process"
+    runs = {
+        "libcosim OSP (FMI 2)": master("libcosim", osp_dir(), n),
+        "libcosim SSP (FMI 2)": master("libcosim", ssp(2, edit={"sensor.gyro.bias.dph[2]": 0.02}), n,
+                                       start={"run.seed": 5}),
+        "ecos SSP (FMI 2)": master("ecos", ssp(2, edit={"sensor.gyro.bias.dph[2]": 0.02}), n,
+                                   start={"run.seed": 5}, parameter_set="paper-table3"),
+        "ecos code (FMI 2)": master("ecos", os.path.join(FMU_DIR, "RinsImu.fmu"), n, start=OSP_START),
+    }
+    for name, (rows, _) in runs.items():
+        assert rows.shape == fm.shape, (name, rows.shape)
+        assert np.array_equal(rows[:, :3], ref[:n]), (name, np.abs(rows[:, :3] - ref[:n]).max())
+        assert np.array_equal(rows, fm), (name, "thermal outputs differ from FMPy")
+
+
+def test_ecos_fmi3_from_ssp_gives_the_scalar_outputs_of_fmi2():
+    # ecos reads and writes FMI 3 arrays with nValues 1, which the FMU refuses (writing
+    # nothing): the scalar outputs are compared here, the arrays through FMPy in test_fmu.py.
+    # The .ssv names are FMI 2 scalar names; ecos skips the array elements for the FMI 3 FMU
+    # (a warning each) and sets the scalar parameters. paper-table3 is the FMU's default grade.
+    n = 3000
+    scalars = THERMAL + ["gimbal.outer_rad", "imu.time_s"]
+    r3, _ = master("ecos", ssp(3), n, outputs=scalars, start={"run.seed": 5}, parameter_set="paper-table3")
+    r2, _ = master("ecos", ssp(2), n, outputs=scalars, start={"run.seed": 5}, parameter_set="paper-table3")
+    assert np.array_equal(r3, r2), np.abs(r3 - r2).max()
+    assert abs(r3[-1, -1] - n * STEP) < 1e-9, r3[-1, -1]
+    assert r3[:, 3].max() > r3[0, 3], "the table moved (gimbal angle changes)"
+
+
+def test_a_parameter_set_reaches_the_plant_in_both_masters():
+    n = 2000
+    delta_dph = 0.05
+    base = {"sensor.gyro.bias.dph[2]": 0.01}
+    shifted = {"sensor.gyro.bias.dph[2]": 0.01 + delta_dph}
+    # The increments change by the bias times the step, in body z (same seed, same noise).
+    expected = math.radians(delta_dph / 3600.0) * STEP * n
+    for name, run in [
+        ("libcosim", lambda e: master("libcosim", ssp(2, edit=e), n)),
+        ("ecos FMI 2", lambda e: master("ecos", ssp(2, edit=e), n, parameter_set="paper-table3")),
+    ]:
+        a, _ = run(base)
+        b, _ = run(shifted)
+        shift = (b[:, 2] - a[:, 2]).sum()
+        # Quantisation carries its remainder: the sum is within a few quanta of the shift.
+        assert abs(shift - expected) < 0.01 * expected, (name, shift, expected)
+        assert np.array_equal(a[:, :2], b[:, :2]), (name, "x and y unchanged")
+    # The two grades differ: nav-grade-full has terms paper-table3 has off.
+    p, _ = master("ecos", ssp(2, "paper-table3"), n, parameter_set="paper-table3")
+    g, _ = master("ecos", ssp(2, "nav-grade-full"), n, parameter_set="nav-grade-full")
+    assert not np.array_equal(p[:, :3], g[:, :3])
+
+
+def test_chamber_inputs_before_initialization_and_at_100_s():
+    n = 10_001
+    start = {"input.chamber_override": True, "input.chamber_temp_c": 35.0}
+    fm_default = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), 1, {})
+    fm35 = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), 1, start)
+    events = [[10_000, "input.chamber_override", True], [10_000, "input.chamber_temp_c", 40.0]]
+    for name, (rows, _) in {
+        "libcosim": master("libcosim", osp_dir(), 1, start=start),
+        "ecos": master("ecos", os.path.join(FMU_DIR, "RinsImu.fmu"), 1, start=start),
+    }.items():
+        # Initial state at 35 degC: the first step has no thermal update yet.
+        assert np.array_equal(rows[0, 3:], fm35[0, 3:]), (name, rows[0, 3:], fm35[0, 3:])
+        assert rows[0, 3] == 35.0 and rows[0, 4] != fm_default[0, 4], name
+    for name, (rows, _) in {
+        "libcosim": master("libcosim", osp_dir(), n, events=events),
+        "ecos": master("ecos", os.path.join(FMU_DIR, "RinsImu.fmu"), n, events=events),
+    }.items():
+        chamber = rows[:, 3]
+        assert chamber[9_999] == 25.0, (name, "until 100.00 s", chamber[9_999])
+        assert chamber[10_000] == 40.0, (name, "in the step from 100.00 s", chamber[10_000])
+        assert rows[10_000, 4] > rows[9_999, 4], (name, "the housing warms")
+
+
+def test_wall_time_of_a_one_hour_run():
+    n = 360_000
+    times = {}
+    _, times["in-process (rins run, every 100th sample written)"] = in_process(n * STEP, decimation=100)
+    from fmpy import simulate_fmu
+    t0 = time.perf_counter()
+    simulate_fmu(os.path.join(FMU_DIR, "RinsImu.fmu"), stop_time=n * STEP, output_interval=STEP,
+                 start_values=OSP_START, output=DTHETA)
+    times["FMPy simulate_fmu (FMI 2)"] = time.perf_counter() - t0
+    _, times["libcosim OSP (FMI 2)"] = master("libcosim", osp_dir(), n, record=False)
+    _, times["ecos (FMI 2)"] = master("ecos", os.path.join(FMU_DIR, "RinsImu.fmu"), n, record=False,
+                                      start=OSP_START)
+    _, times["ecos (FMI 3)"] = master("ecos", os.path.join(FMU_DIR, "RinsImu3.fmu"), n, record=False,
+                                      start={"run.seed": 5})
+    for k, v in times.items():
+        print(f"     1 h at 10 ms, {k}: {v:.2f} s")
+    assert all(v > 0 for v in times.values())
+
+
+if __name__ == "__main__":
+    if sys.argv[1] == "--worker":
+        worker(sys.argv[2])
+        sys.exit(0)
+    FMU_DIR, RINS, WORK = sys.argv[1:4]
+    WORK = os.path.join(WORK, "masters")
+    os.makedirs(WORK, exist_ok=True)
+    only = sys.argv[4:]
+    failed = 0
+    tests = [(k, v) for k, v in sorted(globals().items()) if k.startswith("test_") and (not only or k in only)]
+    for name, fn in tests:
+        try:
+            fn()
+            print(f"ok   {name}")
+        except Exception as e:  # report every failure, then exit non-zero
+            failed += 1
+            print(f"FAIL {name}: {e!r}")
+    print(f"{len(tests) - failed} passed, {failed} failed")
+    sys.exit(1 if failed else 0)
