@@ -95,12 +95,13 @@ impl RenderText for DiagnoseReport {
                 .zip(&r.ci95)
                 .zip(&r.keys)
                 .map(|((c, ci), k)| {
-                    format!(
-                        "{}={c:.4} [{:.4}, {:.4}]",
-                        k.rsplit('.').next().unwrap_or(k),
-                        ci[0],
-                        ci[1]
-                    )
+                    let k = k.rsplit('.').next().unwrap_or(k);
+                    if c.is_nan() {
+                        // Not identifiable on this data (null in the JSON).
+                        format!("{k}=null")
+                    } else {
+                        format!("{k}={c:.4} [{:.4}, {:.4}]", ci[0], ci[1])
+                    }
                 })
                 .collect();
             let _ = writeln!(
