@@ -63,9 +63,10 @@ pub struct Correlation {
     pub max_abs_rho: f64,
     /// Its lag, windows.
     pub lag: usize,
-    /// 99 % band.
+    /// The band |ρ| is judged against: family-wise 99 % (at the options' `alpha`) over every
+    /// channel, input and lag tested (Bonferroni), not per lag.
     pub band99: f64,
-    /// |ρ| outside the band.
+    /// |ρ| outside the family-wise band.
     pub significant: bool,
 }
 
