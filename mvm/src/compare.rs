@@ -187,6 +187,7 @@ impl Prepared {
             correlations: self.correlations(pred),
             allan: self.allan(),
             unavailable: self.replay.unavailable.clone(),
+            column_map: self.opts.column_map.clone(),
             navigation: self
                 .replay
                 .nav

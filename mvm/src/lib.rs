@@ -17,9 +17,12 @@
 //! commands, their figures and the Rerun recording use, so none of them recomputes anything.
 
 pub mod apply;
+pub mod colmap;
 mod compare;
 pub mod fit;
+mod header;
 pub mod history;
+pub mod parquet;
 mod prepare;
 pub mod reader;
 pub mod replay;
@@ -56,6 +59,8 @@ pub struct Options {
     pub diagnose: bool,
     /// Effects to switch on and fit into the model (`rins diagnose --apply`); empty: none.
     pub apply: Vec<Effect>,
+    /// The column map the data were read with (listed in the reports), if any.
+    pub column_map: Option<colmap::MapSummary>,
 }
 
 impl Default for Options {
@@ -67,6 +72,7 @@ impl Default for Options {
             alpha: 0.01,
             diagnose: false,
             apply: Vec::new(),
+            column_map: None,
         }
     }
 }

@@ -129,6 +129,8 @@ pub struct CompareReport {
     pub unavailable: Vec<(String, String)>,
     /// Navigation level: static navigation on the measured and on the modelled increments.
     pub navigation: Vec<NavComparison>,
+    /// The column map the data were read with: mapped and ignored columns (`None`: none).
+    pub column_map: Option<crate::colmap::MapSummary>,
 }
 
 /// A candidate in the ranking.
@@ -196,4 +198,6 @@ pub struct DiagnoseReport {
     pub unexplained: Vec<String>,
     /// Candidates that cannot be tested with this data.
     pub unavailable: Vec<(String, String)>,
+    /// The column map the data were read with (`None`: none).
+    pub column_map: Option<crate::colmap::MapSummary>,
 }

@@ -287,6 +287,7 @@ pub(crate) fn diagnose(a: &Prepared, source: &str, before: &CompareReport) -> Di
         flagged_cells_after: after.flagged_cells.clone(),
         unexplained,
         unavailable: a.replay.unavailable.clone(),
+        column_map: before.column_map.clone(),
     };
     Diagnosis {
         report,
