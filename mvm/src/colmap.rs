@@ -149,7 +149,7 @@ pub fn conversion(unit: &str, to: &str) -> Result<(f64, f64), String> {
     })?;
     if fam != family {
         return Err(format!(
-            "unit {unit:?} is a {fam}, {to:?} is a {family}: one of {names:?}"
+            "unit {unit:?} ({fam}) does not fit {to:?} ({family}): one of {names:?}"
         ));
     }
     Ok((size / target, offset / target))

@@ -212,10 +212,10 @@ const ROW_GROUP: usize = 1 << 20;
 pub fn write(path: &Path, m: &Measurement) -> Result<(), String> {
     let fail = |e: parquet::errors::ParquetError| format!("{}: Parquet: {e}", path.display());
     let mut fields = Vec::new();
-    for (name, _) in &m.labels {
+    for name in m.labels.keys() {
         fields.push(format!("REQUIRED BYTE_ARRAY {name} (UTF8);"));
     }
-    for (name, _) in &m.columns {
+    for name in m.columns.keys() {
         fields.push(format!("REQUIRED DOUBLE {name};"));
     }
     let schema: Type = parquet::schema::parser::parse_message_type(&format!(
