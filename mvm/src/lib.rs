@@ -5,7 +5,8 @@
 //! (docs/model-vs-measurements.md).
 //!
 //! The steps, each in its own module: [`reader`] (the strict measurement CSV reader,
-//! docs/measurement-format.md), [`history`] (the measured rows in SI), [`replay`] (model
+//! docs/measurement-format.md), [`colmap`] (column maps for a logger's own names and units),
+//! [`parquet`] (the same format in Parquet), [`history`] (the measured rows in SI), [`replay`] (model
 //! expectation, residual and regressors per row, summed into windows, in one pass over the
 //! rows), [`fit`] (weighted least squares, candidate tests, gate, collinearity), [`stats`]
 //! (Allan variance, correlations, test distributions), `prepare` (noise floors and folds),
