@@ -121,6 +121,10 @@ pub(crate) fn apply(
             {
                 let v = (current.get(j).copied().unwrap_or(0.0) + fit.theta[k]) / unit;
                 k += 1;
+                // A coefficient the data cannot identify is never written.
+                if !fit.identified(k - 1) {
+                    continue;
+                }
                 set.push((name.clone(), v));
                 pairs.push((name, ParamValue::Real(v)));
             }

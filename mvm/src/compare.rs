@@ -33,6 +33,13 @@ fn temp_of(w: &Window, c: usize) -> f64 {
     }
 }
 
+/// Lags of the residual's autocorrelation, windows.
+const AUTO_LAGS: std::ops::RangeInclusive<usize> = 1..=10;
+/// Lags of its cross-correlation with each input, windows.
+const CROSS_LAGS: std::ops::RangeInclusive<usize> = 0..=10;
+/// Inputs it is cross-correlated with (temperature, its rate, gravity along the axis, rotation).
+const INPUTS: usize = 4;
+
 impl Prepared {
     /// Residual sums per channel after removing `pred` (per-channel predictions).
     fn cells(&self, pred: &[Vec<f64>]) -> (Vec<Cell>, f64) {
@@ -102,6 +109,11 @@ impl Prepared {
     fn correlations(&self, pred: &[Vec<f64>]) -> Vec<Correlation> {
         let ws = &self.replay.windows;
         let mut out = Vec::new();
+        // Family-wise band: each flag is the largest |ρ| over several lags, inputs and
+        // channels, so the per-test 99 % band would flag a clean control several times; the
+        // bound is Bonferroni over every (channel, input, lag) tested, at the options' level.
+        let tests = 6 * (AUTO_LAGS.clone().count() + INPUTS * CROSS_LAGS.clone().count());
+        let band = stats::band_family(ws.len(), self.opts.alpha, tests);
         for c in 0..6 {
             let d = &self.data[c];
             let z: Vec<f64> = (0..d.y.len())
@@ -119,7 +131,6 @@ impl Prepared {
                 .collect();
             let grav: Vec<f64> = ws.iter().map(|w| w.f_b_g[c % 3]).collect();
             let rot: Vec<f64> = ws.iter().map(|w| w.rotation_rps).collect();
-            let band = stats::band99(z.len());
             let mut push = |with: &str, x: &[f64], lags: std::ops::RangeInclusive<usize>| {
                 let (lag, rho) = lags
                     .map(|l| (l, stats::correlation(x, &z, l)))
@@ -134,11 +145,11 @@ impl Prepared {
                     significant: rho.abs() > band,
                 });
             };
-            push("residual", &z, 1..=10);
-            push("temperature", &temp, 0..=10);
-            push("temperature_rate", &rate, 0..=10);
-            push("gravity_along_axis", &grav, 0..=10);
-            push("rotation_rate", &rot, 0..=10);
+            push("residual", &z, AUTO_LAGS);
+            push("temperature", &temp, CROSS_LAGS);
+            push("temperature_rate", &rate, CROSS_LAGS);
+            push("gravity_along_axis", &grav, CROSS_LAGS);
+            push("rotation_rate", &rot, CROSS_LAGS);
         }
         out
     }
@@ -176,6 +187,7 @@ impl Prepared {
             correlations: self.correlations(pred),
             allan: self.allan(),
             unavailable: self.replay.unavailable.clone(),
+            column_map: self.opts.column_map.clone(),
             navigation: self
                 .replay
                 .nav

@@ -46,14 +46,67 @@ pub struct Fit {
 impl Fit {
     /// Reduced χ².
     pub fn chi2_red(&self) -> f64 {
-        self.chi2 / (self.n.saturating_sub(self.theta.len())).max(1) as f64
+        self.chi2 / (self.n.saturating_sub(self.identified_count())).max(1) as f64
+    }
+
+    /// Whether coefficient `i` is identified by the data (a finite variance; see
+    /// [`MAX_SE_FILE_UNITS`]); an unidentified one is reported as null and never written.
+    pub fn identified(&self, i: usize) -> bool {
+        self.cov[(i, i)].is_finite()
+    }
+
+    /// Number of identified coefficients among `range` (all with `0..theta.len()`).
+    pub fn identified_in(&self, range: std::ops::Range<usize>) -> usize {
+        range.filter(|&i| self.identified(i)).count()
+    }
+
+    /// Number of identified coefficients.
+    pub fn identified_count(&self) -> usize {
+        self.identified_in(0..self.theta.len())
+    }
+}
+
+/// The largest standard error, in the coefficient's scenario-file unit (°/h, ppm, ″, °/h/g,
+/// µg, … per K^n), at which a coefficient still counts as identified. The data carry
+/// information on a coefficient in proportion to its whitened column's norm (1/σ_θ): an
+/// unexcited column (g-sensitivity to x when body x never leaves the horizontal) is exactly zero
+/// with gimbal angles but rounding noise (~1e-16 of the input) with a quaternion attitude, and
+/// fitting it gives 1e14-sized coefficients. A coefficient the data determine only to ±1e4 file
+/// units (1 % scale factor, 2.8° misalignment, 1e4 °/h/g) says nothing about a navigation-grade
+/// unit; it is reported as null and never written.
+pub const MAX_SE_FILE_UNITS: f64 = 1e4;
+
+/// Design columns of some candidate groups over the windows (SI coefficients), with the SI
+/// size of each coefficient's scenario-file unit (what identifiability is judged in).
+#[derive(Clone, Debug)]
+pub struct Design {
+    /// Rows = windows, columns = coefficients.
+    pub x: DMatrix<f64>,
+    /// Per column, the SI value of one scenario-file unit of its coefficient.
+    pub unit: Vec<f64>,
+}
+
+impl std::ops::Deref for Design {
+    type Target = DMatrix<f64>;
+    fn deref(&self) -> &DMatrix<f64> {
+        &self.x
+    }
+}
+
+impl Design {
+    /// The columns `cols` only.
+    fn select(&self, cols: &[usize]) -> Design {
+        Design {
+            x: DMatrix::from_fn(self.x.nrows(), cols.len(), |r, c| self.x[(r, cols[c])]),
+            unit: cols.iter().map(|&c| self.unit[c]).collect(),
+        }
     }
 }
 
 /// Design columns of `groups` over the windows.
-pub fn design(windows: &[Window], groups: &[Group]) -> DMatrix<f64> {
+pub fn design(windows: &[Window], groups: &[Group]) -> Design {
     let p: usize = groups.iter().map(|g| g.len).sum();
-    DMatrix::from_fn(windows.len(), p, |r, c| {
+    let x = DMatrix::from_fn(windows.len(), p, |r, c| {
         let mut c = c;
         for g in groups {
             if c < g.len {
@@ -62,11 +115,66 @@ pub fn design(windows: &[Window], groups: &[Group]) -> DMatrix<f64> {
             c -= g.len;
         }
         0.0
-    })
+    });
+    let unit = groups
+        .iter()
+        .flat_map(|g| {
+            let mut u: Vec<f64> = g
+                .effect
+                .coefficient_keys(g.channel)
+                .into_iter()
+                .map(|(_, u)| u)
+                .collect();
+            u.resize(g.len, 1.0);
+            u.truncate(g.len);
+            u
+        })
+        .collect();
+    Design { x, unit }
+}
+
+/// Columns the whitened design `a` (rows already divided by σ) can identify: pivoted
+/// Gram–Schmidt in file units, taking the best-determined column first and keeping a column
+/// while its part not explained by the columns kept before determines its coefficient to
+/// better than [`MAX_SE_FILE_UNITS`] (|a⊥|·unit ≥ 1/MAX_SE). Returns them in column order.
+fn identified_columns(a: &DMatrix<f64>, unit: &[f64]) -> Vec<usize> {
+    let p = a.ncols();
+    let mut q: Vec<DVector<f64>> = (0..p)
+        .map(|c| a.column(c) * unit[c].abs())
+        .map(|v| {
+            if v.iter().all(|x| x.is_finite()) {
+                v
+            } else {
+                v * 0.0
+            }
+        })
+        .collect();
+    let mut free: Vec<usize> = (0..p).collect();
+    let mut kept = Vec::new();
+    while !free.is_empty() {
+        let (k, norm) = free
+            .iter()
+            .enumerate()
+            .map(|(k, &c)| (k, q[c].norm()))
+            .max_by(|x, y| x.1.total_cmp(&y.1))
+            .expect("non-empty");
+        if !(norm * MAX_SE_FILE_UNITS >= 1.0) {
+            break;
+        }
+        let c = free.swap_remove(k);
+        let e = &q[c] / norm;
+        for &o in &free {
+            let proj = e.dot(&q[o]);
+            q[o] -= &e * proj;
+        }
+        kept.push(c);
+    }
+    kept.sort_unstable();
+    kept
 }
 
 /// WLS of `d.y` on the columns `x` (rows with `mask` false are left out).
-pub fn wls(x: &DMatrix<f64>, d: &ChannelData, mask: Option<&[bool]>) -> Option<Fit> {
+pub fn wls(x: &Design, d: &ChannelData, mask: Option<&[bool]>) -> Option<Fit> {
     let rows: Vec<usize> = (0..d.y.len())
         .filter(|&r| mask.is_none_or(|m| m[r]))
         .collect();
@@ -94,19 +202,14 @@ pub fn wls(x: &DMatrix<f64>, d: &ChannelData, mask: Option<&[bool]>) -> Option<F
         }
         b[i] = d.y[r] * w;
     }
-    // Normalise columns: the regressors span many orders of magnitude. A column that is zero
-    // on this data (e.g. g-sensitivity to x when x is never vertical) is not estimated: its
-    // coefficient is reported as 0 with an unbounded interval.
-    let scale: Vec<f64> = (0..p).map(|c| a.column(c).norm()).collect();
-    let live: Vec<usize> = (0..p)
-        .filter(|&c| scale[c] > 0.0 && scale[c].is_finite())
-        .collect();
+    // Coefficients the data cannot determine (MAX_SE_FILE_UNITS: an unexcited column is zero
+    // or rounding noise) are not estimated: reported as 0 with an unbounded interval.
+    let live = identified_columns(&a, &x.unit);
     if live.is_empty() {
         return None;
     }
     if live.len() < p {
-        let sub = DMatrix::from_fn(x.nrows(), live.len(), |r, c| x[(r, live[c])]);
-        let f = wls(&sub, d, mask)?;
+        let f = wls(&x.select(&live), d, mask)?;
         let mut theta = vec![0.0; p];
         let mut cov = DMatrix::from_element(p, p, 0.0);
         for (i, &li) in live.iter().enumerate() {
@@ -126,6 +229,8 @@ pub fn wls(x: &DMatrix<f64>, d: &ChannelData, mask: Option<&[bool]>) -> Option<F
             condition: f.condition,
         });
     }
+    // Normalise columns: the regressors span many orders of magnitude.
+    let scale: Vec<f64> = (0..p).map(|c| a.column(c).norm()).collect();
     for c in 0..p {
         a.column_mut(c).unscale_mut(scale[c]);
     }
@@ -159,7 +264,7 @@ pub fn wls(x: &DMatrix<f64>, d: &ChannelData, mask: Option<&[bool]>) -> Option<F
 }
 
 /// Cross-validated RMS of the residual rate (rate units) with the columns `x`.
-pub fn cv_rmse(x: &DMatrix<f64>, d: &ChannelData) -> f64 {
+pub fn cv_rmse(x: &Design, d: &ChannelData) -> f64 {
     let mut sse = 0.0;
     let mut count = 0usize;
     for f in 0..d.folds {
@@ -217,9 +322,14 @@ pub fn test_candidates(
         let Some(fit) = wls(&x, d, None) else {
             continue;
         };
-        let k = g.len as f64;
+        // Only the coefficients the data identify count as parameters (an unexcited one is
+        // not estimated); a candidate with none cannot explain anything.
+        let k = fit.identified_in(x0.ncols()..x0.ncols() + g.len) as f64;
+        if k == 0.0 {
+            continue;
+        }
         let delta_chi2 = base.chi2 - fit.chi2;
-        let dof = (fit.n - fit.theta.len()).max(1) as f64;
+        let dof = (fit.n - fit.identified_count()).max(1) as f64;
         // Nested F test, with the noise floor as the variance unless the data say it is larger.
         let s2 = (fit.chi2 / dof).max(1.0);
         let p_value = f_sf(delta_chi2 / k / s2, k, dof);
@@ -256,8 +366,11 @@ pub fn test_candidates(
 /// Whether the fit with more polynomial terms (`high`) is significantly better than `low`
 /// (nested F test on their χ², p < 0.001 since the orders are tried in turn).
 pub fn higher_order_significant(low: &Fit, high: &Fit) -> bool {
-    let extra = high.theta.len().saturating_sub(low.theta.len()).max(1) as f64;
-    let dof = (high.n.saturating_sub(high.theta.len())).max(1) as f64;
+    let extra = high
+        .identified_count()
+        .saturating_sub(low.identified_count())
+        .max(1) as f64;
+    let dof = (high.n.saturating_sub(high.identified_count())).max(1) as f64;
     let f = (low.chi2 - high.chi2) / extra / high.chi2_red().max(1.0);
     f_sf(f, extra, dof) < 0.001
 }
@@ -295,7 +408,9 @@ pub fn delta_bic_of(
     let mut all = selected.to_vec();
     all.extend_from_slice(groups);
     let fit = wls(&design(windows, &all), d, None)?;
-    let k: usize = groups.iter().map(|g| g.len).sum();
+    let k = fit
+        .identified_count()
+        .saturating_sub(base.identified_count());
     let s2 = fit.chi2_red().max(1.0);
     Some((
         -(base.chi2 - fit.chi2) / s2 + k as f64 * (d.y.len() as f64).ln(),

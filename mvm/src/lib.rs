@@ -5,7 +5,8 @@
 //! (docs/model-vs-measurements.md).
 //!
 //! The steps, each in its own module: [`reader`] (the strict measurement CSV reader,
-//! docs/measurement-format.md), [`history`] (the measured rows in SI), [`replay`] (model
+//! docs/measurement-format.md), [`colmap`] (column maps for a logger's own names and units),
+//! [`parquet`] (the same format in Parquet), [`history`] (the measured rows in SI), [`replay`] (model
 //! expectation, residual and regressors per row, summed into windows, in one pass over the
 //! rows), [`fit`] (weighted least squares, candidate tests, gate, collinearity), [`stats`]
 //! (Allan variance, correlations, test distributions), `prepare` (noise floors and folds),
@@ -17,9 +18,12 @@
 //! commands, their figures and the Rerun recording use, so none of them recomputes anything.
 
 pub mod apply;
+pub mod colmap;
 mod compare;
 pub mod fit;
+mod header;
 pub mod history;
+pub mod parquet;
 mod prepare;
 pub mod reader;
 pub mod replay;
@@ -56,6 +60,8 @@ pub struct Options {
     pub diagnose: bool,
     /// Effects to switch on and fit into the model (`rins diagnose --apply`); empty: none.
     pub apply: Vec<Effect>,
+    /// The column map the data were read with (listed in the reports), if any.
+    pub column_map: Option<colmap::MapSummary>,
 }
 
 impl Default for Options {
@@ -67,6 +73,7 @@ impl Default for Options {
             alpha: 0.01,
             diagnose: false,
             apply: Vec::new(),
+            column_map: None,
         }
     }
 }

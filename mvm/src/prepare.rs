@@ -46,9 +46,36 @@ fn model_density(model: &PlantConfig, channel: usize) -> f64 {
     }
 }
 
+/// Relative resolution below which a residual is rounding, not noise.
+const RESOLUTION_REL: f64 = 1e-9;
+/// Absolute resolution of increments computed from attitudes of order one (rad, m/s).
+const RESOLUTION_ABS: f64 = 1e-15;
+
+/// The smallest white-noise density (SI rate·√s) the data can support per channel: increments
+/// are stored and the kinematics computed with ~1e-16 relative rounding (quaternion components
+/// and angles of order one: ~1e-16 absolute), so on noise-free data the residual is rounding,
+/// and a floor at the rounding level would make a column of rounding noise look informative.
+/// The floor, 1e-9 of the RMS increment plus 1e-15, is far below any real sensor's noise.
+fn resolution_density(h: &History) -> [f64; 6] {
+    let rms = |v: &[Vec<f64>; 3]| {
+        let n = v[0].len().max(1) as f64;
+        ((0..v[0].len())
+            .map(|k| v[0][k] * v[0][k] + v[1][k] * v[1][k] + v[2][k] * v[2][k])
+            .sum::<f64>()
+            / n)
+            .sqrt()
+    };
+    let dt = (h.t_s.last().copied().unwrap_or(1.0) - h.t_s.first().copied().unwrap_or(0.0))
+        / h.len().saturating_sub(1).max(1) as f64;
+    let (g, a) = (rms(&h.dtheta_rad), rms(&h.dv_mps));
+    let f = |r: f64| (RESOLUTION_REL * r + RESOLUTION_ABS) / dt.abs().max(1e-9).sqrt();
+    [f(g), f(g), f(g), f(a), f(a), f(a)]
+}
+
 /// Replays `model` on `h` (one pass over the rows) and sets up the noise floors and folds.
 pub(crate) fn prepare(model: &PlantConfig, h: &History, opts: &Options) -> Prepared {
     let rep = replay(model, h, opts.window_s);
+    let floor = resolution_density(h);
     let runs = h.run_names.len();
     let mut noise = Vec::new();
     let mut data = Vec::new();
@@ -70,17 +97,25 @@ pub(crate) fn prepare(model: &PlantConfig, h: &History, opts: &Options) -> Prepa
                 model_n,
                 "model noise terms (the data's Allan deviation agrees within 1.5x)".to_string(),
             )
+        } else if data_n < floor[c] {
+            (
+                floor[c],
+                format!(
+                    "the data's noise ({:.2e}) is below the numerical resolution of the increments; the resolution is used",
+                    data_n / scale
+                ),
+            )
         } else if model_n > 0.0 {
             (
-                data_n.max(f64::MIN_POSITIVE),
+                data_n,
                 format!(
                     "data: the model's noise density is {:.2}x the data's; the data's is used",
-                    model_n / data_n.max(f64::MIN_POSITIVE)
+                    model_n / data_n
                 ),
             )
         } else {
             (
-                data_n.max(f64::MIN_POSITIVE),
+                data_n,
                 "data: the model has no white-noise term on this channel".to_string(),
             )
         };

@@ -5,6 +5,9 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use crate::colmap::ColumnMap;
+use crate::header::{Kind, Layout};
+
 /// Columns every file needs (plus attitude and at least one temperature).
 pub const REQUIRED: [&str; 7] = [
     "t_s",
@@ -48,6 +51,8 @@ pub struct Measurement {
     pub rows: usize,
     /// Row ranges [start, end) of each (run, segment).
     pub segments: Vec<(String, String, usize, usize)>,
+    /// Source columns a column map said to ignore.
+    pub ignored: Vec<String>,
 }
 
 /// A label column: the distinct labels and, per row, the index of its label (labels repeat
@@ -66,7 +71,7 @@ impl LabelColumn {
         &self.names[self.index[i] as usize]
     }
 
-    fn push(&mut self, label: &str) {
+    pub(crate) fn push(&mut self, label: &str) {
         let k = match self.index.last() {
             Some(&k) if self.names[k as usize] == label => k,
             _ => match self.names.iter().position(|n| n == label) {
@@ -116,7 +121,9 @@ pub struct MeasurementError {
     pub message: String,
 }
 
-fn classify(name: &str) -> Result<bool, String> {
+/// Whether `name` is a documented column: `Ok(true)` numeric, `Ok(false)` a label, `Err` why
+/// not (a known quantity in another unit, or an unknown column).
+pub fn classify(name: &str) -> Result<bool, String> {
     // Ok(true): numeric, Ok(false): label.
     if REQUIRED.contains(&name)
         || GIMBAL.contains(&name)
@@ -141,11 +148,13 @@ fn classify(name: &str) -> Result<bool, String> {
             .strip_prefix(base)
             .filter(|u| WRONG_UNITS.contains(u) || u.starts_with('_'))
         {
-            return Err(format!("unit {unit:?} not accepted; expected {want}"));
+            return Err(format!(
+                "unit {unit:?} not accepted; expected {want} (convert it with a column map, --map FILE: docs/measurement-format.md)"
+            ));
         }
     }
     Err(format!(
-        "unknown column; accepted: {:?}, {:?} or {:?}, {:?}, labels {:?}, and families temp_*_c, dtheta_true_*_rad, dv_true_*_mps, gyro_*_dph, accel_*_ug",
+        "unknown column; accepted: {:?}, {:?} or {:?}, {:?}, labels {:?}, and families temp_*_c, dtheta_true_*_rad, dv_true_*_mps, gyro_*_dph, accel_*_ug; a logger's own names and units are read with a column map (--map FILE: source column -> documented column with its unit, or ignore it; docs/measurement-format.md)",
         REQUIRED, GIMBAL, QUATERNION, OPTIONAL, LABELS
     ))
 }
@@ -168,7 +177,7 @@ fn parse_rows(
     part: &str,
     row0: usize,
     header: &[String],
-    numeric: &[bool],
+    kind: &[Kind],
     source_name: &str,
 ) -> Result<Columns, MeasurementError> {
     let err = |row: usize, column: &str, message: String| MeasurementError {
@@ -179,10 +188,10 @@ fn parse_rows(
     };
     // Columns are filled by index (a map lookup per field would dominate on million-row files).
     let estimate = part.len() / 200;
-    let mut nums: Vec<Vec<f64>> = numeric
+    let mut nums: Vec<Vec<f64>> = kind
         .iter()
         .map(|&n| {
-            if n {
+            if n == Kind::Num {
                 Vec::with_capacity(estimate)
             } else {
                 Vec::new()
@@ -212,7 +221,7 @@ fn parse_rows(
                 if f.starts_with(' ') || f.ends_with(' ') || f.ends_with('\r') {
                     f = f.trim();
                 }
-                if numeric[i] {
+                if kind[i] == Kind::Num {
                     let v: f64 = f
                         .parse()
                         .map_err(|_| err(row, &header[i], format!("not a number: {f:?}")))?;
@@ -220,7 +229,7 @@ fn parse_rows(
                         return Err(err(row, &header[i], format!("{v} is not a finite number")));
                     }
                     nums[i].push(v);
-                } else {
+                } else if kind[i] == Kind::Label {
                     labs[i].push(f);
                 }
             }
@@ -237,80 +246,18 @@ fn parse_rows(
     Ok((nums, labs, row - row0))
 }
 
-/// The header of a file, checked.
-struct Layout {
-    header: Vec<String>,
-    numeric: Vec<bool>,
-    source: String,
-}
-
-impl Layout {
-    fn err(&self, row: usize, column: &str, message: String) -> MeasurementError {
-        MeasurementError {
-            source_name: self.source.clone(),
-            row,
-            column: column.into(),
-            message,
-        }
-    }
-
-    fn new(header_line: &str, source: &str) -> Result<Self, MeasurementError> {
-        let err = |column: &str, message: String| MeasurementError {
-            source_name: source.into(),
-            row: 0,
-            column: column.into(),
-            message,
-        };
-        let header: Vec<String> = header_line
-            .split(',')
-            .map(|s| s.trim().to_string())
-            .collect();
-        let mut numeric = Vec::with_capacity(header.len());
-        for (i, h) in header.iter().enumerate() {
-            if header[..i].contains(h) {
-                return Err(err(h, "duplicate column".into()));
-            }
-            numeric.push(classify(h).map_err(|m| err(h, m))?);
-        }
-        for need in REQUIRED {
-            if !header.iter().any(|h| h == need) {
-                return Err(err(need, "missing required column".into()));
-            }
-        }
-        let has = |set: &[&str]| set.iter().all(|c| header.iter().any(|h| h == c));
-        if !has(&GIMBAL) && !has(&QUATERNION) {
-            return Err(err(
-                "outer_deg",
-                "missing attitude: give outer_deg and inner_deg, or q_bn_w, q_bn_x, q_bn_y, q_bn_z"
-                    .into(),
-            ));
-        }
-        if !header
-            .iter()
-            .any(|h| h.starts_with("temp_") && h.ends_with("_c"))
-        {
-            return Err(err(
-                "temp_*_c",
-                "missing temperature: at least one temp_<name>_c column".into(),
-            ));
-        }
-        Ok(Self {
-            header,
-            numeric,
-            source: source.into(),
-        })
-    }
-}
-
 /// Columns filled so far.
-struct Acc {
-    nums: Vec<Vec<f64>>,
-    labs: Vec<LabelColumn>,
-    rows: usize,
+pub(crate) struct Acc {
+    /// Numeric columns (empty for labels and ignored ones).
+    pub nums: Vec<Vec<f64>>,
+    /// Label columns.
+    pub labs: Vec<LabelColumn>,
+    /// Rows.
+    pub rows: usize,
 }
 
 impl Acc {
-    fn new(l: &Layout) -> Self {
+    pub(crate) fn new(l: &Layout) -> Self {
         Self {
             nums: vec![Vec::new(); l.header.len()],
             labs: vec![LabelColumn::default(); l.header.len()],
@@ -325,17 +272,9 @@ impl Acc {
         let (first, second) = chunk.split_at(cut);
         let row0 = self.rows;
         let (a, b) = rayon::join(
-            || parse_rows(first, row0, &l.header, &l.numeric, &l.source),
+            || parse_rows(first, row0, &l.raw, &l.kind, &l.source),
             // Row numbers of the second half continue the first half's.
-            || {
-                parse_rows(
-                    second,
-                    row0 + count_rows(first),
-                    &l.header,
-                    &l.numeric,
-                    &l.source,
-                )
-            },
+            || parse_rows(second, row0 + count_rows(first), &l.raw, &l.kind, &l.source),
         );
         for (nums, labs, rows) in [a?, b?] {
             for (x, y) in self.nums.iter_mut().zip(nums) {
@@ -352,6 +291,15 @@ impl Acc {
 
 /// Parses measurement CSV text; `source_name` appears in every error.
 pub fn parse(text: &str, source_name: &str) -> Result<Measurement, MeasurementError> {
+    parse_with(text, source_name, None)
+}
+
+/// Parses measurement CSV text whose columns are named and converted by `map`.
+pub fn parse_with(
+    text: &str,
+    source_name: &str,
+    map: Option<&ColumnMap>,
+) -> Result<Measurement, MeasurementError> {
     // The header is the first data line; everything after it is rows.
     let mut offset = 0;
     let mut header_line = None;
@@ -368,29 +316,45 @@ pub fn parse(text: &str, source_name: &str) -> Result<Measurement, MeasurementEr
         column: String::new(),
         message: "empty file: expected a header row".into(),
     })?;
-    let layout = Layout::new(header_line, source_name)?;
+    let layout = Layout::new(header_line, source_name, map)?;
     let mut acc = Acc::new(&layout);
     acc.add(&layout, &text[offset..])?;
     finish(layout, acc)
 }
 
 /// Builds the measurement from the parsed columns and checks segments and time.
-fn finish(layout: Layout, acc: Acc) -> Result<Measurement, MeasurementError> {
+pub(crate) fn finish(layout: Layout, acc: Acc) -> Result<Measurement, MeasurementError> {
     let err = |row: usize, column: &str, message: String| layout.err(row, column, message);
     let mut m = Measurement {
         rows: acc.rows,
         ..Measurement::default()
     };
-    for ((h, &num), (n, l)) in layout
-        .header
-        .iter()
-        .zip(&layout.numeric)
-        .zip(acc.nums.into_iter().zip(acc.labs))
-    {
-        if num {
-            m.columns.insert(h.clone(), n);
-        } else {
-            m.labels.insert(h.clone(), l);
+    for (i, (n, l)) in acc.nums.into_iter().zip(acc.labs).enumerate() {
+        let h = layout.header[i].clone();
+        match layout.kind[i] {
+            Kind::Skip => m.ignored.push(layout.raw[i].clone()),
+            Kind::Label => {
+                m.labels.insert(h, l);
+            }
+            Kind::Num => {
+                let mut n = n;
+                let (f, o) = layout.conv[i];
+                if (f, o) != (1.0, 0.0) {
+                    for (k, v) in n.iter_mut().enumerate() {
+                        *v = *v * f + o;
+                        if !v.is_finite() {
+                            return Err(err(
+                                k + 1,
+                                &layout.raw[i],
+                                format!(
+                                    "not finite after the column map's conversion (x {f} + {o})"
+                                ),
+                            ));
+                        }
+                    }
+                }
+                m.columns.insert(h, n);
+            }
         }
     }
     if m.rows < 2 {
@@ -453,6 +417,15 @@ fn finish(layout: Layout, acc: Acc) -> Result<Measurement, MeasurementError> {
 /// Reads and parses a measurement file, streaming it in 64 MB pieces (a multi-GB file is never
 /// held in memory as text).
 pub fn read(path: &Path) -> Result<Measurement, MeasurementError> {
+    read_with(path, None)
+}
+
+/// Reads a measurement file whose columns are named and converted by `map`: CSV, or Parquet
+/// when the file starts with the Parquet magic bytes (`PAR1`).
+pub fn read_with(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, MeasurementError> {
+    if crate::parquet::is_parquet(path) {
+        return crate::parquet::read(path, map);
+    }
     use std::io::Read;
     let source = path.display().to_string();
     let io_err = |e: std::io::Error| MeasurementError {
@@ -496,7 +469,7 @@ pub fn read(path: &Path) -> Result<Measurement, MeasurementError> {
                 for line in text.split_inclusive('\n') {
                     offset += line.len();
                     if is_data(line) {
-                        let l = Layout::new(line, &source)?;
+                        let l = Layout::new(line, &source, map)?;
                         acc = Some(Acc::new(&l));
                         layout = Some(l);
                         break;

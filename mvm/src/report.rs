@@ -63,9 +63,10 @@ pub struct Correlation {
     pub max_abs_rho: f64,
     /// Its lag, windows.
     pub lag: usize,
-    /// 99 % band.
+    /// The band |ρ| is judged against: family-wise 99 % (at the options' `alpha`) over every
+    /// channel, input and lag tested (Bonferroni), not per lag.
     pub band99: f64,
-    /// |ρ| outside the band.
+    /// |ρ| outside the family-wise band.
     pub significant: bool,
 }
 
@@ -128,6 +129,8 @@ pub struct CompareReport {
     pub unavailable: Vec<(String, String)>,
     /// Navigation level: static navigation on the measured and on the modelled increments.
     pub navigation: Vec<NavComparison>,
+    /// The column map the data were read with: mapped and ignored columns (`None`: none).
+    pub column_map: Option<crate::colmap::MapSummary>,
 }
 
 /// A candidate in the ranking.
@@ -195,4 +198,6 @@ pub struct DiagnoseReport {
     pub unexplained: Vec<String>,
     /// Candidates that cannot be tested with this data.
     pub unavailable: Vec<(String, String)>,
+    /// The column map the data were read with (`None`: none).
+    pub column_map: Option<crate::colmap::MapSummary>,
 }

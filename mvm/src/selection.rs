@@ -66,13 +66,14 @@ fn ranked(
         .map(|(k, (_, unit))| {
             let i = c.theta_offset + k;
             let (th, se) = (c.fit.theta[i], c.fit.cov[(i, i)].sqrt());
-            if se.is_finite() {
+            if c.fit.identified(i) {
                 (
                     th / unit,
                     [(th - 1.96 * se) / unit, (th + 1.96 * se) / unit],
                 )
             } else {
-                (th / unit, [f64::NAN, f64::NAN])
+                // Not identifiable on this data: null in the report and the JSON.
+                (f64::NAN, [f64::NAN, f64::NAN])
             }
         })
         .unzip();
@@ -286,6 +287,7 @@ pub(crate) fn diagnose(a: &Prepared, source: &str, before: &CompareReport) -> Di
         flagged_cells_after: after.flagged_cells.clone(),
         unexplained,
         unavailable: a.replay.unavailable.clone(),
+        column_map: before.column_map.clone(),
     };
     Diagnosis {
         report,

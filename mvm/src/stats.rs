@@ -109,6 +109,13 @@ pub fn band99(n: usize) -> f64 {
     2.575_829_3 / (n.max(1) as f64).sqrt()
 }
 
+/// Half-width of the band a correlation estimate from `n` white samples stays inside with
+/// family-wise probability 1 − `alpha` over `tests` estimates (Bonferroni: the two-sided
+/// z of alpha / tests, over √n).
+pub fn band_family(n: usize, alpha: f64, tests: usize) -> f64 {
+    z_critical(alpha, tests) / (n.max(1) as f64).sqrt()
+}
+
 /// Upper-tail probability of an F(d1, d2) statistic.
 pub fn f_sf(f: f64, d1: f64, d2: f64) -> f64 {
     if !(f > 0.0) {

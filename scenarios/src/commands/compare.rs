@@ -17,9 +17,13 @@ pub struct DataArgs {
     /// Model: a scenario file (or builtin:NAME) whose plant is the model.
     #[arg(long)]
     pub model: PathBuf,
-    /// Measurement file (docs/measurement-format.md).
+    /// Measurement file (docs/measurement-format.md): CSV, or Parquet (read by its content).
     #[arg(long)]
     pub data: PathBuf,
+    /// Column map (TOML): the logger's column names and units -> the documented columns, and
+    /// columns to ignore (docs/measurement-format.md, "Column map").
+    #[arg(long)]
+    pub map: Option<PathBuf>,
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
@@ -51,7 +55,12 @@ pub struct CompareArgs {
 /// The model (at the data's site), the measured history and the analysis options.
 pub fn load_data(a: &DataArgs) -> Result<(PlantConfig, History, Options)> {
     let sc = crate::file::Scenario::load(&a.model)?;
-    let m = rins_mvm::reader::read(&a.data)?;
+    let map = a
+        .map
+        .as_deref()
+        .map(|p| rins_mvm::colmap::ColumnMap::load(p, rins_mvm::reader::classify))
+        .transpose()?;
+    let m = rins_mvm::reader::read_with(&a.data, map.as_ref())?;
     let (model, note) = rins_mvm::with_data_site(&sc.plant, &m);
     if let Some(n) = note {
         eprintln!("{}", n);
@@ -61,6 +70,7 @@ pub fn load_data(a: &DataArgs) -> Result<(PlantConfig, History, Options)> {
         window_s: positive("--window-s", a.window_s)?,
         temp_bin_k: positive("--temp-bin-k", a.temp_bin_k)?,
         time_window_s: positive("--time-window-s", a.time_window_s)?,
+        column_map: map.map(|m| m.summary()),
         ..Default::default()
     };
     Ok((model, h, opts))

@@ -16,6 +16,7 @@ impl RenderText for CompareReport {
             "{}: {} rows, {} windows, {} runs",
             self.source, self.rows, self.windows, self.runs
         );
+        column_map(&mut s, self.column_map.as_ref());
         let _ = writeln!(
             s,
             "{:<8} {:>12} {:>12} {:>12}  unit",
@@ -75,9 +76,20 @@ impl RenderText for CompareReport {
     }
 }
 
+/// The column map's mapped and ignored columns, when the data were read with one.
+fn column_map(s: &mut String, m: Option<&rins_mvm::colmap::MapSummary>) {
+    if let Some(m) = m {
+        let _ = writeln!(s, "column map {}: {}", m.map, m.mapped.join(", "));
+        if !m.ignored.is_empty() {
+            let _ = writeln!(s, "  ignored columns: {}", m.ignored.join(", "));
+        }
+    }
+}
+
 impl RenderText for DiagnoseReport {
     fn render_text(&self) -> String {
         let mut s = String::new();
+        column_map(&mut s, self.column_map.as_ref());
         let _ = writeln!(
             s,
             "{}: candidates ranked by delta-BIC (gate: delta-BIC < -10, Bonferroni p < 0.01, CV gain > 0)",
@@ -95,12 +107,13 @@ impl RenderText for DiagnoseReport {
                 .zip(&r.ci95)
                 .zip(&r.keys)
                 .map(|((c, ci), k)| {
-                    format!(
-                        "{}={c:.4} [{:.4}, {:.4}]",
-                        k.rsplit('.').next().unwrap_or(k),
-                        ci[0],
-                        ci[1]
-                    )
+                    let k = k.rsplit('.').next().unwrap_or(k);
+                    if c.is_nan() {
+                        // Not identifiable on this data (null in the JSON).
+                        format!("{k}=null")
+                    } else {
+                        format!("{k}={c:.4} [{:.4}, {:.4}]", ci[0], ci[1])
+                    }
                 })
                 .collect();
             let _ = writeln!(
