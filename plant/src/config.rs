@@ -148,6 +148,15 @@ impl PlantConfig {
         }
         self.validate_scheme(&mut c);
         self.validate_thermal(&mut c);
+        // Declared effects: unknown signals, unit mismatches, unbounded contributions.
+        for (specs, accel) in [
+            (&self.sensor.gyro.custom, false),
+            (&self.sensor.accel.custom, true),
+        ] {
+            if let Err(e) = crate::effects::CustomModel::new(specs, accel) {
+                c.errors.extend(e);
+            }
+        }
         if c.errors.is_empty() {
             Ok(())
         } else {
