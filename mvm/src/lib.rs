@@ -18,6 +18,7 @@
 
 pub mod apply;
 mod compare;
+pub mod custom;
 pub mod fit;
 pub mod history;
 mod prepare;

@@ -157,6 +157,16 @@ impl PlantConfig {
                 c.errors.extend(e);
             }
         }
+        // `custom:NAME` names one effect in the diagnosis: names are unique across sensors.
+        for (k, a) in self.sensor.accel.custom.iter().enumerate() {
+            if self.sensor.gyro.custom.iter().any(|g| g.name == a.name) {
+                c.fail(
+                    &format!("sensor.accel.custom[{k}].name"),
+                    "a name not used by a declared gyro effect",
+                    format!("{:?}", a.name),
+                );
+            }
+        }
         if c.errors.is_empty() {
             Ok(())
         } else {

@@ -55,7 +55,7 @@ fn tilt_product_bias_matches_the_geometry_on_both_sensors() {
         2.5,
     )];
     cfg.sensor.accel.custom = vec![declared(
-        "tilt",
+        "tilt_a",
         CustomKind::Bias,
         "u_y * u_z",
         "1",
@@ -217,6 +217,12 @@ fn bad_declarations_name_the_key() {
         "{e:?}"
     );
     assert!(Plant::new(&cfg).is_err());
+    // One name per effect across both sensors (`custom:NAME` in the diagnosis).
+    bad.coef = [0.0; 3];
+    cfg.sensor.gyro.custom = vec![bad.clone()];
+    cfg.sensor.accel.custom = vec![bad.clone()];
+    let e = cfg.validate().unwrap_err();
+    assert_eq!(e[0].path, "sensor.accel.custom[0].name", "{e:?}");
 }
 
 #[test]

@@ -204,6 +204,13 @@ impl CustomModel {
                 (CustomKind::ScaleFactor, true) => 100.0,
             };
             let bound = bound_of(&factors);
+            if !bound.is_finite() {
+                fail(
+                    "regressor",
+                    "a product that stays finite over the signals' ranges (docs/effects.md)",
+                    format!("{:?} reaches {bound}", s.regressor),
+                );
+            }
             for i in 0..3 {
                 let c = s.coef[i];
                 if !axes[i] && c != 0.0 {
@@ -212,7 +219,8 @@ impl CustomModel {
                         "0 on an axis not listed in axes",
                         format!("{c}"),
                     );
-                } else if !(c * file_unit_si * bound * input_bound).is_finite() {
+                } else if bound.is_finite() && !(c * file_unit_si * bound * input_bound).is_finite()
+                {
                     fail(
                         &format!("coef[{i}]"),
                         &format!(
