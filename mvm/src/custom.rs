@@ -190,7 +190,15 @@ impl RowSignals {
             Attitude::Quaternion(_) => GimbalAngles::new(0.0, 0.0),
         };
         let t_mid = h.t_s[k] - 0.5 * dt_s - self.run_start_s[h.run[k] as usize];
-        rins_plant::effects::custom::fill_fast(&mut f, up_b, dtheta, dt_s, mid, t_mid);
+        rins_plant::effects::custom::fill_fast(
+            &mut f,
+            rins_plant::effects::custom::Needs::ALL,
+            up_b,
+            dtheta,
+            dt_s,
+            mid,
+            t_mid,
+        );
         f
     }
 }

@@ -470,7 +470,12 @@ impl Plant {
                 accel_terms.iter_mut().zip(aterm).for_each(|(a, b)| *a += b);
             }
             if self.declared.is_active() {
-                let t_mid = (self.tick as f64 + 0.5) / self.internal_rate_hz;
+                // The division only when an effect reads the time.
+                let t_mid = if self.declared.needs().time {
+                    (self.tick as f64 + 0.5) / self.internal_rate_hz
+                } else {
+                    0.0
+                };
                 let (g, a) = self
                     .declared
                     .increments(&up_b, &dtheta, &dv, h, gm.angles, t_mid);

@@ -25,7 +25,7 @@ use serde::{Deserialize, Serialize};
 
 pub use expr::{Factor, parse_regressor};
 pub use model::{CompiledEffect, CustomModel, custom_coefficient_key};
-pub use plant_side::{Declared, fill_fast};
+pub use plant_side::{Declared, Needs, fill_fast};
 pub use signals::{Frame, Signal, Unit};
 
 use super::Axes3;

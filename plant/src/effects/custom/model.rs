@@ -21,12 +21,13 @@ struct Slot {
     power: i32,
 }
 
-/// One (effect, axis) of the plan: `coef_si · Π slots · (Δt or the axis's true increment)`.
+/// One regressor of the plan and the coefficients it carries on each axis:
+/// error_i = `coef_si[i] · Π slots · (Δt or the axis's true increment)`. An effect whose
+/// regressor is the same on every axis (no `block`) is one term, evaluated once.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Term {
-    axis: usize,
+    coef_si: [f64; 3],
     scale: bool,
-    coef_si: f64,
     start: u32,
     end: u32,
 }
@@ -249,19 +250,30 @@ impl CustomModel {
         if !errors.is_empty() {
             return Err(errors);
         }
-        for e in &m.effects {
-            for i in 0..3 {
-                if e.enabled && e.axes[i] && e.coef_si[i] != 0.0 {
-                    let start = m.slots.len() as u32;
-                    m.slots.extend_from_slice(&e.slots[i]);
-                    m.plan.push(Term {
-                        axis: i,
-                        scale: e.kind == CustomKind::ScaleFactor,
-                        coef_si: e.coef_si[i],
-                        start,
-                        end: m.slots.len() as u32,
-                    });
+        for e in m.effects.iter().filter(|e| e.enabled) {
+            let live: Vec<usize> = (0..3)
+                .filter(|&i| e.axes[i] && e.coef_si[i] != 0.0)
+                .collect();
+            let shared = live.iter().all(|&i| e.slots[i] == e.slots[live[0]]);
+            // One term for all axes when the regressor does not depend on the axis.
+            let groups: Vec<Vec<usize>> = if shared && !live.is_empty() {
+                vec![live]
+            } else {
+                live.into_iter().map(|i| vec![i]).collect()
+            };
+            for axes in groups {
+                let start = m.slots.len() as u32;
+                m.slots.extend_from_slice(&e.slots[axes[0]]);
+                let mut coef_si = [0.0; 3];
+                for i in axes {
+                    coef_si[i] = e.coef_si[i];
                 }
+                m.plan.push(Term {
+                    coef_si,
+                    scale: e.kind == CustomKind::ScaleFactor,
+                    start,
+                    end: m.slots.len() as u32,
+                });
             }
         }
         Ok(m)
@@ -295,8 +307,12 @@ impl CustomModel {
         let mut out = Vector3::zeros();
         for t in &self.plan {
             let r = product(&self.slots[t.start as usize..t.end as usize], frame);
-            let x = if t.scale { input[t.axis] } else { dt_s };
-            out[t.axis] += t.coef_si * r * x;
+            let c = Vector3::from(t.coef_si) * r;
+            out += if t.scale {
+                c.component_mul(input)
+            } else {
+                c * dt_s
+            };
         }
         out
     }

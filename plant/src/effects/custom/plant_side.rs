@@ -19,6 +19,50 @@ pub struct Declared {
     /// True node temperatures (°C) and their rates over the last thermal step (K/s); the
     /// fast slots are filled per interval.
     frame: Frame,
+    /// Which fast slots the switched-on effects read.
+    needs: Needs,
+}
+
+/// Which per-interval signals a plan reads (the others are not computed).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Needs {
+    /// Up direction.
+    pub up: bool,
+    /// Body rate or its magnitude.
+    pub rate: bool,
+    /// Gimbal angles.
+    pub gimbal: bool,
+    /// Time.
+    pub time: bool,
+}
+
+impl Needs {
+    /// Everything (the diagnosis fills every slot).
+    pub const ALL: Needs = Needs {
+        up: true,
+        rate: true,
+        gimbal: true,
+        time: true,
+    };
+
+    fn of(models: [&CustomModel; 2]) -> Self {
+        let mut n = Needs::default();
+        for m in models {
+            for e in m.effects().iter().filter(|e| e.enabled) {
+                for s in e.signals() {
+                    use super::Signal as S;
+                    match s {
+                        S::Up(_) => n.up = true,
+                        S::Rate(_) | S::AbsRate(_) => n.rate = true,
+                        S::Outer | S::Inner => n.gimbal = true,
+                        S::Time => n.time = true,
+                        _ => {}
+                    }
+                }
+            }
+        }
+        n
+    }
 }
 
 impl Declared {
@@ -26,9 +70,12 @@ impl Declared {
     /// temperatures; the temperature rates start at 0 (nothing is known before the first
     /// thermal step).
     pub fn new(gyro: &GyroSpec, accel: &AccelSpec, temps_c: &[f64; node::COUNT]) -> Self {
+        let gyro = CustomModel::new(&gyro.custom, false).unwrap_or_default();
+        let accel = CustomModel::new(&accel.custom, true).unwrap_or_default();
         let mut d = Self {
-            gyro: CustomModel::new(&gyro.custom, false).unwrap_or_default(),
-            accel: CustomModel::new(&accel.custom, true).unwrap_or_default(),
+            needs: Needs::of([&gyro, &accel]),
+            gyro,
+            accel,
             frame: [0.0; SLOTS],
         };
         d.frame[TEMP..TEMP + node::COUNT].copy_from_slice(temps_c);
@@ -39,6 +86,12 @@ impl Declared {
     #[inline]
     pub fn is_active(&self) -> bool {
         self.gyro.is_active() || self.accel.is_active()
+    }
+
+    /// Which per-interval signals the switched-on effects read.
+    #[inline]
+    pub fn needs(&self) -> Needs {
+        self.needs
     }
 
     /// Whether a contribution changes within a dwell (an effect reads `time`).
@@ -71,7 +124,7 @@ impl Declared {
     #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn increments(
-        &self,
+        &mut self,
         up_b: &Vector3<f64>,
         dtheta: &Vector3<f64>,
         dv: &Vector3<f64>,
@@ -79,34 +132,51 @@ impl Declared {
         mid: GimbalAngles,
         t_mid_s: f64,
     ) -> (Vector3<f64>, Vector3<f64>) {
-        let mut f = self.frame;
-        fill_fast(&mut f, up_b, dtheta, h_s, mid, t_mid_s);
+        fill_fast(&mut self.frame, self.needs, up_b, dtheta, h_s, mid, t_mid_s);
+        let z = Vector3::zeros();
         (
-            self.gyro.increment_error(&f, h_s, dtheta),
-            self.accel.increment_error(&f, h_s, dv),
+            if self.gyro.is_active() {
+                self.gyro.increment_error(&self.frame, h_s, dtheta)
+            } else {
+                z
+            },
+            if self.accel.is_active() {
+                self.accel.increment_error(&self.frame, h_s, dv)
+            } else {
+                z
+            },
         )
     }
 }
 
-/// Fills the per-interval slots of `f`: up direction, body rate (from the increment over
-/// `h_s`), its magnitude per axis, gimbal angles and time.
+/// Fills the per-interval slots of `f` that `needs` asks for: up direction, body rate (from
+/// the increment over `h_s`), its magnitude per axis, gimbal angles and time.
 #[inline]
 pub fn fill_fast(
     f: &mut Frame,
+    needs: Needs,
     up_b: &Vector3<f64>,
     dtheta: &Vector3<f64>,
     h_s: f64,
     mid: GimbalAngles,
     t_mid_s: f64,
 ) {
-    let to_dps = 180.0 / std::f64::consts::PI / h_s;
-    for i in 0..3 {
-        f[signals::UP + i] = up_b[i];
-        let w = dtheta[i] * to_dps;
-        f[signals::RATE + i] = w;
-        f[signals::ABS_RATE + i] = w.abs();
+    if needs.up {
+        f[signals::UP..signals::UP + 3].copy_from_slice(up_b.as_slice());
     }
-    f[signals::OUTER] = wrap_deg(mid.outer_rad.to_degrees());
-    f[signals::INNER] = wrap_deg(mid.inner_rad.to_degrees());
-    f[signals::TIME] = t_mid_s;
+    if needs.rate {
+        let to_dps = 180.0 / std::f64::consts::PI / h_s;
+        for i in 0..3 {
+            let w = dtheta[i] * to_dps;
+            f[signals::RATE + i] = w;
+            f[signals::ABS_RATE + i] = w.abs();
+        }
+    }
+    if needs.gimbal {
+        f[signals::OUTER] = wrap_deg(mid.outer_rad.to_degrees());
+        f[signals::INNER] = wrap_deg(mid.inner_rad.to_degrees());
+    }
+    if needs.time {
+        f[signals::TIME] = t_mid_s;
+    }
 }
