@@ -52,10 +52,7 @@ pub(crate) fn apply(
         if let Some((_, why)) = a.replay.unavailable.iter().find(|(n, _)| *n == e.name()) {
             return Err(format!("cannot fit {}: {why}", e.name()));
         }
-        pairs.push((
-            format!("sensor.{}.enabled", e.name()),
-            ParamValue::Bool(true),
-        ));
+        pairs.push((e.enabled_key(), ParamValue::Bool(true)));
         if let Effect::Gyro(rins_plant::effects::GyroTerm::DitherBias) = e {
             for i in 0..3 {
                 pairs.push((
@@ -111,6 +108,17 @@ pub(crate) fn apply(
             let current = match g.effect {
                 Effect::Gyro(t) => gm.coefficients(t, c),
                 Effect::Accel(t) => am.coefficients(t, c - 3),
+                Effect::Custom(r) => {
+                    let list = if r.accel {
+                        &model.sensor.accel.custom
+                    } else {
+                        &model.sensor.gyro.custom
+                    };
+                    let spec = &list[r.index as usize];
+                    // A switched-off effect contributes nothing to the replayed model.
+                    let v = if spec.enabled { spec.coef[c % 3] } else { 0.0 };
+                    vec![v * r.file_unit_si()]
+                }
             };
             for (j, (name, unit)) in g
                 .effect

@@ -20,6 +20,7 @@
 pub mod apply;
 pub mod colmap;
 mod compare;
+pub mod custom;
 pub mod fit;
 mod header;
 pub mod history;

@@ -12,10 +12,11 @@ use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use rayon::prelude::*;
 use rins_plant::PlantConfig;
 use rins_plant::earth::Site;
-use rins_plant::effects::{AccelModel, AccelTerm, GyroModel, GyroTerm, TermContext};
+use rins_plant::effects::{AccelModel, AccelTerm, CustomModel, GyroModel, GyroTerm, TermContext};
 use rins_plant::kinematics::table_increments;
 use rins_plant::table::{GimbalAngles, body_to_nav};
 
+use crate::custom::{CustomRef, RowSignals};
 use crate::history::{Attitude, History};
 use crate::stats::AllanAcc;
 
@@ -31,6 +32,8 @@ pub enum Effect {
     Gyro(GyroTerm),
     /// A deterministic accelerometer term.
     Accel(AccelTerm),
+    /// A declared effect of the model (`[[sensor.gyro.custom]]`, `[[sensor.accel.custom]]`).
+    Custom(CustomRef),
 }
 
 impl Effect {
@@ -48,6 +51,25 @@ impl Effect {
         match self {
             Effect::Gyro(t) => format!("gyro.{}", t.key()),
             Effect::Accel(t) => format!("accel.{}", t.key()),
+            Effect::Custom(c) => format!("custom:{}", c.name()),
+        }
+    }
+
+    /// Parses [`Effect::name`], declared effects of `model` included (`custom:NAME`).
+    pub fn parse_in(model: &PlantConfig, s: &str) -> Option<Effect> {
+        Effect::parse(s).or_else(|| {
+            crate::custom::declared(model)
+                .into_iter()
+                .map(Effect::Custom)
+                .find(|e| e.name() == s)
+        })
+    }
+
+    /// Scenario key of the effect's switch.
+    pub fn enabled_key(self) -> String {
+        match self {
+            Effect::Custom(c) => c.enabled_key(),
+            _ => format!("sensor.{}.enabled", self.name()),
         }
     }
 
@@ -62,6 +84,7 @@ impl Effect {
         match self {
             Effect::Gyro(t) => rins_plant::effects::gyro::coefficient_keys(t, channel),
             Effect::Accel(t) => rins_plant::effects::accel::coefficient_keys(t, channel - 3),
+            Effect::Custom(c) => vec![(c.coefficient_key(channel % 3), c.file_unit_si())],
         }
     }
 
@@ -70,7 +93,7 @@ impl Effect {
         matches!(
             (self, channel),
             (Effect::Gyro(_), 0..=2) | (Effect::Accel(_), 3..=5)
-        )
+        ) || matches!(self, Effect::Custom(c) if c.accel == (channel >= 3) && c.axes >> (channel % 3) & 1 == 1)
     }
 }
 
@@ -170,8 +193,10 @@ pub struct Replay {
 fn layout(
     gyro: &GyroModel,
     accel: &AccelModel,
-    has_gradient: bool,
+    declared: &Declared,
+    h: &History,
 ) -> (Vec<Group>, Vec<(String, String)>) {
+    let has_gradient = h.housing_temp_c.is_some();
     let mut groups = Vec::new();
     let mut unavailable = Vec::new();
     let mut offset = 0;
@@ -185,7 +210,17 @@ fn layout(
         gyro_gradient_k: Vector3::zeros(),
         accel_temp_c: 0.0,
     };
-    for e in Effect::all() {
+    for e in Effect::all()
+        .into_iter()
+        .chain(declared.refs.iter().map(|c| Effect::Custom(*c)))
+    {
+        if let Effect::Custom(c) = e {
+            let m = declared.model(c.accel);
+            if let Some(why) = crate::custom::unavailable(m, c.index as usize, h) {
+                unavailable.push((e.name(), why));
+                continue;
+            }
+        }
         if e == Effect::Gyro(GyroTerm::TemperatureGradientBias) && !has_gradient {
             unavailable.push((
                 e.name(),
@@ -201,6 +236,7 @@ fn layout(
             match e {
                 Effect::Gyro(t) => gyro.regressors(t, &ctx, channel, &mut buf),
                 Effect::Accel(t) => accel.regressors(t, &ctx, channel - 3, &mut buf),
+                Effect::Custom(_) => buf.push(0.0),
             }
             groups.push(Group {
                 channel,
@@ -212,6 +248,36 @@ fn layout(
         }
     }
     (groups, unavailable)
+}
+
+/// The model's declared effects, compiled, with the per-row signals of the history.
+struct Declared {
+    gyro: CustomModel,
+    accel: CustomModel,
+    refs: Vec<CustomRef>,
+    signals: RowSignals,
+    any: bool,
+}
+
+impl Declared {
+    fn new(model: &PlantConfig, h: &History) -> Self {
+        // The model was validated when it was loaded; an invalid list contributes nothing.
+        let gyro = CustomModel::new(&model.sensor.gyro.custom, false).unwrap_or_default();
+        let accel = CustomModel::new(&model.sensor.accel.custom, true).unwrap_or_default();
+        let refs = crate::custom::declared(model);
+        let signals = RowSignals::new([&gyro, &accel], h);
+        Self {
+            any: !refs.is_empty(),
+            gyro,
+            accel,
+            refs,
+            signals,
+        }
+    }
+
+    fn model(&self, accel: bool) -> &CustomModel {
+        if accel { &self.accel } else { &self.gyro }
+    }
 }
 
 /// True increments over one row and the row's mid attitude.
@@ -329,7 +395,8 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
         omega_ie_n: site.omega_ie_n,
         f_n: Vector3::new(0.0, 0.0, site.gravity_mps2),
     };
-    let (groups, unavailable) = layout(&gyro, &accel, h.housing_temp_c.is_some());
+    let declared = Declared::new(model, h);
+    let (groups, unavailable) = layout(&gyro, &accel, &declared, h);
     let nx = groups.iter().map(|g| g.len).sum::<usize>();
     let row_dt_s = median_dt(h);
 
@@ -420,8 +487,16 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                         .map_or(Vector3::zeros(), |t| gt.add_scalar(-t[k])),
                     accel_temp_c: h.accel_temp_c[k],
                 };
-                let ge = gyro.increment_error(&ctx, &mut gterms);
-                let ae = accel.increment_error(&ctx, &mut aterms);
+                let mut ge = gyro.increment_error(&ctx, &mut gterms);
+                let mut ae = accel.increment_error(&ctx, &mut aterms);
+                // Declared effects: the model's own contribution, and the candidates' regressors.
+                let frame = declared
+                    .any
+                    .then(|| declared.signals.frame(h, k, dt, &up_b, &dtheta));
+                if let Some(f) = &frame {
+                    ge += declared.gyro.increment_error(f, dt, &dtheta);
+                    ae += declared.accel.increment_error(f, dt, &dv);
+                }
                 let mut r = [0.0; 6];
                 for i in 0..3 {
                     r[i] = h.dtheta_rad[i][k] - (dtheta[i] + ge[i]);
@@ -489,6 +564,12 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                     match g.effect {
                         Effect::Gyro(t) => gyro.regressors(t, &ctx, g.channel, &mut buf),
                         Effect::Accel(t) => accel.regressors(t, &ctx, g.channel - 3, &mut buf),
+                        Effect::Custom(c) => {
+                            let f = frame.as_ref().expect("declared effects present");
+                            let input = if c.accel { &dv } else { &dtheta };
+                            let m = declared.model(c.accel);
+                            buf.push(m.regressor(c.index as usize, g.channel % 3, f, dt, input));
+                        }
                     }
                     for (x, b) in w.x[g.offset..g.offset + g.len].iter_mut().zip(&buf) {
                         *x += b;

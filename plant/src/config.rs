@@ -148,6 +148,25 @@ impl PlantConfig {
         }
         self.validate_scheme(&mut c);
         self.validate_thermal(&mut c);
+        // Declared effects: unknown signals, unit mismatches, unbounded contributions.
+        for (specs, accel) in [
+            (&self.sensor.gyro.custom, false),
+            (&self.sensor.accel.custom, true),
+        ] {
+            if let Err(e) = crate::effects::CustomModel::new(specs, accel) {
+                c.errors.extend(e);
+            }
+        }
+        // `custom:NAME` names one effect in the diagnosis: names are unique across sensors.
+        for (k, a) in self.sensor.accel.custom.iter().enumerate() {
+            if self.sensor.gyro.custom.iter().any(|g| g.name == a.name) {
+                c.fail(
+                    &format!("sensor.accel.custom[{k}].name"),
+                    "a name not used by a declared gyro effect",
+                    format!("{:?}", a.name),
+                );
+            }
+        }
         if c.errors.is_empty() {
             Ok(())
         } else {

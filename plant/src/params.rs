@@ -80,6 +80,7 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("sensor.gyro.bias_instability.tau_s", 1e-3, 1e9),
     ("sensor.gyro.rate_random_walk.dph_per_sqrth", 0.0, 100.0),
     ("sensor.gyro.quantization.pulse", 0.0, 3600.0),
+    ("sensor.gyro.custom.coef", -1e9, 1e9),
     ("sensor.accel.bias.ug", -1e5, 1e5),
     ("sensor.accel.scale_factor.ppm", -1e5, 1e5),
     ("sensor.accel.misalignment.arcsec", -3600.0, 3600.0),
@@ -89,6 +90,7 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("sensor.accel.temperature_bias.per_k3", -1e2, 1e2),
     ("sensor.accel.velocity_random_walk.ug_per_sqrthz", 0.0, 1e4),
     ("sensor.accel.quantization.pulse", 0.0, 10.0),
+    ("sensor.accel.custom.coef", -1e9, 1e9),
     ("sensor.encoder.scale_factor.ppm", -1e5, 1e5),
     ("sensor.encoder.offset.arcsec", -36_000.0, 36_000.0),
     (
@@ -280,6 +282,10 @@ fn walk(prefix: &str, v: &Value, out: &mut Vec<Param>) {
             unit: "1",
             range: None,
         }),
+        // A declared effect's name, kind, regressor, unit and axes are its structure, fixed
+        // when the model is built (like `scheme.steps`); its switch and coefficients are
+        // parameters.
+        Value::Text(_) if prefix.contains(".custom[") => {}
         Value::Text(s) => out.push(Param {
             path: prefix.into(),
             value: ParamValue::Enum(s.clone()),
@@ -503,6 +509,38 @@ mod tests {
         ));
         let e = set(&cfg, "scheme.kind", ParamValue::Enum("spiral".into())).unwrap_err();
         assert!(e.to_string().contains("scheme.kind"), "{e}");
+    }
+
+    #[test]
+    fn declared_effects_expose_switch_and_coefficients_only() {
+        let mut cfg = PlantConfig::default();
+        cfg.sensor.gyro.custom = vec![crate::effects::CustomSpec {
+            name: "trate".into(),
+            enabled: true,
+            kind: crate::effects::CustomKind::Bias,
+            regressor: "dtemp_dt:block".into(),
+            unit: "K/s".into(),
+            axes: vec![crate::effects::custom::Axis::Z],
+            coef: [0.0, 0.0, 5.0],
+        }];
+        let p: Vec<Param> = flatten(&cfg)
+            .into_iter()
+            .filter(|p| p.path.contains("custom"))
+            .collect();
+        let paths: Vec<&str> = p.iter().map(|p| p.path.as_str()).collect();
+        assert_eq!(
+            paths,
+            [
+                "sensor.gyro.custom[0].enabled",
+                "sensor.gyro.custom[0].coef[0]",
+                "sensor.gyro.custom[0].coef[1]",
+                "sensor.gyro.custom[0].coef[2]"
+            ]
+        );
+        assert_eq!(p[3].range, Some((-1e9, 1e9)));
+        let c2 = set(&cfg, "sensor.gyro.custom[0].coef[2]", ParamValue::Real(7.5)).unwrap();
+        assert_eq!(c2.sensor.gyro.custom[0].coef, [0.0, 0.0, 7.5]);
+        assert_eq!(c2.sensor.gyro.custom[0].regressor, "dtemp_dt:block");
     }
 
     #[test]

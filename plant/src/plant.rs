@@ -7,6 +7,7 @@ use crate::command::ActiveCommand;
 use crate::config::{ConfigError, PlantConfig};
 use crate::earth::Site;
 use crate::effects::accel::ACCEL_TERMS;
+use crate::effects::custom::Declared;
 use crate::effects::encoder::Encoders;
 use crate::effects::gyro::{GYRO_TERMS, GyroThermalRates};
 use crate::effects::noise::NoiseState;
@@ -66,6 +67,10 @@ pub struct Truth {
     pub accel_terms_mps: [Vector3<f64>; ACCEL_TERMS],
     /// Weight of δβ at the interval midpoint (0 Z-up, 1 Z-down).
     pub position_weight: f64,
+    /// The declared gyro effects' summed increment error, rad (`[[sensor.gyro.custom]]`).
+    pub custom_gyro_rad: Vector3<f64>,
+    /// The declared accelerometer effects' summed increment error, m/s.
+    pub custom_accel_mps: Vector3<f64>,
 }
 
 /// Last internal tick at or before `hold_s` (a dwell end); whether the boundary tick itself is
@@ -158,6 +163,8 @@ pub struct Plant {
     pub(crate) temp_sensors: TempSensors,
     /// The sensors' last readings, °C.
     pub(crate) temp_readings_c: [f64; node::COUNT],
+    /// Declared effects (`[[sensor.*.custom]]`) and their slow signals.
+    pub(crate) declared: Declared,
 }
 
 impl Plant {
@@ -187,6 +194,7 @@ impl Plant {
         let mut temp_sensors = TempSensors::new(&s.temperature, cfg.seed);
         let temp_readings_c = temp_sensors.read(&temps.nodes_c);
         Ok(Self {
+            declared: Declared::new(&s.gyro, &s.accel, &temps.nodes_c),
             encoders: Encoders::new(&s.encoder),
             temp_sensors,
             temp_readings_c,
@@ -247,6 +255,8 @@ impl Plant {
                 gyro_terms_rad: [Vector3::zeros(); GYRO_TERMS],
                 accel_terms_mps: [Vector3::zeros(); ACCEL_TERMS],
                 position_weight: 0.0,
+                custom_gyro_rad: Vector3::zeros(),
+                custom_accel_mps: Vector3::zeros(),
             },
             cfg: cfg.clone(),
         })
@@ -459,6 +469,25 @@ impl Plant {
                 gyro_terms.iter_mut().zip(gterm).for_each(|(a, b)| *a += b);
                 accel_terms.iter_mut().zip(aterm).for_each(|(a, b)| *a += b);
             }
+            if self.declared.is_active() {
+                // The division only when an effect reads the time.
+                let t_mid = if self.declared.needs().time {
+                    (self.tick as f64 + 0.5) / self.internal_rate_hz
+                } else {
+                    0.0
+                };
+                let (g, a) = self
+                    .declared
+                    .increments(&up_b, &dtheta, &dv, h, gm.angles, t_mid);
+                let tr = &mut self.truth;
+                (tr.custom_gyro_rad, tr.custom_accel_mps) = if sub == 0 {
+                    (g, a)
+                } else {
+                    (tr.custom_gyro_rad + g, tr.custom_accel_mps + a)
+                };
+                gyro_err += g;
+                accel_err += a;
+            }
             weight += self.gyro.position_weight(&up_b);
             dtheta_true += dtheta;
             dv_true += dv;
@@ -483,6 +512,7 @@ impl Plant {
             self.thermal.step(h, ch, &up_b);
             self.noise.step_slow(h);
             let t = self.thermal.temperatures();
+            self.declared.thermal_update(&t.nodes_c, h);
             self.temp_readings_c = self.temp_sensors.read(&t.nodes_c);
             self.gyro_thermal = self.gyro.thermal_rates(&t.gyro_c(), &t.gyro_gradient_k());
             self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(t.accel_c());
@@ -504,7 +534,8 @@ impl Plant {
             }
             _ => {
                 let r = self.integrate_interval(gyro_temp, gradient, accel_temp);
-                self.dwell_cache = (held && self.use_dwell_cache).then_some(DwellCache {
+                let reuse = held && self.use_dwell_cache && !self.declared.varies_in_dwell();
+                self.dwell_cache = reuse.then_some(DwellCache {
                     dtheta_true: r.0,
                     dv_true: r.1,
                     gyro_err: r.2,

@@ -189,6 +189,12 @@ impl Plant {
         w.u64(self.noise_seed);
         self.temp_readings_c.iter().for_each(|x| w.f64(*x));
         w.u128(self.temp_sensors.stream.word_pos());
+        // Declared effects only: states of plants without them keep their layout.
+        if self.declared.is_active() {
+            self.declared.rates_k_per_s().iter().for_each(|x| w.f64(*x));
+            w.v3(&tr.custom_gyro_rad);
+            w.v3(&tr.custom_accel_mps);
+        }
     }
 
     /// Reads what [`Plant::write_state`] wrote into a freshly built plant of the same
@@ -264,6 +270,15 @@ impl Plant {
         }
         let temp_word_pos = r.u128()?;
         self.temp_sensors.stream.set_word_pos(temp_word_pos);
+        if self.declared.is_active() {
+            let mut rates = [0.0; 6];
+            for x in rates.iter_mut() {
+                *x = r.f64()?;
+            }
+            self.declared.restore(&nodes, &rates);
+            self.truth.custom_gyro_rad = r.v3()?;
+            self.truth.custom_accel_mps = r.v3()?;
+        }
         for (s, w) in [
             &mut self.noise.arw,
             &mut self.noise.gm,

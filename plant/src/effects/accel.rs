@@ -90,6 +90,9 @@ pub struct AccelSpec {
     pub velocity_random_walk: VrwSpec,
     /// Quantisation, pulse weight in m/s.
     pub quantization: QuantizationSpec,
+    /// Declared effects (`[[sensor.accel.custom]]`), docs/effects.md.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub custom: Vec<super::custom::CustomSpec>,
 }
 
 impl AccelSpec {

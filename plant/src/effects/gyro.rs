@@ -194,6 +194,9 @@ pub struct GyroSpec {
     pub rate_random_walk: RrwSpec,
     /// Quantisation, pulse weight in arcsec.
     pub quantization: QuantizationSpec,
+    /// Declared effects (`[[sensor.gyro.custom]]`), docs/effects.md.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub custom: Vec<super::custom::CustomSpec>,
 }
 
 impl GyroSpec {

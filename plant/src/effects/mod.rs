@@ -6,6 +6,7 @@
 //! and the coefficients θ, so one definition serves simulation, FMU parameters and diagnosis.
 
 pub mod accel;
+pub mod custom;
 pub mod encoder;
 pub mod gyro;
 pub mod gyro_term;
@@ -17,6 +18,7 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 pub use accel::{AccelModel, AccelSpec, AccelTerm};
+pub use custom::{CustomKind, CustomModel, CustomSpec};
 pub use gyro::{GyroModel, GyroSpec, GyroTerm};
 
 /// What the effects see over one integration interval (SI units).

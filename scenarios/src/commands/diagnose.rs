@@ -16,7 +16,8 @@ pub struct DiagnoseArgs {
     /// Model, data and analysis settings.
     #[command(flatten)]
     pub data: DataArgs,
-    /// Add this effect (e.g. gyro.temperature_gradient_bias), fitted on every axis, to the model.
+    /// Add this effect (e.g. gyro.temperature_gradient_bias, or custom:NAME for a declared
+    /// `[[sensor.gyro.custom]]` of the model), fitted on every axis it acts on, to the model.
     #[arg(long)]
     pub apply: Option<String>,
     /// Where --apply writes the new model (default: MODEL with -fitted before the extension).
@@ -31,9 +32,15 @@ pub fn run(a: &DiagnoseArgs) -> Result<()> {
     opts.diagnose = true;
     if let Some(effect) = &a.apply {
         // A bad name fails before the analysis.
-        opts.apply.push(Effect::parse(effect).with_context(|| {
-            let names: Vec<String> = Effect::all().iter().map(|e| e.name()).collect();
-            format!("--apply {effect:?}: not an effect of the catalogue; one of {names:?}")
+        opts.apply.push(Effect::parse_in(&model, effect).with_context(|| {
+            let names: Vec<String> = Effect::all()
+                .into_iter()
+                .chain(rins_mvm::custom::declared(&model).into_iter().map(Effect::Custom))
+                .map(|e| e.name())
+                .collect();
+            format!(
+                "--apply {effect:?}: not an effect of the catalogue or a declared effect of the model; one of {names:?}"
+            )
         })?);
     }
     let an = rins_mvm::analyse(&model, &h, &opts);

@@ -1,0 +1,229 @@
+//! Declared effects (`[[sensor.gyro.custom]]`, `[[sensor.accel.custom]]`) as diagnosis
+//! candidates: their identity in an [`crate::Effect`], whether a measured history can form
+//! their signals, and the signal frame of each row from what the log measured (temperature
+//! readings and their time derivative, encoder angles, the kinematic rate), so the model's
+//! declared effects are replayed and tested with the plant's own compiled regressors.
+
+use rins_plant::PlantConfig;
+use rins_plant::effects::custom::signals::{self, Frame, SLOTS, Signal};
+use rins_plant::effects::custom::{CustomKind, CustomModel, custom_coefficient_key};
+use rins_plant::table::GimbalAngles;
+use rins_plant::thermal::node;
+use rins_plant::units::{DPH, PPM, UG};
+
+use crate::history::{Attitude, History};
+
+/// Half-width of the central difference that gives a temperature reading's rate, s: wide
+/// enough to average a quantised, held housekeeping channel, narrow against thermal time
+/// constants (tens of minutes).
+pub const RATE_HALF_SPAN_S: f64 = 30.0;
+
+/// A declared effect of the model, by sensor and position in its list (Copy, so it can sit in
+/// an [`crate::Effect`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CustomRef {
+    /// An accelerometer effect (else gyro).
+    pub accel: bool,
+    /// Index in `sensor.{gyro,accel}.custom`.
+    pub index: u16,
+    /// Bias or scale factor.
+    pub kind: CustomKind,
+    /// Axes it acts on, bit i for axis i.
+    pub axes: u8,
+    name: [u8; 32],
+    len: u8,
+}
+
+impl CustomRef {
+    /// The declared name.
+    pub fn name(&self) -> &str {
+        std::str::from_utf8(&self.name[..self.len as usize]).unwrap_or("?")
+    }
+
+    /// SI size of one file unit of the coefficient (°/h, µg, ppm).
+    pub fn file_unit_si(&self) -> f64 {
+        match (self.kind, self.accel) {
+            (CustomKind::Bias, false) => DPH,
+            (CustomKind::Bias, true) => UG,
+            (CustomKind::ScaleFactor, _) => PPM,
+        }
+    }
+
+    /// Scenario key of the coefficient on `axis`.
+    pub fn coefficient_key(&self, axis: usize) -> String {
+        custom_coefficient_key(self.accel, self.index as usize, axis)
+    }
+
+    /// Scenario key of the switch.
+    pub fn enabled_key(&self) -> String {
+        let s = if self.accel { "accel" } else { "gyro" };
+        format!("sensor.{s}.custom[{}].enabled", self.index)
+    }
+}
+
+/// The declared effects of `model` (gyro first), as references.
+pub fn declared(model: &PlantConfig) -> Vec<CustomRef> {
+    let mk = |accel: bool, list: &[rins_plant::effects::CustomSpec]| -> Vec<CustomRef> {
+        list.iter()
+            .enumerate()
+            .map(|(i, s)| {
+                let mut name = [0u8; 32];
+                let n = s.name.len().min(32);
+                name[..n].copy_from_slice(&s.name.as_bytes()[..n]);
+                CustomRef {
+                    accel,
+                    index: i as u16,
+                    kind: s.kind,
+                    axes: s.axes.iter().fold(0, |m, a| m | 1 << a.index()),
+                    name,
+                    len: n as u8,
+                }
+            })
+            .collect()
+    };
+    let mut v = mk(false, &model.sensor.gyro.custom);
+    v.extend(mk(true, &model.sensor.accel.custom));
+    v
+}
+
+/// Why `h` cannot form the signals of effect `index` of `m`, if it cannot.
+pub fn unavailable(m: &CustomModel, index: usize, h: &History) -> Option<String> {
+    let e = &m.effects()[index];
+    for s in e.signals() {
+        if matches!(s, Signal::Outer | Signal::Inner)
+            && !matches!(h.attitude, Attitude::Gimbal { .. })
+        {
+            return Some(
+                "needs gimbal angles (outer_deg, inner_deg), the log has quaternions".into(),
+            );
+        }
+        for axis in 0..3 {
+            for n in s.nodes(m.is_accel(), axis) {
+                if n == node::BOARD {
+                    return Some(
+                        "needs the board temperature, which the log does not carry".into(),
+                    );
+                }
+                if n == node::HOUSING && h.housing_temp_c.is_none() {
+                    return Some("needs a housing temperature (temp_housing_c)".into());
+                }
+            }
+        }
+    }
+    None
+}
+
+/// The measured temperature of node `n` on row `k` (board: not measured, 0).
+fn reading(h: &History, n: usize, k: usize) -> f64 {
+    match n {
+        node::GYRO_X..=3 => h.gyro_temp_c[n - node::GYRO_X][k],
+        node::ACCEL => h.accel_temp_c[k],
+        node::HOUSING => h.housing_temp_c.as_ref().map_or(0.0, |t| t[k]),
+        _ => 0.0,
+    }
+}
+
+/// Per-row slow signals of a history: readings and, for the nodes a declared effect
+/// differentiates, their central-difference rates within each segment.
+pub struct RowSignals {
+    rates: [Option<Vec<f64>>; node::COUNT],
+    run_start_s: Vec<f64>,
+}
+
+impl RowSignals {
+    /// Prepares the rates the declared effects of `models` read.
+    pub fn new(models: [&CustomModel; 2], h: &History) -> Self {
+        let mut need = [false; node::COUNT];
+        for m in models {
+            for e in m.effects() {
+                for s in e.signals() {
+                    if let Signal::TempRate(r) = s {
+                        for axis in 0..3 {
+                            need[r.resolve(m.is_accel(), axis)] = true;
+                        }
+                    }
+                }
+            }
+        }
+        let rates = std::array::from_fn(|n| need[n].then(|| rate_of(h, n)));
+        let mut run_start_s = vec![f64::NAN; h.run_names.len().max(1)];
+        for seg in &h.segments {
+            let r = h.run[seg.start] as usize;
+            let dt0 = if seg.len() > 1 {
+                h.t_s[seg.start + 1] - h.t_s[seg.start]
+            } else {
+                0.0
+            };
+            let t0 = h.t_s[seg.start] - dt0;
+            if !(run_start_s[r] <= t0) {
+                run_start_s[r] = t0;
+            }
+        }
+        Self { rates, run_start_s }
+    }
+
+    /// The frame of row `k` (interval `dt_s`, true increment `dtheta`, mid attitude).
+    #[allow(clippy::too_many_arguments)]
+    pub fn frame(
+        &self,
+        h: &History,
+        k: usize,
+        dt_s: f64,
+        up_b: &nalgebra::Vector3<f64>,
+        dtheta: &nalgebra::Vector3<f64>,
+    ) -> Frame {
+        let mut f = [0.0; SLOTS];
+        for n in 0..node::COUNT {
+            f[signals::TEMP + n] = reading(h, n, k);
+            if let Some(r) = &self.rates[n] {
+                f[signals::DTEMP + n] = r[k];
+            }
+        }
+        let mid = match &h.attitude {
+            Attitude::Gimbal {
+                outer_rad,
+                inner_rad,
+            } => GimbalAngles::new(
+                0.5 * (outer_rad[k - 1] + outer_rad[k]),
+                0.5 * (inner_rad[k - 1] + inner_rad[k]),
+            ),
+            Attitude::Quaternion(_) => GimbalAngles::new(0.0, 0.0),
+        };
+        let t_mid = h.t_s[k] - 0.5 * dt_s - self.run_start_s[h.run[k] as usize];
+        rins_plant::effects::custom::fill_fast(
+            &mut f,
+            rins_plant::effects::custom::Needs::ALL,
+            up_b,
+            dtheta,
+            dt_s,
+            mid,
+            t_mid,
+        );
+        f
+    }
+}
+
+/// Central-difference rate of node `n`'s reading over ±[`RATE_HALF_SPAN_S`] within each
+/// segment (one-sided at the ends), K/s.
+fn rate_of(h: &History, n: usize) -> Vec<f64> {
+    let mut out = vec![0.0; h.len()];
+    for seg in &h.segments {
+        let (mut a, mut b) = (seg.start, seg.start);
+        for k in seg.clone() {
+            let t = h.t_s[k];
+            while h.t_s[a] < t - RATE_HALF_SPAN_S {
+                a += 1;
+            }
+            while b + 1 < seg.end && h.t_s[b + 1] <= t + RATE_HALF_SPAN_S {
+                b += 1;
+            }
+            let span = h.t_s[b] - h.t_s[a];
+            out[k] = if span > 0.0 {
+                (reading(h, n, b) - reading(h, n, a)) / span
+            } else {
+                0.0
+            };
+        }
+    }
+    out
+}

@@ -1,0 +1,338 @@
+//! Declared effects compiled once into a flat evaluation plan.
+
+// Three axes indexed in parallel arrays: index loops read best.
+#![allow(clippy::needless_range_loop)]
+
+use nalgebra::Vector3;
+
+use super::expr::{Factor, bound_of, parse_regressor, unit_of};
+use super::signals::{Frame, Signal, TEMP, Unit};
+use super::{CustomKind, CustomSpec};
+use crate::config::ConfigError;
+use crate::units::{DPH, PPM, UG};
+
+/// One factor resolved for one axis: `(frame[a] − frame[b])^power` when `diff`, else
+/// `frame[a]^power`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Slot {
+    a: u8,
+    b: u8,
+    diff: bool,
+    power: i32,
+}
+
+/// One regressor of the plan and the coefficients it carries on each axis:
+/// error_i = `coef_si[i] · Π slots · (Δt or the axis's true increment)`. An effect whose
+/// regressor is the same on every axis (no `block`) is one term, evaluated once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Term {
+    coef_si: [f64; 3],
+    scale: bool,
+    start: u32,
+    end: u32,
+}
+
+/// A declared effect after checking.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CompiledEffect {
+    /// Name.
+    pub name: String,
+    /// Term on.
+    pub enabled: bool,
+    /// Bias or scale factor.
+    pub kind: CustomKind,
+    /// The regressor as written.
+    pub regressor: String,
+    /// Its unit.
+    pub unit: Unit,
+    /// Whether it acts on x, y, z.
+    pub axes: [bool; 3],
+    /// Coefficients in SI (rad/s, m/s², or fraction per unit of the regressor).
+    pub coef_si: [f64; 3],
+    /// SI size of one file unit of the coefficient (°/h, µg or ppm).
+    pub file_unit_si: f64,
+    /// The parsed factors.
+    pub factors: Vec<Factor>,
+    /// Resolved factors per axis.
+    slots: [Vec<Slot>; 3],
+}
+
+impl CompiledEffect {
+    /// The signals the regressor reads.
+    pub fn signals(&self) -> impl Iterator<Item = Signal> + '_ {
+        self.factors.iter().map(|f| f.signal)
+    }
+}
+
+/// The declared effects of one sensor (gyros or accelerometers), compiled.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct CustomModel {
+    accel: bool,
+    effects: Vec<CompiledEffect>,
+    plan: Vec<Term>,
+    slots: Vec<Slot>,
+    uses_time: bool,
+}
+
+/// Scenario key of the coefficient of declared effect `index` on `axis`.
+pub fn custom_coefficient_key(accel: bool, index: usize, axis: usize) -> String {
+    let s = if accel { "accel" } else { "gyro" };
+    format!("sensor.{s}.custom[{index}].coef[{axis}]")
+}
+
+fn resolve(factors: &[Factor], accel: bool, axis: usize) -> Vec<Slot> {
+    factors
+        .iter()
+        .map(|f| {
+            let (a, b, diff) = match f.signal {
+                Signal::Temp(n) => (TEMP + n.resolve(accel, axis), 0, false),
+                Signal::TempRate(n) => (super::signals::DTEMP + n.resolve(accel, axis), 0, false),
+                Signal::Gradient(x, y) => (
+                    TEMP + x.resolve(accel, axis),
+                    TEMP + y.resolve(accel, axis),
+                    true,
+                ),
+                Signal::Up(i) => (super::signals::UP + i, 0, false),
+                Signal::Rate(i) => (super::signals::RATE + i, 0, false),
+                Signal::AbsRate(i) => (super::signals::ABS_RATE + i, 0, false),
+                Signal::Outer => (super::signals::OUTER, 0, false),
+                Signal::Inner => (super::signals::INNER, 0, false),
+                Signal::Time => (super::signals::TIME, 0, false),
+            };
+            Slot {
+                a: a as u8,
+                b: b as u8,
+                diff,
+                power: f.power,
+            }
+        })
+        .collect()
+}
+
+#[inline]
+fn product(slots: &[Slot], frame: &Frame) -> f64 {
+    let mut r = 1.0;
+    for s in slots {
+        let mut v = frame[s.a as usize];
+        if s.diff {
+            v -= frame[s.b as usize];
+        }
+        r *= if s.power == 1 { v } else { v.powi(s.power) };
+    }
+    r
+}
+
+impl CustomModel {
+    /// Checks and compiles `specs` (the list under `sensor.gyro.custom`, or
+    /// `sensor.accel.custom` when `accel`). Every problem is a [`ConfigError`] naming the key.
+    pub fn new(specs: &[CustomSpec], accel: bool) -> Result<Self, Vec<ConfigError>> {
+        let sensor = if accel { "accel" } else { "gyro" };
+        let mut errors = Vec::new();
+        let mut m = CustomModel {
+            accel,
+            ..Self::default()
+        };
+        for (k, s) in specs.iter().enumerate() {
+            let at = |key: &str| format!("sensor.{sensor}.custom[{k}].{key}");
+            let mut fail = |key: &str, expected: &str, got: String| {
+                errors.push(ConfigError {
+                    path: at(key),
+                    expected: expected.into(),
+                    got,
+                })
+            };
+            let name_ok = !s.name.is_empty()
+                && s.name.len() <= 32
+                && s.name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_');
+            if !name_ok {
+                fail(
+                    "name",
+                    "a name of 1–32 letters, digits or _",
+                    format!("{:?}", s.name),
+                );
+            } else if specs[..k].iter().any(|o| o.name == s.name) {
+                fail(
+                    "name",
+                    "a name not used by another declared effect of this sensor",
+                    format!("{:?} again", s.name),
+                );
+            }
+            let factors = match parse_regressor(&s.regressor) {
+                Ok(f) => f,
+                Err(e) => {
+                    fail("regressor", "a product of documented signals", e);
+                    continue;
+                }
+            };
+            let unit = unit_of(&factors);
+            match Unit::parse(&s.unit) {
+                Some(u) if u == unit => {}
+                Some(u) => fail(
+                    "unit",
+                    &format!("{unit} (the unit of {:?})", s.regressor),
+                    format!("{:?} = {u}", s.unit),
+                ),
+                None => fail(
+                    "unit",
+                    &format!(
+                        "{unit} (the unit of {:?}; write K or degC, s, deg, ^N, * and one /)",
+                        s.regressor
+                    ),
+                    format!("{:?}", s.unit),
+                ),
+            }
+            let mut axes = [false; 3];
+            for a in &s.axes {
+                if axes[a.index()] {
+                    fail("axes", "each axis once", format!("{a:?} twice"));
+                }
+                axes[a.index()] = true;
+            }
+            if s.axes.is_empty() {
+                fail("axes", "at least one of \"x\", \"y\", \"z\"", "[]".into());
+            }
+            let file_unit_si = match (s.kind, accel) {
+                (CustomKind::Bias, false) => DPH,
+                (CustomKind::Bias, true) => UG,
+                (CustomKind::ScaleFactor, _) => PPM,
+            };
+            // A scale-factor term multiplies the true increment; bound it by a full-rate second.
+            let input_bound = match (s.kind, accel) {
+                (CustomKind::Bias, _) => 1.0,
+                (CustomKind::ScaleFactor, false) => 100f64.to_radians(),
+                (CustomKind::ScaleFactor, true) => 100.0,
+            };
+            let bound = bound_of(&factors);
+            if !bound.is_finite() {
+                fail(
+                    "regressor",
+                    "a product that stays finite over the signals' ranges (docs/effects.md)",
+                    format!("{:?} reaches {bound}", s.regressor),
+                );
+            }
+            for i in 0..3 {
+                let c = s.coef[i];
+                if !axes[i] && c != 0.0 {
+                    fail(
+                        &format!("coef[{i}]"),
+                        "0 on an axis not listed in axes",
+                        format!("{c}"),
+                    );
+                } else if bound.is_finite() && !(c * file_unit_si * bound * input_bound).is_finite()
+                {
+                    fail(
+                        &format!("coef[{i}]"),
+                        &format!(
+                            "a coefficient whose contribution stays finite over the signals' ranges (|{}| ≤ {bound:e})",
+                            s.regressor
+                        ),
+                        format!("{c}"),
+                    );
+                }
+            }
+            let slots = [0, 1, 2].map(|i| resolve(&factors, accel, i));
+            m.uses_time |= s.enabled && factors.iter().any(|f| f.signal == Signal::Time);
+            m.effects.push(CompiledEffect {
+                name: s.name.clone(),
+                enabled: s.enabled,
+                kind: s.kind,
+                regressor: s.regressor.clone(),
+                unit,
+                axes,
+                coef_si: s.coef.map(|c| c * file_unit_si),
+                file_unit_si,
+                factors,
+                slots,
+            });
+        }
+        if !errors.is_empty() {
+            return Err(errors);
+        }
+        for e in m.effects.iter().filter(|e| e.enabled) {
+            let live: Vec<usize> = (0..3)
+                .filter(|&i| e.axes[i] && e.coef_si[i] != 0.0)
+                .collect();
+            let shared = live.iter().all(|&i| e.slots[i] == e.slots[live[0]]);
+            // One term for all axes when the regressor does not depend on the axis.
+            let groups: Vec<Vec<usize>> = if shared && !live.is_empty() {
+                vec![live]
+            } else {
+                live.into_iter().map(|i| vec![i]).collect()
+            };
+            for axes in groups {
+                let start = m.slots.len() as u32;
+                m.slots.extend_from_slice(&e.slots[axes[0]]);
+                let mut coef_si = [0.0; 3];
+                for i in axes {
+                    coef_si[i] = e.coef_si[i];
+                }
+                m.plan.push(Term {
+                    coef_si,
+                    scale: e.kind == CustomKind::ScaleFactor,
+                    start,
+                    end: m.slots.len() as u32,
+                });
+            }
+        }
+        Ok(m)
+    }
+
+    /// The declared effects, in file order.
+    pub fn effects(&self) -> &[CompiledEffect] {
+        &self.effects
+    }
+
+    /// Whether the plan has anything to evaluate.
+    pub fn is_active(&self) -> bool {
+        !self.plan.is_empty()
+    }
+
+    /// Whether a switched-on effect reads `time` (its contribution then changes within a
+    /// dwell, so the plant does not reuse one dwell interval for the next).
+    pub fn uses_time(&self) -> bool {
+        self.uses_time
+    }
+
+    /// Whether these are accelerometer effects.
+    pub fn is_accel(&self) -> bool {
+        self.accel
+    }
+
+    /// Sum of the switched-on effects' increment errors over an interval of `dt_s` with the
+    /// signals `frame` and the true increment `input` (rad or m/s): rad or m/s.
+    #[inline]
+    pub fn increment_error(&self, frame: &Frame, dt_s: f64, input: &Vector3<f64>) -> Vector3<f64> {
+        let mut out = Vector3::zeros();
+        for t in &self.plan {
+            let r = product(&self.slots[t.start as usize..t.end as usize], frame);
+            let c = Vector3::from(t.coef_si) * r;
+            out += if t.scale {
+                c.component_mul(input)
+            } else {
+                c * dt_s
+            };
+        }
+        out
+    }
+
+    /// Regressor φ of effect `index` on `axis` in increment units (the effect's error there is
+    /// `coef_si[axis]·φ`), whether or not it is switched on.
+    #[inline]
+    pub fn regressor(
+        &self,
+        index: usize,
+        axis: usize,
+        frame: &Frame,
+        dt_s: f64,
+        input: &Vector3<f64>,
+    ) -> f64 {
+        let e = &self.effects[index];
+        let r = product(&e.slots[axis], frame);
+        match e.kind {
+            CustomKind::Bias => r * dt_s,
+            CustomKind::ScaleFactor => r * input[axis],
+        }
+    }
+}
