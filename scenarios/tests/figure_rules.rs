@@ -117,3 +117,51 @@ fn svg_texts(svg: &str) -> Vec<(i32, i32, &str)> {
         })
         .collect()
 }
+
+#[test]
+fn week_long_figures_shrink_fivefold_as_envelopes_with_the_same_extremes() {
+    let sc = rins_scenarios::Scenario::load(Path::new("builtin:paper-16pos-week")).unwrap();
+    let opt = rins_verify::paper::Table4Options {
+        plant: sc.plant.clone(),
+        runs: 1,
+        duration_s: 7.0 * 86_400.0,
+        compensation: None,
+        nav: rins_experiments::NavRunConfig::default(),
+    };
+    let r = rins_verify::paper::table4(&opt, &|_| {});
+    assert!(
+        r.first_seed.uncompensated.len() > 10_000,
+        "a week of records"
+    );
+    let env = paired_figures(&r, ["Figure 2", "Figure 3"], Kind::Envelope);
+    let raw = paired_figures(&r, ["Figure 2", "Figure 3"], Kind::Solid);
+    for (e, s) in env.iter().zip(&raw) {
+        let (svg_e, g) = e.render().unwrap();
+        let (svg_s, _) = s.render().unwrap();
+        let ratio = svg_s.len() as f64 / svg_e.len() as f64;
+        eprintln!(
+            "{}: {} B every sample, {} B envelopes ({ratio:.1}x)",
+            e.stem,
+            svg_s.len(),
+            svg_e.len()
+        );
+        assert!(ratio >= 5.0, "{}: only {ratio:.2}x smaller", e.stem);
+        no_mark_under_legend(&g);
+        for (panel, geo) in e.panels.iter().zip(&g) {
+            let enveloped: Vec<_> = panel
+                .lines
+                .iter()
+                .filter(|l| l.kind == Kind::Envelope)
+                .collect();
+            assert_eq!(enveloped.len(), geo.envelopes.len(), "{}", panel.title);
+            for (line, cols) in enveloped.iter().zip(&geo.envelopes) {
+                let ys = line.points.iter().map(|p| p.1);
+                let (lo, hi) = ys.fold((f64::MAX, f64::MIN), |(a, b), y| (a.min(y), b.max(y)));
+                let clo = cols.iter().map(|c| c.min).fold(f64::MAX, f64::min);
+                let chi = cols.iter().map(|c| c.max).fold(f64::MIN, f64::max);
+                assert_eq!((clo, chi), (lo, hi), "{}: {}", panel.title, line.label);
+                assert!(cols.len() <= 450 && cols.len() * 20 < line.points.len());
+            }
+        }
+    }
+}

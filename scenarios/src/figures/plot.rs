@@ -252,7 +252,8 @@ impl Drawn {
     }
 }
 
-/// Legend box size for the labelled lines, px: 12 px text at about 7 px a character.
+/// Legend box size for the labelled lines, px: plotters draws 12 pt text at about 9.7 px,
+/// about 6 px a character.
 fn legend_size(lines: &[Line]) -> Option<(i32, i32)> {
     let labels: Vec<&str> = lines
         .iter()
@@ -260,7 +261,7 @@ fn legend_size(lines: &[Line]) -> Option<(i32, i32)> {
         .filter(|l| !l.is_empty())
         .collect();
     let longest = labels.iter().map(|l| l.chars().count()).max()?;
-    Some((36 + 7 * longest as i32, 8 + 17 * labels.len() as i32))
+    Some((40 + 6 * longest as i32, 8 + 17 * labels.len() as i32))
 }
 
 /// The pixel rectangle of the plotting area a chart with these settings gets in an area of

@@ -126,6 +126,7 @@ pub struct Report {
     title: String,
     body: String,
     figures: usize,
+    paper_values: bool,
 }
 
 impl Report {
@@ -135,6 +136,7 @@ impl Report {
             title: title.into(),
             body: String::new(),
             figures: 0,
+            paper_values: false,
         }
     }
 
@@ -159,6 +161,7 @@ impl Report {
                 .map(|c| format!("<th>{}</th>", escape(c)))
                 .collect::<String>()
         );
+        self.paper_values |= rows.iter().flatten().any(|c| matches!(c, Cell::Paper(..)));
         for r in rows {
             let _ = writeln!(
                 self.body,
@@ -198,8 +201,7 @@ impl Report {
             "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
              <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\
              <title>{t}</title><style>{STYLE}</style></head><body>\n<h1>{t}</h1>\n\
-             <p class=\"meta\">Made by <code id=\"command\">{c}</code> with rins {v}. \
-             Shaded columns are the paper's published values (Seo et al., Sensors 2022, 22, 8355).</p>\n\
+             <p class=\"meta\">Made by <code id=\"command\">{c}</code> with rins {v}.{p}</p>\n\
              {b}<footer>rins {v} · {f} figures · self-contained: no scripts, fonts or network</footer>\n\
              </body></html>\n",
             t = escape(&self.title),
@@ -207,6 +209,11 @@ impl Report {
             v = env!("CARGO_PKG_VERSION"),
             b = self.body,
             f = self.figures,
+            p = if self.paper_values {
+                " Shaded cells are the paper's published values (Seo et al., Sensors 2022, 22, 8355)."
+            } else {
+                ""
+            },
         );
         let path = dir.join("report.html");
         std::fs::write(&path, page).with_context(|| format!("cannot write {}", path.display()))?;
