@@ -114,10 +114,8 @@ fn cell_html(c: &Cell) -> String {
             escape(path),
             format_sig(*value, *sig)
         ),
-        Cell::Paper(v, sig) => format!(
-            "<td class=\"num paper\" title=\"published value\">{}</td>",
-            format_sig(*v, *sig)
-        ),
+        // As printed in the paper (its own digits).
+        Cell::Paper(v, _) => format!("<td class=\"num paper\" title=\"published value\">{v}</td>"),
     }
 }
 
