@@ -203,7 +203,8 @@ mod tests {
     #[test]
     fn no_minus_zero_ticks() {
         assert_eq!(tick_label(-0.0, 1.0), "0.0");
-        assert_eq!(tick_label(-1e-17, 0.5), "0.00");
+        assert_eq!(tick_label(-1e-17, 0.5), "0.0");
+        assert_eq!(tick_label(-0.004, 0.05), "0.00");
         assert_eq!(tick_label(-0.25, 1.0), "-0.2");
         assert_eq!(tick_label(3.0, 40.0), "3");
         assert_eq!(tick_label(2.5e-6, 1e-5), "2.50e-6");
@@ -211,8 +212,8 @@ mod tests {
 
     #[test]
     fn legend_takes_a_free_corner_or_headroom() {
-        // Points along the top edge: the lower corners are free; lower right comes first.
-        let top: Vec<_> = (0..100).map(|x| ((x * 8, 3), (x * 8, 3))).collect();
+        // Points along the top band: the lower corners are free; lower right comes first.
+        let top: Vec<_> = (0..100).map(|x| ((x * 8, 20), (x * 8, 20))).collect();
         match place_legend(800, 200, 100, 40, &top) {
             LegendPlace::Inside(r) => assert!(r.y0 > 100 && r.x0 > 400, "{r:?}"),
             p => panic!("{p:?}"),
