@@ -110,3 +110,6 @@ if "${rins[@]}" diagnose --model docs/examples/diagnosis-model.toml --data "$tmp
 fi
 grep -q "gyro.position_bias" "$tmp/err"
 echo "1 passed, 0 failed: command-line smoke checks"
+
+echo "== HTML reports in headless Chromium (tests/browser) =="
+bash tests/browser/run.sh "$bin/rins"

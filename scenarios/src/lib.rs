@@ -9,6 +9,7 @@ pub mod diagnose;
 pub mod figures;
 pub mod file;
 pub mod fmu;
+pub mod html;
 pub mod interrupt;
 pub mod progress;
 pub mod report;

@@ -25,6 +25,10 @@ pub struct CalibrateArgs {
     /// Output folder: calibration.json and calibration_beta.svg/.png.
     #[arg(long, default_value = "out/calibrate")]
     pub out: PathBuf,
+    /// Write a self-contained HTML report (figures, tables with the paper's values, the command
+    /// line) to DIR/report.html.
+    #[arg(long, value_name = "DIR")]
+    pub report: Option<PathBuf>,
 }
 
 /// Calibrates the scenario's plant (Fig. 4-5, Eq. 16-19), writes `calibration.json` and the
@@ -39,6 +43,10 @@ pub fn run(a: &CalibrateArgs) -> Result<()> {
         serde_json::to_string_pretty(&r)?,
     )?;
     write_calibration_figure(&r, &a.out)?;
+    if let Some(dir) = &a.report {
+        let page = crate::html::results::calibration(&r, &a.estimator, &a.out, dir)?;
+        eprintln!("report: {}", page.display());
+    }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());

@@ -25,6 +25,10 @@ pub struct CampaignArgs {
     /// Output folder: campaign.json, dbeta-compensation.toml, fig8_dbeta_vs_temperature.svg.
     #[arg(long, default_value = "out/campaign")]
     pub out: PathBuf,
+    /// Write a self-contained HTML report (figures, tables with the paper's values, the command
+    /// line) to DIR/report.html.
+    #[arg(long, value_name = "DIR")]
+    pub report: Option<PathBuf>,
 }
 
 /// Runs the campaign, writes its outputs and prints the runs and fits.
@@ -32,6 +36,10 @@ pub fn run(a: &CampaignArgs) -> Result<()> {
     let sc = Scenario::load(&a.scenario)?;
     let c = run_campaign_from(&sc, a.ref_temp_c)?;
     write_outputs(&c, &a.out)?;
+    if let Some(dir) = &a.report {
+        let page = crate::html::results::campaign(&c, c.runs.len(), &a.out, dir)?;
+        eprintln!("report: {}", page.display());
+    }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&c)?);
         return Ok(());

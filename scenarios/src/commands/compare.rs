@@ -27,7 +27,7 @@ pub struct DataArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
-    /// Write SVG figures into this folder.
+    /// Write the SVG/PNG figures and a self-contained HTML report (DIR/report.html) into DIR.
     #[arg(long)]
     pub report: Option<PathBuf>,
     /// Longest window the rows are summed over, s.
@@ -92,6 +92,13 @@ pub fn run(a: &CompareArgs) -> Result<()> {
         for f in crate::diagnose::write_report(dir, &an)? {
             eprintln!("wrote {f}");
         }
+        let page = crate::html::results::compare(
+            report,
+            report.channels.len(),
+            report.navigation.len(),
+            dir,
+        )?;
+        eprintln!("report: {}", page.display());
     }
     if a.data.json {
         println!("{}", serde_json::to_string_pretty(report)?);

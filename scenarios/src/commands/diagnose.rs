@@ -61,6 +61,9 @@ pub fn run(a: &DiagnoseArgs) -> Result<()> {
         for f in crate::diagnose::write_report(dir, &an)? {
             eprintln!("wrote {f}");
         }
+        let channels: Vec<String> = report.residual_rms_before.keys().cloned().collect();
+        let page = crate::html::results::diagnose(report, report.ranking.len(), &channels, dir)?;
+        eprintln!("report: {}", page.display());
     }
     if a.data.json {
         println!("{}", serde_json::to_string_pretty(report)?);

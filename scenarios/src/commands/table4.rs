@@ -30,13 +30,28 @@ pub struct Table4Args {
     /// Output folder for table4.json and the SVG figures.
     #[arg(long, default_value = "out/table4")]
     pub out: PathBuf,
+    /// Write a self-contained HTML report (figures, tables with the paper's values, the command
+    /// line) to DIR/report.html.
+    #[arg(long, value_name = "DIR")]
+    pub report: Option<PathBuf>,
     /// `--rerun DEST` and its bucket length.
     #[command(flatten)]
     pub viz: RerunArgs,
 }
 
-/// 1-week static 16-position navigation, uncompensated vs compensated, over `--runs` seeds.
+/// 1-week static 16-position navigation, uncompensated vs compensated, over `--runs` seeds;
+/// `--report DIR` adds the HTML report.
 pub fn run(a: &Table4Args) -> Result<()> {
+    let r = study(a)?;
+    if let Some(dir) = &a.report {
+        let page = crate::html::results::paired(&r, false, &a.out, dir)?;
+        eprintln!("report: {}", page.display());
+    }
+    Ok(())
+}
+
+/// The study itself: runs it, writes table4.json and the figures, prints the table (or JSON).
+pub fn study(a: &Table4Args) -> Result<rins_verify::paper::Table4Report> {
     let runs = check_runs_days(a.runs, a.days)?;
     let sc = Scenario::load(&a.scenario)?;
     let mut plant = sc.plant.clone();
@@ -68,5 +83,5 @@ pub fn run(a: &Table4Args) -> Result<()> {
         print!("{}", r.to_text());
         println!("  figures and table4.json in {}", a.out.display());
     }
-    Ok(())
+    Ok(r)
 }

@@ -27,6 +27,10 @@ pub struct Table5Args {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
+    /// Write a self-contained HTML report (figures, tables with the paper's values, the command
+    /// line) to DIR/report.html.
+    #[arg(long, value_name = "DIR")]
+    pub report: Option<PathBuf>,
     /// Output folder.
     #[arg(long, default_value = "out/table5")]
     pub out: PathBuf,
@@ -65,6 +69,10 @@ pub fn run(a: &Table5Args) -> Result<()> {
             "  figures (Figures 9-10 counterparts: fig3_position_error*.svg) and table5.json in {}",
             a.out.display()
         );
+    }
+    if let Some(dir) = &a.report {
+        let page = crate::html::results::paired(&r, true, &a.out, dir)?;
+        eprintln!("report: {}", page.display());
     }
     Ok(())
 }

@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use plotters::style::RGBColor;
 use rins_verify::report::Check;
 
-use super::plot::{Line, PALETTE, Panel, write_svg};
+use super::plot::{Kind, Line, PALETTE, Panel, write_svg};
 
 /// φ(t) through one 16-position cycle for a constant bias (Eq. 8) and for δβ (Eq. 11), with the
 /// paper's −8·T_s·δβ_z marked: `eq8_eq11_cycle.svg`/`.png` in `dir`.
@@ -23,40 +23,38 @@ pub fn write_cycle_figure(dir: &Path) -> Result<()> {
         .enumerate()
         .map(|(i, axis)| {
             let mut lines = vec![
-                Line {
-                    label: "constant bias 0.005 deg/h on each axis (Eq. 8)",
-                    points: tr
-                        .iter()
+                Line::new(
+                    "constant bias 0.005 deg/h on each axis (Eq. 8)",
+                    tr.iter()
                         .map(|p| (p.t_s / 60.0, arcsec(p.bias_rad[i])))
                         .collect(),
-                    color: RGBColor(31, 119, 180),
-                    error_bars: false,
-                },
-                Line {
-                    label: "delta-beta 0.005 deg/h on each axis (Eq. 11)",
-                    points: tr
-                        .iter()
+                    RGBColor(31, 119, 180),
+                    Kind::Solid,
+                ),
+                Line::new(
+                    "delta-beta 0.005 deg/h on each axis (Eq. 11)",
+                    tr.iter()
                         .map(|p| (p.t_s / 60.0, arcsec(p.delta_beta_rad[i])))
                         .collect(),
-                    color: RGBColor(214, 39, 40),
-                    error_bars: false,
-                },
+                    RGBColor(214, 39, 40),
+                    Kind::Dashed,
+                ),
             ];
             if i == 2 {
-                lines.push(Line {
-                    label: "-8 Ts delta-beta_z (stationary phases, Eq. 11)",
-                    points: vec![(0.0, expected), (t_end, expected)],
-                    color: RGBColor(120, 120, 120),
-                    error_bars: false,
-                });
+                lines.push(Line::new(
+                    "-8 Ts delta-beta_z (stationary phases, Eq. 11)",
+                    vec![(0.0, expected), (t_end, expected)],
+                    RGBColor(120, 120, 120),
+                    Kind::Dashed,
+                ));
             }
-            Panel {
-                title: format!(
+            Panel::new(
+                format!(
                     "{axis}: attitude error accumulated through one cycle (T_s = 180 s, constant-rate moves)"
                 ),
-                y_label: "arcsec",
+                "attitude error (arcsec)",
                 lines,
-            }
+            )
         })
         .collect();
     write_svg(
@@ -77,30 +75,42 @@ pub fn write_checks_figure(path: &Path, title: &str, checks: &[Check]) -> Result
     let margin = |c: &Check| {
         (c.value.abs().max(1e-16 * c.limit.abs()) / c.limit.abs().max(f64::MIN_POSITIVE)).log10()
     };
-    let mut lines: Vec<Line> = checks
+    // Check k sits at category "k+1"; the legend names it.
+    let labels: Vec<String> = checks
         .iter()
         .enumerate()
-        .map(|(k, c)| Line {
-            label: c.name.as_str(),
-            points: vec![(k as f64, margin(c)), (k as f64, margin(c))],
-            color: PALETTE[k % PALETTE.len()],
-            error_bars: true,
+        .map(|(k, c)| format!("{}: {}", k + 1, c.name))
+        .collect();
+    let numbers: Vec<String> = (1..=checks.len()).map(|k| k.to_string()).collect();
+    let mut lines: Vec<Line> = checks
+        .iter()
+        .zip(&labels)
+        .enumerate()
+        .map(|(k, (c, label))| {
+            Line::new(
+                label,
+                vec![(k as f64, margin(c)), (k as f64, margin(c))],
+                PALETTE[k % PALETTE.len()],
+                Kind::ErrorBars,
+            )
         })
         .collect();
-    lines.push(Line {
-        label: "limit",
-        points: vec![(-0.5, 0.0), (checks.len() as f64 - 0.5, 0.0)],
-        color: RGBColor(0, 0, 0),
-        error_bars: false,
-    });
-    let panel = Panel {
-        title: format!(
+    lines.push(Line::new(
+        "limit",
+        vec![(-0.5, 0.0), (checks.len() as f64 - 0.5, 0.0)],
+        RGBColor(0, 0, 0),
+        Kind::Dashed,
+    ));
+    let names: Vec<&str> = numbers.iter().map(String::as_str).collect();
+    let panel = Panel::new(
+        format!(
             "{} checks, {} passed (below the line)",
             checks.len(),
             checks.iter().filter(|c| c.pass).count()
         ),
-        y_label: "log10(value / limit)",
+        "log10(value / limit)",
         lines,
-    };
+    )
+    .categorical(&names);
     write_svg(path, title, "check", &[panel])
 }

@@ -9,7 +9,7 @@ use plotters::style::RGBColor;
 use rins_nav::calibration::Calibration;
 use rins_nav::campaign::Campaign;
 
-use super::plot::{Line, Panel, write_svg};
+use super::plot::{Kind, Line, Panel, write_svg};
 
 /// `calibration_beta.svg`/`.png` in `out`: β at Z-up (Eq. 17), Z-down (Eq. 19) and δβ per
 /// axis, each ±1 SE.
@@ -18,31 +18,36 @@ pub fn write_calibration_figure(r: &Calibration, out: &Path) -> Result<()> {
     let panels: Vec<Panel> = ["x", "y", "z"]
         .iter()
         .enumerate()
-        .map(|(i, a)| Panel {
-            title: format!(
-                "{a}-axis gyro: 0 = beta Z-up (Eq. 17), 1 = beta Z-down (Eq. 19), 2 = delta-beta"
-            ),
-            y_label: "deg/h",
-            lines: vec![
-                Line {
-                    label: "Z-up +- 1 SE",
-                    points: bar(0.0, r.up.beta_dph[i], r.up.se_dph[i]),
-                    color: RGBColor(31, 119, 180),
-                    error_bars: true,
-                },
-                Line {
-                    label: "Z-down +- 1 SE",
-                    points: bar(1.0, r.down.beta_dph[i], r.down.se_dph[i]),
-                    color: RGBColor(214, 39, 40),
-                    error_bars: true,
-                },
-                Line {
-                    label: "delta-beta +- 1 SE",
-                    points: bar(2.0, r.delta_beta_dph[i], r.delta_beta_se_dph[i]),
-                    color: RGBColor(44, 160, 44),
-                    error_bars: true,
-                },
-            ],
+        .map(|(i, a)| {
+            Panel::new(
+                format!("{a}-axis gyro: estimated bias +- 1 SE"),
+                "bias (deg/h)",
+                vec![
+                    Line::new(
+                        "Z-up +- 1 SE",
+                        bar(0.0, r.up.beta_dph[i], r.up.se_dph[i]),
+                        RGBColor(31, 119, 180),
+                        Kind::ErrorBars,
+                    ),
+                    Line::new(
+                        "Z-down +- 1 SE",
+                        bar(1.0, r.down.beta_dph[i], r.down.se_dph[i]),
+                        RGBColor(214, 39, 40),
+                        Kind::ErrorBars,
+                    ),
+                    Line::new(
+                        "delta-beta +- 1 SE",
+                        bar(2.0, r.delta_beta_dph[i], r.delta_beta_se_dph[i]),
+                        RGBColor(44, 160, 44),
+                        Kind::ErrorBars,
+                    ),
+                ],
+            )
+            .categorical(&[
+                "beta Z-up (Eq. 17)",
+                "beta Z-down (Eq. 19)",
+                "delta-beta = down - up",
+            ])
         })
         .collect();
     write_svg(
@@ -87,36 +92,26 @@ pub fn write_campaign_figure(c: &Campaign, out: &Path) -> Result<()> {
                 bars.push((x, y - e));
                 bars.push((x, y + e));
             }
-            Panel {
-                title: format!("{axis}-axis gyro: delta-beta = beta(Z-down) - beta(Z-up)"),
-                y_label: "deg/h",
-                lines: vec![
-                    Line {
-                        label: "estimate +- 1 SE",
-                        points: bars,
-                        color: RGBColor(90, 90, 90),
-                        error_bars: true,
-                    },
-                    Line {
-                        label: "cubic fit",
-                        points: curve(0.0),
-                        color: RGBColor(30, 90, 200),
-                        error_bars: false,
-                    },
-                    Line {
-                        label: "95 % band",
-                        points: curve(1.0),
-                        color: RGBColor(140, 170, 240),
-                        error_bars: false,
-                    },
-                    Line {
-                        label: "",
-                        points: curve(-1.0),
-                        color: RGBColor(140, 170, 240),
-                        error_bars: false,
-                    },
+            Panel::new(
+                format!("{axis}-axis gyro: delta-beta = beta(Z-down) - beta(Z-up)"),
+                "delta-beta (deg/h)",
+                vec![
+                    Line::new(
+                        "estimate +- 1 SE",
+                        bars,
+                        RGBColor(90, 90, 90),
+                        Kind::ErrorBars,
+                    ),
+                    Line::new("cubic fit", curve(0.0), RGBColor(30, 90, 200), Kind::Solid),
+                    Line::new(
+                        "95 % band",
+                        curve(1.0),
+                        RGBColor(140, 170, 240),
+                        Kind::Dashed,
+                    ),
+                    Line::new("", curve(-1.0), RGBColor(140, 170, 240), Kind::Dashed),
                 ],
-            }
+            )
         })
         .collect();
     write_svg(

@@ -1,5 +1,5 @@
 //! Every figure the commands write, one file per result family, on the shared plotting helpers
-//! and palette of [`plot`]: a plant run ([`run`]), the verification reports ([`analytic`]), the
+//! and palette of [`plot`], drawn by the rules of [`rules`]: a plant run ([`run`]), the verification reports ([`analytic`]), the
 //! paired paper studies ([`paper`]), calibration and campaign ([`calibration`]), and with the
 //! `rerun` feature the Rerun recordings ([`rerun`]). The model-vs-measurement report figures
 //! are drawn by `crate::diagnose::write_report` on the same helpers.
@@ -10,6 +10,7 @@ pub mod paper;
 pub mod plot;
 #[cfg(feature = "rerun")]
 pub mod rerun;
+pub mod rules;
 pub mod run;
 
 pub use run::RunFigures;

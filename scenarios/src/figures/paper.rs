@@ -8,94 +8,120 @@ use std::path::Path;
 use anyhow::Result;
 use plotters::style::RGBColor;
 use rins_nav::NavRecord;
-use rins_verify::paper::Table4Report;
+use rins_verify::paper::{Series, Table4Report};
 
-use super::plot::{Line, Panel, write_svg};
+use super::plot::{Kind, Line, Panel, PanelGeometry, render_svg, write_svg};
 
 /// Uncompensated case.
 const UNC: RGBColor = RGBColor(200, 40, 40);
 /// Compensated case.
 const COMP: RGBColor = RGBColor(30, 90, 200);
 
-/// Writes `fig2_attitude_error{,_noise_free}.svg` and `fig3_position_error{,_noise_free}.svg`
-/// (with PNGs) into `out`.
-pub fn write_table4_figures(r: &Table4Report, out: &Path) -> Result<()> {
+/// One figure of a paired study: file stem, title, x label and panels.
+pub struct PairedFigure<'a> {
+    /// File stem (`fig2_attitude_error`, `fig3_position_error_noise_free`, …).
+    pub stem: String,
+    /// Title, with the paper's figure number.
+    pub title: String,
+    /// x-axis label.
+    pub x_label: &'static str,
+    /// Panels.
+    pub panels: Vec<Panel<'a>>,
+}
+
+impl PairedFigure<'_> {
+    /// The SVG text and where each panel was drawn.
+    pub fn render(&self) -> Result<(String, Vec<PanelGeometry>)> {
+        render_svg(&self.title, self.x_label, &self.panels)
+    }
+}
+
+fn pts(recs: &[NavRecord], f: &dyn Fn(&NavRecord) -> f64) -> Vec<(f64, f64)> {
+    recs.iter().map(|x| (x.t_s / 3600.0, f(x))).collect()
+}
+
+/// The four figures of a paired study: attitude and position error for the first seed and the
+/// noise-free pair. `figures` names the paper's figures they correspond to (Table 4:
+/// `["Figure 2", "Figure 3"]`, Table 5: `["Figure 9", "Figure 10"]`); `kind` is how each case's
+/// week-long trace is drawn ([`Kind::Envelope`] in the outputs: a per-pixel-column min/max band
+/// with its mean, so a 16-position cycle does not become a solid comb and neither case hides
+/// the other).
+pub fn paired_figures<'a>(
+    r: &'a Table4Report,
+    figures: [&str; 2],
+    kind: Kind,
+) -> Vec<PairedFigure<'a>> {
+    let mut out = Vec::new();
     for (series, tag, what) in [
         (&r.first_seed, "", "first seed"),
         (&r.noise_free_series, "_noise_free", "noise-free"),
     ] {
-        let pts = |recs: &[NavRecord], f: &dyn Fn(&NavRecord) -> f64| -> Vec<(f64, f64)> {
-            recs.iter().map(|x| (x.t_s / 3600.0, f(x))).collect()
-        };
+        let series: &Series = series;
         let pair = |f: &dyn Fn(&NavRecord) -> f64| {
             vec![
-                Line {
-                    label: "uncompensated",
-                    points: pts(&series.uncompensated, f),
-                    color: UNC,
-                    error_bars: false,
-                },
-                Line {
-                    label: "compensated",
-                    points: pts(&series.compensated, f),
-                    color: COMP,
-                    error_bars: false,
-                },
+                Line::new("uncompensated", pts(&series.uncompensated, f), UNC, kind),
+                Line::new("compensated", pts(&series.compensated, f), COMP, kind),
             ]
         };
         let att = ["East", "North", "Up"]
             .iter()
             .enumerate()
-            .map(|(k, n)| Panel {
-                title: format!("{n}-axis attitude error"),
-                y_label: "deg",
-                lines: pair(&|x| x.att_err_rad[k].to_degrees()),
+            .map(|(k, n)| {
+                Panel::new(
+                    format!("{n}-axis attitude error"),
+                    "attitude error (deg)",
+                    pair(&|x| x.att_err_rad[k].to_degrees()),
+                )
             })
-            .collect::<Vec<_>>();
-        write_svg(
-            &out.join(format!("fig2_attitude_error{tag}.svg")),
-            &format!("Figure 2 counterpart: attitude error ({what})"),
-            "time (h)",
-            &att,
-        )?;
+            .collect();
+        out.push(PairedFigure {
+            stem: format!("fig2_attitude_error{tag}"),
+            title: format!("{} counterpart: attitude error ({what})", figures[0]),
+            x_label: "time (h)",
+            panels: att,
+        });
         let nm = rins_nav::errors::nmi;
-        let pos = vec![
-            Panel {
-                title: "Latitude error".into(),
-                y_label: "nmi",
-                lines: pair(&|x| nm(x.north_m)),
-            },
-            Panel {
-                title: "Longitude error".into(),
-                y_label: "nmi",
-                lines: pair(&|x| nm(x.east_m)),
-            },
-            Panel {
-                title: "Horizontal error and tRMS (Eq. 20)".into(),
-                y_label: "nmi",
-                lines: {
-                    let mut l = pair(&|x| nm(x.horizontal_m));
-                    l.push(Line {
-                        label: "tRMS uncompensated",
-                        points: pts(&series.uncompensated, &|x| nm(x.trms_m)),
-                        color: RGBColor(240, 150, 150),
-                        error_bars: false,
-                    });
-                    l.push(Line {
-                        label: "tRMS compensated",
-                        points: pts(&series.compensated, &|x| nm(x.trms_m)),
-                        color: RGBColor(140, 170, 240),
-                        error_bars: false,
-                    });
-                    l
-                },
-            },
-        ];
+        let mut horizontal = pair(&|x| nm(x.horizontal_m));
+        // tRMS is smooth: dashed lines in darker case colours over the envelopes.
+        horizontal.push(Line::new(
+            "tRMS uncompensated",
+            pts(&series.uncompensated, &|x| nm(x.trms_m)),
+            RGBColor(150, 20, 20),
+            Kind::Dashed,
+        ));
+        horizontal.push(Line::new(
+            "tRMS compensated",
+            pts(&series.compensated, &|x| nm(x.trms_m)),
+            RGBColor(20, 50, 140),
+            Kind::Dashed,
+        ));
+        out.push(PairedFigure {
+            stem: format!("fig3_position_error{tag}"),
+            title: format!("{} counterpart: position error ({what})", figures[1]),
+            x_label: "time (h)",
+            panels: vec![
+                Panel::new("Latitude error", "error (nmi)", pair(&|x| nm(x.north_m))),
+                Panel::new("Longitude error", "error (nmi)", pair(&|x| nm(x.east_m))),
+                Panel::new(
+                    "Horizontal error and tRMS (Eq. 20)",
+                    "error (nmi)",
+                    horizontal,
+                ),
+            ],
+        });
+    }
+    out
+}
+
+/// Writes `fig2_attitude_error{,_noise_free}.svg` and `fig3_position_error{,_noise_free}.svg`
+/// (with PNGs) into `out`, the traces as envelopes ([`paired_figures`]).
+pub fn write_table4_figures(r: &Table4Report, out: &Path, figures: [&str; 2]) -> Result<()> {
+    for f in paired_figures(r, figures, Kind::Envelope) {
         write_svg(
-            &out.join(format!("fig3_position_error{tag}.svg")),
-            &format!("Figure 3 counterpart: position error ({what})"),
-            "time (h)",
-            &pos,
+            &out.join(format!("{}.svg", f.stem)),
+            &f.title,
+            f.x_label,
+            &f.panels,
         )?;
     }
     Ok(())

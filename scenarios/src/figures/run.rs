@@ -10,7 +10,7 @@ use rins_plant::thermal::node;
 use rins_plant::units::{DPH, UG};
 use rins_plant::{ImuSample, PlantConfig, Truth};
 
-use super::plot::{Line, PALETTE, Panel, write_figure};
+use super::plot::{Kind, Line, PALETTE, Panel, write_figure};
 use crate::runner::Sink;
 
 /// Buckets per figure line.
@@ -108,28 +108,25 @@ impl RunFigures {
         let pts = |f: &dyn Fn(&Row) -> f64| -> Vec<(f64, f64)> {
             rows.iter().map(|r| (r.t_s * xs, f(r))).collect()
         };
-        let line = |label: &'static str, i: usize, f: &dyn Fn(&Row) -> f64| Line {
-            label,
-            points: pts(f),
-            color: PALETTE[i % PALETTE.len()],
-            error_bars: false,
+        let line = |label: &'static str, i: usize, f: &dyn Fn(&Row) -> f64| {
+            Line::new(label, pts(f), PALETTE[i % PALETTE.len()], Kind::Solid)
         };
         let mut files = Vec::new();
         let axes = ["x", "y", "z"];
         let mut imu = Vec::new();
         for (i, a) in axes.iter().enumerate() {
-            imu.push(Panel {
-                title: format!("gyro {a}: mean rate per bucket (Earth rate + table rate + errors)"),
-                y_label: "deg/h",
-                lines: vec![line("", i, &|r| r.rate_dph[i])],
-            });
+            imu.push(Panel::new(
+                format!("gyro {a}: mean rate per bucket (Earth rate + table rate + errors)"),
+                "rate (deg/h)",
+                vec![line("", i, &|r| r.rate_dph[i])],
+            ));
         }
         for (i, a) in axes.iter().enumerate() {
-            imu.push(Panel {
-                title: format!("accelerometer {a}: mean specific force per bucket"),
-                y_label: "m/s^2",
-                lines: vec![line("", i, &|r| r.accel_mps2[i])],
-            });
+            imu.push(Panel::new(
+                format!("accelerometer {a}: mean specific force per bucket"),
+                "specific force (m/s^2)",
+                vec![line("", i, &|r| r.accel_mps2[i])],
+            ));
         }
         files.extend(write_figure(
             &dir.join("run_imu.svg"),
@@ -144,19 +141,15 @@ impl RunFigures {
             .collect();
         temps.push(line("chamber", node::COUNT, &|r| r.temps_c[node::COUNT]));
         let table = vec![
-            Panel {
-                title: "gimbal angles at the end of each bucket".into(),
-                y_label: "deg",
-                lines: vec![
+            Panel::new(
+                "gimbal angles at the end of each bucket",
+                "angle (deg)",
+                vec![
                     line("outer", 0, &|r| r.outer_deg),
                     line("inner", 1, &|r| r.inner_deg),
                 ],
-            },
-            Panel {
-                title: "temperatures (bucket mean)".into(),
-                y_label: "deg C",
-                lines: temps,
-            },
+            ),
+            Panel::new("temperatures (bucket mean)", "temperature (deg C)", temps),
         ];
         files.extend(write_figure(
             &dir.join("run_table_thermal.svg"),
@@ -172,11 +165,11 @@ impl RunFigures {
                 .enumerate()
                 .map(|(k, t)| line(t.key(), k, &move |r: &Row| r.gyro_dph[k][i]))
                 .collect();
-            effects.push(Panel {
-                title: format!("gyro {a}: contribution of each enabled effect"),
-                y_label: "deg/h",
+            effects.push(Panel::new(
+                format!("gyro {a}: contribution of each enabled effect"),
+                "contribution (deg/h)",
                 lines,
-            });
+            ));
         }
         for (i, a) in axes.iter().enumerate() {
             let lines = self
@@ -185,11 +178,11 @@ impl RunFigures {
                 .enumerate()
                 .map(|(k, t)| line(t.key(), k, &move |r: &Row| r.accel_ug[k][i]))
                 .collect();
-            effects.push(Panel {
-                title: format!("accelerometer {a}: contribution of each enabled effect"),
-                y_label: "ug",
+            effects.push(Panel::new(
+                format!("accelerometer {a}: contribution of each enabled effect"),
+                "contribution (ug)",
                 lines,
-            });
+            ));
         }
         files.extend(write_figure(
             &dir.join("run_effects.svg"),

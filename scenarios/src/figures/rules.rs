@@ -1,0 +1,233 @@
+//! The rules every figure follows, in one place, as pure functions the drawing code
+//! ([`super::plot`]) applies and the tests check:
+//!
+//! * a long series is drawn as a per-pixel-column min/max envelope with its mean
+//!   ([`envelope`]), so a week of 60 s records neither fills the file nor turns a 16-position
+//!   cycle into a solid comb, and the visible extremes stay those of the series;
+//! * the legend goes into a corner of the plotting area that no plotted point or segment
+//!   touches, chosen from the data ([`place_legend`]); when no corner is free the y range gets
+//!   headroom above the data, and when the legend is too tall for that it goes outside, right of
+//!   the plot;
+//! * tick labels never read "-0" or "-0.0" ([`tick_label`]);
+//! * a categorical axis (table position, channel, effect) is labelled with its category names
+//!   at integer positions, never with numeric ticks (drawn in [`super::plot`]).
+//!
+//! Overlapping traces are told apart by the line kinds of [`super::plot::Kind`] (dashed,
+//! translucent envelope fills, dots with transparency) and by side-by-side error bars.
+
+/// A pixel rectangle: left, top, right, bottom (right/bottom exclusive).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Rect {
+    /// Left edge, px.
+    pub x0: i32,
+    /// Top edge, px.
+    pub y0: i32,
+    /// Right edge, px.
+    pub x1: i32,
+    /// Bottom edge, px.
+    pub y1: i32,
+}
+
+impl Rect {
+    /// Whether the pixel `(x, y)` lies inside (edges included).
+    pub fn contains(&self, (x, y): (i32, i32)) -> bool {
+        x >= self.x0 && x <= self.x1 && y >= self.y0 && y <= self.y1
+    }
+
+    /// Whether the segment `a`–`b` touches the rectangle (sampled every pixel along its length,
+    /// exact enough at the resolution the figure is drawn at).
+    pub fn touches_segment(&self, a: (i32, i32), b: (i32, i32)) -> bool {
+        let n = (a.0 - b.0).abs().max((a.1 - b.1).abs()).max(1);
+        (0..=n).any(|k| {
+            let t = k as f64 / n as f64;
+            let p = (
+                (a.0 as f64 + t * (b.0 - a.0) as f64).round() as i32,
+                (a.1 as f64 + t * (b.1 - a.1) as f64).round() as i32,
+            );
+            self.contains(p)
+        })
+    }
+}
+
+/// One pixel column of an envelope: the x at its centre and the min, max and mean of the
+/// samples that fall in it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Column {
+    /// x of the column centre (data units); the column's first sample's x when it has one
+    /// sample.
+    pub x: f64,
+    /// Smallest y in the column.
+    pub min: f64,
+    /// Largest y in the column.
+    pub max: f64,
+    /// Mean y in the column.
+    pub mean: f64,
+}
+
+/// The per-column min/max/mean of `points` over `[x0, x1]` split into `columns` equal columns
+/// (non-finite points skipped, empty columns left out). Every finite sample is in exactly one
+/// column, so the envelope's overall min and max are the series' min and max.
+pub fn envelope(points: &[(f64, f64)], x0: f64, x1: f64, columns: usize) -> Vec<Column> {
+    let columns = columns.max(1);
+    let width = (x1 - x0).max(f64::MIN_POSITIVE);
+    let mut acc: Vec<Option<(f64, f64, f64, u64)>> = vec![None; columns];
+    for &(x, y) in points {
+        if !(x.is_finite() && y.is_finite()) {
+            continue;
+        }
+        let k = (((x - x0) / width * columns as f64).floor().max(0.0) as usize).min(columns - 1);
+        acc[k] = Some(match acc[k] {
+            None => (y, y, y, 1),
+            Some((lo, hi, s, n)) => (lo.min(y), hi.max(y), s + y, n + 1),
+        });
+    }
+    acc.iter()
+        .enumerate()
+        .filter_map(|(k, a)| {
+            a.map(|(min, max, sum, n)| Column {
+                x: x0 + width * (k as f64 + 0.5) / columns as f64,
+                min,
+                max,
+                mean: sum / n as f64,
+            })
+        })
+        .collect()
+}
+
+/// Where a panel's legend goes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LegendPlace {
+    /// Inside the plotting area, at this rectangle (relative to the plot's top-left corner),
+    /// which no point or segment touches.
+    Inside(Rect),
+    /// Inside at the top right, after raising the y range's top by this fraction of the range
+    /// so the band under the legend holds no data.
+    Headroom(Rect, f64),
+    /// Outside, right of the plotting area (the plot is narrowed by the legend's width).
+    Outside,
+}
+
+/// Padding between a legend and the plot frame, px.
+pub const LEGEND_PAD_PX: i32 = 6;
+
+/// Picks a legend place for a `w`×`h` px legend in a `plot_w`×`plot_h` px plot whose marks are
+/// `segments` (pixel coordinates relative to the plot's top-left; a point is a segment of zero
+/// length): the first free corner of upper right, upper left, lower right, lower left; else
+/// headroom when the legend takes at most 40 % of the height; else outside.
+pub fn place_legend(
+    plot_w: i32,
+    plot_h: i32,
+    w: i32,
+    h: i32,
+    segments: &[((i32, i32), (i32, i32))],
+) -> LegendPlace {
+    let p = LEGEND_PAD_PX;
+    if w + 2 * p > plot_w || h + 2 * p > plot_h {
+        return LegendPlace::Outside;
+    }
+    let corners = [
+        (plot_w - p - w, p),
+        (p, p),
+        (plot_w - p - w, plot_h - p - h),
+        (p, plot_h - p - h),
+    ];
+    for (x, y) in corners {
+        let r = Rect {
+            x0: x,
+            y0: y,
+            x1: x + w,
+            y1: y + h,
+        };
+        if !segments.iter().any(|&(a, b)| r.touches_segment(a, b)) {
+            return LegendPlace::Inside(r);
+        }
+    }
+    let band = h + 2 * p;
+    if (band as f64) <= 0.4 * plot_h as f64 {
+        // Data squeezed into the lower plot_h - band px: the top band is free.
+        let raise = band as f64 / (plot_h - band) as f64;
+        let (x, y) = corners[0];
+        return LegendPlace::Headroom(
+            Rect {
+                x0: x,
+                y0: y,
+                x1: x + w,
+                y1: y + h,
+            },
+            raise,
+        );
+    }
+    LegendPlace::Outside
+}
+
+/// A tick label for `v` on an axis spanning `span`: enough decimals for the tick step, no
+/// "-0"/"-0.0", scientific notation for very small or large magnitudes.
+pub fn tick_label(v: f64, span: f64) -> String {
+    let step = (span.abs() / 5.0).max(f64::MIN_POSITIVE);
+    let mag = v.abs().max(step);
+    let s = if !(1e-3..1e6).contains(&mag) {
+        format!("{v:.2e}")
+    } else {
+        let decimals = (-(step.log10().floor()) as i32).clamp(0, 6) as usize;
+        format!("{v:.decimals$}")
+    };
+    // A value that rounds to zero prints without its sign.
+    if s.starts_with('-') && s[1..].chars().all(|c| matches!(c, '0' | '.')) {
+        s[1..].to_string()
+    } else {
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn envelope_keeps_the_extremes_and_every_sample() {
+        let pts: Vec<(f64, f64)> = (0..10_000)
+            .map(|i| (i as f64, ((i * 7919) % 1000) as f64 - 500.0))
+            .collect();
+        let env = envelope(&pts, 0.0, 9999.0, 300);
+        assert_eq!(env.len(), 300);
+        let lo = env.iter().map(|c| c.min).fold(f64::MAX, f64::min);
+        let hi = env.iter().map(|c| c.max).fold(f64::MIN, f64::max);
+        assert_eq!(lo, pts.iter().map(|p| p.1).fold(f64::MAX, f64::min));
+        assert_eq!(hi, pts.iter().map(|p| p.1).fold(f64::MIN, f64::max));
+        let mean: f64 = pts.iter().map(|p| p.1).sum::<f64>() / pts.len() as f64;
+        // Equal columns hold 33 or 34 samples: the mean of the column means is near the mean.
+        let cm: f64 = env.iter().map(|c| c.mean).sum::<f64>() / env.len() as f64;
+        assert!((cm - mean).abs() < 5.0, "{cm} vs {mean}");
+    }
+
+    #[test]
+    fn no_minus_zero_ticks() {
+        assert_eq!(tick_label(-0.0, 1.0), "0.0");
+        assert_eq!(tick_label(-1e-17, 0.5), "0.0");
+        assert_eq!(tick_label(-0.004, 0.05), "0.00");
+        assert_eq!(tick_label(-0.25, 1.0), "-0.2");
+        assert_eq!(tick_label(3.0, 40.0), "3");
+        assert_eq!(tick_label(2.5e-6, 1e-5), "2.50e-6");
+    }
+
+    #[test]
+    fn legend_takes_a_free_corner_or_headroom() {
+        // Points along the top band: the lower corners are free; lower right comes first.
+        let top: Vec<_> = (0..100).map(|x| ((x * 8, 20), (x * 8, 20))).collect();
+        match place_legend(800, 200, 100, 40, &top) {
+            LegendPlace::Inside(r) => assert!(r.y0 > 100 && r.x0 > 400, "{r:?}"),
+            p => panic!("{p:?}"),
+        }
+        // A diagonal and the opposite diagonal cross every corner: headroom.
+        let mut cross: Vec<_> = vec![((0, 0), (800, 200)), ((0, 200), (800, 0))];
+        cross.push(((0, 100), (800, 100)));
+        assert!(matches!(
+            place_legend(800, 200, 100, 40, &cross),
+            LegendPlace::Headroom(_, _)
+        ));
+        assert_eq!(
+            place_legend(800, 200, 100, 150, &cross),
+            LegendPlace::Outside
+        );
+    }
+}

@@ -1,0 +1,203 @@
+"""Every result command's `--report DIR` page, rendered in headless Chromium.
+
+For each report: Chromium loads report.html from the file (a fresh profile, no network
+features), dumps the DOM and logs to stderr; the page must log no console message and no failed
+load, every expected figure must be an inline SVG with drawn content and a non-zero size, every
+number cell (data-src/data-json/data-value) must equal the value at its path in the command's
+--json output (the exact value, and the shown text to its last digit), and a screenshot is
+taken (a PNG of the window size, not blank).
+
+Usage: python3 tests/browser/test_reports.py RINS_BINARY
+"""
+
+import json
+import math
+import os
+import re
+import struct
+import subprocess
+import sys
+import tempfile
+from html.parser import HTMLParser
+
+CHROMIUM = "/usr/bin/chromium"
+FLAGS = [
+    "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+    "--disable-background-networking", "--disable-component-update", "--disable-sync",
+    "--hide-scrollbars",
+]
+
+
+def run(cmd, **kw):
+    p = subprocess.run(cmd, capture_output=True, text=True, **kw)
+    if p.returncode != 0:
+        raise SystemExit(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stderr[-3000:]}")
+    return p.stdout
+
+
+class Page(HTMLParser):
+    """Figures (with their SVG size and element count) and number cells of a dumped DOM."""
+
+    def __init__(self):
+        super().__init__()
+        self.figures = {}
+        self.cells = []
+        self.stack_fig = None
+        self.cell = None
+        self.forbidden = []
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag in ("script", "link", "img", "iframe") or (tag != "svg" and "src" in a):
+            self.forbidden.append(tag)
+        if tag == "figure" and "data-figure" in a:
+            self.stack_fig = a["data-figure"]
+            self.figures[self.stack_fig] = {"svg": None, "elements": 0}
+        elif self.stack_fig and tag == "svg":
+            self.figures[self.stack_fig]["svg"] = (a.get("width"), a.get("height"))
+        elif self.stack_fig and tag in ("path", "polyline", "line", "circle", "rect", "polygon", "text"):
+            self.figures[self.stack_fig]["elements"] += 1
+        if tag == "td" and "data-json" in a:
+            self.cell = {"src": a["data-src"], "path": a["data-json"], "value": a["data-value"], "text": ""}
+
+    def handle_endtag(self, tag):
+        if tag == "figure":
+            self.stack_fig = None
+        if tag == "td" and self.cell is not None:
+            self.cells.append(self.cell)
+            self.cell = None
+
+    def handle_data(self, data):
+        if self.cell is not None:
+            self.cell["text"] += data
+
+
+def lookup(doc, path):
+    for k in path.split("."):
+        doc = doc[int(k)] if isinstance(doc, list) else doc[k]
+    return doc
+
+
+def last_digit(text):
+    """Half a unit of the last shown digit of a number's text."""
+    m = re.fullmatch(r"-?\d+(?:\.(\d+))?(?:e(-?\d+))?", text)
+    assert m, f"not a number: {text!r}"
+    decimals = len(m.group(1) or "")
+    exp = int(m.group(2) or 0)
+    return 0.5 * 10.0 ** (exp - decimals)
+
+
+def png_size(path):
+    with open(path, "rb") as f:
+        head = f.read(24)
+    assert head[:8] == b"\x89PNG\r\n\x1a\n", path
+    return struct.unpack(">II", head[16:24])
+
+
+def check_report(name, html, sources, figures, shots):
+    url = "file://" + os.path.abspath(html)
+    with tempfile.TemporaryDirectory() as profile:
+        p = subprocess.run(
+            [CHROMIUM, *FLAGS, f"--user-data-dir={profile}", "--enable-logging=stderr", "--v=0",
+             "--dump-dom", url],
+            capture_output=True, text=True, timeout=180)
+    assert p.returncode == 0, f"{name}: chromium failed: {p.stderr[-2000:]}"
+    # Page messages are logged as CONSOLE lines; a failed resource load as net::ERR.
+    bad = [l for l in p.stderr.splitlines() if "CONSOLE" in l or "net::ERR" in l]
+    assert not bad, f"{name}: console output: {bad}"
+    page = Page()
+    page.feed(p.stdout)
+    assert not page.forbidden, f"{name}: external resources {page.forbidden}"
+    assert "<h1>" in p.stdout, f"{name}: the page did not render"
+    for f in figures:
+        assert f in page.figures, f"{name}: figure {f} missing ({list(page.figures)})"
+        g = page.figures[f]
+        assert g["svg"] and all(v and float(v) > 0 for v in g["svg"]), f"{name}: {f} has no size"
+        assert g["elements"] > 30, f"{name}: {f} is nearly empty ({g['elements']} elements)"
+    assert page.cells, f"{name}: no number cells"
+    for c in page.cells:
+        want = lookup(sources[c["src"]], c["path"])
+        got = float(c["value"])
+        assert got == want, f"{name}: {c['src']}:{c['path']} page {got!r} vs json {want!r}"
+        shown = c["text"].strip()
+        assert abs(float(shown) - want) <= last_digit(shown) * (1 + 1e-9) + 1e-300, (
+            f"{name}: {c['path']} shows {shown} for {want!r}")
+    with tempfile.TemporaryDirectory() as profile:
+        shot = os.path.join(shots, f"{name}.png")
+        subprocess.run(
+            [CHROMIUM, *FLAGS, f"--user-data-dir={profile}", "--window-size=1000,1400",
+             f"--screenshot={shot}", url],
+            capture_output=True, text=True, timeout=180, check=True)
+    w, h = png_size(shot)
+    assert (w, h) == (1000, 1400), f"{name}: screenshot {w}x{h}"
+    assert os.path.getsize(shot) > 20_000, f"{name}: blank screenshot"
+    print(f"  {name}: {len(page.figures)} figures, {len(page.cells)} numbers equal to --json, "
+          f"screenshot {os.path.getsize(shot) // 1024} KiB")
+
+
+CAMPAIGN = """[scenario]
+name = "browser-campaign"
+[scheme]
+kind = "z-up-calibration"
+lead_dwell_s = 120.0
+dwell_s = 120.0
+[sensor]
+preset = "nav-grade-full"
+[campaign]
+from_c = 10.0
+to_c = 50.0
+runs = 5
+"""
+
+PAIRED = ["fig2_attitude_error", "fig3_position_error",
+          "fig2_attitude_error_noise_free", "fig3_position_error_noise_free"]
+MVM = ["residual_vs_temperature", "bias_by_position", "allan_residual", "navigation_error"]
+
+
+def main():
+    rins = os.path.abspath(sys.argv[1])
+    t = tempfile.mkdtemp(prefix="rins-browser-")
+    shots = os.environ.get("RINS_BROWSER_OUT", t)
+    os.makedirs(shots, exist_ok=True)
+    j = lambda cmd: json.loads(run([rins, *cmd]))
+    checked = 0
+
+    # The README's first command: the headline job always writes its report.
+    quick = os.environ.get("RINS_BROWSER_QUICK") == "1"
+    if not quick:
+        run([rins, "paper", "--out", f"{t}/paper"])
+        sources = {"analytic": j(["verify", "analytic", "--json"]),
+                   "table4": json.load(open(f"{t}/paper/table4.json"))}
+        check_report("paper", f"{t}/paper/report.html", sources, PAIRED, shots)
+        checked += 1
+
+    t4 = j(["paper", "table4", "--runs", "1", "--days", "0.05", "--json", "--out", f"{t}/t4",
+            "--report", f"{t}/t4"])
+    check_report("table4", f"{t}/t4/report.html", {"table4": t4}, PAIRED, shots)
+
+    with open(f"{t}/camp.toml", "w") as f:
+        f.write(CAMPAIGN)
+    camp = j(["campaign", f"{t}/camp.toml", "--json", "--out", f"{t}/camp", "--report", f"{t}/camp"])
+    check_report("campaign", f"{t}/camp/report.html", {"campaign": camp},
+                 ["fig8_dbeta_vs_temperature"], shots)
+
+    t5 = j(["paper", "table5", "--compensation", f"{t}/camp/dbeta-compensation.toml", "--runs", "1",
+            "--days", "0.05", "--json", "--out", f"{t}/t5", "--report", f"{t}/t5"])
+    check_report("table5", f"{t}/t5/report.html", {"table5": t5}, PAIRED, shots)
+
+    cal = j(["calibrate", "builtin:calibration-z-down", "--json", "--out", f"{t}/cal",
+             "--report", f"{t}/cal"])
+    check_report("calibrate", f"{t}/cal/report.html", {"calibration": cal}, ["calibration_beta"], shots)
+
+    run([rins, "measure", "docs/examples/diagnosis-truth.toml", "--out", f"{t}/unit.csv"])
+    data = ["--model", "docs/examples/diagnosis-model.toml", "--data", f"{t}/unit.csv", "--json"]
+    diag = j(["diagnose", *data, "--report", f"{t}/diag"])
+    check_report("diagnose", f"{t}/diag/report.html", {"diagnose": diag}, MVM, shots)
+    comp = j(["compare", *data, "--report", f"{t}/comp"])
+    check_report("compare", f"{t}/comp/report.html", {"compare": comp}, MVM, shots)
+    checked += 6
+    print(f"{checked} passed, 0 failed: HTML reports in headless Chromium")
+
+
+if __name__ == "__main__":
+    main()
