@@ -174,8 +174,8 @@ fn hermite_jet(b: &[[f64; 6]; 3], j0: &SeaJet, j1: &SeaJet, h: f64) -> SeaJet {
 /// The carrier state from the mean track (course, speed, position) and the sea jet.
 pub fn compose(tp: &TrackPoint, pos: TrackPosition, h0_m: f64, jet: &SeaJet) -> CarrierState {
     let (sp, cp) = tp.psi_rad.sin_cos();
-    let w = tp.psi_rate_rps;
-    // Surge/sway displacement in the course frame and its derivatives (ψ̈ = 0 inside a turn).
+    let (w, wd) = (tp.psi_rate_rps, tp.psi_acc_rps2);
+    // Surge/sway displacement in the course frame and its derivatives.
     let (s, sd, sdd) = (jet.x[dof::SURGE], jet.xd[dof::SURGE], jet.xdd[dof::SURGE]);
     let (y, yd, ydd) = (jet.x[dof::SWAY], jet.xd[dof::SWAY], jet.xdd[dof::SWAY]);
     // H(ψ)·(sway, surge) = (sway cos ψ + surge sin ψ, −sway sin ψ + surge cos ψ).
@@ -193,13 +193,13 @@ pub fn compose(tp: &TrackPoint, pos: TrackPosition, h0_m: f64, jet: &SeaJet) -> 
     let v_n = tp.v_n() + Vector3::new(ve1 + w * ve2, vn1 + w * vn2, jet.xd[dof::HEAVE]);
     let a_n = tp.a_n()
         + Vector3::new(
-            ae1 + 2.0 * w * ae2 - w * w * de,
-            an1 + 2.0 * w * an2 - w * w * dn,
+            ae1 + 2.0 * w * ae2 + wd * ve2 - w * w * de,
+            an1 + 2.0 * w * an2 + wd * vn2 - w * w * dn,
             jet.xdd[dof::HEAVE],
         );
     // Euler angles of C_c^n = R_z(a)·R_x(b)·R_y(c).
     let a = -(tp.psi_rad + jet.x[dof::YAW]);
-    let (ad, add) = (-(w + jet.xd[dof::YAW]), -jet.xdd[dof::YAW]);
+    let (ad, add) = (-(w + jet.xd[dof::YAW]), -(wd + jet.xdd[dof::YAW]));
     let (b, bd, bdd) = (jet.x[dof::PITCH], jet.xd[dof::PITCH], jet.xdd[dof::PITCH]);
     let (c, cd, cdd) = (jet.x[dof::ROLL], jet.xd[dof::ROLL], jet.xdd[dof::ROLL]);
     let (omega, alpha) = euler_zxy_rates(a, ad, add, b, bd, bdd, c, cd, cdd);

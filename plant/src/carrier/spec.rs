@@ -197,9 +197,10 @@ pub struct ShipSpec {
     pub height_m: f64,
     /// Legs in order; the ship starts on the first leg's heading and speed.
     pub legs: Vec<LegSpec>,
-    /// Largest rate of turn, deg/s, in [0.01, 10].
+    /// Peak rate of turn, deg/s, in [0.01, 10] (turns follow a cycloidal profile, see
+    /// [`super::track`]).
     pub turn_rate_dps: f64,
-    /// Largest along-track acceleration, m/s², in [0.001, 5].
+    /// Peak along-track acceleration, m/s², in [0.001, 5].
     pub accel_mps2: f64,
     /// Sea-state motion.
     pub sea: SeaSpec,

@@ -1,5 +1,11 @@
-//! The ship's mean track: legs of course and speed joined by constant-rate turns and
-//! constant-acceleration speed changes, on the WGS-84 ellipsoid.
+//! The ship's mean track: legs of course and speed joined by smooth turns and speed changes, on
+//! the WGS-84 ellipsoid.
+//!
+//! Each change follows the cycloidal profile S(x) = x − sin(2πx)/(2π), x = τ/T ∈ [0, 1]: rate and
+//! acceleration start and end at zero, so velocity and acceleration are continuous (the
+//! quadrature then has no corner to miss). The peak rate 2·Δ/T is the limit: a turn of Δψ at the
+//! turn-rate limit r lasts T = 2|Δψ|/r, a speed change of Δu at the acceleration limit a lasts
+//! T = 2|Δu|/a.
 //!
 //! Course ψ (clockwise from north) and speed u are closed-form in time; the ground velocity is
 //! v^n = u·[sin ψ, cos ψ, 0] (ENU) and its derivative u̇·[sin ψ, cos ψ, 0] + u·ψ̇·[cos ψ, −sin ψ, 0].
@@ -19,11 +25,11 @@ pub const KNOT_MPS: f64 = 1852.0 / 3600.0;
 struct Leg {
     t0_s: f64,
     psi0_rad: f64,
-    /// Signed turn rate, rad/s, and turn duration, s.
+    /// Signed course change, rad, and turn duration, s.
     turn_rps: f64,
     turn_s: f64,
     u0_mps: f64,
-    /// Signed acceleration, m/s², and its duration, s.
+    /// Signed speed change, m/s, and its duration, s.
     acc_mps2: f64,
     acc_s: f64,
 }
@@ -35,6 +41,8 @@ pub struct TrackPoint {
     pub psi_rad: f64,
     /// ψ̇, rad/s.
     pub psi_rate_rps: f64,
+    /// ψ̈, rad/s².
+    pub psi_acc_rps2: f64,
     /// Speed u, m/s.
     pub speed_mps: f64,
     /// u̇, m/s².
@@ -92,11 +100,11 @@ impl Track {
             let leg = Leg {
                 t0_s: t0,
                 psi0_rad: psi,
-                turn_rps: rate.copysign(dpsi),
-                turn_s: dpsi.abs() / rate,
+                turn_rps: dpsi,
+                turn_s: 2.0 * dpsi.abs() / rate,
                 u0_mps: u,
-                acc_mps2: acc.copysign(du),
-                acc_s: du.abs() / acc,
+                acc_mps2: du,
+                acc_s: 2.0 * du.abs() / acc,
             };
             legs.push(leg);
             let end = leg.eval(t0 + l.duration_s);
@@ -133,42 +141,39 @@ impl Track {
     pub fn eval(&self, leg: usize, t_s: f64) -> TrackPoint {
         self.legs[leg].eval(t_s)
     }
-
-    /// Start times of the legs and the ends of their turns and speed changes, s: the instants
-    /// where the track's acceleration jumps.
-    pub fn corners_s(&self) -> Vec<f64> {
-        let mut v: Vec<f64> = self
-            .legs
-            .iter()
-            .flat_map(|l| [l.t0_s, l.t0_s + l.turn_s, l.t0_s + l.acc_s])
-            .collect();
-        v.sort_by(f64::total_cmp);
-        v.dedup();
-        v
-    }
 }
 
 impl Leg {
     #[inline]
     fn eval(&self, t_s: f64) -> TrackPoint {
         let tau = t_s - self.t0_s;
-        let (psi, psi_rate) = if tau < self.turn_s {
-            (self.psi0_rad + self.turn_rps * tau, self.turn_rps)
-        } else {
-            (self.psi0_rad + self.turn_rps * self.turn_s, 0.0)
-        };
-        let (u, u_rate) = if tau < self.acc_s {
-            (self.u0_mps + self.acc_mps2 * tau, self.acc_mps2)
-        } else {
-            (self.u0_mps + self.acc_mps2 * self.acc_s, 0.0)
-        };
+        let (psi, psi_rate, psi_acc) = cycloidal(self.psi0_rad, self.turn_rps, tau, self.turn_s);
+        let (u, u_rate, _) = cycloidal(self.u0_mps, self.acc_mps2, tau, self.acc_s);
         TrackPoint {
             psi_rad: psi,
             psi_rate_rps: psi_rate,
+            psi_acc_rps2: psi_acc,
             speed_mps: u,
             speed_rate_mps2: u_rate,
         }
     }
+}
+
+/// Value, rate and acceleration of a change of `delta` from `start` over `dur_s` along the
+/// cycloidal profile, at `tau` seconds from its start.
+#[inline]
+pub fn cycloidal(start: f64, delta: f64, tau: f64, dur_s: f64) -> (f64, f64, f64) {
+    if tau >= dur_s || dur_s <= 0.0 {
+        return (start + delta, 0.0, 0.0);
+    }
+    let x = tau.max(0.0) / dur_s;
+    let w = 2.0 * std::f64::consts::PI;
+    let (s, c) = (w * x).sin_cos();
+    (
+        start + delta * (x - s / w),
+        delta * (1.0 - c) / dur_s,
+        delta * w * s / (dur_s * dur_s),
+    )
 }
 
 /// Latitude and longitude of the mean track, advanced one tick at a time (the only integrated

@@ -147,10 +147,8 @@ impl Trajectory {
             }
             let mut q = UnitQuaternion::new_normalize(q);
             // q and −q are one attitude: keep consecutive rows in one hemisphere.
-            if let Some(p) = rows.last() {
-                if p.q.coords.dot(&q.coords) < 0.0 {
-                    q = UnitQuaternion::new_unchecked(-q.into_inner());
-                }
+            if rows.last().is_some_and(|p| p.q.coords.dot(&q.coords) < 0.0) {
+                q = UnitQuaternion::new_unchecked(-q.into_inner());
             }
             times.push(v[0]);
             rows.push(Row {

@@ -191,7 +191,7 @@ impl Waves {
         if tick == self.tick {
             return;
         }
-        if tick == self.tick + 1 && tick % RESYNC_TICKS != 0 {
+        if tick == self.tick + 1 && !tick.is_multiple_of(RESYNC_TICKS) {
             self.z
                 .iter_mut()
                 .zip(&self.rot_tick)
@@ -218,13 +218,7 @@ impl Waves {
                 Some(o) => self.z[i] * self.rot_offsets[o][i],
                 None => self.z[i],
             };
-            let w = self.omega_rps[i];
-            for d in 0..6 {
-                let p = c[d] * z;
-                j.x[d] += p.re;
-                j.xd[d] -= w * p.im;
-                j.xdd[d] -= w * w * p.re;
-            }
+            accumulate(&mut j, c, z, self.omega_rps[i]);
         }
         j
     }
@@ -235,13 +229,20 @@ impl Waves {
         for (i, c) in self.coef.iter().enumerate() {
             let w = self.omega_rps[i];
             let z = Complex::from_polar(1.0, w * t_s + self.phase_rad[i]);
-            for d in 0..6 {
-                let p = c[d] * z;
-                j.x[d] += p.re;
-                j.xd[d] -= w * p.im;
-                j.xdd[d] -= w * w * p.re;
-            }
+            accumulate(&mut j, c, z, w);
         }
         j
+    }
+}
+
+/// Adds one component (amplitudes `c`, phasor `z`, frequency `w`) to the jet:
+/// x += Re(c·z), ẋ += Re(iω·c·z), ẍ += Re(−ω²·c·z).
+#[inline]
+fn accumulate(j: &mut SeaJet, c: &[Complex<f64>; 6], z: Complex<f64>, w: f64) {
+    for (d, c) in c.iter().enumerate() {
+        let p = c * z;
+        j.x[d] += p.re;
+        j.xd[d] -= w * p.im;
+        j.xdd[d] -= w * w * p.re;
     }
 }
