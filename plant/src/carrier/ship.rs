@@ -17,7 +17,6 @@ use super::state::{CarrierState, quintic_basis};
 use super::track::{Track, TrackPoint, TrackPosition};
 use super::waves::{SeaJet, Waves, dof};
 use crate::earth::radii_of_curvature;
-use crate::table::gimbal::{rot_x, rot_y, rot_z};
 use crate::units::DEG;
 
 /// The ship, advanced tick by tick.
@@ -109,12 +108,9 @@ impl Ship {
         let t0 = k as f64 * h;
         // Mean-track displacement over the tick: Gauss–Legendre on the closed-form velocity.
         let g = 3f64.sqrt() / 6.0;
-        let (tpa, tpb) = (
-            self.track_at(t0 + (0.5 - g) * h),
-            self.track_at(t0 + (0.5 + g) * h),
-        );
-        let (va, vb) = (tpa.v_n(), tpb.v_n());
-        let d = 0.5 * h * (va + vb);
+        let gl = [t0 + (0.5 - g) * h, t0 + (0.5 + g) * h];
+        let gl_tp = gl.map(|t| self.track_at(t));
+        let d = 0.5 * h * (gl_tp[0].v_n() + gl_tp[1].v_n());
         let p0 = self.pos;
         let (dlat, dlon) = self.pos.advance(d.y, d.x, self.height_m);
         self.tick = k + 1;
@@ -128,7 +124,12 @@ impl Ship {
         let jet0 = self.jet_now;
         for (j, node) in nodes.iter_mut().enumerate() {
             let tau = self.offsets[j];
-            let tp = self.track_at(t0 + tau * h);
+            // The nodes are usually the Gauss–Legendre points just evaluated.
+            let t = t0 + tau * h;
+            let tp = match gl.iter().position(|&x| x == t) {
+                Some(i) => gl_tp[i],
+                None => self.track_at(t),
+            };
             let pos = TrackPosition {
                 lat_rad: p0.lat_rad + tau * dlat,
                 lon_rad: p0.lon_rad + tau * dlon,
@@ -174,6 +175,7 @@ fn hermite_jet(b: &[[f64; 6]; 3], j0: &SeaJet, j1: &SeaJet, h: f64) -> SeaJet {
 /// The carrier state from the mean track (course, speed, position) and the sea jet.
 pub fn compose(tp: &TrackPoint, pos: TrackPosition, h0_m: f64, jet: &SeaJet) -> CarrierState {
     let (sp, cp) = tp.psi_rad.sin_cos();
+    let (u, ud) = (tp.speed_mps, tp.speed_rate_mps2);
     let (w, wd) = (tp.psi_rate_rps, tp.psi_acc_rps2);
     // Surge/sway displacement in the course frame and its derivatives.
     let (s, sd, sdd) = (jet.x[dof::SURGE], jet.xd[dof::SURGE], jet.xdd[dof::SURGE]);
@@ -190,8 +192,11 @@ pub fn compose(tp: &TrackPoint, pos: TrackPosition, h0_m: f64, jet: &SeaJet) -> 
     let (rm, rn) = radii_of_curvature(pos.lat_rad);
     let lat = pos.lat_rad + dn / (rm + height);
     let lon = pos.lon_rad + de / ((rn + height) * lat.cos());
-    let v_n = tp.v_n() + Vector3::new(ve1 + w * ve2, vn1 + w * vn2, jet.xd[dof::HEAVE]);
-    let a_n = tp.a_n()
+    // Mean track: v = u·[sin ψ, cos ψ], v̇ = u̇·[sin ψ, cos ψ] + u·ψ̇·[cos ψ, −sin ψ].
+    let v_track = Vector3::new(u * sp, u * cp, 0.0);
+    let a_track = Vector3::new(ud * sp + u * w * cp, ud * cp - u * w * sp, 0.0);
+    let v_n = v_track + Vector3::new(ve1 + w * ve2, vn1 + w * vn2, jet.xd[dof::HEAVE]);
+    let a_n = a_track
         + Vector3::new(
             ae1 + 2.0 * w * ae2 + wd * ve2 - w * w * de,
             an1 + 2.0 * w * an2 + wd * vn2 - w * w * dn,
@@ -202,14 +207,29 @@ pub fn compose(tp: &TrackPoint, pos: TrackPosition, h0_m: f64, jet: &SeaJet) -> 
     let (ad, add) = (-(w + jet.xd[dof::YAW]), -(wd + jet.xdd[dof::YAW]));
     let (b, bd, bdd) = (jet.x[dof::PITCH], jet.xd[dof::PITCH], jet.xdd[dof::PITCH]);
     let (c, cd, cdd) = (jet.x[dof::ROLL], jet.xd[dof::ROLL], jet.xdd[dof::ROLL]);
-    let (omega, alpha) = euler_zxy_rates(a, ad, add, b, bd, bdd, c, cd, cdd);
+    let (sa, ca) = a.sin_cos();
+    let (sb, cb) = b.sin_cos();
+    let (sc, cc) = c.sin_cos();
+    let (omega, alpha) = euler_zxy_rates([sb, cb, sc, cc], ad, add, bd, bdd, cd, cdd);
+    // R_z(a)·R_x(b)·R_y(c) written out.
+    let c_cn = Matrix3::new(
+        ca * cc - sa * sb * sc,
+        -sa * cb,
+        ca * sc + sa * sb * cc,
+        sa * cc + ca * sb * sc,
+        ca * cb,
+        sa * sc - ca * sb * cc,
+        -cb * sc,
+        sb,
+        cb * cc,
+    );
     CarrierState {
         lat_rad: lat,
         lon_rad: lon,
         height_m: height,
         v_n,
         a_n,
-        c_cn: rot_z(a) * rot_x(b) * rot_y(c),
+        c_cn,
         omega_nc_c: omega,
         alpha_nc_c: alpha,
     }
@@ -218,22 +238,21 @@ pub fn compose(tp: &TrackPoint, pos: TrackPosition, h0_m: f64, jet: &SeaJet) -> 
 /// Body rate and its derivative for C = R_z(a)·R_x(b)·R_y(c):
 /// ω = R_y(c)ᵀ·u + ċ·e_y with u = [ḃ, ȧ sin b, ȧ cos b];
 /// ω̇ = R_y(c)ᵀ·u̇ − ċ·e_y × (R_y(c)ᵀ·u) + c̈·e_y.
-#[allow(clippy::too_many_arguments)]
+/// `sc` holds sin b, cos b, sin c, cos c.
 pub fn euler_zxy_rates(
-    _a: f64,
+    sc: [f64; 4],
     ad: f64,
     add: f64,
-    b: f64,
     bd: f64,
     bdd: f64,
-    c: f64,
     cd: f64,
     cdd: f64,
 ) -> (Vector3<f64>, Vector3<f64>) {
-    let (sb, cb) = b.sin_cos();
+    let [sb, cb, s_c, c_c] = sc;
     let u = Vector3::new(bd, ad * sb, ad * cb);
     let ud = Vector3::new(bdd, add * sb + ad * bd * cb, add * cb - ad * bd * sb);
-    let ryt: Matrix3<f64> = rot_y(-c);
+    // R_y(c)ᵀ = R_y(−c).
+    let ryt = Matrix3::new(c_c, 0.0, -s_c, 0.0, 1.0, 0.0, s_c, 0.0, c_c);
     let ru = ryt * u;
     let ey = Vector3::y();
     let omega = ru + cd * ey;
