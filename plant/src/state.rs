@@ -195,6 +195,7 @@ impl Plant {
             w.v3(&tr.custom_gyro_rad);
             w.v3(&tr.custom_accel_mps);
         }
+        self.write_carrier_state(w);
     }
 
     /// Reads what [`Plant::write_state`] wrote into a freshly built plant of the same
@@ -302,6 +303,6 @@ impl Plant {
             .gyro
             .thermal_rates(&temps.gyro_c(), &temps.gyro_gradient_k());
         self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(temps.accel_c());
-        Ok(())
+        self.read_carrier_state(r)
     }
 }
