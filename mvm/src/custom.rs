@@ -227,3 +227,33 @@ fn rate_of(h: &History, n: usize) -> Vec<f64> {
     }
     out
 }
+
+/// The model's declared effects, compiled, with the per-row signals of the history.
+pub(crate) struct Declared {
+    pub(crate) gyro: CustomModel,
+    pub(crate) accel: CustomModel,
+    pub(crate) refs: Vec<CustomRef>,
+    pub(crate) signals: RowSignals,
+    pub(crate) any: bool,
+}
+
+impl Declared {
+    pub(crate) fn new(model: &PlantConfig, h: &History) -> Self {
+        // The model was validated when it was loaded; an invalid list contributes nothing.
+        let gyro = CustomModel::new(&model.sensor.gyro.custom, false).unwrap_or_default();
+        let accel = CustomModel::new(&model.sensor.accel.custom, true).unwrap_or_default();
+        let refs = declared(model);
+        let signals = RowSignals::new([&gyro, &accel], h);
+        Self {
+            any: !refs.is_empty(),
+            gyro,
+            accel,
+            refs,
+            signals,
+        }
+    }
+
+    pub(crate) fn model(&self, accel: bool) -> &CustomModel {
+        if accel { &self.accel } else { &self.gyro }
+    }
+}

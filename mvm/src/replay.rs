@@ -12,11 +12,11 @@ use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use rayon::prelude::*;
 use rins_plant::PlantConfig;
 use rins_plant::earth::Site;
-use rins_plant::effects::{AccelModel, AccelTerm, CustomModel, GyroModel, GyroTerm, TermContext};
+use rins_plant::effects::{AccelModel, AccelTerm, GyroModel, GyroTerm, TermContext};
 use rins_plant::kinematics::table_increments;
 use rins_plant::table::{GimbalAngles, body_to_nav};
 
-use crate::custom::{CustomRef, RowSignals};
+use crate::custom::{CustomRef, Declared};
 use crate::history::{Attitude, History};
 use crate::stats::AllanAcc;
 
@@ -248,36 +248,6 @@ fn layout(
         }
     }
     (groups, unavailable)
-}
-
-/// The model's declared effects, compiled, with the per-row signals of the history.
-struct Declared {
-    gyro: CustomModel,
-    accel: CustomModel,
-    refs: Vec<CustomRef>,
-    signals: RowSignals,
-    any: bool,
-}
-
-impl Declared {
-    fn new(model: &PlantConfig, h: &History) -> Self {
-        // The model was validated when it was loaded; an invalid list contributes nothing.
-        let gyro = CustomModel::new(&model.sensor.gyro.custom, false).unwrap_or_default();
-        let accel = CustomModel::new(&model.sensor.accel.custom, true).unwrap_or_default();
-        let refs = crate::custom::declared(model);
-        let signals = RowSignals::new([&gyro, &accel], h);
-        Self {
-            any: !refs.is_empty(),
-            gyro,
-            accel,
-            refs,
-            signals,
-        }
-    }
-
-    fn model(&self, accel: bool) -> &CustomModel {
-        if accel { &self.accel } else { &self.gyro }
-    }
 }
 
 /// True increments over one row and the row's mid attitude.
