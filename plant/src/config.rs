@@ -2,6 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::carrier::{CarrierKind, CarrierSpec};
 use crate::earth::{EarthSpec, SiteSpec};
 use crate::effects::encoder::EncoderSpec;
 use crate::effects::temp_sensor::TempSensorSpec;
@@ -68,6 +69,8 @@ pub struct PlantConfig {
     pub sensor: SensorSpec,
     /// Thermal network.
     pub thermal: ThermalSpec,
+    /// The carrier (static by default).
+    pub carrier: CarrierSpec,
 }
 
 impl Default for PlantConfig {
@@ -82,6 +85,7 @@ impl Default for PlantConfig {
             scheme: SchemeSpec::default(),
             sensor: SensorSpec::default(),
             thermal: ThermalSpec::default(),
+            carrier: CarrierSpec::default(),
         }
     }
 }
@@ -148,6 +152,7 @@ impl PlantConfig {
         }
         self.validate_scheme(&mut c);
         self.validate_thermal(&mut c);
+        self.validate_carrier(&mut c);
         if c.errors.is_empty() {
             Ok(())
         } else {
@@ -178,6 +183,27 @@ impl PlantConfig {
                     "a non-zero angle in [-3600, 3600]",
                     format!("{}", st.angle_deg),
                 );
+            }
+        }
+    }
+
+    fn validate_carrier(&self, c: &mut Checker) {
+        let k = &self.carrier;
+        if k.kind == CarrierKind::Ship && k.ship.legs.is_empty() {
+            c.fail(
+                "carrier.ship.legs",
+                "at least one leg",
+                "an empty list".into(),
+            );
+        }
+        if k.kind == CarrierKind::Trajectory && k.trajectory.file.is_empty() {
+            let e = "a file name when kind = \"trajectory\"";
+            c.fail("carrier.trajectory.file", e, "\"\"".into());
+        }
+        for (i, l) in k.ship.legs.iter().enumerate() {
+            if !(l.duration_s > 0.0) {
+                let p = format!("carrier.ship.legs[{i}].duration_s");
+                c.fail(&p, "a duration in (0, 1e8]", format!("{}", l.duration_s));
             }
         }
     }

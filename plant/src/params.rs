@@ -116,6 +116,41 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("thermal.g_board_gyro_w_per_k", 0.0, 1e6),
     ("thermal.g_board_gyro_convection_w_per_k", 0.0, 1e6),
     ("thermal.board_to_block_dir_body", -1.0, 1.0),
+    // The carrier (docs/carrier.md).
+    ("carrier.lever_arm_m", -500.0, 500.0),
+    ("carrier.ship.lat_deg", -80.0, 80.0),
+    ("carrier.ship.lon_deg", -180.0, 360.0),
+    ("carrier.ship.height_m", -1000.0, 1000.0),
+    ("carrier.ship.legs.heading_deg", -360.0, 360.0),
+    ("carrier.ship.legs.speed_kn", 0.0, 60.0),
+    ("carrier.ship.legs.duration_s", 0.001, 1e8),
+    ("carrier.ship.turn_rate_dps", 0.01, 10.0),
+    ("carrier.ship.accel_mps2", 0.001, 5.0),
+    ("carrier.ship.sea.sea_state", 0.0, 6.0),
+    ("carrier.ship.sea.hs_m", 0.0, 20.0),
+    ("carrier.ship.sea.tp_s", 2.0, 30.0),
+    ("carrier.ship.sea.gamma", 1.0, 7.0),
+    ("carrier.ship.sea.heading_to_waves_deg", -360.0, 360.0),
+    ("carrier.ship.sea.components", 1.0, 256.0),
+    ("carrier.ship.sea.band", 0.1, 10.0),
+    ("carrier.ship.sea.rao.roll.gain", 0.0, 10.0),
+    ("carrier.ship.sea.rao.roll.natural_period_s", 0.0, 100.0),
+    ("carrier.ship.sea.rao.roll.damping", 0.01, 2.0),
+    ("carrier.ship.sea.rao.pitch.gain", 0.0, 10.0),
+    ("carrier.ship.sea.rao.pitch.natural_period_s", 0.0, 100.0),
+    ("carrier.ship.sea.rao.pitch.damping", 0.01, 2.0),
+    ("carrier.ship.sea.rao.yaw.gain", 0.0, 10.0),
+    ("carrier.ship.sea.rao.yaw.natural_period_s", 0.0, 100.0),
+    ("carrier.ship.sea.rao.yaw.damping", 0.01, 2.0),
+    ("carrier.ship.sea.rao.heave.gain", 0.0, 10.0),
+    ("carrier.ship.sea.rao.heave.natural_period_s", 0.0, 100.0),
+    ("carrier.ship.sea.rao.heave.damping", 0.01, 2.0),
+    ("carrier.ship.sea.rao.surge.gain", 0.0, 10.0),
+    ("carrier.ship.sea.rao.surge.natural_period_s", 0.0, 100.0),
+    ("carrier.ship.sea.rao.surge.damping", 0.01, 2.0),
+    ("carrier.ship.sea.rao.sway.gain", 0.0, 10.0),
+    ("carrier.ship.sea.rao.sway.natural_period_s", 0.0, 100.0),
+    ("carrier.ship.sea.rao.sway.damping", 0.01, 2.0),
 ];
 
 /// Names accepted by each enumeration parameter, in the order FMUs number them (1-based).
@@ -134,6 +169,11 @@ pub const ENUMS: &[(&str, &[&str])] = &[
     ),
     ("scheme.axis", &["outer", "inner"]),
     ("sensor.gyro.position_bias.transition", &["cosine", "step"]),
+    ("carrier.kind", &["static", "ship", "trajectory"]),
+    (
+        "carrier.ship.sea.spectrum",
+        &["none", "pierson-moskowitz", "jonswap"],
+    ),
 ];
 
 /// The names `path` accepts, if it is an enumeration.
@@ -216,6 +256,8 @@ pub fn unit_for(path: &str) -> &'static str {
             ("arcsec", "arcsec"),
             ("ug_per_sqrthz", "ug/sqrt(Hz)"),
             ("ug", "ug"),
+            ("_mps2", "m/s2"),
+            ("_kn", "kn"),
             ("_dps2", "deg/s2"),
             ("_dps", "deg/s"),
             ("_deg", "deg"),
@@ -280,6 +322,8 @@ fn walk(prefix: &str, v: &Value, out: &mut Vec<Param>) {
             unit: "1",
             range: None,
         }),
+        // A file name is no parameter an FMU or a sweep can set (the trajectory is data).
+        Value::Text(_) if prefix == "carrier.trajectory.file" => {}
         Value::Text(s) => out.push(Param {
             path: prefix.into(),
             value: ParamValue::Enum(s.clone()),
@@ -464,9 +508,19 @@ mod tests {
         for p in &params {
             if matches!(p.value, ParamValue::Real(_) | ParamValue::Integer(_)) {
                 assert!(p.range.is_some(), "{} has no range in RANGES", p.path);
-                let dimensionless = ["run.", "amplitude_change", "board_to_block_dir_body"]
-                    .iter()
-                    .any(|k| p.path.contains(k));
+                let dimensionless = [
+                    "run.",
+                    "amplitude_change",
+                    "board_to_block_dir_body",
+                    "sea.sea_state",
+                    "sea.gamma",
+                    "sea.components",
+                    "sea.band",
+                    ".gain",
+                    ".damping",
+                ]
+                .iter()
+                .any(|k| p.path.contains(k));
                 if !dimensionless {
                     assert_ne!(p.unit, "1", "{} has no unit", p.path);
                 }

@@ -3,6 +3,8 @@
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
+use crate::carrier::run::CarrierRun;
+use crate::carrier::{Carrier, CarrierState, CarrierTruth};
 use crate::command::ActiveCommand;
 use crate::config::{ConfigError, PlantConfig};
 use crate::earth::Site;
@@ -66,6 +68,8 @@ pub struct Truth {
     pub accel_terms_mps: [Vector3<f64>; ACCEL_TERMS],
     /// Weight of δβ at the interval midpoint (0 Z-up, 1 Z-down).
     pub position_weight: f64,
+    /// The carrier at the end of the interval (the site and `[vehicle]` attitude when static).
+    pub carrier: CarrierTruth,
 }
 
 /// Last internal tick at or before `hold_s` (a dwell end); whether the boundary tick itself is
@@ -158,14 +162,43 @@ pub struct Plant {
     pub(crate) temp_sensors: TempSensors,
     /// The sensors' last readings, °C.
     pub(crate) temp_readings_c: [f64; node::COUNT],
+    /// The moving carrier; `None` for the static carrier (the original path).
+    pub(crate) carrier: Option<Box<CarrierRun>>,
 }
 
 impl Plant {
     /// Builds the plant; every parameter is range-checked first.
     pub fn new(cfg: &PlantConfig) -> Result<Self, Vec<ConfigError>> {
         cfg.validate()?;
+        let tick_s = 1.0 / (cfg.rate_hz * cfg.substeps as f64);
+        let carrier = Carrier::new(&cfg.carrier, cfg.seed, tick_s).map_err(|e| {
+            vec![ConfigError {
+                path: "carrier.trajectory.file".into(),
+                expected: "a readable, valid trajectory file (docs/carrier.md)".into(),
+                got: e,
+            }]
+        })?;
+        Ok(Self::build(cfg, carrier))
+    }
+
+    /// The plant of `cfg` on the moving carrier `carrier` (e.g. a trajectory already in memory),
+    /// replacing the one `cfg.carrier` describes.
+    pub fn with_carrier(cfg: &PlantConfig, carrier: Carrier) -> Result<Self, Vec<ConfigError>> {
+        cfg.validate()?;
+        Ok(Self::build(cfg, Some(carrier)))
+    }
+
+    fn build(cfg: &PlantConfig, carrier: Option<Carrier>) -> Self {
         let site = Site::new(&cfg.site, &cfg.earth);
-        let c_vn = cfg.vehicle.c_vn();
+        let carrier = carrier.map(|c| CarrierRun::new(c, cfg));
+        let c_vn = match &carrier {
+            Some(r) => r.c_vn(),
+            None => cfg.vehicle.c_vn(),
+        };
+        let carrier_truth = match &carrier {
+            Some(r) => r.now.truth(),
+            None => CarrierState::at_rest(site.lat_rad, site.lon_rad, site.height_m, c_vn).truth(),
+        };
         let schedule = Schedule::new(&cfg.scheme.resolve());
         let g0 = schedule.eval(0.0);
         let c_bn = body_to_nav(&c_vn, g0.angles);
@@ -186,7 +219,8 @@ impl Plant {
         let accel = AccelModel::new(&s.accel);
         let mut temp_sensors = TempSensors::new(&s.temperature, cfg.seed);
         let temp_readings_c = temp_sensors.read(&temps.nodes_c);
-        Ok(Self {
+        Self {
+            carrier,
             encoders: Encoders::new(&s.encoder),
             temp_sensors,
             temp_readings_c,
@@ -247,9 +281,10 @@ impl Plant {
                 gyro_terms_rad: [Vector3::zeros(); GYRO_TERMS],
                 accel_terms_mps: [Vector3::zeros(); ACCEL_TERMS],
                 position_weight: 0.0,
+                carrier: carrier_truth,
             },
             cfg: cfg.clone(),
-        })
+        }
     }
 
     /// The configuration the plant was built from.
@@ -411,21 +446,25 @@ impl Plant {
         for sub in 0..substeps {
             let g0 = self.gimbal_now;
             let (g1, gm) = self.gimbal_at(self.tick + 1);
-            let m = self.mid_attitude(&gm);
-            // Gimbal part from exact angle differences (one axis moves at a time); Earth rate
-            // and specific force at the midpoint.
-            let inc = table_increments(
-                &m.c_nb,
-                m.sin_inner,
-                m.cos_inner,
-                g1.angles.outer_rad - g0.angles.outer_rad,
-                g1.angles.inner_rad - g0.angles.inner_rad,
-                &self.site.omega_ie_n,
-                &self.f_n,
-                h,
-            );
+            let (inc, up_b) = if self.carrier.is_some() {
+                self.carrier_tick(&g0, &g1, &gm, h)
+            } else {
+                let m = self.mid_attitude(&gm);
+                // Gimbal part from exact angle differences (one axis moves at a time); Earth
+                // rate and specific force at the midpoint.
+                let inc = table_increments(
+                    &m.c_nb,
+                    m.sin_inner,
+                    m.cos_inner,
+                    g1.angles.outer_rad - g0.angles.outer_rad,
+                    g1.angles.inner_rad - g0.angles.inner_rad,
+                    &self.site.omega_ie_n,
+                    &self.f_n,
+                    h,
+                );
+                (inc, m.c_nb.column(2).into_owned())
+            };
             let (dtheta, dv, f_b) = (inc.dtheta_rad, inc.dv_mps, inc.f_b_mps2);
-            let up_b = m.c_nb.column(2).into_owned();
             let ctx = TermContext {
                 dt_s: h,
                 dtheta_rad: dtheta,
@@ -494,7 +533,7 @@ impl Plant {
             (temps.gyro_c(), temps.gyro_gradient_k(), temps.accel_c());
 
         let substeps = self.cfg.substeps as u64;
-        let held = self.tick + substeps <= self.hold_until_tick;
+        let held = self.tick + substeps <= self.hold_until_tick && self.carrier.is_none();
         let (dtheta_true, dv_true, gyro_err, accel_err, weight) = match self.dwell_cache {
             Some(c) if held => {
                 // The per-term contributions in `self.truth` are those of the previous interval
@@ -546,6 +585,9 @@ impl Plant {
         tr.dv_true_mps = dv_true;
         tr.temps = temps;
         tr.position_weight = weight;
+        if let Some(c) = &self.carrier {
+            tr.carrier = c.now.truth();
+        }
         ImuSample {
             index,
             t_s: self.time_s(),

@@ -189,6 +189,7 @@ impl Plant {
         w.u64(self.noise_seed);
         self.temp_readings_c.iter().for_each(|x| w.f64(*x));
         w.u128(self.temp_sensors.stream.word_pos());
+        self.write_carrier_state(w);
     }
 
     /// Reads what [`Plant::write_state`] wrote into a freshly built plant of the same
@@ -287,6 +288,6 @@ impl Plant {
             .gyro
             .thermal_rates(&temps.gyro_c(), &temps.gyro_gradient_k());
         self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(temps.accel_c());
-        Ok(())
+        self.read_carrier_state(r)
     }
 }

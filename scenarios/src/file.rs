@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use rins_plant::carrier::{CarrierKind, CarrierSpec};
 use rins_plant::config::{SensorSpec, VehicleSpec};
 use rins_plant::earth::{EarthSpec, SiteSpec};
 use rins_plant::effects::{AccelSpec, GyroSpec};
@@ -164,6 +165,8 @@ pub struct ScenarioFile {
     pub sensor: SensorSection,
     /// `[thermal]`.
     pub thermal: ThermalSpec,
+    /// `[carrier]` (static by default; docs/carrier.md).
+    pub carrier: CarrierSpec,
     /// `[outputs]`.
     pub outputs: OutputSpec,
     /// `[campaign]`, optional.
@@ -334,6 +337,7 @@ impl Scenario {
             scheme: raw.scheme,
             sensor,
             thermal: raw.thermal,
+            carrier: carrier_resolved(raw.carrier, source_name),
         };
         let scenario = Scenario {
             source: source_name.into(),
@@ -386,6 +390,7 @@ impl Scenario {
                 }
             }
         }
+        carrier_problems(&self.plant, &mut problems);
         if let Err(errs) = self.plant.validate() {
             problems.extend(
                 errs.into_iter()
@@ -417,6 +422,29 @@ impl Scenario {
     /// Number of output samples in the scenario.
     pub fn samples(&self) -> u64 {
         (self.meta.duration_s * self.plant.rate_hz).round() as u64
+    }
+}
+
+/// `[carrier]` with a relative trajectory file name taken from the scenario file's folder.
+fn carrier_resolved(mut c: CarrierSpec, source_name: &str) -> CarrierSpec {
+    let f = Path::new(&c.trajectory.file);
+    let src = Path::new(source_name);
+    if c.kind == CarrierKind::Trajectory && f.is_relative() && src.is_file() {
+        if let Some(dir) = src.parent() {
+            c.trajectory.file = dir.join(f).display().to_string();
+        }
+    }
+    c
+}
+
+/// A trajectory carrier's file must read and pass the trajectory rules (its errors name the
+/// row and column in the trajectory file).
+fn carrier_problems(plant: &PlantConfig, problems: &mut Vec<(String, String)>) {
+    let c = &plant.carrier;
+    if c.kind == CarrierKind::Trajectory && !c.trajectory.file.is_empty() {
+        if let Err(e) = rins_plant::carrier::Trajectory::read(&c.trajectory.file) {
+            problems.push(("carrier.trajectory.file".into(), e.to_string()));
+        }
     }
 }
 

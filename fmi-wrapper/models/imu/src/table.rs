@@ -81,6 +81,8 @@ fn param_var(p: &params::Param) -> ScalarVar {
             let type_name = match array.as_str() {
                 "scheme.kind" => "SchemeKind",
                 "scheme.axis" => "GimbalAxis",
+                "carrier.kind" => "CarrierKind",
+                "carrier.ship.sea.spectrum" => "WaveSpectrum",
                 _ => "PositionBiasTransition",
             };
             let idx = items

@@ -1,0 +1,71 @@
+//! Plant ns per output sample on a moving carrier against the static plant: the paper's
+//! 16-position scenario at 100 Hz with every effect and the thermal network on
+//! (`nav-grade-full`), over one simulated hour, on the static carrier, on a ship in calm water
+//! and on a ship at sea state 5 (JONSWAP, 16 wave components). `cargo bench -p rins-plant --bench
+//! carrier`.
+
+use criterion::{Criterion, Throughput};
+use rins_plant::carrier::{CarrierKind, LegSpec, SpectrumKind};
+use rins_plant::{Plant, PlantConfig};
+use std::hint::black_box;
+
+fn config(kind: CarrierKind, sea: bool) -> PlantConfig {
+    let mut cfg = PlantConfig {
+        sensor: rins_plant::presets::nav_grade_full(),
+        ..PlantConfig::default()
+    };
+    cfg.carrier.kind = kind;
+    cfg.carrier.ship.legs = vec![
+        LegSpec {
+            heading_deg: 30.0,
+            speed_kn: 12.0,
+            duration_s: 1800.0,
+        },
+        LegSpec {
+            heading_deg: 120.0,
+            speed_kn: 14.0,
+            duration_s: 1e6,
+        },
+    ];
+    if sea {
+        cfg.carrier.ship.sea.spectrum = SpectrumKind::Jonswap;
+        cfg.carrier.ship.sea.sea_state = 5;
+    }
+    cfg
+}
+
+fn run(cfg: &PlantConfig, samples: u64, dwell_cache: bool) -> f64 {
+    let mut p = Plant::new(cfg).expect("valid");
+    p.set_dwell_cache(dwell_cache);
+    let mut acc = 0.0;
+    for _ in 0..samples {
+        let s = p.step();
+        acc += s.dtheta_rad.z + s.dv_mps.x;
+    }
+    acc
+}
+
+fn main() {
+    let mut c = Criterion::default().configure_from_args().sample_size(10);
+    let hour = 360_000;
+    let mut g = c.benchmark_group("carrier");
+    g.throughput(Throughput::Elements(hour));
+    // The static plant reuses whole intervals while the table dwells; a moving carrier never
+    // dwells, so the static plant without that cache is the like-for-like reference.
+    for (name, kind, sea, cache) in [
+        ("static_1h_100Hz", CarrierKind::Static, false, true),
+        (
+            "static_no_dwell_cache_1h_100Hz",
+            CarrierKind::Static,
+            false,
+            false,
+        ),
+        ("ship_calm_1h_100Hz", CarrierKind::Ship, false, true),
+        ("ship_sea_state_5_1h_100Hz", CarrierKind::Ship, true, true),
+    ] {
+        let cfg = config(kind, sea);
+        g.bench_function(name, |b| b.iter(|| black_box(run(&cfg, hour, cache))));
+    }
+    g.finish();
+    c.final_summary();
+}

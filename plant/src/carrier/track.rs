@@ -1,0 +1,205 @@
+//! The ship's mean track: legs of course and speed joined by smooth turns and speed changes, on
+//! the WGS-84 ellipsoid.
+//!
+//! Each change follows the cycloidal profile S(x) = x − sin(2πx)/(2π), x = τ/T ∈ [0, 1]: rate and
+//! acceleration start and end at zero, so velocity and acceleration are continuous (the
+//! quadrature then has no corner to miss). The peak rate 2·Δ/T is the limit: a turn of Δψ at the
+//! turn-rate limit r lasts T = 2|Δψ|/r, a speed change of Δu at the acceleration limit a lasts
+//! T = 2|Δu|/a.
+//!
+//! Course ψ (clockwise from north) and speed u are closed-form in time; the ground velocity is
+//! v^n = u·[sin ψ, cos ψ, 0] (ENU) and its derivative u̇·[sin ψ, cos ψ, 0] + u·ψ̇·[cos ψ, −sin ψ, 0].
+//! Latitude and longitude are integrated tick by tick (see [`TrackPosition`]).
+
+use nalgebra::Vector3;
+
+use super::spec::ShipSpec;
+use crate::earth::radii_of_curvature;
+use crate::units::DEG;
+
+/// Knots to m/s.
+pub const KNOT_MPS: f64 = 1852.0 / 3600.0;
+
+/// One leg, resolved: start time, start and commanded course and speed, rates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Leg {
+    t0_s: f64,
+    psi0_rad: f64,
+    /// Signed course change, rad, and turn duration, s.
+    turn_rps: f64,
+    turn_s: f64,
+    u0_mps: f64,
+    /// Signed speed change, m/s, and its duration, s.
+    acc_mps2: f64,
+    acc_s: f64,
+}
+
+/// Course and speed with their rates at one instant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrackPoint {
+    /// Course ψ, rad clockwise from north.
+    pub psi_rad: f64,
+    /// ψ̇, rad/s.
+    pub psi_rate_rps: f64,
+    /// ψ̈, rad/s².
+    pub psi_acc_rps2: f64,
+    /// Speed u, m/s.
+    pub speed_mps: f64,
+    /// u̇, m/s².
+    pub speed_rate_mps2: f64,
+}
+
+impl TrackPoint {
+    /// Ground velocity of the mean track, ENU, m/s.
+    pub fn v_n(&self) -> Vector3<f64> {
+        let (s, c) = self.psi_rad.sin_cos();
+        Vector3::new(self.speed_mps * s, self.speed_mps * c, 0.0)
+    }
+
+    /// Its time derivative (ENU components), m/s².
+    pub fn a_n(&self) -> Vector3<f64> {
+        let (s, c) = self.psi_rad.sin_cos();
+        let (u, ud, w) = (self.speed_mps, self.speed_rate_mps2, self.psi_rate_rps);
+        Vector3::new(ud * s + u * w * c, ud * c - u * w * s, 0.0)
+    }
+}
+
+/// Course and speed as closed-form functions of time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Track {
+    legs: Vec<Leg>,
+}
+
+/// Wraps an angle to (−π, π].
+fn wrap_pi(a: f64) -> f64 {
+    let w = a.rem_euclid(2.0 * std::f64::consts::PI);
+    if w > std::f64::consts::PI {
+        w - 2.0 * std::f64::consts::PI
+    } else {
+        w
+    }
+}
+
+impl Track {
+    /// Resolves the legs: each leg turns the shorter way at the turn-rate limit and changes speed
+    /// at the acceleration limit, both from the leg's start, from wherever the previous leg left
+    /// the ship. The first leg starts on its own course and speed.
+    pub fn new(spec: &ShipSpec) -> Self {
+        let rate = spec.turn_rate_dps * DEG;
+        let acc = spec.accel_mps2;
+        let mut legs = Vec::with_capacity(spec.legs.len());
+        let first = spec.legs.first().copied().unwrap_or(super::spec::LegSpec {
+            heading_deg: 0.0,
+            speed_kn: 0.0,
+            duration_s: 1.0,
+        });
+        let (mut psi, mut u, mut t0) = (first.heading_deg * DEG, first.speed_kn * KNOT_MPS, 0.0);
+        for l in &spec.legs {
+            let dpsi = wrap_pi(l.heading_deg * DEG - psi);
+            let du = l.speed_kn * KNOT_MPS - u;
+            let leg = Leg {
+                t0_s: t0,
+                psi0_rad: psi,
+                turn_rps: dpsi,
+                turn_s: 2.0 * dpsi.abs() / rate,
+                u0_mps: u,
+                acc_mps2: du,
+                acc_s: 2.0 * du.abs() / acc,
+            };
+            legs.push(leg);
+            let end = leg.eval(t0 + l.duration_s);
+            (psi, u, t0) = (end.psi_rad, end.speed_mps, t0 + l.duration_s);
+        }
+        if legs.is_empty() {
+            legs.push(Leg {
+                t0_s: 0.0,
+                psi0_rad: 0.0,
+                turn_rps: 0.0,
+                turn_s: 0.0,
+                u0_mps: 0.0,
+                acc_mps2: 0.0,
+                acc_s: 0.0,
+            });
+        }
+        Self { legs }
+    }
+
+    /// Index of the leg holding time `t_s`, searched from `hint` (calls run forward in time).
+    pub fn leg_at(&self, t_s: f64, hint: usize) -> usize {
+        let mut i = hint.min(self.legs.len() - 1);
+        while i > 0 && t_s < self.legs[i].t0_s {
+            i -= 1;
+        }
+        while i + 1 < self.legs.len() && t_s >= self.legs[i + 1].t0_s {
+            i += 1;
+        }
+        i
+    }
+
+    /// Course and speed at `t_s` within leg `leg` (from [`Track::leg_at`]).
+    #[inline]
+    pub fn eval(&self, leg: usize, t_s: f64) -> TrackPoint {
+        self.legs[leg].eval(t_s)
+    }
+}
+
+impl Leg {
+    #[inline]
+    fn eval(&self, t_s: f64) -> TrackPoint {
+        let tau = t_s - self.t0_s;
+        let (psi, psi_rate, psi_acc) = cycloidal(self.psi0_rad, self.turn_rps, tau, self.turn_s);
+        let (u, u_rate, _) = cycloidal(self.u0_mps, self.acc_mps2, tau, self.acc_s);
+        TrackPoint {
+            psi_rad: psi,
+            psi_rate_rps: psi_rate,
+            psi_acc_rps2: psi_acc,
+            speed_mps: u,
+            speed_rate_mps2: u_rate,
+        }
+    }
+}
+
+/// Value, rate and acceleration of a change of `delta` from `start` over `dur_s` along the
+/// cycloidal profile, at `tau` seconds from its start.
+#[inline]
+pub fn cycloidal(start: f64, delta: f64, tau: f64, dur_s: f64) -> (f64, f64, f64) {
+    if tau >= dur_s || dur_s <= 0.0 {
+        return (start + delta, 0.0, 0.0);
+    }
+    let x = tau.max(0.0) / dur_s;
+    let w = 2.0 * std::f64::consts::PI;
+    let (s, c) = (w * x).sin_cos();
+    (
+        start + delta * (x - s / w),
+        delta * (1.0 - c) / dur_s,
+        delta * w * s / (dur_s * dur_s),
+    )
+}
+
+/// Latitude and longitude of the mean track, advanced one tick at a time (the only integrated
+/// carrier state). Over a tick of length h the north and east displacements are the two-point
+/// Gauss–Legendre integrals of the closed-form velocity (exact to O(h⁵) within a leg segment),
+/// divided by the radii of curvature at the mid-tick latitude.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrackPosition {
+    /// Latitude, rad.
+    pub lat_rad: f64,
+    /// Longitude, rad.
+    pub lon_rad: f64,
+}
+
+impl TrackPosition {
+    /// Advances over one tick given the displacement north and east (m) at mean height `h_m`;
+    /// returns the latitude and longitude increments used.
+    #[inline]
+    pub fn advance(&mut self, d_north_m: f64, d_east_m: f64, h_m: f64) -> (f64, f64) {
+        let (rm0, _) = radii_of_curvature(self.lat_rad);
+        let lat_mid = self.lat_rad + 0.5 * d_north_m / (rm0 + h_m);
+        let (rm, rn) = radii_of_curvature(lat_mid);
+        let dlat = d_north_m / (rm + h_m);
+        let dlon = d_east_m / ((rn + h_m) * lat_mid.cos());
+        self.lat_rad += dlat;
+        self.lon_rad += dlon;
+        (dlat, dlon)
+    }
+}

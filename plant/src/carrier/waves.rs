@@ -1,0 +1,248 @@
+//! Sea-state motion: a seeded realisation of a wave spectrum through the vessel's response
+//! amplitude operators, evaluated with phasors advanced by a fixed complex rotation per tick.
+//!
+//! Component i has frequency ω_i (one per equal band of [band₀, band₁]·ω_p, jittered inside its
+//! band so the record does not repeat), amplitude a_i = √(2 S(ω_i) Δω) and a uniform random phase
+//! ε_i; all drawn from the carrier's own random stream [`SEA_STATE_STREAM`] of the run seed, so
+//! no existing noise stream moves. Degree of freedom d responds with the complex amplitude
+//! c_{d,i} = a_i · gain_d · dir_d(β) · F_d(ω_i) · H_d(ω_i) (see [`super::spec::RaoSpec`]), and
+//! x_d(t) = Σ_i Re(c_{d,i} z_i(t)), z_i(t) = exp(i(ω_i t + ε_i)).
+//!
+//! z_i at tick k+1 is z_i at tick k times exp(iω_i h): one complex product per component and
+//! tick instead of a sine and cosine. Every [`RESYNC_TICKS`] ticks the phasors are recomputed
+//! from the exact phase ω_i·t + ε_i, so z at tick k is a function of k alone (rounding cannot
+//! accumulate, and a restored plant gets the same bits).
+
+use nalgebra::Complex;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use super::spec::{SeaSpec, SpectrumKind};
+use crate::units::DEG;
+
+/// Random stream of the sea-state realisation (distinct from the sensor noise streams).
+pub const SEA_STATE_STREAM: u64 = 0x5EA5_7A7E;
+
+/// Phasors are recomputed exactly at every multiple of this tick count.
+pub const RESYNC_TICKS: u64 = 4096;
+
+/// Standard gravity used for the deep-water dispersion k = ω²/g, m/s².
+const G_WAVE_MPS2: f64 = 9.806_65;
+
+/// Degrees of freedom, in the order of [`SeaJet`]'s arrays.
+pub mod dof {
+    /// Roll about the bow (y) axis, rad.
+    pub const ROLL: usize = 0;
+    /// Pitch about the starboard (x) axis, rad.
+    pub const PITCH: usize = 1;
+    /// Yaw about up, rad.
+    pub const YAW: usize = 2;
+    /// Heave (up), m.
+    pub const HEAVE: usize = 3;
+    /// Surge (along the bow), m.
+    pub const SURGE: usize = 4;
+    /// Sway (to starboard), m.
+    pub const SWAY: usize = 5;
+}
+
+/// Values, rates and accelerations of the six degrees of freedom at one instant
+/// (rad, rad/s, rad/s² for roll, pitch, yaw; m, m/s, m/s² for heave, surge, sway).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct SeaJet {
+    /// Displacements.
+    pub x: [f64; 6],
+    /// First derivatives.
+    pub xd: [f64; 6],
+    /// Second derivatives.
+    pub xdd: [f64; 6],
+}
+
+/// Pierson–Moskowitz spectrum (ITTC two-parameter form), m²·s: S(ω) = (5/16)·H_s²·ω_p⁴·ω⁻⁵·
+/// exp(−(5/4)(ω_p/ω)⁴); its integral over all ω is H_s²/16.
+pub fn pierson_moskowitz(omega: f64, hs_m: f64, omega_p: f64) -> f64 {
+    let r4 = (omega_p / omega).powi(4);
+    5.0 / 16.0 * hs_m * hs_m * r4 / omega * (-1.25 * r4).exp()
+}
+
+/// JONSWAP spectrum (DNV-RP-C205 §3.5.5): (1 − 0.287 ln γ)·S_PM(ω)·γ^exp(−(ω−ω_p)²/(2σ²ω_p²)),
+/// σ = 0.07 below the peak and 0.09 above.
+pub fn jonswap(omega: f64, hs_m: f64, omega_p: f64, gamma: f64) -> f64 {
+    let sigma = if omega <= omega_p { 0.07 } else { 0.09 };
+    let e = (-(omega - omega_p).powi(2) / (2.0 * sigma * sigma * omega_p * omega_p)).exp();
+    (1.0 - 0.287 * gamma.ln()) * pierson_moskowitz(omega, hs_m, omega_p) * gamma.powf(e)
+}
+
+/// The realised sea state.
+#[derive(Clone, Debug)]
+pub struct Waves {
+    omega_rps: Vec<f64>,
+    phase_rad: Vec<f64>,
+    /// c_{d,i}, one array of six per component.
+    coef: Vec<[Complex<f64>; 6]>,
+    rot_tick: Vec<Complex<f64>>,
+    /// Rotations from the tick start to each in-tick offset of `offsets`.
+    rot_offsets: Vec<Vec<Complex<f64>>>,
+    z: Vec<Complex<f64>>,
+    tick: u64,
+    tick_s: f64,
+}
+
+impl Waves {
+    /// Realises `spec` for ticks of `tick_s`, with extra evaluation points at the fractions
+    /// `offsets` of a tick (the quadrature nodes). `None` when the spectrum is `none` or H_s = 0.
+    pub fn new(spec: &SeaSpec, seed: u64, tick_s: f64, offsets: &[f64]) -> Option<Self> {
+        let (hs, tp) = spec.hs_tp();
+        if spec.spectrum == SpectrumKind::None || hs <= 0.0 {
+            return None;
+        }
+        let wp = 2.0 * std::f64::consts::PI / tp;
+        let n = spec.components.max(1) as usize;
+        let (w0, w1) = (spec.band[0] * wp, spec.band[1] * wp);
+        let dw = (w1 - w0) / n as f64;
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        rng.set_stream(SEA_STATE_STREAM);
+        let beta = spec.heading_to_waves_deg * DEG;
+        let r = &spec.rao;
+        let rao = [r.roll, r.pitch, r.yaw, r.heave, r.surge, r.sway];
+        let dir = [
+            beta.sin().abs(),
+            beta.cos().abs(),
+            (2.0 * beta).sin().abs(),
+            1.0,
+            beta.cos().abs(),
+            beta.sin().abs(),
+        ];
+        let (mut omega_rps, mut phase_rad, mut coef) = (vec![], vec![], vec![]);
+        for i in 0..n {
+            let w = w0 + (i as f64 + rng.random::<f64>()) * dw;
+            let eps = 2.0 * std::f64::consts::PI * rng.random::<f64>();
+            let s = match spec.spectrum {
+                SpectrumKind::Jonswap => jonswap(w, hs, wp, spec.gamma),
+                _ => pierson_moskowitz(w, hs, wp),
+            };
+            let a = (2.0 * s * dw).sqrt();
+            let slope = w * w / G_WAVE_MPS2;
+            let mut c = [Complex::new(0.0, 0.0); 6];
+            for d in 0..6 {
+                let h = if rao[d].natural_period_s > 0.0 {
+                    let q = w * rao[d].natural_period_s / (2.0 * std::f64::consts::PI);
+                    Complex::new(1.0 - q * q, 2.0 * rao[d].damping * q).inv()
+                } else {
+                    Complex::new(1.0, 0.0)
+                };
+                // Angles follow the wave slope, a quarter period ahead of the elevation.
+                let forcing = if d < 3 {
+                    Complex::new(0.0, slope)
+                } else {
+                    Complex::new(1.0, 0.0)
+                };
+                c[d] = forcing * h * (a * rao[d].gain * dir[d]);
+            }
+            omega_rps.push(w);
+            phase_rad.push(eps);
+            coef.push(c);
+        }
+        let rot = |f: f64| -> Vec<Complex<f64>> {
+            omega_rps
+                .iter()
+                .map(|w| Complex::from_polar(1.0, w * f * tick_s))
+                .collect()
+        };
+        let mut me = Self {
+            rot_tick: rot(1.0),
+            rot_offsets: offsets.iter().map(|&f| rot(f)).collect(),
+            z: vec![Complex::new(1.0, 0.0); n],
+            omega_rps,
+            phase_rad,
+            coef,
+            tick: 0,
+            tick_s,
+        };
+        me.resync(0);
+        Some(me)
+    }
+
+    /// Component frequencies, rad/s.
+    pub fn omega_rps(&self) -> &[f64] {
+        &self.omega_rps
+    }
+
+    /// Complex amplitudes c_{d,i} of component i.
+    pub fn coef(&self, i: usize) -> &[Complex<f64>; 6] {
+        &self.coef[i]
+    }
+
+    /// Phases ε_i, rad.
+    pub fn phase_rad(&self) -> &[f64] {
+        &self.phase_rad
+    }
+
+    fn resync(&mut self, tick: u64) {
+        let t = tick as f64 * self.tick_s;
+        for ((z, w), e) in self.z.iter_mut().zip(&self.omega_rps).zip(&self.phase_rad) {
+            *z = Complex::from_polar(1.0, w * t + e);
+        }
+        self.tick = tick;
+    }
+
+    /// Moves the phasors to tick `tick`: one product per component when stepping forward by one
+    /// tick; otherwise from the last resynchronisation point.
+    pub fn seek(&mut self, tick: u64) {
+        if tick == self.tick {
+            return;
+        }
+        if tick == self.tick + 1 && !tick.is_multiple_of(RESYNC_TICKS) {
+            self.z
+                .iter_mut()
+                .zip(&self.rot_tick)
+                .for_each(|(z, r)| *z *= r);
+            self.tick = tick;
+            return;
+        }
+        let base = tick - tick % RESYNC_TICKS;
+        self.resync(base);
+        while self.tick < tick {
+            self.z
+                .iter_mut()
+                .zip(&self.rot_tick)
+                .for_each(|(z, r)| *z *= r);
+            self.tick += 1;
+        }
+    }
+
+    /// The jet at the current tick (`offset = None`) or at in-tick offset number `offset`.
+    pub fn jet(&self, offset: Option<usize>) -> SeaJet {
+        let mut j = SeaJet::default();
+        for (i, c) in self.coef.iter().enumerate() {
+            let z = match offset {
+                Some(o) => self.z[i] * self.rot_offsets[o][i],
+                None => self.z[i],
+            };
+            accumulate(&mut j, c, z, self.omega_rps[i]);
+        }
+        j
+    }
+
+    /// The jet at an arbitrary time (sines and cosines: for checks and trajectory export).
+    pub fn jet_at_time(&self, t_s: f64) -> SeaJet {
+        let mut j = SeaJet::default();
+        for (i, c) in self.coef.iter().enumerate() {
+            let w = self.omega_rps[i];
+            let z = Complex::from_polar(1.0, w * t_s + self.phase_rad[i]);
+            accumulate(&mut j, c, z, w);
+        }
+        j
+    }
+}
+
+/// Adds one component (amplitudes `c`, phasor `z`, frequency `w`) to the jet:
+/// x += Re(c·z), ẋ += Re(iω·c·z), ẍ += Re(−ω²·c·z).
+#[inline]
+fn accumulate(j: &mut SeaJet, c: &[Complex<f64>; 6], z: Complex<f64>, w: f64) {
+    for (d, c) in c.iter().enumerate() {
+        let p = c * z;
+        j.x[d] += p.re;
+        j.xd[d] -= w * p.im;
+        j.xdd[d] -= w * w * p.re;
+    }
+}

@@ -1,0 +1,250 @@
+//! Moving-base increments against independent closed forms: a meridian leg (transport rate,
+//! Coriolis, position along the track), a steady turn (centripetal and Coriolis terms), a roll
+//! oscillation under a spinning table (coning), a ship at rest against the static plant, and
+//! save/restore on a ship.
+
+mod carrier_common;
+
+use carrier_common::{meridian_arc_m, quad, ship_config, with_sea_state};
+use nalgebra::Vector3;
+use rins_plant::carrier::{RaoSpec, ShipRaoSpec, SpectrumKind};
+use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity, radii_of_curvature};
+use rins_plant::table::{GimbalAxis, SchemeKind};
+use rins_plant::{Plant, PlantConfig};
+
+const KN: f64 = 1852.0 / 3600.0;
+
+#[test]
+fn meridian_leg_position_transport_rate_and_coriolis() {
+    let u = 12.0 * KN;
+    let cfg = ship_config(&[(0.0, 12.0, 1e6)]);
+    let mut p = Plant::new(&cfg).unwrap();
+    let lat0 = cfg.carrier.ship.lat_deg.to_radians();
+    let m0 = meridian_arc_m(lat0);
+    // Latitude after travelling `d` metres north: invert the meridian arc by Newton steps.
+    let lat_after = |d: f64| {
+        let mut lat = lat0 + d / 6.36e6;
+        for _ in 0..6 {
+            let (rm, _) = radii_of_curvature(lat);
+            lat -= (meridian_arc_m(lat) - m0 - d) / rm;
+        }
+        lat
+    };
+    let h = p.dt_s();
+    let (mut worst_th, mut worst_dv) = (0.0f64, 0.0f64);
+    let n = 360_000u64; // one hour
+    for k in 0..n {
+        let s = p.step();
+        if k % 997 != 0 {
+            continue;
+        }
+        // Body = carrier = ENU on a northbound level ship with the table at (0, 0).
+        let lat = lat_after(u * (k as f64 + 0.5) * h);
+        let (rm, _) = radii_of_curvature(lat);
+        let w_ie = Vector3::new(0.0, OMEGA_IE_RPS * lat.cos(), OMEGA_IE_RPS * lat.sin());
+        let w_en = Vector3::new(-u / rm, 0.0, 0.0);
+        let dth = (w_ie + w_en) * h;
+        let f = Vector3::new(
+            -2.0 * OMEGA_IE_RPS * lat.sin() * u,
+            0.0,
+            normal_gravity(lat, 0.0) - u * u / rm,
+        );
+        worst_th = worst_th.max((s.dtheta_rad - dth).amax());
+        worst_dv = worst_dv.max((s.dv_mps - f * h).amax());
+    }
+    let lat_end = lat_after(u * n as f64 * h);
+    let (rm, _) = radii_of_curvature(lat_end);
+    let along_m = (p.truth().carrier.lat_rad - lat_end) * rm;
+    let east_m = (p.truth().carrier.lon_rad - cfg.carrier.ship.lon_deg.to_radians()) * rm;
+    println!(
+        "meridian leg 1 h: |dtheta err| {worst_th:.2e} rad, |dv err| {worst_dv:.2e} m/s, along-track {along_m:.2e} m, cross-track {east_m:.2e} m"
+    );
+    assert!(worst_th < 1e-15, "{worst_th:e}");
+    assert!(worst_dv < 1e-12, "{worst_dv:e}");
+    assert!(along_m.abs() < 1e-3, "{along_m} m");
+    assert!(east_m.abs() < 1e-9, "{east_m} m");
+    // The transport term is really there: 12 kn north is −9.7e-9 rad per step about east.
+    assert!((p.truth().dtheta_true_rad.x - (-u / rm) * h).abs() < 1e-15);
+}
+
+#[test]
+fn steady_turn_centripetal_and_coriolis() {
+    // Starboard turn from north to south at 15 kn, peak rate 1 deg/s: the cycloidal profile
+    // ψ = Δψ·(x − sin(2πx)/2π), x = (t − 10 s)/T, T = 2Δψ/r = 360 s.
+    let u = 15.0 * KN;
+    let cfg = ship_config(&[(0.0, 15.0, 10.0), (180.0 - 1e-9, 15.0, 1e6)]);
+    let mut p = Plant::new(&cfg).unwrap();
+    let h = p.dt_s();
+    let r = 1f64.to_radians();
+    let (mut worst_th, mut worst_dv) = (0.0f64, 0.0f64);
+    let mut lat_prev = p.truth().carrier.lat_rad;
+    for k in 0..37_000u64 {
+        let s = p.step();
+        let lat = 0.5 * (lat_prev + p.truth().carrier.lat_rad);
+        lat_prev = p.truth().carrier.lat_rad;
+        let t0 = k as f64 * h;
+        if !(10.0 + h..369.99).contains(&t0) {
+            continue;
+        }
+        // Closed form inside the turn; body = carrier, C_n^b = R_z(ψ).
+        let (rm, rn) = radii_of_curvature(lat);
+        let (sl, cl) = lat.sin_cos();
+        let body = |t: f64| {
+            let (tt, x) = (360.0, (t - 10.0) / 360.0);
+            let pi2 = 2.0 * std::f64::consts::PI;
+            let psi = std::f64::consts::PI * (x - (pi2 * x).sin() / pi2);
+            let r = std::f64::consts::PI * (1.0 - (pi2 * x).cos()) / tt;
+            let (sp, cp) = psi.sin_cos();
+            let v = Vector3::new(u * sp, u * cp, 0.0);
+            let w_ie = Vector3::new(0.0, OMEGA_IE_RPS * cl, OMEGA_IE_RPS * sl);
+            let w_en = Vector3::new(-v.y / rm, v.x / rn, v.x * sl / cl / rn);
+            let to_b =
+                |x: Vector3<f64>| Vector3::new(cp * x.x - sp * x.y, sp * x.x + cp * x.y, x.z);
+            let coriolis = (2.0 * w_ie + w_en).cross(&v);
+            // Centripetal u·r to starboard (+x), gravity up; Coriolis rotated into the body.
+            let f = Vector3::new(u * r, 0.0, normal_gravity(lat, 0.0)) + to_b(coriolis);
+            let w = Vector3::new(0.0, 0.0, -r) + to_b(w_ie + w_en);
+            (w, f)
+        };
+        let dth = quad(|t| body(t).0, t0, t0 + h, 4);
+        let dv = quad(|t| body(t).1, t0, t0 + h, 4);
+        worst_th = worst_th.max((s.dtheta_rad - dth).amax());
+        worst_dv = worst_dv.max((s.dv_mps - dv).amax());
+        if k == 19_000 {
+            // Mid-turn the rate peaks at r: centripetal u·r to starboard.
+            let centripetal = s.dv_mps.x / h;
+            assert!(
+                (centripetal - u * r).abs() < 2e-3,
+                "{centripetal} vs {}",
+                u * r
+            );
+        }
+    }
+    println!("steady turn: |dtheta err| {worst_th:.2e} rad, |dv err| {worst_dv:.2e} m/s");
+    assert!(worst_th < 1e-14, "{worst_th:e}");
+    assert!(worst_dv < 1e-11, "{worst_dv:e}");
+}
+
+/// One wave component driving roll only.
+fn roll_only(mut cfg: PlantConfig) -> PlantConfig {
+    let off = RaoSpec {
+        gain: 0.0,
+        natural_period_s: 0.0,
+        damping: 0.1,
+    };
+    let sea = &mut cfg.carrier.ship.sea;
+    sea.spectrum = SpectrumKind::PiersonMoskowitz;
+    sea.components = 1;
+    sea.hs_m = 4.0;
+    sea.tp_s = 8.0;
+    sea.heading_to_waves_deg = 90.0;
+    sea.rao = ShipRaoSpec {
+        roll: RaoSpec {
+            gain: 3.0,
+            natural_period_s: 0.0,
+            damping: 0.1,
+        },
+        pitch: off,
+        yaw: off,
+        heave: off,
+        surge: off,
+        sway: off,
+    };
+    cfg
+}
+
+#[test]
+fn roll_oscillation_under_a_spinning_table_matches_the_exact_integral() {
+    // A ship at rest rolling harmonically while the outer gimbal spins at 6 deg/s: the roll axis
+    // turns in body axes, the classic coning motion. Earth rate off to isolate it.
+    let mut cfg = roll_only(ship_config(&[(0.0, 0.0, 1e6)]));
+    cfg.earth.rotation = false;
+    cfg.scheme.kind = SchemeKind::Continuous;
+    cfg.scheme.axis = GimbalAxis::Outer;
+    cfg.scheme.rate_dps = 6.0;
+    cfg.scheme.accel_dps2 = f64::INFINITY;
+    let mut p = Plant::new(&cfg).unwrap();
+    let w = rins_plant::carrier::ship::Ship::new(&cfg.carrier.ship, cfg.seed, 0.01, &[]);
+    let waves = w.waves().expect("one component");
+    let (om, c) = (waves.omega_rps()[0], waves.coef(0)[0]);
+    let eps = waves.phase_rad()[0];
+    // φ(t) = Re(c·e^{i(ωt+ε)}) = |c| cos(ωt + ε + arg c).
+    let (amp, ph) = (c.norm(), eps + c.arg());
+    let spin = 6f64.to_radians();
+    let h = p.dt_s();
+    let mut worst = 0.0f64;
+    let mut cone = 0.0f64;
+    for k in 0..30_000u64 {
+        let s = p.step();
+        let t0 = k as f64 * h;
+        // ω_ib^b = R_x(0)ᵀR_z(θ)ᵀ·[0, φ̇, 0] + [0, 0, spin] (carrier rate ω_nc^c = [0, φ̇, 0]).
+        let rate = |t: f64| {
+            let phid = -amp * om * (om * t + ph).sin();
+            let th = spin * t;
+            Vector3::new(th.sin() * phid, th.cos() * phid, spin)
+        };
+        let exact = quad(rate, t0, t0 + h, 4);
+        worst = worst.max((s.dtheta_rad - exact).amax());
+        cone = cone.max(s.dtheta_rad.xy().norm());
+    }
+    println!("roll + spin: |dtheta err| {worst:.2e} rad over steps of up to {cone:.2e} rad");
+    assert!(amp > 0.02, "roll amplitude {amp} rad");
+    assert!(worst < 1e-13, "{worst:e}");
+}
+
+#[test]
+fn ship_at_rest_reproduces_the_static_plant() {
+    // Same physics, other code path: a ship with zero speed at the site, no waves.
+    let stat = PlantConfig {
+        scheme: rins_plant::table::SchemeSpec::default(),
+        ..PlantConfig::default()
+    };
+    let mut ship = ship_config(&[(0.0, 0.0, 1e6)]);
+    ship.scheme = stat.scheme.clone();
+    let (mut a, mut b) = (Plant::new(&stat).unwrap(), Plant::new(&ship).unwrap());
+    // While the table dwells both are exact; while it turns (rate ω, acceleration α) the static
+    // path takes the attitude at the midpoint, whose error the Gauss–Legendre path does not
+    // have: |∫C(t)dt − C(mid)·h| ≤ (α + ω²)·h³/24 per unit vector, times g for Δv, Ω for Δθ.
+    let h = a.dt_s();
+    let w = stat.scheme.rate_dps.to_radians();
+    let acc = stat.scheme.accel_dps2.to_radians();
+    let mid_dv = (acc + w * w) * h.powi(3) / 24.0 * 9.81;
+    let mid_th = (acc + w * w) * h.powi(3) / 24.0 * OMEGA_IE_RPS;
+    let mut last = a.truth().gimbal.angles;
+    let (mut dwell, mut turn) = ((0.0f64, 0.0f64), (0.0f64, 0.0f64));
+    for _ in 0..200_000 {
+        let (x, y) = (a.step(), b.step());
+        let d = (
+            (x.dtheta_rad - y.dtheta_rad).amax(),
+            (x.dv_mps - y.dv_mps).amax(),
+        );
+        let still = a.truth().gimbal.angles == last && !a.truth().gimbal.moving;
+        last = a.truth().gimbal.angles;
+        let w = if still { &mut dwell } else { &mut turn };
+        *w = (w.0.max(d.0), w.1.max(d.1));
+        assert_eq!(x.encoder, y.encoder);
+    }
+    println!(
+        "ship at rest vs static: dwell {:.2e} rad {:.2e} m/s; turning {:.2e} rad {:.2e} m/s (midpoint-rule bound {mid_th:.2e} rad {mid_dv:.2e} m/s)",
+        dwell.0, dwell.1, turn.0, turn.1
+    );
+    assert!(dwell.0 < 1e-17 && dwell.1 < 1e-14, "{dwell:?}");
+    assert!(turn.0 < 1.2 * mid_th && turn.1 < 1.2 * mid_dv, "{turn:?}");
+    assert!(turn.1 > 0.1 * mid_dv, "the comparison saw no turning");
+}
+
+#[test]
+fn ship_state_save_restore_is_bit_identical() {
+    let cfg = with_sea_state(ship_config(&[(30.0, 12.0, 300.0), (120.0, 14.0, 1e5)]), 5);
+    let mut a = Plant::new(&cfg).unwrap();
+    for _ in 0..25_000 {
+        a.step();
+    }
+    let bytes = a.serialize_state();
+    let mut b = Plant::from_serialized_state(&cfg, &bytes).unwrap();
+    for _ in 0..20_000 {
+        let (x, y) = (a.step(), b.step());
+        assert_eq!(x, y);
+        assert_eq!(a.truth(), b.truth());
+    }
+}
