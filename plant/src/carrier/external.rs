@@ -1,0 +1,130 @@
+//! An externally driven carrier: a vessel model outside the plant (an FMU connected to the IMU
+//! FMU's carrier inputs) supplies [`CarrierSample`]s at the ends of each communication step,
+//! and the plant moves between two of them exactly as between two rows of a trajectory file
+//! ([`super::trajectory`]): cubic Hermite position from the two positions and velocities,
+//! constant-rate attitude between the two attitudes. The segment is a two-row [`Trajectory`]
+//! swapped into the plant's carrier before the step, so no new carrier kind is needed.
+//!
+//! Two identical samples (bit for bit) hold the carrier at rest at that sample for the step: a
+//! master that passes outputs from the start of a step (Jacobi) gives the IMU its first sample
+//! twice, and a cubic through one position with a non-zero velocity would invent accelerations
+//! of 6·v/h.
+//!
+//! Declared from `lib.rs` (`rins_plant::external_carrier`, by `#[path]`) rather than in
+//! `carrier/mod.rs`, which belongs to the carrier module's owner; it can move there unchanged.
+
+use std::fmt::Write;
+
+use crate::carrier::run::CarrierRun;
+use crate::carrier::{Carrier, Trajectory};
+use crate::plant::Plant;
+
+/// Sample columns in the order [`CarrierSample::row`] writes them (a trajectory file's).
+const HEADER: &str =
+    "t_s,lat_deg,lon_deg,height_m,v_e_mps,v_n_mps,v_u_mps,q_cn_w,q_cn_x,q_cn_y,q_cn_z";
+
+/// The carrier at one instant as a vessel model gives it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CarrierSample {
+    /// Geodetic latitude of the reference point, degrees, in [-89, 89].
+    pub lat_deg: f64,
+    /// Longitude, degrees.
+    pub lon_deg: f64,
+    /// Ellipsoidal height, m.
+    pub height_m: f64,
+    /// Ground velocity east, north, up, m/s.
+    pub v_enu_mps: [f64; 3],
+    /// Attitude q_c^n (w, x, y, z), norm 1 within 1e-6: carrier axes (x starboard, y bow, z
+    /// up) to east-north-up.
+    pub q_cn: [f64; 4],
+}
+
+impl CarrierSample {
+    /// A trajectory row at time `t_s` (`{:?}` prints the shortest text that parses back to the
+    /// same bits, so the row carries the sample exactly).
+    fn row(&self, t_s: f64, out: &mut String) {
+        let _ = write!(
+            out,
+            "\n{t_s:?},{:?},{:?},{:?}",
+            self.lat_deg, self.lon_deg, self.height_m
+        );
+        for x in self.v_enu_mps.iter().chain(&self.q_cn) {
+            let _ = write!(out, ",{x:?}");
+        }
+    }
+
+    /// At rest: the same position and attitude with no velocity.
+    fn at_rest(&self) -> Self {
+        Self {
+            v_enu_mps: [0.0; 3],
+            ..*self
+        }
+    }
+}
+
+/// The carrier moving from `start` (plant-relative time 0) to `end` over `ticks` ticks of
+/// `tick_s`, or held at rest at `start` when the two are identical. A sample outside the
+/// trajectory rules (latitude beyond ±89°, a quaternion off norm 1, non-finite values, a
+/// position jump the velocities do not explain) is refused with the column and the reason.
+pub fn segment(
+    start: &CarrierSample,
+    end: &CarrierSample,
+    ticks: u64,
+    tick_s: f64,
+) -> Result<Carrier, String> {
+    let (a, b) = if start == end {
+        (start.at_rest(), start.at_rest())
+    } else {
+        (*start, *end)
+    };
+    let span_s = ticks.max(1) as f64 * tick_s;
+    let mut text = String::from(HEADER);
+    a.row(0.0, &mut text);
+    b.row(span_s, &mut text);
+    let data = Trajectory::parse(&text, "carrier inputs").map_err(|e| {
+        let which = if e.row <= 1 { "step start" } else { "step end" };
+        format!(
+            "carrier inputs at the {which} refused ({}): {}",
+            e.column, e.message
+        )
+    })?;
+    Ok(Carrier::from_trajectory(data, tick_s))
+}
+
+impl Plant {
+    /// Puts the plant on an externally driven carrier held at `start` (call after building,
+    /// or after restoring a saved state, before the first step).
+    pub fn attach_external_carrier(&mut self, start: &CarrierSample) -> Result<(), String> {
+        let tick_s = self.tick_s();
+        let seg = segment(start, start, 1, tick_s)?;
+        let run = CarrierRun::new(seg, &self.cfg);
+        self.c_vn = run.c_vn();
+        self.truth.carrier = run.now.truth();
+        self.carrier = Some(run);
+        Ok(())
+    }
+
+    /// Drives the external carrier from `start` to `end` over the next `samples` IMU samples
+    /// (see the module notes); the plant must be on an external carrier.
+    pub fn drive_carrier(
+        &mut self,
+        start: &CarrierSample,
+        end: &CarrierSample,
+        samples: u64,
+    ) -> Result<(), String> {
+        let tick_s = self.tick_s();
+        let ticks = samples * self.cfg.substeps as u64;
+        let seg = segment(start, end, ticks, tick_s)?;
+        let run = self
+            .carrier
+            .as_mut()
+            .ok_or("the plant is not on an external carrier")?;
+        run.carrier = seg;
+        run.now = run.carrier.state_now();
+        Ok(())
+    }
+
+    fn tick_s(&self) -> f64 {
+        1.0 / (self.cfg.rate_hz * self.cfg.substeps as f64)
+    }
+}
