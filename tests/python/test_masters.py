@@ -211,6 +211,18 @@ def fmpy_connected(imu_fmu, carrier_fmu, steps, outputs=OUTPUTS, init_transfer=T
     return np.array(rows), wall
 
 
+def in_process_system(steps, csv=True):
+    """The carrier -> IMU system in process (the two models' generic FMI state machines
+    connected in the masters' order: fmi-wrapper/models/imu/examples/carrier_imu.rs, built
+    beside `rins` by tests/run-all.sh): imu.dtheta_rad after every step and the wall time."""
+    exe = os.path.join(os.path.dirname(RINS), "examples", "carrier_imu")
+    assert os.path.exists(exe), f"{exe} missing: cargo build --release -p rins-imu-fmu --example carrier_imu"
+    r = subprocess.run([exe, str(steps)] + (["--csv"] if csv else []), capture_output=True, text=True, check=True)
+    wall = float(r.stderr.split("wall_s")[1].split()[0])
+    rows = np.array([[float(x) for x in line.split(",")] for line in r.stdout.splitlines()]) if csv else None
+    return rows, wall
+
+
 def carrier_osp():
     """The shipped carrier -> IMU OSP file beside the built FMI 2 FMUs."""
     d = os.path.join(WORK, "osp-carrier-imu")
@@ -442,11 +454,13 @@ def test_carrier_fmus_validate_and_reproduce_their_reference_results():
 def test_carrier_imu_system_is_bit_identical_in_every_master():
     """The carrier -> IMU system from the shipped OSP file (libcosim) and SSP file (libcosim,
     ecos; FMI 2) gives IMU outputs bit-identical to the two FMUs connected through FMPy's API in
-    the same (Jacobi) order; the IMU does move with the ship (its increments differ from the
+    the same (Jacobi) order, and those to the two models connected in process; the IMU does move with the ship (its increments differ from the
     static IMU's by the ship's rates times the step)."""
     n = 3000  # 30 s, three wave periods
     imu, car = (os.path.join(FMU_DIR, f) for f in ("RinsImu.fmu", "RinsCarrier.fmu"))
     ref, _ = fmpy_connected(imu, car, n)
+    inproc, _ = in_process_system(n)
+    assert np.array_equal(inproc, ref[:, :3]), "in-process system vs FMPy"
     runs = {
         "libcosim OSP (FMI 2)": master("libcosim", carrier_osp(), n),
         "libcosim SSP (FMI 2)": master("libcosim", carrier_ssp(), n),
@@ -466,6 +480,7 @@ def test_wall_time_of_a_one_hour_carrier_imu_run():
     n = 360_000
     imu, car = (os.path.join(FMU_DIR, f) for f in ("RinsImu.fmu", "RinsCarrier.fmu"))
     times = {}
+    _, times["in-process (the two models' FMI state machines, examples/carrier_imu)"] = in_process_system(n, csv=False)
     _, times["FMPy FMU2Slave API, both FMUs (FMI 2, 6 outputs read per step)"] = fmpy_connected(imu, car, n)
     _, times["libcosim OSP (FMI 2)"] = master("libcosim", carrier_osp(), n, record=False)
     _, times["libcosim SSP (FMI 2)"] = master("libcosim", carrier_ssp(), n, record=False)

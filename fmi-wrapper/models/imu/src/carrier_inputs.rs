@@ -16,8 +16,17 @@ use rins_plant::external_carrier::CarrierSample;
 /// Name of the switch parameter.
 pub const SWITCH: &str = "carrier.external_inputs";
 
-/// The inputs in slot order: (FMI 2 name, FMI 3 array, unit, range, description).
-pub const INPUTS: [(&str, &str, &str, (f64, f64), &str); 10] = [
+/// One carrier input: (FMI 2 name, FMI 3 array, unit, range, description).
+pub type InputDecl = (
+    &'static str,
+    &'static str,
+    &'static str,
+    (f64, f64),
+    &'static str,
+);
+
+/// The inputs in slot order.
+pub const INPUTS: [InputDecl; 10] = [
     (
         "carrier.lat_deg",
         "carrier.lat_deg",
