@@ -181,14 +181,7 @@ impl Plant {
         Ok(Self::build(cfg, carrier))
     }
 
-    /// The plant of `cfg` on the moving carrier `carrier` (e.g. a trajectory already in memory),
-    /// replacing the one `cfg.carrier` describes.
-    pub fn with_carrier(cfg: &PlantConfig, carrier: Carrier) -> Result<Self, Vec<ConfigError>> {
-        cfg.validate()?;
-        Ok(Self::build(cfg, Some(carrier)))
-    }
-
-    fn build(cfg: &PlantConfig, carrier: Option<Carrier>) -> Self {
+    pub(crate) fn build(cfg: &PlantConfig, carrier: Option<Carrier>) -> Self {
         let site = Site::new(&cfg.site, &cfg.earth);
         let carrier = carrier.map(|c| CarrierRun::new(c, cfg));
         let c_vn = match &carrier {

@@ -429,10 +429,11 @@ impl Scenario {
 fn carrier_resolved(mut c: CarrierSpec, source_name: &str) -> CarrierSpec {
     let f = Path::new(&c.trajectory.file);
     let src = Path::new(source_name);
-    if c.kind == CarrierKind::Trajectory && f.is_relative() && src.is_file() {
-        if let Some(dir) = src.parent() {
-            c.trajectory.file = dir.join(f).display().to_string();
-        }
+    if let Some(dir) = src
+        .parent()
+        .filter(|_| c.kind == CarrierKind::Trajectory && f.is_relative() && src.is_file())
+    {
+        c.trajectory.file = dir.join(f).display().to_string();
     }
     c
 }
@@ -441,10 +442,11 @@ fn carrier_resolved(mut c: CarrierSpec, source_name: &str) -> CarrierSpec {
 /// row and column in the trajectory file).
 fn carrier_problems(plant: &PlantConfig, problems: &mut Vec<(String, String)>) {
     let c = &plant.carrier;
-    if c.kind == CarrierKind::Trajectory && !c.trajectory.file.is_empty() {
-        if let Err(e) = rins_plant::carrier::Trajectory::read(&c.trajectory.file) {
-            problems.push(("carrier.trajectory.file".into(), e.to_string()));
-        }
+    if c.kind != CarrierKind::Trajectory || c.trajectory.file.is_empty() {
+        return;
+    }
+    if let Err(e) = rins_plant::carrier::Trajectory::read(&c.trajectory.file) {
+        problems.push(("carrier.trajectory.file".into(), e.to_string()));
     }
 }
 

@@ -6,6 +6,7 @@ use nalgebra::{Matrix3, Vector3};
 use super::state::CarrierState;
 use super::track::TrackPosition;
 use super::{Carrier, GL_OFFSETS};
+use crate::config::{ConfigError, PlantConfig};
 use crate::kinematics::{TableIncrements, carrier_point, moving_base_increments};
 use crate::plant::Plant;
 use crate::state::{Reader, StateError, Writer};
@@ -33,7 +34,7 @@ pub struct CarrierRun {
 
 impl CarrierRun {
     /// Wraps `carrier` with the mount, lever arm and Earth switches of `cfg`.
-    pub fn new(mut carrier: Carrier, cfg: &crate::config::PlantConfig) -> Box<Self> {
+    pub fn new(mut carrier: Carrier, cfg: &PlantConfig) -> Box<Self> {
         let now = carrier.state_now();
         Box::new(Self {
             carrier,
@@ -61,6 +62,13 @@ impl CarrierRun {
 }
 
 impl Plant {
+    /// The plant of `cfg` on the moving carrier `carrier` (e.g. a trajectory already in memory),
+    /// replacing the one `cfg.carrier` describes.
+    pub fn with_carrier(cfg: &PlantConfig, carrier: Carrier) -> Result<Self, Vec<ConfigError>> {
+        cfg.validate()?;
+        Ok(Self::build(cfg, Some(carrier)))
+    }
+
     /// One tick on the moving carrier from table state `g0` to `g1`: the increments (two-point
     /// Gauss–Legendre on the carrier part, exact angle differences for the gimbal part) and the
     /// up axis in body axes (the mean of the two points').
