@@ -128,3 +128,58 @@ impl Plant {
         1.0 / (self.cfg.rate_hz * self.cfg.substeps as f64)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::earth::radii_of_curvature;
+
+    fn sample(lat_deg: f64, v_n: f64) -> CarrierSample {
+        CarrierSample {
+            lat_deg,
+            lon_deg: 123.6,
+            height_m: 0.0,
+            v_enu_mps: [0.0, v_n, 0.0],
+            q_cn: [1.0, 0.0, 0.0, 0.0],
+        }
+    }
+
+    /// Due north at a constant 6 m/s: the segment's mid-step state is half the way with the
+    /// same velocity and no acceleration (the cubic through two positions and equal
+    /// velocities consistent with them is the straight line).
+    #[test]
+    fn a_constant_velocity_segment_is_the_straight_line() {
+        let (rm, _) = radii_of_curvature(36.0f64.to_radians());
+        let dlat_deg = (6.0 * 0.01 / rm).to_degrees();
+        let mut c = segment(&sample(36.0, 6.0), &sample(36.0 + dlat_deg, 6.0), 2, 0.005).unwrap();
+        let mut nodes = [c.state_now(); 2];
+        let mid = c.advance(&mut nodes);
+        let got = mid.lat_rad.to_degrees() - 36.0;
+        assert!(
+            (got - dlat_deg / 2.0).abs() < 1e-12,
+            "{got} vs {}",
+            dlat_deg / 2.0
+        );
+        // Latitudes in degrees resolve 1.2e-16 rad (0.8 nm) near 36°: over 10 ms that is
+        // 8e-8 m/s of velocity the positions can express (the step's ∫a is Δv regardless).
+        assert!((mid.v_n.y - 6.0).abs() < 2e-7, "{mid:?}");
+        assert!(mid.a_n.norm() < 1e-4, "{mid:?}");
+    }
+
+    /// Two identical samples hold the carrier at rest there; a quaternion off norm 1 is
+    /// refused naming the column.
+    #[test]
+    fn identical_samples_hold_at_rest_and_bad_ones_are_refused() {
+        let s = sample(36.0, 6.0);
+        let mut c = segment(&s, &s, 1, 0.01).unwrap();
+        let mut nodes = [c.state_now(); 2];
+        let end = c.advance(&mut nodes);
+        assert_eq!(end.v_n.norm(), 0.0);
+        assert_eq!(nodes[0].a_n.norm(), 0.0);
+        assert!((end.lat_rad.to_degrees() - 36.0).abs() < 1e-12);
+        let mut bad = s;
+        bad.q_cn[0] = 0.9;
+        let e = segment(&s, &bad, 1, 0.01).unwrap_err();
+        assert!(e.contains("step end") && e.contains("q_cn_w"), "{e}");
+    }
+}
