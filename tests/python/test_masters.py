@@ -8,9 +8,14 @@ angular increments by bias x step); a chamber input set at t = 0 before initiali
 changes the initial temperatures, one set at t = 100.00 s is in effect in the first step
 after 100.00 s. Prints the wall time of a 1-hour run in each master, FMPy and in-process.
 
+The carrier -> IMU system (fmi-wrapper/examples/system/carrier-imu/: RinsCarrier.fmu driving
+the IMU's carrier inputs): libcosim (OSP, SSP) and ecos (SSP), FMI 2, give IMU outputs
+bit-identical to the two FMUs connected through FMPy's API in the masters' Jacobi order, which
+equal the two models connected in process (examples/carrier_imu); the carrier FMUs validate and
+reproduce their _ref.csv in FMPy; 1-hour system timings.
+
 Each master runs in its own process (a libcosim error aborts its process; ecos needs
-libtbb preloaded). Adding a component (the carrier FMU) is one entry in SYSTEM below and its
-connections in the two system files.
+libtbb preloaded).
 
 Usage: python test_masters.py FMU_DIR RINS_BINARY WORK_DIR
 """
