@@ -12,6 +12,8 @@ cargo fmt --all --check
 
 echo "== cargo build (the FMI shared libraries are loaded by the tests) =="
 cargo build --workspace --release "${features[@]}"
+# The in-process carrier -> IMU system test_masters.py compares the masters with.
+cargo build --release -p rins-imu-fmu --example carrier_imu
 target_dir="${CARGO_TARGET_DIR:-target}"
 bin="$target_dir/release"
 

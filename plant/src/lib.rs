@@ -15,6 +15,9 @@ pub mod command;
 pub mod config;
 pub mod earth;
 pub mod effects;
+/// An externally driven carrier (a vessel model supplying samples at communication points).
+#[path = "carrier/external.rs"]
+pub mod external_carrier;
 pub mod kinematics;
 pub mod params;
 pub mod plant;

@@ -5,6 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
+use rins_carrier_fmu::RinsCarrier;
 use rins_fmi::package;
 use rins_fmi::vars::{Kind, Value};
 use rins_fmi::xml::FmiVersion;
@@ -27,34 +28,59 @@ pub fn default_lib_dir() -> PathBuf {
         .unwrap_or_default()
 }
 
-/// Writes both FMUs into `out`, each with its reference results beside it as
-/// modelica/Reference-FMUs ship them (`<Model>_ref.opt`, `<Model>_in.csv`, `<Model>_ref.csv`:
-/// [`rins_imu_fmu::reference`]); returns the FMU paths.
+/// Writes the IMU and carrier FMUs (FMI 2 and FMI 3 each) into `out`, each with its reference
+/// results beside it as modelica/Reference-FMUs ship them (`<Model>_ref.opt`, `<Model>_in.csv`
+/// when it has inputs, `<Model>_ref.csv`: [`rins_imu_fmu::reference`],
+/// [`rins_carrier_fmu::reference`]); returns the FMU paths.
 pub fn build(out: &Path, lib_dir: &Path) -> Result<Vec<PathBuf>> {
     let mut made = Vec::new();
     let (opt, input, reference) =
         rins_imu_fmu::reference::reference_results().map_err(anyhow::Error::msg)?;
+    let imu_files = [
+        ("_ref.opt", opt),
+        ("_in.csv", input),
+        ("_ref.csv", reference),
+    ];
+    let (opt, reference) =
+        rins_carrier_fmu::reference::reference_results().map_err(anyhow::Error::msg)?;
+    let carrier_files = [("_ref.opt", opt), ("_ref.csv", reference)];
     for v in [FmiVersion::V2, FmiVersion::V3] {
-        let lib = lib_dir.join(library_file(v));
-        if !lib.exists() {
-            bail!(
-                "{} not found: build the FMI libraries first with `cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3` (or pass --lib-dir)",
-                lib.display()
-            );
-        }
-        made.push(
-            package::build_fmu::<RinsImu>(v, &lib, out)
-                .with_context(|| format!("packaging {}", lib.display()))?,
+        made.push(package_one::<RinsImu>(
+            v,
+            &lib_dir.join(library_file(v)),
+            out,
+            &imu_files,
+        )?);
+        made.push(package_one::<RinsCarrier>(
+            v,
+            &lib_dir.join(rins_carrier_fmu::library_file(v)),
+            out,
+            &carrier_files,
+        )?);
+    }
+    Ok(made)
+}
+
+/// Packages the library `lib` of model `M` as the FMU of version `v` in `out` and writes the
+/// reference files `files` (suffix, text) beside it.
+fn package_one<M: rins_fmi::model::Model>(
+    v: FmiVersion,
+    lib: &Path,
+    out: &Path,
+    files: &[(&str, String)],
+) -> Result<PathBuf> {
+    if !lib.exists() {
+        bail!(
+            "{} not found: build the FMI libraries first with `cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3 -p rins-carrier-fmi2 -p rins-carrier-fmi3` (or pass --lib-dir)",
+            lib.display()
         );
-        let id = rins_fmi::fmu::model_identifier::<RinsImu>(v);
-        for (suffix, text) in [
-            ("_ref.opt", &opt),
-            ("_in.csv", &input),
-            ("_ref.csv", &reference),
-        ] {
-            let path = out.join(format!("{id}{suffix}"));
-            std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
-        }
+    }
+    let made = package::build_fmu::<M>(v, lib, out)
+        .with_context(|| format!("packaging {}", lib.display()))?;
+    let id = rins_fmi::fmu::model_identifier::<M>(v);
+    for (suffix, text) in files {
+        let path = out.join(format!("{id}{suffix}"));
+        std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
     }
     Ok(made)
 }

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use rins_scenarios::commands::fmu::{FMI_PACKAGES, FMI_VERSIONS};
+use rins_scenarios::commands::fmu::{FMI_PACKAGES, library_files};
 
 const RINS: &str = env!("CARGO_BIN_EXE_rins");
 
@@ -106,11 +106,11 @@ fn negative_numbers_reach_the_range_check_which_names_flag_and_range() {
 /// The folder of the `rins` under test, where cargo puts the FMI libraries too.
 fn built_libraries() -> PathBuf {
     let dir = Path::new(RINS).parent().unwrap().to_path_buf();
-    for v in FMI_VERSIONS {
-        let lib = dir.join(rins_imu_fmu::library_file(v));
+    for f in library_files() {
+        let lib = dir.join(f);
         assert!(
             lib.exists(),
-            "{} missing: build the FMI libraries first (cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3)",
+            "{} missing: build the FMI libraries first (cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3 -p rins-carrier-fmi2 -p rins-carrier-fmi3)",
             lib.display()
         );
     }
@@ -130,8 +130,7 @@ fn fmu_build_builds_missing_libraries_with_cargo_in_the_workspace() {
     std::fs::copy(RINS, &exe).unwrap();
     let stage = dir.join("stage");
     std::fs::create_dir_all(&stage).unwrap();
-    for v in FMI_VERSIONS {
-        let f = rins_imu_fmu::library_file(v);
+    for f in library_files() {
         std::fs::copy(real.join(f), stage.join(f)).unwrap();
     }
     let log = dir.join("cargo-args");
@@ -175,7 +174,8 @@ fn fmu_build_builds_missing_libraries_with_cargo_in_the_workspace() {
     ]);
     assert!(reference.status.success());
     let paths: Vec<&str> = listed.lines().collect();
-    assert_eq!(paths.len(), FMI_VERSIONS.len(), "{listed}");
+    // One FMU per library: the IMU and the carrier, FMI 2 and FMI 3.
+    assert_eq!(paths.len(), library_files().len(), "{listed}");
     for p in paths {
         let p = Path::new(p);
         let a = std::fs::read(p).unwrap();

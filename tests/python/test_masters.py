@@ -8,9 +8,14 @@ angular increments by bias x step); a chamber input set at t = 0 before initiali
 changes the initial temperatures, one set at t = 100.00 s is in effect in the first step
 after 100.00 s. Prints the wall time of a 1-hour run in each master, FMPy and in-process.
 
+The carrier -> IMU system (fmi-wrapper/examples/system/carrier-imu/: RinsCarrier.fmu driving
+the IMU's carrier inputs): libcosim (OSP, SSP) and ecos (SSP), FMI 2, give IMU outputs
+bit-identical to the two FMUs connected through FMPy's API in the masters' Jacobi order, which
+equal the two models connected in process (examples/carrier_imu); the carrier FMUs validate and
+reproduce their _ref.csv in FMPy; 1-hour system timings.
+
 Each master runs in its own process (a libcosim error aborts its process; ecos needs
-libtbb preloaded). Adding a component (the carrier FMU) is one entry in SYSTEM below and its
-connections in the two system files.
+libtbb preloaded).
 
 Usage: python test_masters.py FMU_DIR RINS_BINARY WORK_DIR
 """
@@ -157,6 +162,93 @@ def run_ecos(job):
     wall = time.perf_counter() - t0
     sim.terminate()
     return {"rows": rows, "wall_s": wall}
+
+
+CARRIER_SIGNALS = (["carrier.lat_deg", "carrier.lon_deg", "carrier.height_m"]
+                   + [f"carrier.v_enu_mps[{i}]" for i in range(3)] + [f"carrier.q_cn[{i}]" for i in range(4)])
+CARRIER_EXAMPLES = os.path.join(EXAMPLES, "carrier-imu")
+CARRIER_IMU_START = {"run.seed": 5, "carrier.external_inputs": True}
+
+
+def fmpy_connected(imu_fmu, carrier_fmu, steps, outputs=OUTPUTS, init_transfer=True):
+    """The carrier -> IMU system through FMPy's FMU2Slave API in the masters' Jacobi order:
+    both step from t, then the carrier's outputs at t + h become the IMU's inputs for the next
+    step; with `init_transfer` the carrier's initial outputs are the IMU's inputs before it
+    leaves initialization mode. Returns the IMU outputs after every step."""
+    from fmpy import read_model_description, extract
+    from fmpy.fmi2 import FMU2Slave
+
+    def open_fmu(path, name):
+        md = read_model_description(path)
+        d = extract(path)
+        f = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
+                      instanceName=name)
+        f.instantiate()
+        return f, {v.name: v for v in md.modelVariables}
+
+    car, cv = open_fmu(carrier_fmu, "carrier")
+    imu, iv = open_fmu(imu_fmu, "imu")
+    for f in (car, imu):
+        f.setupExperiment(startTime=0.0)
+    imu.setInteger([iv["run.seed"].valueReference], [5])
+    imu.setBoolean([iv["carrier.external_inputs"].valueReference], [True])
+    car.enterInitializationMode()
+    car.exitInitializationMode()
+    src = [cv[n].valueReference for n in CARRIER_SIGNALS]
+    dst = [iv[n].valueReference for n in CARRIER_SIGNALS]
+    out = [iv[n].valueReference for n in outputs]
+    imu.enterInitializationMode()
+    if init_transfer:
+        imu.setReal(dst, car.getReal(src))
+    imu.exitInitializationMode()
+    rows = []
+    t0 = time.perf_counter()
+    for k in range(steps):
+        t = k * STEP
+        car.doStep(t, STEP)
+        imu.doStep(t, STEP)
+        imu.setReal(dst, car.getReal(src))
+        rows.append(imu.getReal(out))
+    wall = time.perf_counter() - t0
+    for f in (car, imu):
+        f.terminate()
+        f.freeInstance()
+    return np.array(rows), wall
+
+
+def in_process_system(steps, csv=True):
+    """The carrier -> IMU system in process (the two models' generic FMI state machines
+    connected in the masters' order: fmi-wrapper/models/imu/examples/carrier_imu.rs, built
+    beside `rins` by tests/run-all.sh): imu.dtheta_rad after every step and the wall time."""
+    exe = os.path.join(os.path.dirname(RINS), "examples", "carrier_imu")
+    assert os.path.exists(exe), f"{exe} missing: cargo build --release -p rins-imu-fmu --example carrier_imu"
+    r = subprocess.run([exe, str(steps)] + (["--csv"] if csv else []), capture_output=True, text=True, check=True)
+    wall = float(r.stderr.split("wall_s")[1].split()[0])
+    rows = np.array([[float(x) for x in line.split(",")] for line in r.stdout.splitlines()]) if csv else None
+    return rows, wall
+
+
+def carrier_osp():
+    """The shipped carrier -> IMU OSP file beside the built FMI 2 FMUs."""
+    d = os.path.join(WORK, "osp-carrier-imu")
+    os.makedirs(d, exist_ok=True)
+    shutil.copy(os.path.join(CARRIER_EXAMPLES, "OspSystemStructure.xml"), d)
+    for f in ("RinsImu.fmu", "RinsCarrier.fmu"):
+        shutil.copy(os.path.join(FMU_DIR, f), d)
+    return os.path.join(d, "OspSystemStructure.xml")
+
+
+def carrier_ssp():
+    """The shipped carrier -> IMU SystemStructure.ssd with its .ssv sets and both FMI 2 FMUs
+    packed into an .ssp."""
+    path = os.path.join(WORK, "rins-carrier-imu.ssp")
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
+        z.write(os.path.join(CARRIER_EXAMPLES, "SystemStructure.ssd"), "SystemStructure.ssd")
+        for name in ("sea-state-5", "carrier-imu"):
+            z.write(os.path.join(CARRIER_EXAMPLES, f"{name}.ssv"), f"resources/{name}.ssv")
+        for f in ("RinsImu.fmu", "RinsCarrier.fmu"):
+            z.write(os.path.join(FMU_DIR, f), f"resources/{f}")
+    return path
 
 
 def worker(path):
@@ -340,6 +432,66 @@ def test_wall_time_of_a_one_hour_run():
                                       start={"run.seed": 5})
     for k, v in times.items():
         print(f"     1 h at 10 ms, {k}: {v:.2f} s")
+    assert all(v > 0 for v in times.values())
+
+
+def test_carrier_fmus_validate_and_reproduce_their_reference_results():
+    """RinsCarrier(3).fmu: `fmpy validate` finds nothing, and FMPy regenerates the shipped
+    <Model>_ref.csv (every output, initial row included) bit for bit."""
+    from fmpy import simulate_fmu
+    from fmpy.util import read_csv
+    from fmpy.validation import validate_fmu
+    for model in ("RinsCarrier", "RinsCarrier3"):
+        base = os.path.join(FMU_DIR, model)
+        assert validate_fmu(base + ".fmu") == [], model
+        ref = read_csv(base + "_ref.csv")
+        names = [n for n in ref.dtype.names if n != "time"]
+        arrays = sorted({n.split("[")[0] for n in names}) if model.endswith("3") else names
+        r = simulate_fmu(base + ".fmu", stop_time=ref["time"][-1], output_interval=STEP, output=arrays)
+        assert len(r) == len(ref), (model, len(r), len(ref))
+        for n in names:
+            got = r[n.split("[")[0]][:, int(n[:-1].split("[")[1])] if "[" in n and model.endswith("3") else r[n]
+            assert np.array_equal(got, ref[n]), (model, n)
+        # The sea moves the ship: roll rate of order 0.01-0.1 rad/s.
+        assert np.abs(ref["carrier.omega_nc_c_rps[1]"]).max() > 1e-3
+
+
+def test_carrier_imu_system_is_bit_identical_in_every_master():
+    """The carrier -> IMU system from the shipped OSP file (libcosim) and SSP file (libcosim,
+    ecos; FMI 2) gives IMU outputs bit-identical to the two FMUs connected through FMPy's API in
+    the same (Jacobi) order, and those to the two models connected in process; the IMU does move with the ship (its increments differ from the
+    static IMU's by the ship's rates times the step)."""
+    n = 3000  # 30 s, three wave periods
+    imu, car = (os.path.join(FMU_DIR, f) for f in ("RinsImu.fmu", "RinsCarrier.fmu"))
+    ref, _ = fmpy_connected(imu, car, n)
+    inproc, _ = in_process_system(n)
+    assert np.array_equal(inproc, ref[:, :3]), "in-process system vs FMPy"
+    runs = {
+        "libcosim OSP (FMI 2)": master("libcosim", carrier_osp(), n),
+        "libcosim SSP (FMI 2)": master("libcosim", carrier_ssp(), n),
+        # ecos applies the parameter set it is given by name: the IMU's (the carrier's set is
+        # its defaults).
+        "ecos SSP (FMI 2)": master("ecos", carrier_ssp(), n, parameter_set="carrier-imu"),
+    }
+    for name, (rows, _) in runs.items():
+        assert rows.shape == ref.shape, (name, rows.shape)
+        assert np.array_equal(rows, ref), (name, np.flatnonzero((rows != ref).any(axis=1))[:5])
+    static = fmpy_run(imu, n, {"run.seed": 5})
+    moved = np.abs(ref[:, :3] - static[:, :3]).max()
+    assert moved > 1e-4, moved
+
+
+def test_wall_time_of_a_one_hour_carrier_imu_run():
+    n = 360_000
+    imu, car = (os.path.join(FMU_DIR, f) for f in ("RinsImu.fmu", "RinsCarrier.fmu"))
+    times = {}
+    _, times["in-process (the two models' FMI state machines, examples/carrier_imu)"] = in_process_system(n, csv=False)
+    _, times["FMPy FMU2Slave API, both FMUs (FMI 2, 6 outputs read per step)"] = fmpy_connected(imu, car, n)
+    _, times["libcosim OSP (FMI 2)"] = master("libcosim", carrier_osp(), n, record=False)
+    _, times["libcosim SSP (FMI 2)"] = master("libcosim", carrier_ssp(), n, record=False)
+    _, times["ecos SSP (FMI 2)"] = master("ecos", carrier_ssp(), n, record=False, parameter_set="carrier-imu")
+    for k, v in times.items():
+        print(f"     carrier -> IMU, 1 h at 10 ms, {k}: {v:.2f} s")
     assert all(v > 0 for v in times.values())
 
 

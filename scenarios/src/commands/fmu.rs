@@ -16,7 +16,8 @@ use crate::sinks::CsvSink;
 /// The FMU commands.
 #[derive(clap::Subcommand, Debug)]
 pub enum FmuCommand {
-    /// Write RinsImu.fmu (FMI 2.0) and RinsImu3.fmu (FMI 3.0).
+    /// Write RinsImu.fmu and RinsCarrier.fmu (FMI 2.0), RinsImu3.fmu and RinsCarrier3.fmu
+    /// (FMI 3.0).
     Build(BuildArgs),
     /// Run an FMI 2.0 FMU through a scenario, one communication step per IMU sample, writing
     /// the same imu.csv as `rins run`.
@@ -29,7 +30,8 @@ pub struct BuildArgs {
     /// Output folder.
     #[arg(long, default_value = "out/fmu")]
     pub out: PathBuf,
-    /// Folder holding librins_imu_fmi2.so and librins_imu_fmi3.so (default: next to this executable,
+    /// Folder holding librins_imu_fmi2.so, librins_imu_fmi3.so, librins_carrier_fmi2.so and
+    /// librins_carrier_fmi3.so (default: next to this executable,
     /// where they are built first when missing and rins runs from its cargo workspace).
     #[arg(long)]
     pub lib_dir: Option<PathBuf>,
@@ -76,20 +78,33 @@ fn build(a: &BuildArgs) -> Result<()> {
     Ok(())
 }
 
-/// The cargo packages whose cdylibs `rins fmu build` packages, one per FMI version of
-/// [`FMI_VERSIONS`] (the library file names are `rins_imu_fmu::library_file`'s).
-pub const FMI_PACKAGES: [&str; 2] = ["rins-imu-fmi2", "rins-imu-fmi3"];
+/// The cargo packages whose cdylibs `rins fmu build` packages, one per model and FMI version
+/// of [`FMI_VERSIONS`] (the library file names are `rins_imu_fmu::library_file`'s and
+/// `rins_carrier_fmu::library_file`'s).
+pub const FMI_PACKAGES: [&str; 4] = [
+    "rins-imu-fmi2",
+    "rins-imu-fmi3",
+    "rins-carrier-fmi2",
+    "rins-carrier-fmi3",
+];
 /// The FMI versions packaged.
 pub const FMI_VERSIONS: [FmiVersion; 2] = [FmiVersion::V2, FmiVersion::V3];
+
+/// File names of every library of [`FMI_PACKAGES`] (IMU and carrier, each FMI version).
+pub fn library_files() -> Vec<&'static str> {
+    FMI_VERSIONS
+        .iter()
+        .flat_map(|v| [library_file(*v), rins_carrier_fmu::library_file(*v)])
+        .collect()
+}
 
 /// Makes sure the FMI libraries are in `lib_dir`, the folder of this executable. When one is
 /// missing and this `rins` is a cargo build inside its workspace (a fresh clone running
 /// `cargo run --release -- fmu build`), builds them into the same target folder with cargo,
 /// saying so on stderr; otherwise fails naming what to build.
 pub fn ensure_libraries(lib_dir: &Path) -> Result<()> {
-    let missing: Vec<&str> = FMI_VERSIONS
-        .iter()
-        .map(|v| library_file(*v))
+    let missing: Vec<&str> = library_files()
+        .into_iter()
         .filter(|f| !lib_dir.join(f).exists())
         .collect();
     if missing.is_empty() {

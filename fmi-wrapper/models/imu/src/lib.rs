@@ -14,8 +14,10 @@ use rins_fmi::model::{Model, ModelInfo};
 use rins_fmi::state::{StateReader, StateWriter};
 use rins_fmi::vars::{Value, VariableTable};
 use rins_fmi::xml::FmiVersion;
+use rins_plant::external_carrier::CarrierSample;
 use rins_plant::{GimbalCommand, ImuSample, Plant, PlantConfig};
 
+pub mod carrier_inputs;
 pub mod config;
 pub mod outputs;
 pub mod reference;
@@ -74,6 +76,9 @@ pub struct RinsImu {
     /// start, built on the first read in initialization mode, so outputs read there are the
     /// initial values (the thermal steady state, the table's start angles), not zeros.
     preview: OnceLock<Option<Box<Plant>>>,
+    /// With `carrier.external_inputs`: the carrier sample the plant is at (the inputs at the
+    /// end of the last step, or of initialisation), the start of the next step's segment.
+    carrier_at: Option<CarrierSample>,
 }
 
 impl RinsImu {
@@ -103,12 +108,26 @@ impl RinsImu {
         Ok(cfg)
     }
 
-    fn build_plant(cfg: &PlantConfig) -> Result<Plant, String> {
-        Plant::new(cfg).map_err(|errs| {
+    fn build_plant(cfg: &PlantConfig, carrier: Option<&CarrierSample>) -> Result<Plant, String> {
+        let mut p = Plant::new(cfg).map_err(|errs| {
             errs.iter()
                 .map(|e| e.to_string())
                 .collect::<Vec<_>>()
                 .join("; ")
+        })?;
+        if let Some(c) = carrier {
+            p.attach_external_carrier(c)?;
+        }
+        Ok(p)
+    }
+
+    /// The carrier sample of the carrier inputs when `carrier.external_inputs` is on.
+    fn carrier_input(&self) -> Option<CarrierSample> {
+        let t = table();
+        let on = self.values[t.carrier_switch] == Value::Boolean(true);
+        let first = t.carrier_switch + 1;
+        on.then(|| {
+            carrier_inputs::sample(&self.values[first..first + carrier_inputs::INPUTS.len()])
         })
     }
 
@@ -217,6 +236,7 @@ impl Model for RinsImu {
             inputs_dirty: true,
             start_chamber_c: None,
             preview: OnceLock::new(),
+            carrier_at: None,
         }
     }
 
@@ -238,7 +258,7 @@ impl Model for RinsImu {
                 // initialization mode then says why).
                 let preview = self.preview.get_or_init(|| {
                     self.start_config(self.chamber_input_c())
-                        .and_then(|c| Self::build_plant(&c))
+                        .and_then(|c| Self::build_plant(&c, self.carrier_input().as_ref()))
                         .ok()
                         .map(Box::new)
                 });
@@ -253,8 +273,10 @@ impl Model for RinsImu {
 
     fn initialize(&mut self) -> Result<(), String> {
         let chamber = self.chamber_input_c();
-        let plant = Self::build_plant(&self.start_config(chamber)?)?;
+        let carrier = self.carrier_input();
+        let plant = Self::build_plant(&self.start_config(chamber)?, carrier.as_ref())?;
         self.start_chamber_c = chamber;
+        self.carrier_at = carrier;
         self.plant = Some(plant);
         self.preview = OnceLock::new();
         self.apply_inputs()
@@ -268,7 +290,15 @@ impl Model for RinsImu {
         if self.inputs_dirty {
             self.apply_inputs()?;
         }
+        // The carrier inputs are the carrier at the end of this step (`carrier.external_inputs`
+        // is fixed after initialisation, so it is on exactly when `carrier_at` is set).
+        let end = self.carrier_at.and(self.carrier_input());
         let plant = self.plant.as_mut().ok_or("the plant is not initialised")?;
+        if let (Some(start), Some(end)) = (self.carrier_at, end) {
+            // A refused sample leaves the plant as it was.
+            plant.drive_carrier(&start, &end, n)?;
+            self.carrier_at = Some(end);
+        }
         let mut s = plant.step();
         self.steps_in_last = n;
         if n > 1 {
@@ -314,6 +344,23 @@ impl Model for RinsImu {
         w.u64(self.applied_noise_seed);
         w.u64(self.start_chamber_c.is_some() as u64);
         w.f64(self.start_chamber_c.unwrap_or_default());
+        // The external carrier sample the plant is at (rebuilt on restore: the plant's codec
+        // knows only the carriers its configuration describes).
+        w.u64(self.carrier_at.is_some() as u64);
+        let c = self.carrier_at.unwrap_or(CarrierSample {
+            lat_deg: 0.0,
+            lon_deg: 0.0,
+            height_m: 0.0,
+            v_enu_mps: [0.0; 3],
+            q_cn: [0.0; 4],
+        });
+        for x in [c.lat_deg, c.lon_deg, c.height_m]
+            .iter()
+            .chain(&c.v_enu_mps)
+            .chain(&c.q_cn)
+        {
+            w.f64(*x);
+        }
         // The plant in its own codec (it checks the configuration fingerprint on restore).
         w.bytes(
             &self
@@ -362,13 +409,23 @@ impl Model for RinsImu {
         self.start_chamber_c = has_start_chamber.then_some(start_chamber_c);
         self.preview = OnceLock::new();
         self.inputs_dirty = true;
+        let has_carrier = r.u64()? != 0;
+        let mut x = [0.0; 10];
+        for v in x.iter_mut() {
+            *v = r.f64()?;
+        }
+        self.carrier_at = has_carrier.then(|| carrier_inputs::sample(&x.map(Value::Real)));
         let plant = r.bytes()?;
         if plant.is_empty() {
             (self.plant, self.sample) = (None, None);
             return Ok(());
         }
         let cfg = self.start_config(self.start_chamber_c)?;
-        self.plant = Some(Plant::from_serialized_state(&cfg, plant).map_err(|e| e.to_string())?);
+        let mut plant = Plant::from_serialized_state(&cfg, plant).map_err(|e| e.to_string())?;
+        if let Some(c) = &self.carrier_at {
+            plant.attach_external_carrier(c)?;
+        }
+        self.plant = Some(plant);
         self.sample = if fields.is_empty() {
             None
         } else {

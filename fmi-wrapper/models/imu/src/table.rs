@@ -36,6 +36,10 @@ pub(crate) enum Role {
     Input(Input),
     /// Element `.1` of output row `.0`.
     Output(usize, usize),
+    /// The `carrier.external_inputs` switch ([`crate::carrier_inputs`]).
+    CarrierSwitch,
+    /// Carrier input `.0` of [`crate::carrier_inputs::INPUTS`].
+    Carrier(usize),
 }
 
 pub(crate) struct Table {
@@ -44,6 +48,8 @@ pub(crate) struct Table {
     pub defaults: PlantConfig,
     /// Slot of each input, indexed by `Input as usize` (doStep reads them every step).
     pub input_slots: Vec<usize>,
+    /// Slot of the carrier switch; the carrier inputs follow it.
+    pub carrier_switch: usize,
 }
 
 /// Parameters that are lists of any length cannot be fixed FMU variables: the chamber profile
@@ -224,6 +230,20 @@ fn build_table() -> Table {
             roles.push(Role::Output(k, e));
         }
     }
+    // The carrier switch and inputs after the outputs, so the value references of everything
+    // before them are those of the FMU without them.
+    let carrier_switch = scalars.len();
+    for (i, v) in crate::carrier_inputs::vars(&defaults)
+        .into_iter()
+        .enumerate()
+    {
+        scalars.push(v);
+        roles.push(if i == 0 {
+            Role::CarrierSwitch
+        } else {
+            Role::Carrier(i - 1)
+        });
+    }
     // The Integer codes of the enumerations come last (the instance routes them).
     let mut vars = VariableTable::with_enum_codes(scalars);
     for slot in 0..roles.len() {
@@ -234,6 +254,7 @@ fn build_table() -> Table {
         roles,
         defaults,
         input_slots,
+        carrier_switch,
     }
 }
 
@@ -249,17 +270,20 @@ fn initial_dependencies(vars: &VariableTable, roles: &[Role], slot: usize) -> Ve
     };
     let name = outputs()[k].decl.name.as_str();
     let attitude = |p: &str| p.starts_with("vehicle.") || p.starts_with("scheme.");
+    // With external carrier inputs the start attitude is theirs.
+    let carrier = |r: &Role| matches!(r, Role::CarrierSwitch | Role::Carrier(_));
     let depends: Box<dyn Fn(&Role) -> bool> = if name.starts_with("thermal.") {
         Box::new(move |r| match r {
             Role::Param(p) => attitude(p) || p.starts_with("thermal."),
             Role::Input(i) => matches!(i, Input::ChamberOverride | Input::ChamberTemp),
             Role::Output(..) => false,
+            Role::CarrierSwitch | Role::Carrier(_) => true,
         })
     } else if name.starts_with("gimbal.")
         || name == "truth.q_bn"
         || name == "effect.position_weight"
     {
-        Box::new(move |r| matches!(r, Role::Param(p) if attitude(p)))
+        Box::new(move |r| matches!(r, Role::Param(p) if attitude(p)) || carrier(r))
     } else {
         return Vec::new();
     };
