@@ -37,6 +37,7 @@ fn bias_by_position_is_categorical_and_its_legends_cover_no_point() {
     measure(&MeasureArgs {
         scenario: docs("diagnosis-truth.toml"),
         out: data.clone(),
+        format: "csv".into(),
         overrides: Default::default(),
     })
     .unwrap();
