@@ -115,11 +115,17 @@ def main(session: str) -> None:
     means = DwellMeans()
     expected = None
     samples = 0
+    # A plant that failed sends nothing more: give up after a minute of silence instead of
+    # waiting forever (the error then names the last batch seen).
+    last_batch = time.time()
     while True:
         sample = subscriber.receive()
         if sample is None:
+            if time.time() - last_batch > 60:
+                raise SystemExit(f"no batch for 60 s; the last one was {expected}")
             time.sleep(0.0002)
             continue
+        last_batch = time.time()
         b = sample.payload().contents
         if b.layout_version != LAYOUT_VERSION or b.record_size != ctypes.sizeof(ImuRecord):
             raise SystemExit(f"layout version {b.layout_version} / record size {b.record_size} not supported")

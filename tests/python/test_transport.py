@@ -30,9 +30,16 @@ def main():
     assert ready.strip() == "subscribed", ready + sub.stderr.read()
     plant = subprocess.Popen([RINS, "serve", "builtin:paper-16pos-week", "--session", session, "--mode", "free",
                               "--duration-s", DURATION], stderr=subprocess.PIPE, text=True)
-    out, sub_err = sub.communicate(timeout=300)
-    _, err = plant.communicate(timeout=60)
-    assert sub.returncode == 0, sub_err
+    try:
+        out, sub_err = sub.communicate(timeout=300)
+        _, err = plant.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        sub.kill()
+        plant.kill()
+        _, sub_err = sub.communicate()
+        _, err = plant.communicate()
+        raise AssertionError(f"timed out; subscriber said: {sub_err}\nplant said: {err}")
+    assert sub.returncode == 0, f"subscriber: {sub_err}\nplant (exit {plant.returncode}): {err}"
     assert plant.returncode == 0, err
     got = json.loads(out)
     assert got["samples"] == 432000, got
