@@ -4,8 +4,9 @@ dwell position (A/B/C/D of Eq. 5) as JSON.
 
 Usage: python imu_subscriber.py SESSION
 The plant: rins serve builtin:paper-16pos-week --session SESSION --mode free --duration-s 4320
-(before or after this client: it opens or creates the service with the documented settings and
-prints "subscribed" on stderr once it is connected)
+(before or after this client: it opens or creates the service with the documented settings,
+prints "service ready" on stderr, creates its subscriber once the plant's publisher exists and
+prints "subscribed")
 """
 
 import ctypes
@@ -110,6 +111,16 @@ def main(session: str) -> None:
             if time.time() > deadline:
                 raise
             time.sleep(0.05)
+    print("service ready", file=sys.stderr, flush=True)
+    # The subscriber port only once the plant's publisher exists: a subscriber that polls while
+    # a publisher is being created can fail to connect to it for good (iceoryx2 0.10 logs
+    # "Unable to establish connection to new sender"; seen in 1 of 17 runs here). The plant
+    # sends nothing before a subscriber is connected, so no sample is lost by waiting.
+    while service.dynamic_config.number_of_publishers == 0:
+        if time.time() > deadline:
+            raise SystemExit("no plant published on the service within 30 s")
+        time.sleep(0.01)
+    time.sleep(0.05)
     subscriber = service.subscriber_builder().create()
     print("subscribed", file=sys.stderr, flush=True)
     means = DwellMeans()

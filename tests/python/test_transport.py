@@ -27,7 +27,7 @@ def main():
     sub = subprocess.Popen([sys.executable, os.path.join(HERE, "imu_subscriber.py"), session],
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     ready = sub.stderr.readline()
-    assert ready.strip() == "subscribed", ready + sub.stderr.read()
+    assert ready.strip() == "service ready", ready + sub.stderr.read()
     plant = subprocess.Popen([RINS, "serve", "builtin:paper-16pos-week", "--session", session, "--mode", "free",
                               "--duration-s", DURATION], stderr=subprocess.PIPE, text=True)
     try:
