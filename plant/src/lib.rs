@@ -10,6 +10,7 @@
 //! [`effects`] → noise → quantisation, and returns the Δθ/Δv increments an RLG IMU reports.
 //! Time is an integer tick counter; every random term draws from its own named stream of the seed.
 
+mod accessors;
 pub mod carrier;
 pub mod command;
 pub mod config;

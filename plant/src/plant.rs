@@ -1,7 +1,7 @@
 //! The plant: advances the rotating IMU by whole output intervals and reports the increments an
 //! RLG IMU would output, with the truth and every effect's contribution beside them.
 
-use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, Vector3};
 
 use crate::carrier::run::CarrierRun;
 use crate::carrier::{Carrier, CarrierState, CarrierTruth};
@@ -288,106 +288,6 @@ impl Plant {
             },
             cfg: cfg.clone(),
         }
-    }
-
-    /// The configuration the plant was built from.
-    pub fn config(&self) -> &PlantConfig {
-        &self.cfg
-    }
-
-    /// Earth quantities at the site.
-    pub fn site(&self) -> &Site {
-        &self.site
-    }
-
-    /// Output interval Δt, s.
-    pub fn dt_s(&self) -> f64 {
-        self.dt_s
-    }
-
-    /// Output samples produced so far.
-    pub fn samples_done(&self) -> u64 {
-        self.samples
-    }
-
-    /// Simulated time, s (from the integer tick counter).
-    pub fn time_s(&self) -> f64 {
-        self.tick as f64 / self.internal_rate_hz
-    }
-
-    /// Truth over the last interval.
-    pub fn truth(&self) -> &Truth {
-        &self.truth
-    }
-
-    /// The temperature-sensor readings of the last sample (a measured output), °C.
-    pub fn temp_readings_c(&self) -> [f64; node::COUNT] {
-        self.temp_readings_c
-    }
-
-    /// The chamber temperature over the last interval (the test set-up's, not the unit's), °C.
-    pub fn chamber_now_c(&self) -> f64 {
-        self.truth.temps.chamber_c
-    }
-
-    /// The compiled table schedule.
-    pub fn schedule(&self) -> &Schedule {
-        &self.schedule
-    }
-
-    /// The deterministic gyro model (coefficients and regressors for diagnosis).
-    pub fn gyro_model(&self) -> &GyroModel {
-        &self.gyro
-    }
-
-    /// The deterministic accelerometer model.
-    pub fn accel_model(&self) -> &AccelModel {
-        &self.accel
-    }
-
-    /// Vehicle mount attitude C_v^n.
-    pub fn vehicle_to_nav(&self) -> &Matrix3<f64> {
-        &self.c_vn
-    }
-
-    /// True IMU attitude C_b^n now.
-    pub fn attitude_c_bn(&self) -> Matrix3<f64> {
-        body_to_nav(&self.c_vn, self.gimbal_now.angles)
-    }
-
-    /// True IMU attitude now as the quaternion q_b^n.
-    pub fn attitude_q_bn(&self) -> UnitQuaternion<f64> {
-        UnitQuaternion::from_matrix(&self.attitude_c_bn())
-    }
-
-    /// Turns the dwell cache off or on. Output is bit-identical either way; only speed differs.
-    pub fn set_dwell_cache(&mut self, on: bool) {
-        self.use_dwell_cache = on;
-        self.dwell_cache = None;
-    }
-
-    /// Overrides the chamber temperature (an FMU input); `None` returns to the scenario profile.
-    pub fn set_chamber_temp_c(&mut self, temp_c: Option<f64>) {
-        self.chamber_override_c = temp_c;
-    }
-
-    /// Restarts every noise stream from `seed` at the current tick, keeping the current
-    /// bias-instability and rate-random-walk values. A Monte Carlo can warm the plant up once,
-    /// save the state, and give each run its own noise from there.
-    pub fn reseed_noise(&mut self, seed: u64) {
-        self.noise.reseed(seed);
-        self.temp_sensors.reseed(seed);
-        self.noise_seed = seed;
-    }
-
-    /// Seed of the noise streams in use.
-    pub fn noise_seed(&self) -> u64 {
-        self.noise_seed
-    }
-
-    pub(crate) fn chamber_c(&self, t_s: f64) -> f64 {
-        self.chamber_override_c
-            .unwrap_or_else(|| self.cfg.thermal.chamber.temp_at(t_s))
     }
 
     fn mid_attitude(&mut self, g: &GimbalState) -> MidCache {
