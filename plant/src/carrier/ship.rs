@@ -17,7 +17,7 @@ use super::spec::ShipSpec;
 use super::state::{CarrierState, quintic_basis};
 use super::track::{Track, TrackPoint, TrackPosition};
 use super::waves::{JET_LEN, SeaJet, Waves, dof};
-use crate::earth::LocalEarth;
+use crate::earth::{EarthPoint, LocalEarth};
 use crate::units::DEG;
 
 /// The ship, advanced tick by tick.
@@ -36,6 +36,8 @@ pub struct Ship {
     jet_now: SeaJet,
     /// Earth quantities about the mean-track position at tick `tick` (a function of it).
     earth: LocalEarth,
+    /// Those at that position.
+    earth_now: EarthPoint,
     /// The composition angles at tick `tick` with their exact sines and cosines.
     trig_now: Trig,
     /// In-tick evaluation points, fractions of a tick.
@@ -78,6 +80,7 @@ impl Ship {
             leg_hint: 0,
             jet_now,
             earth: LocalEarth::near(start.lat_rad),
+            earth_now: LocalEarth::near(start.lat_rad).at(start.lat_rad),
             trig_now: Trig::default(),
             offsets: offsets.to_vec(),
             basis,
@@ -112,6 +115,7 @@ impl Ship {
         self.pos = pos;
         self.leg_hint = 0;
         self.earth = LocalEarth::near(pos.lat_rad);
+        self.earth_now = self.earth.at(pos.lat_rad);
         // The sines and cosines as `advance` carried them from the last resync tick.
         for t in tick - tick % TRIG_RESYNC_TICKS..=tick {
             let ang = self.angles_at(t);
@@ -157,6 +161,7 @@ impl Ship {
             self.height_m,
             &self.jet_now,
             &self.earth,
+            &self.earth_now,
             &self.trig_now,
         )
     }
@@ -181,7 +186,9 @@ impl Ship {
         let (v0, v1) = (v(&gl_tp[0], gl_sc[0]), v(&gl_tp[1], gl_sc[1]));
         let (d_e, d_n) = (0.5 * h * (v0.0 + v1.0), 0.5 * h * (v0.1 + v1.1));
         let p0 = self.pos;
-        let (dlat, dlon) = self.pos.advance_near(&self.earth, d_n, d_e, self.height_m);
+        let (dlat, dlon, mid) =
+            self.pos
+                .advance_from(&self.earth, &self.earth_now, d_n, d_e, self.height_m);
         self.tick = k + 1;
         let jet1 = match self.waves.as_mut() {
             Some(w) => {
@@ -210,7 +217,10 @@ impl Ship {
                 SeaJet::default()
             };
             let trig = self.trig_now.near(angles(&tp, &jet));
-            *node = compose_with(&tp, pos, self.height_m, &jet, &self.earth, &trig);
+            // The radii at the mid-tick latitude: they differ from those at the node's by
+            // < 2e-10 relative, which moves the node's latitude (a wave displacement of metres
+            // over R) by < 1e-16 rad.
+            *node = compose_with(&tp, pos, self.height_m, &jet, &self.earth, &mid, &trig);
         }
         self.jet_now = jet1;
         let tp1 = self.track_at(self.tick as f64 * h);
@@ -218,12 +228,14 @@ impl Ship {
         if self.earth.lat0_rad() != LocalEarth::grid_lat_rad(self.pos.lat_rad) {
             self.earth = LocalEarth::near(self.pos.lat_rad);
         }
+        self.earth_now = self.earth.at(self.pos.lat_rad);
         compose_with(
             &tp1,
             self.pos,
             self.height_m,
             &jet1,
             &self.earth,
+            &self.earth_now,
             &self.trig_now,
         )
     }
@@ -291,6 +303,11 @@ impl Trig {
     #[inline]
     fn near_one(&self, i: usize, a: f64) -> (f64, f64) {
         let d = a - self.ang[i];
+        if d == 0.0 {
+            // The course on a straight leg, a degree of freedom without motion: the series
+            // would give these bits too.
+            return (self.sin[i], self.cos[i]);
+        }
         if d.abs() > TRIG_REACH_RAD {
             return a.sin_cos();
         }
@@ -340,10 +357,12 @@ fn hermite_jet(b: &[[f64; 6]; 3], j0: &[f64; JET_LEN], j1: &[f64; JET_LEN]) -> S
 /// sines and cosines.
 pub fn compose(tp: &TrackPoint, pos: TrackPosition, h0_m: f64, jet: &SeaJet) -> CarrierState {
     let trig = Trig::exact(angles(tp, jet));
-    compose_with(tp, pos, h0_m, jet, &LocalEarth::about(pos.lat_rad), &trig)
+    let earth = LocalEarth::about(pos.lat_rad);
+    compose_with(tp, pos, h0_m, jet, &earth, &earth.at(pos.lat_rad), &trig)
 }
 
-/// [`compose`] with the angles' sines and cosines and the Earth expansion given.
+/// [`compose`] with the angles' sines and cosines, the Earth expansion and the Earth quantities
+/// `e_track` at the mean-track position given.
 #[inline]
 fn compose_with(
     tp: &TrackPoint,
@@ -351,6 +370,7 @@ fn compose_with(
     h0_m: f64,
     jet: &SeaJet,
     earth: &LocalEarth,
+    e_track: &EarthPoint,
     trig: &Trig,
 ) -> CarrierState {
     let (sp, cp) = (trig.sin[0], trig.cos[0]);
@@ -368,7 +388,6 @@ fn compose_with(
     let (ae1, an1) = hmap(ydd, sdd);
     let (ae2, an2) = hmap(sd, -yd);
     let height = h0_m + jet.x[dof::HEAVE];
-    let e_track = earth.at(pos.lat_rad);
     let lat = pos.lat_rad + dn / (e_track.rm_m + height);
     let lon = pos.lon_rad + de / ((e_track.rn_m + height) * earth.sin_cos(lat).1);
     // Mean track: v = u·[sin ψ, cos ψ], v̇ = u̇·[sin ψ, cos ψ] + u·ψ̇·[cos ψ, −sin ψ].
