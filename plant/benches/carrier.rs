@@ -45,24 +45,37 @@ fn run(cfg: &PlantConfig, samples: u64, dwell_cache: bool) -> f64 {
     acc
 }
 
+/// The benchmarked cases: name, carrier, sea state 5 or calm, dwell cache.
+const CASES: [(&str, CarrierKind, bool, bool); 4] = [
+    ("static_1h_100Hz", CarrierKind::Static, false, true),
+    (
+        "static_no_dwell_cache_1h_100Hz",
+        CarrierKind::Static,
+        false,
+        false,
+    ),
+    ("ship_calm_1h_100Hz", CarrierKind::Ship, false, true),
+    ("ship_sea_state_5_1h_100Hz", CarrierKind::Ship, true, true),
+];
+
 fn main() {
-    let mut c = Criterion::default().configure_from_args().sample_size(10);
     let hour = 360_000;
+    // `RINS_BENCH_ONCE=<name>` runs that case once for an hour and exits: on a shared machine
+    // `perf stat -e cycles:u` of that run gives cycles per sample, which load barely moves.
+    if let Ok(name) = std::env::var("RINS_BENCH_ONCE") {
+        let (_, kind, sea, cache) = CASES
+            .iter()
+            .find(|c| c.0 == name)
+            .expect("RINS_BENCH_ONCE names a case");
+        println!("{name}: {}", run(&config(*kind, *sea), hour, *cache));
+        return;
+    }
+    let mut c = Criterion::default().configure_from_args().sample_size(10);
     let mut g = c.benchmark_group("carrier");
     g.throughput(Throughput::Elements(hour));
     // The static plant reuses whole intervals while the table dwells; a moving carrier never
     // dwells, so the static plant without that cache is the like-for-like reference.
-    for (name, kind, sea, cache) in [
-        ("static_1h_100Hz", CarrierKind::Static, false, true),
-        (
-            "static_no_dwell_cache_1h_100Hz",
-            CarrierKind::Static,
-            false,
-            false,
-        ),
-        ("ship_calm_1h_100Hz", CarrierKind::Ship, false, true),
-        ("ship_sea_state_5_1h_100Hz", CarrierKind::Ship, true, true),
-    ] {
+    for (name, kind, sea, cache) in CASES {
         let cfg = config(kind, sea);
         g.bench_function(name, |b| b.iter(|| black_box(run(&cfg, hour, cache))));
     }

@@ -94,17 +94,44 @@ pub fn carrier_point(
     gravity: bool,
     lever_c_m: &Vector3<f64>,
 ) -> CarrierPoint {
-    let (w_ie, w_en) = frame_rates(s.lat_rad, s.height_m, &s.v_n, rotation);
+    let earth = crate::earth::LocalEarth::about(s.lat_rad);
+    carrier_point_near(s, &earth, rotation, gravity, lever_c_m)
+}
+
+/// [`carrier_point`] with the Earth quantities from an expansion `earth` near the point (no
+/// sine, cosine or square root: the ship's nodes are within metres of its expansion).
+#[inline]
+pub fn carrier_point_near(
+    s: &crate::carrier::CarrierState,
+    earth: &crate::earth::LocalEarth,
+    rotation: bool,
+    gravity: bool,
+    lever_c_m: &Vector3<f64>,
+) -> CarrierPoint {
+    let e = earth.at(s.lat_rad);
+    let omega = if rotation {
+        crate::earth::OMEGA_IE_RPS
+    } else {
+        0.0
+    };
+    // Two divisions: v_E/(R_N + h) = v_E·cos L/((R_N + h)·cos L).
+    let i_rmh = 1.0 / (e.rm_m + s.height_m);
+    let i_rnh_cos = 1.0 / ((e.rn_m + s.height_m) * e.cos_lat);
+    let w_ie = Vector3::new(0.0, omega * e.cos_lat, omega * e.sin_lat);
+    let w_en = Vector3::new(
+        -s.v_n.y * i_rmh,
+        s.v_n.x * e.cos_lat * i_rnh_cos,
+        s.v_n.x * e.sin_lat * i_rnh_cos,
+    );
     let g = if gravity {
-        crate::earth::normal_gravity(s.lat_rad, s.height_m)
+        e.gravity_mps2(s.height_m)
     } else {
         0.0
     };
     let f_n = s.a_n + (2.0 * w_ie + w_en).cross(&s.v_n) + Vector3::new(0.0, 0.0, g);
-    let c_nc = s.c_cn.transpose();
-    let w_in_c = c_nc * (w_ie + w_en);
+    let w_in_c = s.c_cn.tr_mul(&(w_ie + w_en));
     let omega = w_in_c + s.omega_nc_c;
-    let mut f_c = c_nc * f_n;
+    let mut f_c = s.c_cn.tr_mul(&f_n);
     if *lever_c_m != Vector3::zeros() {
         let alpha = s.alpha_nc_c - s.omega_nc_c.cross(&w_in_c);
         f_c += alpha.cross(lever_c_m) + omega.cross(&omega.cross(lever_c_m));
@@ -112,6 +139,24 @@ pub fn carrier_point(
     CarrierPoint {
         omega_ic_c: omega,
         f_c,
+    }
+}
+
+/// The carrier points of a tick's nodes: through the ship's Earth expansion on a ship (see
+/// [`carrier_point_near`]), exactly otherwise.
+#[inline]
+pub fn carrier_points(
+    carrier: &crate::carrier::Carrier,
+    nodes: &[crate::carrier::CarrierState; 2],
+    rotation: bool,
+    gravity: bool,
+    lever_c_m: &Vector3<f64>,
+) -> [CarrierPoint; 2] {
+    match carrier {
+        crate::carrier::Carrier::Ship(ship) => {
+            nodes.map(|n| carrier_point_near(&n, ship.earth(), rotation, gravity, lever_c_m))
+        }
+        _ => nodes.map(|n| carrier_point(&n, rotation, gravity, lever_c_m)),
     }
 }
 
@@ -128,13 +173,21 @@ pub fn moving_base_increments(
     gimbal_rad: Vector3<f64>,
     dt_s: f64,
 ) -> TableIncrements {
-    let w0 = c_bc[0].tr_mul(&pts[0].omega_ic_c);
-    let w1 = c_bc[1].tr_mul(&pts[1].omega_ic_c);
-    let f0 = c_bc[0].tr_mul(&pts[0].f_c);
-    let f1 = c_bc[1].tr_mul(&pts[1].f_c);
+    let (w, f) = if c_bc[0] == c_bc[1] {
+        // The table dwells: one rotation of the sums.
+        (
+            c_bc[0].tr_mul(&(pts[0].omega_ic_c + pts[1].omega_ic_c)),
+            c_bc[0].tr_mul(&(pts[0].f_c + pts[1].f_c)),
+        )
+    } else {
+        (
+            c_bc[0].tr_mul(&pts[0].omega_ic_c) + c_bc[1].tr_mul(&pts[1].omega_ic_c),
+            c_bc[0].tr_mul(&pts[0].f_c) + c_bc[1].tr_mul(&pts[1].f_c),
+        )
+    };
     TableIncrements {
-        dtheta_rad: gimbal_rad + 0.5 * dt_s * (w0 + w1),
-        dv_mps: 0.5 * dt_s * (f0 + f1),
-        f_b_mps2: 0.5 * (f0 + f1),
+        dtheta_rad: gimbal_rad + 0.5 * dt_s * w,
+        dv_mps: 0.5 * dt_s * f,
+        f_b_mps2: 0.5 * f,
     }
 }

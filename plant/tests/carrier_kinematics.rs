@@ -247,4 +247,18 @@ fn ship_state_save_restore_is_bit_identical() {
         assert_eq!(x, y);
         assert_eq!(a.truth(), b.truth());
     }
+    // Restores at, just before and just after the resynchronisation ticks of the carried sines
+    // (every 64) and of the wave phasors (every 4096 = 2⁶·64): 45 056 = 704·64, 49 152 = 12·4096.
+    for at in [45_002u64, 45_056, 49_151, 49_152, 49_153] {
+        let mut a = Plant::new(&cfg).unwrap();
+        for _ in 0..at {
+            a.step();
+        }
+        let mut b = Plant::from_serialized_state(&cfg, &a.serialize_state()).unwrap();
+        for _ in 0..130 {
+            let (x, y) = (a.step(), b.step());
+            assert_eq!(x, y, "restored at sample {at}");
+            assert_eq!(a.truth(), b.truth(), "restored at sample {at}");
+        }
+    }
 }

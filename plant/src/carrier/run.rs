@@ -7,7 +7,7 @@ use super::state::CarrierState;
 use super::track::TrackPosition;
 use super::{Carrier, GL_OFFSETS};
 use crate::config::{ConfigError, PlantConfig};
-use crate::kinematics::{TableIncrements, carrier_point, moving_base_increments};
+use crate::kinematics::{TableIncrements, carrier_points, moving_base_increments};
 use crate::plant::Plant;
 use crate::state::{Reader, StateError, Writer};
 use crate::table::gimbal::body_to_nav;
@@ -93,7 +93,13 @@ impl Plant {
         let run = self.carrier.as_mut().expect("moving carrier");
         let mut nodes = [run.now; 2];
         let end = run.carrier.advance(&mut nodes);
-        let pts = nodes.map(|n| carrier_point(&n, run.rotation, run.gravity, &run.lever_c_m));
+        let pts = carrier_points(
+            &run.carrier,
+            &nodes,
+            run.rotation,
+            run.gravity,
+            &run.lever_c_m,
+        );
         let c_bc = angles.map(|a| run.body_to_carrier(a));
         run.now = end;
         let (si, ci) = gm.angles.inner_rad.sin_cos();

@@ -14,7 +14,7 @@
 use nalgebra::Vector3;
 
 use super::spec::ShipSpec;
-use crate::earth::radii_of_curvature;
+use crate::earth::{EarthPoint, LocalEarth};
 use crate::units::DEG;
 
 /// Knots to m/s.
@@ -191,15 +191,41 @@ pub struct TrackPosition {
 impl TrackPosition {
     /// Advances over one tick given the displacement north and east (m) at mean height `h_m`;
     /// returns the latitude and longitude increments used.
-    #[inline]
     pub fn advance(&mut self, d_north_m: f64, d_east_m: f64, h_m: f64) -> (f64, f64) {
-        let (rm0, _) = radii_of_curvature(self.lat_rad);
-        let lat_mid = self.lat_rad + 0.5 * d_north_m / (rm0 + h_m);
-        let (rm, rn) = radii_of_curvature(lat_mid);
-        let dlat = d_north_m / (rm + h_m);
-        let dlon = d_east_m / ((rn + h_m) * lat_mid.cos());
+        self.advance_near(&LocalEarth::near(self.lat_rad), d_north_m, d_east_m, h_m)
+    }
+
+    /// [`TrackPosition::advance`] with the radii from `earth` (an expansion near here).
+    #[inline]
+    pub fn advance_near(
+        &mut self,
+        earth: &LocalEarth,
+        d_north_m: f64,
+        d_east_m: f64,
+        h_m: f64,
+    ) -> (f64, f64) {
+        let here = earth.at(self.lat_rad);
+        let (dlat, dlon, _) = self.advance_from(earth, &here, d_north_m, d_east_m, h_m);
+        (dlat, dlon)
+    }
+
+    /// [`TrackPosition::advance_near`] given the Earth quantities `here` at the current latitude;
+    /// also returns those at the mid-tick latitude.
+    #[inline]
+    pub fn advance_from(
+        &mut self,
+        earth: &LocalEarth,
+        here: &EarthPoint,
+        d_north_m: f64,
+        d_east_m: f64,
+        h_m: f64,
+    ) -> (f64, f64, EarthPoint) {
+        let lat_mid = self.lat_rad + 0.5 * d_north_m / (here.rm_m + h_m);
+        let mid = earth.at(lat_mid);
+        let dlat = d_north_m / (mid.rm_m + h_m);
+        let dlon = d_east_m / ((mid.rn_m + h_m) * mid.cos_lat);
         self.lat_rad += dlat;
         self.lon_rad += dlon;
-        (dlat, dlon)
+        (dlat, dlon, mid)
     }
 }

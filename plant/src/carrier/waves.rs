@@ -45,6 +45,9 @@ pub mod dof {
     pub const SWAY: usize = 5;
 }
 
+/// Number of jet values: six degrees of freedom × (value, rate, acceleration).
+pub const JET_LEN: usize = 18;
+
 /// Values, rates and accelerations of the six degrees of freedom at one instant
 /// (rad, rad/s, rad/s² for roll, pitch, yaw; m, m/s, m/s² for heave, surge, sway).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -55,6 +58,29 @@ pub struct SeaJet {
     pub xd: [f64; 6],
     /// Second derivatives.
     pub xdd: [f64; 6],
+}
+
+impl SeaJet {
+    /// From the flat order x₀…x₅, ẋ₀…ẋ₅, ẍ₀…ẍ₅.
+    #[inline]
+    pub fn from_flat(f: &[f64; JET_LEN]) -> Self {
+        let part = |o: usize| std::array::from_fn(|d| f[o + d]);
+        Self {
+            x: part(0),
+            xd: part(6),
+            xdd: part(12),
+        }
+    }
+
+    /// In the flat order of [`SeaJet::from_flat`].
+    #[inline]
+    pub fn flat(&self) -> [f64; JET_LEN] {
+        std::array::from_fn(|j| match j / 6 {
+            0 => self.x[j],
+            1 => self.xd[j - 6],
+            _ => self.xdd[j - 12],
+        })
+    }
 }
 
 /// Pierson–Moskowitz spectrum (ITTC two-parameter form), m²·s: S(ω) = (5/16)·H_s²·ω_p⁴·ω⁻⁵·
@@ -79,6 +105,11 @@ pub struct Waves {
     phase_rad: Vec<f64>,
     /// c_{d,i}, one array of six per component.
     coef: Vec<[Complex<f64>; 6]>,
+    /// Per component, the jet's complex factors C_j (jet value j = Re(C_j·z_i)) in the order of
+    /// [`SeaJet::from_flat`]: c_d, iω·c_d, −ω²·c_d; real and imaginary parts apart so the sum
+    /// over the 18 values vectorises.
+    jet_re: Vec<[f64; JET_LEN]>,
+    jet_im: Vec<[f64; JET_LEN]>,
     rot_tick: Vec<Complex<f64>>,
     /// Rotations from the tick start to each in-tick offset of `offsets`.
     rot_offsets: Vec<Vec<Complex<f64>>>,
@@ -148,7 +179,21 @@ impl Waves {
                 .map(|w| Complex::from_polar(1.0, w * f * tick_s))
                 .collect()
         };
+        let factors = |w: f64, c: &[Complex<f64>; 6]| -> [Complex<f64>; JET_LEN] {
+            std::array::from_fn(|j| match j / 6 {
+                0 => c[j],
+                1 => Complex::new(0.0, w) * c[j - 6],
+                _ => -(w * w) * c[j - 12],
+            })
+        };
+        let jets: Vec<_> = omega_rps
+            .iter()
+            .zip(&coef)
+            .map(|(w, c)| factors(*w, c))
+            .collect();
         let mut me = Self {
+            jet_re: jets.iter().map(|f| f.map(|c| c.re)).collect(),
+            jet_im: jets.iter().map(|f| f.map(|c| c.im)).collect(),
             rot_tick: rot(1.0),
             rot_offsets: offsets.iter().map(|&f| rot(f)).collect(),
             z: vec![Complex::new(1.0, 0.0); n],
@@ -212,37 +257,32 @@ impl Waves {
 
     /// The jet at the current tick (`offset = None`) or at in-tick offset number `offset`.
     pub fn jet(&self, offset: Option<usize>) -> SeaJet {
-        let mut j = SeaJet::default();
-        for (i, c) in self.coef.iter().enumerate() {
-            let z = match offset {
-                Some(o) => self.z[i] * self.rot_offsets[o][i],
-                None => self.z[i],
-            };
-            accumulate(&mut j, c, z, self.omega_rps[i]);
+        match offset {
+            Some(o) => self.sum(self.z.iter().zip(&self.rot_offsets[o]).map(|(z, r)| z * r)),
+            None => self.sum(self.z.iter().copied()),
         }
-        j
     }
 
     /// The jet at an arbitrary time (sines and cosines: for checks and trajectory export).
     pub fn jet_at_time(&self, t_s: f64) -> SeaJet {
-        let mut j = SeaJet::default();
-        for (i, c) in self.coef.iter().enumerate() {
-            let w = self.omega_rps[i];
-            let z = Complex::from_polar(1.0, w * t_s + self.phase_rad[i]);
-            accumulate(&mut j, c, z, w);
-        }
-        j
+        self.sum(
+            self.omega_rps
+                .iter()
+                .zip(&self.phase_rad)
+                .map(|(w, e)| Complex::from_polar(1.0, w * t_s + e)),
+        )
     }
-}
 
-/// Adds one component (amplitudes `c`, phasor `z`, frequency `w`) to the jet:
-/// x += Re(c·z), ẋ += Re(iω·c·z), ẍ += Re(−ω²·c·z).
-#[inline]
-fn accumulate(j: &mut SeaJet, c: &[Complex<f64>; 6], z: Complex<f64>, w: f64) {
-    for (d, c) in c.iter().enumerate() {
-        let p = c * z;
-        j.x[d] += p.re;
-        j.xd[d] -= w * p.im;
-        j.xdd[d] -= w * w * p.re;
+    /// Σ_i Re(C_{j,i}·z_i) for the 18 jet values j, given the phasors z_i:
+    /// x += Re(c·z), ẋ += Re(iω·c·z), ẍ += Re(−ω²·c·z).
+    #[inline]
+    fn sum(&self, z: impl Iterator<Item = Complex<f64>>) -> SeaJet {
+        let mut acc = [0.0; JET_LEN];
+        for ((z, re), im) in z.zip(&self.jet_re).zip(&self.jet_im) {
+            for j in 0..JET_LEN {
+                acc[j] += re[j] * z.re - im[j] * z.im;
+            }
+        }
+        SeaJet::from_flat(&acc)
     }
 }
