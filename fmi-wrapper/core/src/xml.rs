@@ -401,11 +401,18 @@ fn body_v3(table: &VariableTable, h: &Header, out: &mut String) {
         } else {
             String::new()
         };
+        let description = match a.element_of {
+            Some(i) => format!(
+                "element of {} as a scalar (for masters without arrays; setting either sets both): {}",
+                table.arrays[i].name, s.description
+            ),
+            None => s.description.clone(),
+        };
         let _ = write!(
             out,
             "    <{tag} name=\"{}\" valueReference=\"{vr}\" description=\"{}\" causality=\"{c}\" variability=\"{var}\"{initial}{declared}{unit}{range}{start}",
             esc(&a.name),
-            esc(&s.description)
+            esc(&description)
         );
         if a.is_array {
             out.push_str(">\n");
@@ -424,10 +431,13 @@ fn body_v3(table: &VariableTable, h: &Header, out: &mut String) {
             "    <Output valueReference=\"{vr}\" dependencies=\"\"/>"
         );
     }
-    // FMI 3 value reference of each slot: its array's index + 1.
+    // FMI 3 value reference of each slot: its variable's index + 1 (a known's dependency is
+    // on the variable proper, not on an element's scalar view).
     let mut vr_of = vec![0; table.scalars.len()];
     for (i, a) in table.arrays.iter().enumerate() {
-        a.slots.clone().for_each(|k| vr_of[k] = i + 1);
+        if a.element_of.is_none() {
+            a.slots.clone().for_each(|k| vr_of[k] = i + 1);
+        }
     }
     for vr in &outputs {
         let mut deps: Vec<usize> = table.arrays[vr - 1]
