@@ -5,8 +5,8 @@
 Checks: the outputs are bit-identical to the in-process plant (`rins run`) and to FMPy for the
 same parameters; an .ssv parameter set reaches the plant (a changed gyro bias shifts the
 angular increments by bias x step); a chamber input set at t = 0 before initialization
-changes the initial temperatures, one set at t = 100.00 s is in effect in the first step
-after 100.00 s. Prints the wall time of a 1-hour run in each master, FMPy and in-process.
+changes the initial temperatures, one set at t = 100.00 s (a thermal update) or 100.37 s
+(between updates) is in effect in the first step after it. Prints the wall time of a 1-hour run in each master, FMPy and in-process.
 
 The carrier -> IMU system (fmi-wrapper/examples/system/carrier-imu/: RinsCarrier.fmu driving
 the IMU's carrier inputs): libcosim (OSP, SSP) and ecos (SSP), FMI 2, give IMU outputs
@@ -401,11 +401,12 @@ def test_a_parameter_set_reaches_the_plant_in_both_masters():
 
 
 def test_chamber_inputs_before_initialization_and_at_100_s():
-    n = 10_001
+    n = 10_038
     start = {"input.chamber_override": True, "input.chamber_temp_c": 35.0}
     fm_default = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), 1, {})
     fm35 = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), 1, start)
-    events = [[10_000, "input.chamber_override", True], [10_000, "input.chamber_temp_c", 40.0]]
+    events = [[10_000, "input.chamber_override", True], [10_000, "input.chamber_temp_c", 40.0],
+              [10_037, "input.chamber_temp_c", 45.0]]
     for name, (rows, _) in {
         "libcosim": master("libcosim", osp_dir(), 1, start=start),
         "ecos": master("ecos", os.path.join(FMU_DIR, "RinsImu.fmu"), 1, start=start),
@@ -421,6 +422,10 @@ def test_chamber_inputs_before_initialization_and_at_100_s():
         assert chamber[9_999] == 25.0, (name, "until 100.00 s", chamber[9_999])
         assert chamber[10_000] == 40.0, (name, "in the step from 100.00 s", chamber[10_000])
         assert rows[10_000, 4] > rows[9_999, 4], (name, "the housing warms")
+        # Between the 1 s thermal updates (100.37 s): in effect in that step too, not at 101 s.
+        assert rows[10_036, 4] == rows[10_001, 4], (name, "held between updates")
+        assert chamber[10_037] == 45.0, (name, "in the step from 100.37 s", chamber[10_037])
+        assert rows[10_037, 4] > rows[10_036, 4], (name, "the housing warms at 100.37 s")
 
 
 def test_wall_time_of_a_one_hour_run():
