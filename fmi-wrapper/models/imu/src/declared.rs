@@ -27,6 +27,9 @@ pub(crate) enum Field {
     Coef(usize),
 }
 
+/// One per-factor field: name, its [`Field`], start value, range, description.
+type FactorField = (&'static str, fn(usize) -> Field, u64, (f64, f64), String);
+
 /// Where a slot variable belongs: sensor (accelerometers when true), slot, field.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct SlotVar {
@@ -88,7 +91,7 @@ pub(crate) fn vars() -> Vec<(ScalarVar, SlotVar)> {
                 Some((1.0, 2.0)),
                 "1 bias, 2 scale-factor".into(),
             );
-            let fields: [(&str, fn(usize) -> Field, u64, (f64, f64), String); 4] = [
+            let fields: [FactorField; 4] = [
                 (
                     "signal",
                     Field::Signal,
