@@ -428,6 +428,28 @@ def test_chamber_inputs_before_initialization_and_at_100_s():
         assert rows[10_037, 4] > rows[10_036, 4], (name, "the housing warms at 100.37 s")
 
 
+# A declared effect in FMU slot 0 of the gyros (docs/fmu.md, "Declared effects (slots)"):
+# u_z^2 as the product u_z*u_z, 50 deg/h on x and -30 deg/h on z.
+SLOT = {"sensor.gyro.slot[0].enabled": True, "sensor.gyro.slot[0].kind": 1,
+        "sensor.gyro.slot[0].signal[0]": 4, "sensor.gyro.slot[0].node_or_axis[0]": 2,
+        "sensor.gyro.slot[0].signal[1]": 4, "sensor.gyro.slot[0].node_or_axis[1]": 2,
+        "sensor.gyro.slot[0].coef[0]": 50.0, "sensor.gyro.slot[0].coef[2]": -30.0}
+
+
+def test_declared_effect_slots_are_set_by_the_masters():
+    """Slot parameters set before initialization by ecos (FMI 2, and FMI 3 through the element
+    views) give the increments FMPy gives for the same start values; the slot changes them."""
+    n = 2000
+    start = dict(OSP_START, **SLOT)
+    fm = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), n, start)
+    plain = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), n, OSP_START)
+    assert not np.array_equal(fm[:, [0, 2]], plain[:, [0, 2]]), "the slot acts on x and z"
+    assert np.array_equal(fm[:, 1], plain[:, 1]), "and not on y"
+    for name, fmu in [("ecos FMI 2", "RinsImu.fmu"), ("ecos FMI 3", "RinsImu3.fmu")]:
+        rows, _ = master("ecos", os.path.join(FMU_DIR, fmu), n, start=start)
+        assert np.array_equal(rows, fm), (name, np.abs(rows - fm).max())
+
+
 def test_wall_time_of_a_one_hour_run():
     n = 360_000
     times = {}
