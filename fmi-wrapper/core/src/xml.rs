@@ -492,3 +492,41 @@ pub fn model_description(
     let token = content_token(&render(""));
     (render(&token), token)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::vars::OutputDecl;
+
+    #[test]
+    fn fmi3_declares_each_array_element_as_a_scalar_output_too() {
+        let d = OutputDecl {
+            name: "q".into(),
+            len: Some(2),
+            kind: Kind::Real,
+            unit: None,
+            start: vec![Value::Real(0.0)],
+            description: "d".into(),
+        };
+        let table = VariableTable::new(d.scalars().collect());
+        let h = Header {
+            model_identifier: "M".into(),
+            description: String::new(),
+            generation_tool: String::new(),
+            stop_time_s: 1.0,
+            step_size_s: 0.1,
+        };
+        let (v3, _) = model_description(FmiVersion::V3, &table, &h);
+        // The array (value reference 1), then its elements q[0], q[1] (2, 3), all outputs.
+        assert!(v3.contains("<Float64 name=\"q\" valueReference=\"1\""));
+        assert!(v3.contains("<Float64 name=\"q[0]\" valueReference=\"2\""));
+        assert!(v3.contains("<Float64 name=\"q[1]\" valueReference=\"3\""));
+        for vr in 1..=3 {
+            assert!(v3.contains(&format!("<Output valueReference=\"{vr}\"")));
+        }
+        assert_eq!(v3.matches("<Dimension").count(), 1);
+        // FMI 2 has the elements only, as before.
+        let (v2, _) = model_description(FmiVersion::V2, &table, &h);
+        assert_eq!(v2.matches("<ScalarVariable").count(), 2);
+    }
+}
