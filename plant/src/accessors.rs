@@ -88,7 +88,10 @@ impl Plant {
     }
 
     /// Overrides the chamber temperature (an FMU input); `None` returns to the scenario profile.
+    /// A change acts from the next sample: it starts with a thermal update over the time since
+    /// the last one (docs/fmu.md, "When an input acts").
     pub fn set_chamber_temp_c(&mut self, temp_c: Option<f64>) {
+        self.chamber_changed |= temp_c != self.chamber_override_c;
         self.chamber_override_c = temp_c;
     }
 

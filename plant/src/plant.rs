@@ -141,6 +141,10 @@ pub struct Plant {
     /// Output samples left before the next thermal / slow-noise update.
     pub(crate) slow_countdown: u64,
     pub(crate) chamber_override_c: Option<f64>,
+    /// The chamber override changed since the last sample: the next sample starts with a
+    /// thermal update (a chamber input acts at the step it is set for, not at the next grid
+    /// update). Transient: set by `set_chamber_temp_c`, consumed by the next `step`.
+    pub(crate) chamber_changed: bool,
     /// Temperature-dependent error rates at the current node temperatures.
     pub(crate) gyro_thermal: GyroThermalRates,
     pub(crate) accel_thermal_mps2: Vector3<f64>,
@@ -253,6 +257,7 @@ impl Plant {
             samples: 0,
             slow_countdown: (cfg.thermal.step_s * cfg.rate_hz).round() as u64,
             chamber_override_c: None,
+            chamber_changed: false,
             gimbal_now: g0,
             hold_until_tick: hold_tick(
                 schedule.eval_hold(0.0).1,
@@ -435,9 +440,27 @@ impl Plant {
     pub fn step(&mut self) -> ImuSample {
         let index = self.samples;
         self.samples += 1;
-        if self.slow_countdown == 0 {
+        // A changed chamber input ends the thermal step early: the update runs now over the time
+        // since the last one, and the grid restarts here. Untouched inputs: the 1 s grid as ever.
+        let elapsed = self.slow_every - self.slow_countdown;
+        let split = std::mem::take(&mut self.chamber_changed) && self.slow_countdown != 0;
+        if split && elapsed == 0 {
+            // No time since the last update (the very first sample): only the chamber changes.
+            let ch = self.chamber_c(self.time_s());
+            self.thermal.hold_chamber(ch);
+            // Nodes move only when the network is off (they follow the chamber): refresh the
+            // rates that depend on them (no noise drawn; unchanged values otherwise).
+            let t = self.thermal.temperatures();
+            self.gyro_thermal = self.gyro.thermal_rates(&t.gyro_c(), &t.gyro_gradient_k());
+            self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(t.accel_c());
+            self.dwell_cache = None;
+        } else if self.slow_countdown == 0 || split {
             self.slow_countdown = self.slow_every;
-            let h = self.cfg.thermal.step_s;
+            let h = if split {
+                elapsed as f64 / self.cfg.rate_hz
+            } else {
+                self.cfg.thermal.step_s
+            };
             let t = self.time_s();
             let up_b = self.attitude_c_bn().transpose() * Vector3::z();
             let ch = self.chamber_c(t);

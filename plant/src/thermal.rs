@@ -244,6 +244,15 @@ impl ThermalNetwork {
             .unwrap_or_else(|| Vector6::repeat(chamber_c))
     }
 
+    /// The chamber temperature changes with no time passing: the nodes keep their
+    /// temperatures (their heat capacity), unless the network is off and they follow it.
+    pub fn hold_chamber(&mut self, chamber_c: f64) {
+        self.chamber_c = chamber_c;
+        if !self.spec.enabled {
+            self.temps = Vector6::repeat(chamber_c);
+        }
+    }
+
     /// Advances the network by `h_s` to a chamber temperature `chamber_c` with body up
     /// direction `up_b`: backward Euler, (C/h + L)·T⁺ = C/h·T + P + G_hc·T_ch. A-stable and
     /// L-stable, so any step is stable; accuracy is O(h/τ) on the fastest node.

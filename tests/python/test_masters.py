@@ -5,14 +5,15 @@
 Checks: the outputs are bit-identical to the in-process plant (`rins run`) and to FMPy for the
 same parameters; an .ssv parameter set reaches the plant (a changed gyro bias shifts the
 angular increments by bias x step); a chamber input set at t = 0 before initialization
-changes the initial temperatures, one set at t = 100.00 s is in effect in the first step
-after 100.00 s. Prints the wall time of a 1-hour run in each master, FMPy and in-process.
+changes the initial temperatures, one set at t = 100.00 s (a thermal update) or 100.37 s
+(between updates) is in effect in the first step after it. Prints the wall time of a 1-hour run in each master, FMPy and in-process.
 
 The carrier -> IMU system (fmi-wrapper/examples/system/carrier-imu/: RinsCarrier.fmu driving
 the IMU's carrier inputs): libcosim (OSP, SSP) and ecos (SSP), FMI 2, give IMU outputs
 bit-identical to the two FMUs connected through FMPy's API in the masters' Jacobi order, which
 equal the two models connected in process (examples/carrier_imu); the carrier FMUs validate and
-reproduce their _ref.csv in FMPy; 1-hour system timings.
+reproduce their _ref.csv in FMPy; 1-hour system timings. ecos runs the same system with the FMI 3
+FMUs (fmi3/SystemStructure.ssd), connected through the scalar views of their array elements.
 
 Each master runs in its own process (a libcosim error aborts its process; ecos needs
 libtbb preloaded).
@@ -238,15 +239,17 @@ def carrier_osp():
     return os.path.join(d, "OspSystemStructure.xml")
 
 
-def carrier_ssp():
-    """The shipped carrier -> IMU SystemStructure.ssd with its .ssv sets and both FMI 2 FMUs
-    packed into an .ssp."""
-    path = os.path.join(WORK, "rins-carrier-imu.ssp")
+def carrier_ssp(version=2):
+    """The shipped carrier -> IMU SystemStructure.ssd (FMI 2, or fmi3/SystemStructure.ssd with
+    the FMI 3 FMUs) with its .ssv sets and both FMUs packed into an .ssp."""
+    path = os.path.join(WORK, f"rins-carrier-imu-{version}.ssp")
+    ssd = os.path.join(CARRIER_EXAMPLES, *(["fmi3"] if version == 3 else []), "SystemStructure.ssd")
+    suffix = "3" if version == 3 else ""
     with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
-        z.write(os.path.join(CARRIER_EXAMPLES, "SystemStructure.ssd"), "SystemStructure.ssd")
+        z.write(ssd, "SystemStructure.ssd")
         for name in ("sea-state-5", "carrier-imu"):
             z.write(os.path.join(CARRIER_EXAMPLES, f"{name}.ssv"), f"resources/{name}.ssv")
-        for f in ("RinsImu.fmu", "RinsCarrier.fmu"):
+        for f in (f"RinsImu{suffix}.fmu", f"RinsCarrier{suffix}.fmu"):
             z.write(os.path.join(FMU_DIR, f), f"resources/{f}")
     return path
 
@@ -356,18 +359,21 @@ def test_osp_and_ssp_runs_are_bit_identical_to_in_process_and_fmpy():
         assert np.array_equal(rows, fm), (name, "thermal outputs differ from FMPy")
 
 
-def test_ecos_fmi3_from_ssp_gives_the_scalar_outputs_of_fmi2():
-    # ecos reads and writes FMI 3 arrays with nValues 1, which the FMU refuses (writing
-    # nothing): the scalar outputs are compared here, the arrays through FMPy in test_fmu.py.
-    # The .ssv names are FMI 2 scalar names; ecos skips the array elements for the FMI 3 FMU
-    # (a warning each) and sets the scalar parameters. paper-table3 is the FMU's default grade.
+def test_ecos_fmi3_from_ssp_gives_the_outputs_of_fmi2():
+    # ecos reads and writes FMI 3 variables with nValues 1; the FMI 3 FMU declares every array
+    # element as a scalar view too (`imu.dtheta_rad[2]`, `sensor.gyro.bias.dph[2]`), so the same
+    # .ssv names and output names serve both versions: arrays included, FMI 3 gives FMI 2's
+    # outputs bit for bit (the array variables themselves: FMPy in test_fmu.py).
     n = 3000
-    scalars = THERMAL + ["gimbal.outer_rad", "imu.time_s"]
-    r3, _ = master("ecos", ssp(3), n, outputs=scalars, start={"run.seed": 5}, parameter_set="paper-table3")
-    r2, _ = master("ecos", ssp(2), n, outputs=scalars, start={"run.seed": 5}, parameter_set="paper-table3")
+    outputs = OUTPUTS + ["gimbal.outer_rad", "imu.time_s"]
+    edit = {"sensor.gyro.bias.dph[2]": 0.02}
+    r3, _ = master("ecos", ssp(3, edit=edit), n, outputs=outputs, start={"run.seed": 5}, parameter_set="paper-table3")
+    r2, _ = master("ecos", ssp(2, edit=edit), n, outputs=outputs, start={"run.seed": 5}, parameter_set="paper-table3")
     assert np.array_equal(r3, r2), np.abs(r3 - r2).max()
+    ref, _ = in_process(n * STEP)
+    assert np.array_equal(r3[:, :3], ref[:n]), "FMI 3 increments (bias from the .ssv) vs in-process"
     assert abs(r3[-1, -1] - n * STEP) < 1e-9, r3[-1, -1]
-    assert r3[:, 3].max() > r3[0, 3], "the table moved (gimbal angle changes)"
+    assert r3[:, 6].max() > r3[0, 6], "the table moved (gimbal angle changes)"
 
 
 def test_a_parameter_set_reaches_the_plant_in_both_masters():
@@ -380,6 +386,7 @@ def test_a_parameter_set_reaches_the_plant_in_both_masters():
     for name, run in [
         ("libcosim", lambda e: master("libcosim", ssp(2, edit=e), n)),
         ("ecos FMI 2", lambda e: master("ecos", ssp(2, edit=e), n, parameter_set="paper-table3")),
+        ("ecos FMI 3", lambda e: master("ecos", ssp(3, edit=e), n, parameter_set="paper-table3")),
     ]:
         a, _ = run(base)
         b, _ = run(shifted)
@@ -394,11 +401,12 @@ def test_a_parameter_set_reaches_the_plant_in_both_masters():
 
 
 def test_chamber_inputs_before_initialization_and_at_100_s():
-    n = 10_001
+    n = 10_038
     start = {"input.chamber_override": True, "input.chamber_temp_c": 35.0}
     fm_default = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), 1, {})
     fm35 = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), 1, start)
-    events = [[10_000, "input.chamber_override", True], [10_000, "input.chamber_temp_c", 40.0]]
+    events = [[10_000, "input.chamber_override", True], [10_000, "input.chamber_temp_c", 40.0],
+              [10_037, "input.chamber_temp_c", 45.0]]
     for name, (rows, _) in {
         "libcosim": master("libcosim", osp_dir(), 1, start=start),
         "ecos": master("ecos", os.path.join(FMU_DIR, "RinsImu.fmu"), 1, start=start),
@@ -414,6 +422,32 @@ def test_chamber_inputs_before_initialization_and_at_100_s():
         assert chamber[9_999] == 25.0, (name, "until 100.00 s", chamber[9_999])
         assert chamber[10_000] == 40.0, (name, "in the step from 100.00 s", chamber[10_000])
         assert rows[10_000, 4] > rows[9_999, 4], (name, "the housing warms")
+        # Between the 1 s thermal updates (100.37 s): in effect in that step too, not at 101 s.
+        assert rows[10_036, 4] == rows[10_001, 4], (name, "held between updates")
+        assert chamber[10_037] == 45.0, (name, "in the step from 100.37 s", chamber[10_037])
+        assert rows[10_037, 4] > rows[10_036, 4], (name, "the housing warms at 100.37 s")
+
+
+# A declared effect in FMU slot 0 of the gyros (docs/fmu.md, "Declared effects (slots)"):
+# u_z^2 as the product u_z*u_z, 50 deg/h on x and -30 deg/h on z.
+SLOT = {"sensor.gyro.slot[0].enabled": True, "sensor.gyro.slot[0].kind": 1,
+        "sensor.gyro.slot[0].signal[0]": 4, "sensor.gyro.slot[0].node_or_axis[0]": 2,
+        "sensor.gyro.slot[0].signal[1]": 4, "sensor.gyro.slot[0].node_or_axis[1]": 2,
+        "sensor.gyro.slot[0].coef[0]": 50.0, "sensor.gyro.slot[0].coef[2]": -30.0}
+
+
+def test_declared_effect_slots_are_set_by_the_masters():
+    """Slot parameters set before initialization by ecos (FMI 2, and FMI 3 through the element
+    views) give the increments FMPy gives for the same start values; the slot changes them."""
+    n = 2000
+    start = dict(OSP_START, **SLOT)
+    fm = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), n, start)
+    plain = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), n, OSP_START)
+    assert not np.array_equal(fm[:, [0, 2]], plain[:, [0, 2]]), "the slot acts on x and z"
+    assert np.array_equal(fm[:, 1], plain[:, 1]), "and not on y"
+    for name, fmu in [("ecos FMI 2", "RinsImu.fmu"), ("ecos FMI 3", "RinsImu3.fmu")]:
+        rows, _ = master("ecos", os.path.join(FMU_DIR, fmu), n, start=start)
+        assert np.array_equal(rows, fm), (name, np.abs(rows - fm).max())
 
 
 def test_wall_time_of_a_one_hour_run():
@@ -458,7 +492,7 @@ def test_carrier_fmus_validate_and_reproduce_their_reference_results():
 
 def test_carrier_imu_system_is_bit_identical_in_every_master():
     """The carrier -> IMU system from the shipped OSP file (libcosim) and SSP file (libcosim,
-    ecos; FMI 2) gives IMU outputs bit-identical to the two FMUs connected through FMPy's API in
+    ecos; FMI 2, and ecos with the FMI 3 FMUs) gives IMU outputs bit-identical to the two FMUs connected through FMPy's API in
     the same (Jacobi) order, and those to the two models connected in process; the IMU does move with the ship (its increments differ from the
     static IMU's by the ship's rates times the step)."""
     n = 3000  # 30 s, three wave periods
@@ -472,6 +506,9 @@ def test_carrier_imu_system_is_bit_identical_in_every_master():
         # ecos applies the parameter set it is given by name: the IMU's (the carrier's set is
         # its defaults).
         "ecos SSP (FMI 2)": master("ecos", carrier_ssp(), n, parameter_set="carrier-imu"),
+        # FMI 3: the same connector names, which the FMI 3 FMUs declare as scalar views of their
+        # array elements (ecos reads every FMI 3 variable as a scalar).
+        "ecos SSP (FMI 3)": master("ecos", carrier_ssp(3), n, parameter_set="carrier-imu"),
     }
     for name, (rows, _) in runs.items():
         assert rows.shape == ref.shape, (name, rows.shape)
@@ -490,6 +527,7 @@ def test_wall_time_of_a_one_hour_carrier_imu_run():
     _, times["libcosim OSP (FMI 2)"] = master("libcosim", carrier_osp(), n, record=False)
     _, times["libcosim SSP (FMI 2)"] = master("libcosim", carrier_ssp(), n, record=False)
     _, times["ecos SSP (FMI 2)"] = master("ecos", carrier_ssp(), n, record=False, parameter_set="carrier-imu")
+    _, times["ecos SSP (FMI 3)"] = master("ecos", carrier_ssp(3), n, record=False, parameter_set="carrier-imu")
     for k, v in times.items():
         print(f"     carrier -> IMU, 1 h at 10 ms, {k}: {v:.2f} s")
     assert all(v > 0 for v in times.values())

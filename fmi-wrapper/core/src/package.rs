@@ -29,9 +29,9 @@ pub fn variable_list(table: &VariableTable, version: FmiVersion) -> String {
             .enumerate()
             .map(|(i, v)| (v.name.clone(), i))
             .collect(),
+        // The element views (`a[i]` scalars) are one rule, said once below the table.
         FmiVersion::V3 => table
-            .arrays
-            .iter()
+            .variables()
             .map(|a| {
                 (
                     if a.is_array {
@@ -105,8 +105,17 @@ fn documentation<M: Model>(version: FmiVersion) -> String {
     s.push_str(&M::documentation());
     s.push_str("\n## Variables\n\n");
     s.push_str(&variable_list(M::table(), version));
+    if version == FmiVersion::V3 {
+        s.push_str(ELEMENT_VIEWS_NOTE);
+    }
     s
 }
+
+/// Said once under the FMI 3 variable list instead of listing every element view.
+pub const ELEMENT_VIEWS_NOTE: &str = "\nEvery element of an array variable `a[n]` is also a scalar \
+variable `a[i]` (i = 0…n−1, row-major; value references after all variables above), a view of the \
+same value: setting either sets both. They are for masters that read FMI 3 variables as scalars \
+(ecos 0.7.2) and let one SSP file or `.ssv` set name the same variables in FMI 2 and FMI 3.\n";
 
 /// Writes the `.fmu` for `version` into `out_dir` from the shared library `lib`; returns its path.
 ///

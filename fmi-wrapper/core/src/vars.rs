@@ -1,6 +1,12 @@
 //! The FMU's variable table: one row per scalar ("slot"). FMI 2 gives every slot its own value
 //! reference; FMI 3 groups the slots of one array (`a.b[0..3]`) into one
 //! Float64 array variable. Both modelDescriptions and both C APIs are generated from this table.
+//!
+//! FMI 3 also gets one scalar variable per array element, named as in FMI 2 (`a.b[2]`), after
+//! all other variables: masters that read every FMI 3 variable as a scalar (ecos 0.7.2 passes
+//! `nValues` 1) can connect, set and read the elements, and one SSP file or `.ssv` set serves
+//! both FMI versions. Such an element variable is a view of the array's slot: setting either
+//! sets both.
 
 use std::ops::Range;
 
@@ -78,6 +84,9 @@ pub struct ArrayVar {
     pub is_array: bool,
     /// Array dimensions, row-major (empty for scalars).
     pub dims: Vec<usize>,
+    /// For a scalar view of one array element: index (in [`VariableTable::arrays`]) of the
+    /// array it belongs to; `None` for every other variable.
+    pub element_of: Option<usize>,
 }
 
 /// Indices of a structured name: `a.b[1,2]` → `[1, 2]`.
@@ -95,7 +104,8 @@ fn indices(name: &str) -> Vec<usize> {
 pub struct VariableTable {
     /// Scalars in value-reference order (FMI 2 value reference = index).
     pub scalars: Vec<ScalarVar>,
-    /// FMI 3 variables in order (FMI 3 value reference = index + 1; 0 is `time`).
+    /// FMI 3 variables in order (FMI 3 value reference = index + 1; 0 is `time`): the
+    /// variables proper, then the scalar views of every array element (`element_of`).
     pub arrays: Vec<ArrayVar>,
     /// Integer codes of enumeration parameters, `(code slot, enumeration slot)`: masters
     /// without FMI 2 enumerations (libcosim, ecos) set the code; the instance routes it to
@@ -121,6 +131,7 @@ impl VariableTable {
                     slots: i..i + 1,
                     is_array: s.name != s.array,
                     dims: Vec::new(),
+                    element_of: None,
                 }),
             }
         }
@@ -136,6 +147,20 @@ impl VariableTable {
                 a.name
             );
         }
+        let views: Vec<ArrayVar> = arrays
+            .iter()
+            .enumerate()
+            .filter(|(_, a)| a.is_array)
+            .flat_map(|(i, a)| a.slots.clone().map(move |k| (i, k)))
+            .map(|(i, k)| ArrayVar {
+                name: scalars[k].name.clone(),
+                slots: k..k + 1,
+                is_array: false,
+                dims: Vec::new(),
+                element_of: Some(i),
+            })
+            .collect();
+        arrays.extend(views);
         let initial_dependencies = vec![Vec::new(); scalars.len()];
         Self {
             scalars,
@@ -199,6 +224,11 @@ impl VariableTable {
             .iter()
             .find(|(c, _)| *c == slot)
             .map(|(_, e)| *e)
+    }
+
+    /// The FMI 3 variables proper: arrays and scalars, without the element views.
+    pub fn variables(&self) -> impl Iterator<Item = &ArrayVar> {
+        self.arrays.iter().filter(|a| a.element_of.is_none())
     }
 
     /// Slot of the scalar called `name`.
@@ -319,10 +349,20 @@ mod tests {
         assert_eq!(
             t.arrays
                 .iter()
-                .map(|a| (a.name.as_str(), a.slots.clone(), a.is_array))
+                .map(|a| (a.name.as_str(), a.slots.clone(), a.is_array, a.element_of))
                 .collect::<Vec<_>>(),
-            [("a", 0..2, true), ("b", 2..3, false), ("c", 3..4, true)]
+            [
+                ("a", 0..2, true, None),
+                ("b", 2..3, false, None),
+                ("c", 3..4, true, None),
+                // Scalar views of the array elements, after every variable proper.
+                ("a[0]", 0..1, false, Some(0)),
+                ("a[1]", 1..2, false, Some(0)),
+                ("c[0]", 3..4, false, Some(2)),
+            ]
         );
+        assert_eq!(t.variables().count(), 3);
+        assert_eq!(m.arrays.len(), 1 + 6);
         assert!(
             t.check(1, Value::Real(2.0))
                 .unwrap_err()

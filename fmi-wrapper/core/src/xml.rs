@@ -401,11 +401,18 @@ fn body_v3(table: &VariableTable, h: &Header, out: &mut String) {
         } else {
             String::new()
         };
+        let description = match a.element_of {
+            Some(i) => format!(
+                "element of {} as a scalar (for masters without arrays; setting either sets both): {}",
+                table.arrays[i].name, s.description
+            ),
+            None => s.description.clone(),
+        };
         let _ = write!(
             out,
             "    <{tag} name=\"{}\" valueReference=\"{vr}\" description=\"{}\" causality=\"{c}\" variability=\"{var}\"{initial}{declared}{unit}{range}{start}",
             esc(&a.name),
-            esc(&s.description)
+            esc(&description)
         );
         if a.is_array {
             out.push_str(">\n");
@@ -424,10 +431,13 @@ fn body_v3(table: &VariableTable, h: &Header, out: &mut String) {
             "    <Output valueReference=\"{vr}\" dependencies=\"\"/>"
         );
     }
-    // FMI 3 value reference of each slot: its array's index + 1.
+    // FMI 3 value reference of each slot: its variable's index + 1 (a known's dependency is
+    // on the variable proper, not on an element's scalar view).
     let mut vr_of = vec![0; table.scalars.len()];
     for (i, a) in table.arrays.iter().enumerate() {
-        a.slots.clone().for_each(|k| vr_of[k] = i + 1);
+        if a.element_of.is_none() {
+            a.slots.clone().for_each(|k| vr_of[k] = i + 1);
+        }
     }
     for vr in &outputs {
         let mut deps: Vec<usize> = table.arrays[vr - 1]
@@ -481,4 +491,42 @@ pub fn model_description(
     };
     let token = content_token(&render(""));
     (render(&token), token)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::vars::OutputDecl;
+
+    #[test]
+    fn fmi3_declares_each_array_element_as_a_scalar_output_too() {
+        let d = OutputDecl {
+            name: "q".into(),
+            len: Some(2),
+            kind: Kind::Real,
+            unit: None,
+            start: vec![Value::Real(0.0)],
+            description: "d".into(),
+        };
+        let table = VariableTable::new(d.scalars().collect());
+        let h = Header {
+            model_identifier: "M".into(),
+            description: String::new(),
+            generation_tool: String::new(),
+            stop_time_s: 1.0,
+            step_size_s: 0.1,
+        };
+        let (v3, _) = model_description(FmiVersion::V3, &table, &h);
+        // The array (value reference 1), then its elements q[0], q[1] (2, 3), all outputs.
+        assert!(v3.contains("<Float64 name=\"q\" valueReference=\"1\""));
+        assert!(v3.contains("<Float64 name=\"q[0]\" valueReference=\"2\""));
+        assert!(v3.contains("<Float64 name=\"q[1]\" valueReference=\"3\""));
+        for vr in 1..=3 {
+            assert!(v3.contains(&format!("<Output valueReference=\"{vr}\"")));
+        }
+        assert_eq!(v3.matches("<Dimension").count(), 1);
+        // FMI 2 has the elements only, as before.
+        let (v2, _) = model_description(FmiVersion::V2, &table, &h);
+        assert_eq!(v2.matches("<ScalarVariable").count(), 2);
+    }
 }

@@ -19,6 +19,7 @@ use rins_plant::{GimbalCommand, ImuSample, Plant, PlantConfig};
 
 pub mod carrier_inputs;
 pub mod config;
+pub mod declared;
 pub mod outputs;
 pub mod reference;
 pub mod ssv;
@@ -143,7 +144,19 @@ impl RinsImu {
                 Role::Param(path) if *v != s.start => Some((path.as_str(), to_param(s, *v))),
                 _ => None,
             });
-        config::apply(&t.defaults, pairs)
+        let mut cfg = config::apply(&t.defaults, pairs)?;
+        // Declared effects from the slots (none enabled: the configuration is unchanged).
+        let slots = declared::read(
+            t.roles
+                .iter()
+                .zip(&self.values)
+                .filter_map(|(r, v)| match r {
+                    Role::Declared(d) => Some((d, *v)),
+                    _ => None,
+                }),
+        );
+        declared::apply(&mut cfg, &slots)?;
+        Ok(cfg)
     }
 
     /// The running plant (after initialisation).

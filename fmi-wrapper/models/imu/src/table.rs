@@ -40,6 +40,8 @@ pub(crate) enum Role {
     CarrierSwitch,
     /// Carrier input `.0` of [`crate::carrier_inputs::INPUTS`].
     Carrier(usize),
+    /// A field of a declared-effect slot ([`crate::declared`]).
+    Declared(crate::declared::SlotVar),
 }
 
 pub(crate) struct Table {
@@ -244,6 +246,11 @@ fn build_table() -> Table {
             Role::Carrier(i - 1)
         });
     }
+    // The declared-effect slots (parameters) after them, for the same reason.
+    for (v, r) in crate::declared::vars() {
+        scalars.push(v);
+        roles.push(Role::Declared(r));
+    }
     // The Integer codes of the enumerations come last (the instance routes them).
     let mut vars = VariableTable::with_enum_codes(scalars);
     for slot in 0..roles.len() {
@@ -276,7 +283,7 @@ fn initial_dependencies(vars: &VariableTable, roles: &[Role], slot: usize) -> Ve
         Box::new(move |r| match r {
             Role::Param(p) => attitude(p) || p.starts_with("thermal."),
             Role::Input(i) => matches!(i, Input::ChamberOverride | Input::ChamberTemp),
-            Role::Output(..) => false,
+            Role::Output(..) | Role::Declared(_) => false,
             Role::CarrierSwitch | Role::Carrier(_) => true,
         })
     } else if name.starts_with("gimbal.")

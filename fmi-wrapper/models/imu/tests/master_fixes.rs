@@ -112,7 +112,7 @@ fn run(inst: &Instance2<'_>, from: u64, to: u64) {
 }
 
 #[test]
-fn a_chamber_input_is_taken_by_the_next_thermal_update_and_held_over_it() {
+fn a_chamber_input_acts_at_the_step_it_is_set_for() {
     let fmu = library();
     let chamber = fmu.vr("thermal.chamber_c").unwrap();
     let housing = fmu
@@ -139,27 +139,99 @@ fn a_chamber_input_is_taken_by_the_next_thermal_update_and_held_over_it() {
     run(&a, 10_000, 10_001);
     assert_eq!(read(&a, chamber), 40.0, "first step after 100.00 s");
     assert!(read(&a, housing) > h0, "the housing warms in that step");
-    // Set at t = 100.37 s, between updates: held until the update at 101.00 s.
+    // Set at t = 100.37 s, between the 1 s updates: in effect in the step from 100.37 s too
+    // (the thermal step ends early there), and the housing warms in that step.
     let b = start("b");
     run(&b, 0, 10_037);
+    let h0 = read(&b, housing);
     set_chamber(&fmu, &b, 40.0);
-    run(&b, 10_037, 10_100);
-    assert_eq!(read(&b, chamber), 25.0, "until 101.00 s");
-    run(&b, 10_100, 10_101);
-    assert_eq!(read(&b, chamber), 40.0, "from the update at 101.00 s");
-    // With thermal updates every communication step (thermal.step_s = 0.01 s) the input set
-    // at 100.37 s is in effect in the step from 100.37 s.
-    let c = fmu.instantiate("c", false).unwrap();
-    c.setup_experiment(0.0, None).unwrap();
-    c.set_real(&[fmu.vr("thermal.step_s").unwrap()], &[0.01])
-        .unwrap();
-    c.enter_initialization_mode().unwrap();
-    c.exit_initialization_mode().unwrap();
-    run(&c, 0, 10_037);
-    set_chamber(&fmu, &c, 40.0);
-    assert_eq!(read(&c, chamber), 25.0);
-    run(&c, 10_037, 10_038);
-    assert_eq!(read(&c, chamber), 40.0, "in the step from 100.37 s");
+    run(&b, 10_037, 10_038);
+    assert_eq!(read(&b, chamber), 40.0, "in the step from 100.37 s");
+    assert!(read(&b, housing) > h0, "the housing warms in that step");
+    // The same value set again is no change: no extra update, the grid (from 100.37 s) holds.
+    let h1 = read(&b, housing);
+    set_chamber(&fmu, &b, 40.0);
+    run(&b, 10_038, 10_137);
+    assert_eq!(read(&b, housing), h1, "held until 101.37 s");
+    run(&b, 10_137, 10_138);
+    assert!(read(&b, housing) > h1, "the update at 101.37 s");
+}
+
+/// A chamber input set mid-second (t = 100.005 s, at 200 Hz) against the closed form of one
+/// backward-Euler step of a single RC node (the housing, every internal link cut and no
+/// power): C·(T⁺ − T)/h = G·(T_ch − T⁺), so T⁺ = (C/h·T + G·T_ch) / (C/h + G), over the
+/// h = 5 ms since the 100.000 s update, then over the full 1 s step at 101.005 s.
+#[test]
+fn a_chamber_input_set_mid_second_follows_the_closed_form_of_one_thermal_step() {
+    let fmu = library();
+    let vr = |n: &str| fmu.vr(n).unwrap();
+    let read = |inst: &Instance2<'_>, name: &str| {
+        let mut v = [0.0];
+        inst.get_real(&[vr(name)], &mut v).unwrap();
+        v[0]
+    };
+    let inst = fmu.instantiate("mid", false).unwrap();
+    inst.setup_experiment(0.0, None).unwrap();
+    inst.set_real(&[vr("run.rate_hz")], &[200.0]).unwrap();
+    let mut cut: Vec<String> = (0..6).map(|i| format!("thermal.power_w[{i}]")).collect();
+    for a in [
+        "g_gyro_housing_w_per_k",
+        "g_board_gyro_w_per_k",
+        "g_board_gyro_convection_w_per_k",
+    ] {
+        cut.extend((0..3).map(|i| format!("thermal.{a}[{i}]")));
+    }
+    cut.extend(
+        [
+            "g_board_housing_w_per_k",
+            "g_accel_housing_w_per_k",
+            "g_gyro_gyro_w_per_k",
+        ]
+        .map(|a| format!("thermal.{a}")),
+    );
+    for n in &cut {
+        inst.set_real(&[vr(n)], &[0.0]).unwrap();
+    }
+    inst.enter_initialization_mode().unwrap();
+    inst.exit_initialization_mode().unwrap();
+    let c = read(
+        &inst,
+        &format!("thermal.capacitance_j_per_k[{}]", node::HOUSING),
+    );
+    let g = read(&inst, "thermal.g_housing_chamber_w_per_k");
+    let hname = format!("thermal.{}_c", node::NAMES[node::HOUSING]);
+    let step = |from: u64, to: u64| {
+        for k in from..to {
+            inst.do_step(k as f64 / 200.0, 0.005).unwrap();
+        }
+    };
+    step(0, 20_001); // to 100.005 s
+    let t0 = read(&inst, &hname);
+    assert_eq!(
+        t0, 25.0,
+        "no power: the housing sits at the chamber temperature"
+    );
+    set_chamber(&fmu, &inst, 40.0);
+    step(20_001, 20_002);
+    let (h, t_ch) = (0.005, 40.0);
+    let t1 = (c / h * t0 + g * t_ch) / (c / h + g);
+    assert_eq!(read(&inst, "thermal.chamber_c"), 40.0);
+    let got = read(&inst, &hname);
+    assert!(
+        (got - t1).abs() <= 1e-12 * t1,
+        "first step after 100.005 s: {got} vs closed form {t1}"
+    );
+    // 15 K × G·h/C = 4.5e-5 K in 5 ms.
+    assert!(got > t0 + 4e-5, "the housing warmed: {got}");
+    // The other nodes are cut off: they stay at 25 °C.
+    assert_eq!(read(&inst, "thermal.board_c"), 25.0);
+    // The grid restarts at 100.005 s: held until 101.005 s, then one full 1 s step.
+    step(20_002, 20_201);
+    assert_eq!(read(&inst, &hname), got, "held until 101.005 s");
+    step(20_201, 20_202);
+    let t2 = (c * got + g * t_ch) / (c + g);
+    let got2 = read(&inst, &hname);
+    assert!((got2 - t2).abs() <= 1e-12 * t2, "{got2} vs {t2}");
 }
 
 #[test]

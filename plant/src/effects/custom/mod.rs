@@ -20,6 +20,7 @@ mod expr;
 mod model;
 mod plant_side;
 pub mod signals;
+pub mod slots;
 
 use serde::{Deserialize, Serialize};
 

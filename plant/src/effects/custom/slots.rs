@@ -1,0 +1,320 @@
+//! Declared effects as fixed-size slots of numbers, for interfaces without strings (FMU
+//! parameters: FMI has no String parameters a master can be relied on to set).
+//!
+//! A slot holds one declared effect whose regressor has at most [`FACTORS`] factors: per
+//! factor an Integer signal code (the rows of [`SIGNAL_DOCS`], numbered from 1; 0 = no
+//! factor), the node or axis it reads, the second node of a gradient and the power. A slot
+//! converts to and from the [`CustomSpec`] of a scenario file ([`Slot::to_spec`],
+//! [`Slot::from_spec`]): the plant compiles and evaluates it with the same code as a declared
+//! effect read from a file, so a slot and the same `[[sensor.gyro.custom]]` block simulate the
+//! same numbers.
+
+use super::expr::{parse_regressor, unit_of};
+use super::signals::{NodeRef, SIGNAL_DOCS, Signal};
+use super::{Axis, CustomKind, CustomSpec};
+use crate::effects::Axes3;
+use crate::thermal::node;
+
+/// Factors per slot.
+pub const FACTORS: usize = 2;
+/// Highest signal code (the rows of [`SIGNAL_DOCS`]).
+pub const SIGNAL_CODE_MAX: u64 = SIGNAL_DOCS.len() as u64;
+/// The node code of `block` (the acting axis's own block); 0…5 are the nodes of [`node`].
+pub const BLOCK_CODE: u64 = node::COUNT as u64;
+
+/// One factor of a slot, as numbers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct SlotFactor {
+    /// Signal: 0 none, else the row of [`SIGNAL_DOCS`] + 1 (1 temp, 2 dtemp_dt, 3 grad, 4 u,
+    /// 5 w, 6 abs_w, 7 gimbal_outer, 8 gimbal_inner, 9 time).
+    pub signal: u64,
+    /// Node (0 board, 1 gyro_x, 2 gyro_y, 3 gyro_z, 4 accel, 5 housing, 6 block) for temp,
+    /// dtemp_dt and the first node of grad; axis (0 x, 1 y, 2 z) for u, w and abs_w.
+    pub node_or_axis: u64,
+    /// Second node of grad (A − B), as `node_or_axis`.
+    pub node_b: u64,
+    /// Power, 1 … 8.
+    pub power: u64,
+}
+
+/// One declared effect as numbers.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Slot {
+    /// In use.
+    pub enabled: bool,
+    /// 1 bias, 2 scale factor.
+    pub kind: u64,
+    /// The regressor's factors (signal 0: unused).
+    pub factors: [SlotFactor; FACTORS],
+    /// Coefficient per axis in the unit of the file: °/h (gyro bias), µg (accelerometer bias)
+    /// or ppm (scale factor) per unit of the regressor.
+    pub coef: Axes3,
+}
+
+/// A field of a slot that holds a bad value: which field (`kind`, `signal[1]`, …) and why,
+/// with the valid values.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SlotError {
+    /// Field, relative to the slot: `kind`, `signal[j]`, `node_or_axis[j]`, `node_b[j]`,
+    /// `power[j]`.
+    pub field: String,
+    /// The value and the valid range.
+    pub message: String,
+}
+
+fn node_name(code: u64) -> Option<&'static str> {
+    match code {
+        c if c < BLOCK_CODE => Some(node::NAMES[c as usize]),
+        BLOCK_CODE => Some("block"),
+        _ => None,
+    }
+}
+
+fn node_code(n: NodeRef) -> u64 {
+    match n {
+        NodeRef::Node(i) => i as u64,
+        NodeRef::Block => BLOCK_CODE,
+    }
+}
+
+const NODES: &str = "0 board, 1 gyro_x, 2 gyro_y, 3 gyro_z, 4 accel, 5 housing, 6 block";
+const AXES: &str = "0 x, 1 y, 2 z";
+
+impl Slot {
+    /// The regressor text of the slot's factors (`dtemp_dt:block`, `u_x*u_z^2`), or the
+    /// first bad field.
+    pub fn regressor(&self) -> Result<String, SlotError> {
+        let mut parts = Vec::new();
+        for (j, f) in self.factors.iter().enumerate() {
+            let bad = |field: &str, message: String| SlotError {
+                field: format!("{field}[{j}]"),
+                message,
+            };
+            if f.signal == 0 {
+                continue;
+            }
+            let node = |code: u64, field: &str| {
+                node_name(code).ok_or_else(|| {
+                    bad(
+                        field,
+                        format!("= {code} is not a node (valid: 0…{BLOCK_CODE}: {NODES})"),
+                    )
+                })
+            };
+            let axis = |code: u64| {
+                ["x", "y", "z"].get(code as usize).copied().ok_or_else(|| {
+                    bad(
+                        "node_or_axis",
+                        format!("= {code} is not an axis (valid: 0…2: {AXES})"),
+                    )
+                })
+            };
+            let name = match f.signal {
+                1 => format!("temp:{}", node(f.node_or_axis, "node_or_axis")?),
+                2 => format!("dtemp_dt:{}", node(f.node_or_axis, "node_or_axis")?),
+                3 => format!(
+                    "grad:{}-{}",
+                    node(f.node_or_axis, "node_or_axis")?,
+                    node(f.node_b, "node_b")?
+                ),
+                4 => format!("u_{}", axis(f.node_or_axis)?),
+                5 => format!("w_{}", axis(f.node_or_axis)?),
+                6 => format!("abs_w_{}", axis(f.node_or_axis)?),
+                7 => "gimbal_outer".into(),
+                8 => "gimbal_inner".into(),
+                9 => "time".into(),
+                c => {
+                    return Err(bad(
+                        "signal",
+                        format!(
+                            "= {c} is not a signal code (valid: 0…{SIGNAL_CODE_MAX}: {})",
+                            signal_codes()
+                        ),
+                    ));
+                }
+            };
+            if !(1..=super::expr::MAX_POWER as u64).contains(&f.power) {
+                return Err(bad(
+                    "power",
+                    format!(
+                        "= {} is not a power (valid: 1…{})",
+                        f.power,
+                        super::expr::MAX_POWER
+                    ),
+                ));
+            }
+            parts.push(if f.power == 1 {
+                name
+            } else {
+                format!("{name}^{}", f.power)
+            });
+        }
+        if parts.is_empty() {
+            return Err(SlotError {
+                field: "signal[0]".into(),
+                message: format!(
+                    "= 0: an enabled slot needs at least one signal (valid: 1…{SIGNAL_CODE_MAX}: {})",
+                    signal_codes()
+                ),
+            });
+        }
+        Ok(parts.join("*"))
+    }
+
+    /// The declared effect the slot describes, named `name`, on every axis (a coefficient of
+    /// 0 leaves an axis untouched).
+    pub fn to_spec(&self, name: &str) -> Result<CustomSpec, SlotError> {
+        let kind = match self.kind {
+            1 => CustomKind::Bias,
+            2 => CustomKind::ScaleFactor,
+            k => {
+                return Err(SlotError {
+                    field: "kind".into(),
+                    message: format!("= {k} is not a kind (valid: 1 bias, 2 scale-factor)"),
+                });
+            }
+        };
+        let regressor = self.regressor()?;
+        let factors = parse_regressor(&regressor).map_err(|e| SlotError {
+            field: "signal[0]".into(),
+            message: e,
+        })?;
+        Ok(CustomSpec {
+            name: name.into(),
+            enabled: self.enabled,
+            kind,
+            unit: unit_of(&factors).to_string(),
+            regressor,
+            axes: vec![Axis::X, Axis::Y, Axis::Z],
+            coef: self.coef,
+        })
+    }
+
+    /// The slot of a declared effect, or why it does not fit one (more than [`FACTORS`]
+    /// factors, or a regressor that does not parse).
+    pub fn from_spec(spec: &CustomSpec) -> Result<Slot, String> {
+        let factors =
+            parse_regressor(&spec.regressor).map_err(|e| format!("{}: {e}", spec.name))?;
+        if factors.len() > FACTORS {
+            return Err(format!(
+                "{}: {} factors in {:?}; an FMU slot holds at most {FACTORS}",
+                spec.name,
+                factors.len(),
+                spec.regressor
+            ));
+        }
+        let mut slot = Slot {
+            enabled: spec.enabled,
+            kind: match spec.kind {
+                CustomKind::Bias => 1,
+                CustomKind::ScaleFactor => 2,
+            },
+            coef: spec.coef,
+            ..Slot::default()
+        };
+        for (f, out) in factors.iter().zip(slot.factors.iter_mut()) {
+            let (signal, a, b) = match f.signal {
+                Signal::Temp(n) => (1, node_code(n), 0),
+                Signal::TempRate(n) => (2, node_code(n), 0),
+                Signal::Gradient(x, y) => (3, node_code(x), node_code(y)),
+                Signal::Up(i) => (4, i as u64, 0),
+                Signal::Rate(i) => (5, i as u64, 0),
+                Signal::AbsRate(i) => (6, i as u64, 0),
+                Signal::Outer => (7, 0, 0),
+                Signal::Inner => (8, 0, 0),
+                Signal::Time => (9, 0, 0),
+            };
+            *out = SlotFactor {
+                signal,
+                node_or_axis: a,
+                node_b: b,
+                power: f.power as u64,
+            };
+        }
+        Ok(slot)
+    }
+}
+
+/// `1 temp:NODE, 2 dtemp_dt:NODE, …`: the signal codes, for messages and docs.
+pub fn signal_codes() -> String {
+    SIGNAL_DOCS
+        .iter()
+        .enumerate()
+        .map(|(i, (n, _, _))| format!("{} {n}", i + 1))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::effects::custom::CustomModel;
+
+    fn spec(regressor: &str, kind: CustomKind) -> CustomSpec {
+        CustomSpec {
+            name: "t".into(),
+            enabled: true,
+            kind,
+            regressor: regressor.into(),
+            unit: unit_of(&parse_regressor(regressor).unwrap()).to_string(),
+            axes: vec![Axis::X, Axis::Y, Axis::Z],
+            coef: [1.5, -2.0, 0.25],
+        }
+    }
+
+    #[test]
+    fn every_signal_round_trips_through_a_slot_and_compiles_the_same() {
+        for (r, kind) in [
+            ("dtemp_dt:block", CustomKind::Bias),
+            ("u_x*u_z", CustomKind::Bias),
+            ("temp:housing^2*w_y", CustomKind::ScaleFactor),
+            ("grad:gyro_z-housing*abs_w_x^3", CustomKind::Bias),
+            ("gimbal_outer*gimbal_inner", CustomKind::Bias),
+            ("time", CustomKind::ScaleFactor),
+        ] {
+            let s = spec(r, kind);
+            let slot = Slot::from_spec(&s).unwrap();
+            let back = slot.to_spec("t").unwrap();
+            assert_eq!(back, s, "{r}");
+            assert_eq!(
+                CustomModel::new(&[back], false).unwrap(),
+                CustomModel::new(&[s], false).unwrap()
+            );
+        }
+        assert!(
+            Slot::from_spec(&spec("u_x*u_y*u_z", CustomKind::Bias))
+                .unwrap_err()
+                .contains("at most 2")
+        );
+    }
+
+    #[test]
+    fn bad_codes_name_the_field_and_the_valid_range() {
+        let mut slot = Slot::from_spec(&spec("u_x*temp:block", CustomKind::Bias)).unwrap();
+        slot.factors[0].node_or_axis = 3;
+        let e = slot.to_spec("t").unwrap_err();
+        assert_eq!(e.field, "node_or_axis[0]");
+        assert!(e.message.contains("0…2"), "{}", e.message);
+        slot.factors[0].node_or_axis = 0;
+        slot.factors[1].signal = 10;
+        let e = slot.to_spec("t").unwrap_err();
+        assert_eq!(e.field, "signal[1]");
+        assert!(e.message.contains("0…9"), "{}", e.message);
+        slot.factors[1] = SlotFactor {
+            signal: 3,
+            node_or_axis: 6,
+            node_b: 7,
+            power: 1,
+        };
+        assert_eq!(slot.to_spec("t").unwrap_err().field, "node_b[1]");
+        slot.factors[1].node_b = 5;
+        slot.factors[1].power = 9;
+        assert_eq!(slot.to_spec("t").unwrap_err().field, "power[1]");
+        slot.factors[1].power = 1;
+        slot.kind = 3;
+        assert_eq!(slot.to_spec("t").unwrap_err().field, "kind");
+        slot.kind = 1;
+        slot.factors = [SlotFactor::default(); FACTORS];
+        assert_eq!(slot.to_spec("t").unwrap_err().field, "signal[0]");
+    }
+}
