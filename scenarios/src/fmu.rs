@@ -97,6 +97,10 @@ fn set_parameters(fmu: &Fmu2, inst: &Instance2<'_>, cfg: &PlantConfig) -> Result
     fixed.thermal.chamber.temp_c = cfg.thermal.chamber.temp_at(0.0);
     fixed.thermal.chamber.profile.clear();
     for p in params::flatten(&fixed) {
+        // Declared effects go into the FMU's slots (below), not parameters of their own.
+        if p.path.starts_with("sensor.gyro.custom[") || p.path.starts_with("sensor.accel.custom[") {
+            continue;
+        }
         let name = p.path.replace("][", ",");
         let vr = fmu.vr(&name).map_err(anyhow::Error::msg)?;
         let r = match &p.value {
@@ -116,6 +120,31 @@ fn set_parameters(fmu: &Fmu2, inst: &Instance2<'_>, cfg: &PlantConfig) -> Result
             }
         };
         r.with_context(|| format!("setting {}", p.path))?;
+    }
+    set_declared_slots(fmu, inst, cfg)
+}
+
+/// Puts the scenario's declared effects (`[[sensor.gyro.custom]]`, `[[sensor.accel.custom]]`)
+/// into the FMU's declared-effect slots, so a declared effect is simulated through the FMU as
+/// in process; more effects than slots is an error, never a silent drop.
+fn set_declared_slots(fmu: &Fmu2, inst: &Instance2<'_>, cfg: &PlantConfig) -> Result<()> {
+    let slots =
+        rins_imu_fmu::declared::slot_values(&cfg.sensor.gyro.custom, &cfg.sensor.accel.custom)
+            .map_err(|e| anyhow::anyhow!("declared effects (sensor.*.custom) as FMU slots: {e}"))?;
+    for (name, value) in slots {
+        let vr = fmu.vr(&name).map_err(anyhow::Error::msg)?;
+        let r = match value {
+            Value::Real(x) => inst.set_real(&[vr], &[x]),
+            Value::Integer(i) => {
+                let v = i32::try_from(i).map_err(|_| {
+                    anyhow::anyhow!("{name}: {i} does not fit the FMU's 32-bit Integer")
+                })?;
+                inst.set_integer(&[vr], &[v])
+            }
+            Value::Boolean(b) => inst.set_boolean(&[vr], &[b]),
+            Value::Enumeration(_) => bail!("{name}: slots have no enumerations"),
+        };
+        r.with_context(|| format!("setting {name}"))?;
     }
     Ok(())
 }
@@ -215,10 +244,14 @@ pub fn run(
     let pb = progress::bar(samples, &scenario.meta.name);
     let t0 = std::time::Instant::now();
     let mut t = 0.0;
+    // The in-process plant reads its chamber profile at the thermal updates (every
+    // `thermal.step_s`, on a grid from the start). A changed chamber input ends a thermal step
+    // early (docs/fmu.md), so the profile is set only at those grid points: the FMU then takes
+    // the same updates with the same chamber values as the in-process plant.
+    let thermal_every =
+        ((scenario.plant.thermal.step_s * scenario.plant.rate_hz).round() as u64).max(1);
     for k in 0..samples {
-        if profile {
-            // The plant reads the chamber at thermal steps, which start at communication points:
-            // the input set here is the profile value the in-process plant would use.
+        if profile && k % thermal_every == 0 {
             inst.set_real(&[chamber_vr], &[chamber.temp_at(t)])?;
         }
         inst.do_step(t, dt)?;
