@@ -19,6 +19,8 @@ pub struct Layout {
     pub extra: Vec<(String, Vec<String>)>,
     /// Markdown documents to show (entity paths).
     pub docs: Vec<String>,
+    /// A moving carrier: a 3D view of its track (`track`, local ENU around the start, m).
+    pub track: bool,
 }
 
 fn series(name: &str, origin: &str) -> TimeSeriesView {
@@ -101,16 +103,26 @@ pub fn send(rec: &RecordingStream, layout: &Layout) -> Result<()> {
     }
     let right: ContainerLike = Tabs::new(tabs).into();
     let root: ContainerLike = if layout.plant {
-        let left: ContainerLike = Vertical::new([
+        let mut views: Vec<ContainerLike> = vec![
             Spatial3DView::new("IMU on the dual-axis table")
                 .with_origin("/world")
                 .into(),
+        ];
+        let mut shares = vec![3.0, 1.0];
+        if layout.track {
+            views.push(
+                Spatial3DView::new("carrier track (ENU around the start, m)")
+                    .with_origin("/track")
+                    .into(),
+            );
+            shares = vec![3.0, 2.0, 1.0];
+        }
+        views.push(
             TextLogView::new("dwell positions")
                 .with_origin("/status")
                 .into(),
-        ])
-        .with_row_shares([3.0, 1.0])
-        .into();
+        );
+        let left: ContainerLike = Vertical::new(views).with_row_shares(shares).into();
         Horizontal::new([left, right])
             .with_column_shares([2.0, 3.0])
             .into()

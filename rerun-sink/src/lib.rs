@@ -12,6 +12,7 @@
 
 pub mod blueprint;
 pub mod bucket;
+pub mod carrier;
 pub mod nav;
 pub mod recorder;
 pub mod run;

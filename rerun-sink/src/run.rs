@@ -4,6 +4,7 @@ use anyhow::Result;
 use nalgebra::{Matrix3, Vector3};
 use rerun::{RecordingStream, TextLog};
 use rins_experiments::{NavRecord, Tracker};
+use rins_plant::carrier::CarrierTruth;
 use rins_plant::effects::accel::ACCEL_TERMS;
 use rins_plant::effects::gyro::GYRO_TERMS;
 use rins_plant::effects::{AccelTerm, GyroTerm};
@@ -13,6 +14,7 @@ use rins_plant::units::{DPH, UG};
 use rins_plant::{ImuSample, PlantConfig, Truth};
 
 use crate::bucket::MinMaxMean;
+use crate::carrier::CarrierColumns;
 use crate::nav::NavSeries;
 use crate::scene;
 use crate::series::{Series, nanos};
@@ -26,6 +28,8 @@ struct Last {
     t_s: f64,
     outer_rad: f64,
     inner_rad: f64,
+    /// The carrier, when it moves.
+    carrier: Option<CarrierTruth>,
 }
 const XYZ: [[u8; 3]; 3] = [[220, 50, 50], [50, 160, 50], [50, 90, 230]];
 const ENVELOPE: [[u8; 3]; 3] = [[30, 30, 30], [150, 150, 150], [150, 150, 150]];
@@ -48,7 +52,8 @@ pub struct RunOptions {
     pub navigate: bool,
 }
 
-/// Logs a plant run: the 3D table, the dwell label, Δθ/Δv, gimbal angles, temperatures and each
+/// Logs a plant run: the 3D table (on a moving carrier: the carrier's attitude, and its track
+/// in a view of its own), the dwell label, Δθ/Δv, gimbal angles, temperatures and each
 /// enabled effect's contribution, and (optionally) the reference navigator's errors.
 ///
 /// Per-sample work is a few additions and comparisons; rows go out in column chunks.
@@ -77,6 +82,8 @@ pub struct RunRecorder {
     dwell_log: u64,
     last: Option<Last>,
     poses: scene::PoseColumns,
+    /// A moving carrier's poses and track.
+    carrier: Option<CarrierColumns>,
     tracker: Option<(Tracker, NavSeries)>,
     nav_at_last: bool,
     /// The last truth, kept only when navigating (the final record needs it).
@@ -168,7 +175,14 @@ impl RunRecorder {
                 )
             })
             .collect::<Result<_>>()?;
-        scene::log_static(rec, c_vn)?;
+        let carrier = if cfg.carrier.is_static() {
+            scene::log_static(rec, Some(c_vn))?;
+            None
+        } else {
+            scene::log_static(rec, None)?;
+            crate::carrier::log_static(rec)?;
+            Some(CarrierColumns::new(&cfg.vehicle.c_vn()))
+        };
         let tracker = match tracker {
             Some(t) if opts.navigate => Some((
                 t,
@@ -198,6 +212,7 @@ impl RunRecorder {
             dwell_log: 0,
             last: None,
             poses: scene::PoseColumns::default(),
+            carrier,
             tracker,
             nav_at_last: false,
             last_truth: None,
@@ -252,6 +267,7 @@ impl RunRecorder {
             t_s: s.t_s,
             outer_rad: outer,
             inner_rad: inner,
+            carrier: self.carrier.as_ref().map(|_| tr.carrier),
         });
         // The label changes only when the table starts or stops moving; dwells hold the angles.
         let key = (g.moving, outer, inner);
@@ -338,6 +354,9 @@ impl RunRecorder {
         // The pose at the end of each bucket, so the 3D view follows the moves too.
         self.poses
             .push(&self.rec, step, t_ns, last.outer_rad, last.inner_rad)?;
+        if let (Some(c), Some(truth)) = (&mut self.carrier, &last.carrier) {
+            c.push(&self.rec, step, t_ns, truth)?;
+        }
         self.in_bucket = 0;
         self.slow_n = 0;
         self.slow_countdown = 0;
@@ -362,6 +381,9 @@ impl RunRecorder {
             series.flush(&self.rec)?;
         }
         self.poses.flush(&self.rec)?;
+        if let Some(c) = &mut self.carrier {
+            c.flush(&self.rec)?;
+        }
         for s in self
             .env_series
             .iter_mut()
@@ -382,6 +404,12 @@ impl RunRecorder {
     /// Dwell changes logged so far.
     pub fn dwell_changes(&self) -> u64 {
         self.dwell_log
+    }
+
+    /// Whether the carrier moves (its attitude and track are logged; the blueprint's
+    /// [`crate::Layout::track`]).
+    pub fn moving_carrier(&self) -> bool {
+        self.carrier.is_some()
     }
 
     /// Whether navigation errors are logged.

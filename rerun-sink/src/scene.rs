@@ -10,7 +10,8 @@ use rerun::{
 
 /// Root of the 3D scene (ENU navigation frame).
 pub const WORLD: &str = "world";
-/// The vehicle (table base), fixed in the navigation frame by the mount C_v^n.
+/// The vehicle (table base), fixed in the navigation frame by the mount C_v^n (on a moving
+/// carrier: C_c^n·C_v^c at each bucket end).
 pub const BASE: &str = "world/base";
 /// The outer gimbal frame.
 pub const OUTER: &str = "world/base/outer";
@@ -23,8 +24,10 @@ fn quat(q: &UnitQuaternion<f64>) -> rerun::datatypes::Quaternion {
     rerun::datatypes::Quaternion::from_xyzw([q.i as f32, q.j as f32, q.k as f32, q.w as f32])
 }
 
-/// Logs the parts that never move (static): ENU axes, the base under the mount, the gimbal frames.
-pub fn log_static(rec: &RecordingStream, c_vn: &Matrix3<f64>) -> Result<()> {
+/// Logs the parts that never move (static): ENU axes, the base under the mount (`None`: the
+/// base rides on a moving carrier and its rotation is logged per bucket,
+/// [`crate::carrier::CarrierColumns`]; a static rotation would hide those), the gimbal frames.
+pub fn log_static(rec: &RecordingStream, c_vn: Option<&Matrix3<f64>>) -> Result<()> {
     rec.log_static(WORLD, &ViewCoordinates::RIGHT_HAND_Z_UP())?;
     rec.log_static(
         "world/enu",
@@ -32,8 +35,10 @@ pub fn log_static(rec: &RecordingStream, c_vn: &Matrix3<f64>) -> Result<()> {
             .with_colors([Color::from_rgb(150, 150, 150); 3])
             .with_labels(["East", "North", "Up"]),
     )?;
-    let mount = UnitQuaternion::from_matrix(c_vn);
-    rec.log_static(BASE, &Transform3D::from_rotation(quat(&mount)))?;
+    if let Some(c_vn) = c_vn {
+        let mount = UnitQuaternion::from_matrix(c_vn);
+        rec.log_static(BASE, &Transform3D::from_rotation(quat(&mount)))?;
+    }
     rec.log_static(
         "world/base/plate",
         &Boxes3D::from_centers_and_half_sizes([[0.0, 0.0, -1.15]], [[1.3, 1.3, 0.05]])

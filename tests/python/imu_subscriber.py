@@ -2,7 +2,10 @@
 iceoryx2 package, checks the layout and sequence numbers, and prints the mean z angular rate per
 dwell position (A/B/C/D of Eq. 5) as JSON.
 
-Usage: python imu_subscriber.py SESSION
+Usage: python imu_subscriber.py SESSION [--truth FILE]
+With --truth it also writes the truth block (layout version 2: the carrier and the true IMU
+attitude of every record, for error measures only) to FILE as CSV, numbers in repr form
+(reading them back gives the same bits).
 The plant: rins serve builtin:paper-16pos-week --session SESSION --mode free --duration-s 4320
 (before or after this client: it opens or creates the service with the documented settings,
 prints "service ready" on stderr, creates its subscriber once the plant's publisher exists and
@@ -17,7 +20,7 @@ import time
 
 import iceoryx2 as iox2
 
-LAYOUT_VERSION = 1
+LAYOUT_VERSION = 2
 FLAG_END = 1
 
 
@@ -39,8 +42,36 @@ class ImuRecord(ctypes.Structure):
         return "rins::ImuRecord"
 
 
+class TruthRecord(ctypes.Structure):
+    """rins::TruthRecord, 112 bytes: what really happened over a record (docs/transport.md).
+    For error measures only; a navigator must not use it."""
+
+    _fields_ = [
+        ("lat_rad", ctypes.c_double),
+        ("lon_rad", ctypes.c_double),
+        ("height_m", ctypes.c_double),
+        ("v_enu_mps", ctypes.c_double * 3),
+        ("q_cn", ctypes.c_double * 4),
+        ("q_bn", ctypes.c_double * 4),
+    ]
+
+    @staticmethod
+    def type_name() -> str:
+        return "rins::TruthRecord"
+
+
+TRUTH_COLUMNS = ["tick", "lat_rad", "lon_rad", "height_m", "v_e_mps", "v_n_mps", "v_u_mps",
+                 "q_cn_w", "q_cn_x", "q_cn_y", "q_cn_z", "q_bn_w", "q_bn_x", "q_bn_y", "q_bn_z"]
+
+
+def truth_row(tick, t):
+    """One truth record as CSV fields (repr: shortest round trip)."""
+    values = [t.lat_rad, t.lon_rad, t.height_m, *t.v_enu_mps, *t.q_cn, *t.q_bn]
+    return ",".join([str(tick)] + [repr(v) for v in values])
+
+
 class ImuBatch(ctypes.Structure):
-    """rins::ImuBatch: 24-byte header and 64 records."""
+    """rins::ImuBatch: 24-byte header, 64 records, then the truth block (64 truth records)."""
 
     _fields_ = [
         ("layout_version", ctypes.c_uint32),
@@ -49,6 +80,7 @@ class ImuBatch(ctypes.Structure):
         ("count", ctypes.c_uint32),
         ("flags", ctypes.c_uint32),
         ("records", ImuRecord * 64),
+        ("truth", TruthRecord * 64),
     ]
 
     @staticmethod
@@ -93,7 +125,10 @@ class DwellMeans:
         return {p: self.sum[p] / self.n[p] for p in sorted(self.sum)}
 
 
-def main(session: str) -> None:
+def main(session: str, truth_path=None) -> None:
+    truth_file = open(truth_path, "w") if truth_path else None
+    if truth_file:
+        truth_file.write(",".join(TRUTH_COLUMNS) + "\n")
     cfg = iox2.config.default()
     cfg.global_cfg.prefix = iox2.FileName.new(f"rins_{session}_")
     node = iox2.NodeBuilder.new().config(cfg).create(iox2.ServiceType.Ipc)
@@ -146,11 +181,15 @@ def main(session: str) -> None:
         for k in range(b.count):
             r = b.records[k]
             means.push(r.outer_rad, r.inner_rad, r.dtheta_rad[2], 0.01)
+            if truth_file:
+                truth_file.write(truth_row(r.tick, b.truth[k]) + "\n")
             samples += 1
         if b.flags & FLAG_END:
             break
+    if truth_file:
+        truth_file.close()
     print(json.dumps({"samples": samples, "batches": expected, "mean_rate_z_rps": means.result()}))
 
 
 if __name__ == "__main__":
-    main(sys.argv[1])
+    main(sys.argv[1], sys.argv[3] if len(sys.argv) > 3 and sys.argv[2] == "--truth" else None)

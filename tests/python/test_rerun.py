@@ -2,7 +2,8 @@
 every logged value against the run's own CSV (bucket statistics recomputed here from the rows);
 `rerun rrd verify`; same seed, same logged values; Ctrl-C still leaves a readable recording;
 `rins paper table4`, `rins diagnose` and `rins serve` recordings against their own outputs;
-`--rerun connect` to a headless viewer (`rerun --port P --save FILE`) receives what a save holds.
+`--rerun connect` to a headless viewer (`rerun --port P --save FILE`) receives what a save holds;
+a ship's attitude and track against its CSV (test_rerun_carrier.py).
 
 Usage: python test_rerun.py RINS_BINARY WORK_DIR
 """
@@ -269,6 +270,10 @@ def main():
     run(["run", "builtin:paper-16pos-short", "--out", out6, "--duration-s", "20", "--rerun", f"save:{out6}/run.rrd", "--rerun-bucket-s", "0.1"])
     rows10, _ = read_rrd(f"{out6}/run.rrd")
     assert len(rows9["/imu/dtheta_rad/x"]) == 200 and rows9["/imu/dtheta_rad/x"] == rows10["/imu/dtheta_rad/x"]
+    # 7. A ship: carrier attitude, the table on it and the track against the CSV's carrier truth.
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from test_rerun_carrier import check_ship
+    check_ship(RINS, WORK)
     print(f"1 passed, 0 failed: rerun recordings (exact {checked1} values, bucketed {checked2} values, "
           f"deterministic, interrupted after {n4} of 60480 rows and still readable; paper, diagnose, serve and connect)")
 

@@ -1,6 +1,10 @@
 //! The wire types, `#[repr(C)]` with explicit iceoryx2 type names. iceoryx2 itself checks only
 //! name, size and alignment; every message also carries [`LAYOUT_VERSION`] and the record size,
 //! so a peer built against another layout is refused with a clear message (docs/transport.md).
+//!
+//! Version 2 adds a truth block to each batch ([`TruthRecord`], one per record): what really
+//! happened, for error measures only. It sits beside the records, not in them, so the records
+//! stay the unit's measured outputs; the navigator side never reads it.
 
 // The ZeroCopySend derive emits `unsafe impl`: the types are plain old data, self-contained and
 // position-independent, which is what the trait requires.
@@ -8,8 +12,8 @@
 
 use iceoryx2::prelude::*;
 
-/// Version of the layout below; bump on any change.
-pub const LAYOUT_VERSION: u32 = 1;
+/// Version of the layout below; bump on any change (2: the truth block of [`ImuBatch`]).
+pub const LAYOUT_VERSION: u32 = 2;
 /// Records per [`ImuBatch`] message (batching is what reaches millions of samples per second).
 pub const BATCH_CAPACITY: usize = 64;
 
@@ -50,6 +54,49 @@ impl ImuRecord {
     }
 }
 
+/// The truth over one record (112 bytes): the carrier and the IMU attitude at the end of the
+/// sample interval, from the plant's [`rins_plant::Truth`]. For error measures and loggers
+/// only: a navigator must not use it (a real unit does not output it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, ZeroCopySend)]
+#[type_name("rins::TruthRecord")]
+#[repr(C)]
+pub struct TruthRecord {
+    /// Carrier reference point latitude (WGS-84), rad.
+    pub lat_rad: f64,
+    /// Longitude, rad.
+    pub lon_rad: f64,
+    /// Ellipsoidal height, m.
+    pub height_m: f64,
+    /// Carrier ground velocity, ENU, m/s.
+    pub v_enu_mps: [f64; 3],
+    /// Carrier attitude q_c^n (w, x, y, z): carrier axes (x starboard, y bow, z up) to ENU.
+    pub q_cn: [f64; 4],
+    /// True IMU attitude q_b^n (w, x, y, z): C_c^n·C_v^c·R_z(outer)·R_x(inner) with the true
+    /// gimbal angles (docs/carrier.md, Frames).
+    pub q_bn: [f64; 4],
+}
+
+impl TruthRecord {
+    /// The truth of `plant` now (after its last step). The static carrier gives the site, zero
+    /// velocity and the `[vehicle]` attitude.
+    pub fn from_plant(plant: &rins_plant::Plant) -> Self {
+        let c = &plant.truth().carrier;
+        let q_cn = c.q_cn.quaternion();
+        let q_bn = nalgebra::UnitQuaternion::from_rotation_matrix(
+            &nalgebra::Rotation3::from_matrix_unchecked(plant.attitude_c_bn()),
+        );
+        let q_bn = q_bn.quaternion();
+        Self {
+            lat_rad: c.lat_rad,
+            lon_rad: c.lon_rad,
+            height_m: c.height_m,
+            v_enu_mps: c.v_n.into(),
+            q_cn: [q_cn.w, q_cn.i, q_cn.j, q_cn.k],
+            q_bn: [q_bn.w, q_bn.i, q_bn.j, q_bn.k],
+        }
+    }
+}
+
 /// Flag: the last message of a run.
 pub const FLAG_END: u32 = 1;
 /// Flag: the run ended early (SIGINT/SIGTERM on the plant side).
@@ -72,6 +119,9 @@ pub struct ImuBatch {
     pub flags: u32,
     /// The records; the first `count` are valid.
     pub records: [ImuRecord; BATCH_CAPACITY],
+    /// The truth over each record (`truth[k]` goes with `records[k]`): for error measures
+    /// only, never for navigation.
+    pub truth: [TruthRecord; BATCH_CAPACITY],
 }
 
 impl Default for ImuBatch {
@@ -83,6 +133,7 @@ impl Default for ImuBatch {
             count: 0,
             flags: 0,
             records: [ImuRecord::default(); BATCH_CAPACITY],
+            truth: [TruthRecord::default(); BATCH_CAPACITY],
         }
     }
 }
@@ -149,7 +200,14 @@ mod tests {
     fn sizes_are_the_documented_ones() {
         // docs/transport.md gives these offsets and sizes to C and Python peers.
         assert_eq!(std::mem::size_of::<ImuRecord>(), 128);
-        assert_eq!(std::mem::size_of::<ImuBatch>(), 24 + 128 * BATCH_CAPACITY);
+        assert_eq!(std::mem::size_of::<TruthRecord>(), 112);
+        assert_eq!(
+            std::mem::size_of::<ImuBatch>(),
+            24 + (128 + 112) * BATCH_CAPACITY
+        );
+        assert_eq!(std::mem::offset_of!(ImuBatch, truth), 24 + 128 * 64);
+        assert_eq!(std::mem::offset_of!(TruthRecord, q_cn), 48);
+        assert_eq!(std::mem::offset_of!(TruthRecord, q_bn), 80);
         assert_eq!(std::mem::align_of::<ImuBatch>(), 8);
         assert_eq!(std::mem::size_of::<NavCommand>(), 40);
         assert_eq!(std::mem::size_of::<NavSolution>(), 96);

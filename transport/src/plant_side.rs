@@ -7,7 +7,7 @@ use rins_plant::{GimbalCommand, ImuSample, Plant, Truth};
 
 use crate::layout::{
     BATCH_CAPACITY, FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, LAYOUT_VERSION, NavCommand,
-    kind,
+    TruthRecord, kind,
 };
 use crate::pace::Pacer;
 use crate::plant_link::Link;
@@ -160,10 +160,11 @@ pub fn serve_probed(
         } else {
             (samples - done).min(batch_len as u64) as usize
         };
-        for r in batch.records[..n].iter_mut() {
+        for k in 0..n {
             let s = plant.step();
             observe(&s, plant.truth());
-            *r = ImuRecord::from_sample(&s);
+            batch.records[k] = ImuRecord::from_sample(&s);
+            batch.truth[k] = TruthRecord::from_plant(plant);
         }
         batch.count = n as u32;
         done += n as u64;

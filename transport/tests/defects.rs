@@ -222,15 +222,18 @@ fn a5_a_command_of_another_layout_version_is_refused_naming_both() {
     let peer = DocPeer::join(&name, false);
     let plant = serve_in_thread(&name, 200, opts(None, false));
     let (seq, _, _) = peer.next();
-    peer.send(kind::ACK, seq, 2);
+    // The version after ours (layout version 2 since the truth block).
+    let other = LAYOUT_VERSION + 1;
+    peer.send(kind::ACK, seq, other);
     let e = plant.join().unwrap().unwrap_err();
     assert!(
-        matches!(e, TransportError::CommandVersion { got: 2, want: 1 }),
+        matches!(e, TransportError::CommandVersion { got, want } if got == other && want == LAYOUT_VERSION),
         "{e}"
     );
     let msg = e.to_string();
     assert!(
-        msg.contains("layout_version 2") && msg.contains("layout version 1"),
+        msg.contains(&format!("layout_version {other}"))
+            && msg.contains(&format!("layout version {LAYOUT_VERSION}")),
         "{msg}"
     );
 }

@@ -55,6 +55,7 @@ impl RerunSink {
             },
             extra: vec![],
             docs: vec!["/about".into()],
+            track: run.moving_carrier(),
         };
         rins_rerun::scene::log_doc(
             recorder.stream(),
@@ -192,6 +193,7 @@ pub fn record_paired(
         .to_vec(),
         extra: vec![],
         docs: vec!["/results".into(), "/about".into()],
+        track: run.moving_carrier(),
     };
     rins_rerun::blueprint::send(rec, &layout)?;
     recorder.finish()
@@ -279,6 +281,7 @@ pub fn record_diagnosis(
             nav_cases: vec![],
             extra,
             docs: vec!["/results".into()],
+            track: false,
         },
     )?;
     recorder.finish()

@@ -4,6 +4,11 @@
 //! column over the file equals the sum over every sample), attitude and temperatures are taken
 //! at the end of the row, effect contributions are the mean rate over the row. Numbers are
 //! written in Rust's shortest round-trip form: reading them back gives the same bits.
+//!
+//! A moving carrier (`[carrier] kind = "ship"` or `"trajectory"`) adds its truth at the end of
+//! each row, under the trajectory file's own column names (docs/carrier.md), so a run's carrier
+//! columns with `t_s` form a trajectory file; the static carrier adds nothing (its output is
+//! unchanged byte for byte).
 
 use std::fmt::Write as _;
 use std::fs::File;
@@ -35,7 +40,10 @@ pub struct CsvSink<W: Write> {
     accel_sum: Vec<Vector3<f64>>,
     line: String,
     dt_s: f64,
+    /// `[vehicle]`: C_v^n of the static carrier, or the mount C_v^c in a moving one.
     c_vn: nalgebra::Matrix3<f64>,
+    /// The carrier moves: write its truth columns, and compose the IMU attitude with it.
+    moving_carrier: bool,
     last: Option<(ImuSample, Truth)>,
     /// Run label written as a leading `run` column (measurement files with several runs).
     run: Option<String>,
@@ -43,7 +51,15 @@ pub struct CsvSink<W: Write> {
 
 const AXES: [&str; 3] = ["x", "y", "z"];
 
-/// Column names for the given options and enabled terms.
+/// The carrier truth columns of a moving carrier, in the trajectory file's names and units
+/// (docs/carrier.md): reference point (WGS-84), ground velocity ENU, attitude q_c^n.
+pub const CARRIER_COLUMNS: [&str; 10] = [
+    "lat_deg", "lon_deg", "height_m", "v_e_mps", "v_n_mps", "v_u_mps", "q_cn_w", "q_cn_x",
+    "q_cn_y", "q_cn_z",
+];
+
+/// Column names for the given options and enabled terms (the carrier truth columns of a moving
+/// carrier are added by the sink, [`CARRIER_COLUMNS`]).
 pub fn header(
     opts: &OutputSpec,
     gyro_terms: &[GyroTerm],
@@ -103,10 +119,14 @@ impl<W: Write> CsvSink<W> {
         let s = &plant_cfg.sensor;
         let gyro_terms: Vec<GyroTerm> = s.gyro.enabled_terms();
         let accel_terms: Vec<AccelTerm> = s.accel.enabled_terms();
+        let moving_carrier = !plant_cfg.carrier.is_static();
         if write_header {
             let mut h = header(&opts, &gyro_terms, &accel_terms);
             if run.is_some() {
                 h.insert(0, "run".into());
+            }
+            if moving_carrier {
+                h.extend(CARRIER_COLUMNS.map(String::from));
             }
             writeln!(out, "{}", h.join(","))?;
         }
@@ -125,6 +145,7 @@ impl<W: Write> CsvSink<W> {
             line: String::with_capacity(1024),
             dt_s: 1.0 / plant_cfg.rate_hz,
             c_vn: plant_cfg.vehicle.c_vn(),
+            moving_carrier,
             last: None,
             run: run.map(str::to_string),
         })
@@ -168,7 +189,14 @@ impl<W: Write> CsvSink<W> {
             for v in [&self.dtheta_true, &self.dv_true] {
                 write!(l, ",{},{},{}", v.x, v.y, v.z)?;
             }
-            let c = rins_plant::table::body_to_nav(&self.c_vn, g.angles);
+            // On a moving carrier the table's outer axis is fixed to the carrier:
+            // C_b^n = C_c^n·C_v^c·R_z·R_x (docs/carrier.md, Frames).
+            let c_vn = if self.moving_carrier {
+                tr.carrier.q_cn.to_rotation_matrix().into_inner() * self.c_vn
+            } else {
+                self.c_vn
+            };
+            let c = rins_plant::table::body_to_nav(&c_vn, g.angles);
             let q = nalgebra::UnitQuaternion::from_matrix(&c);
             write!(l, ",{},{},{},{}", q.w, q.i, q.j, q.k)?;
         }
@@ -181,6 +209,24 @@ impl<W: Write> CsvSink<W> {
                 let r = v / (span_s * UG);
                 write!(l, ",{},{},{}", r.x, r.y, r.z)?;
             }
+        }
+        if self.moving_carrier {
+            let c = &tr.carrier;
+            let q = c.q_cn.quaternion();
+            write!(
+                l,
+                ",{},{},{},{},{},{},{},{},{},{}",
+                c.lat_rad.to_degrees(),
+                c.lon_rad.to_degrees(),
+                c.height_m,
+                c.v_n.x,
+                c.v_n.y,
+                c.v_n.z,
+                q.w,
+                q.i,
+                q.j,
+                q.k
+            )?;
         }
         l.push('\n');
         self.out.write_all(l.as_bytes())?;
