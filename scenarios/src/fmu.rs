@@ -220,6 +220,13 @@ pub fn run(
     samples: u64,
     sinks: &mut [&mut dyn Sink],
 ) -> Result<RunSummary> {
+    if !scenario.plant.carrier.is_static() {
+        // The IMU FMU has no carrier-truth outputs, so the sinks' carrier columns could not be
+        // filled: refuse rather than write a wrong track.
+        bail!(
+            "carrier.kind: `rins fmu run` drives the static carrier only (the FMU outputs no carrier truth); connect the RinsCarrier FMU to the IMU FMU's carrier inputs instead (docs/cosimulation.md)"
+        );
+    }
     let fmu = Fmu2::open(fmu_path).map_err(anyhow::Error::msg)?;
     let inst = fmu.instantiate(&scenario.meta.name, false)?;
     inst.setup_experiment(0.0, None)?;

@@ -118,3 +118,27 @@ coef = [0.0, 300.0, 0.0]
     );
     let _ = std::fs::remove_dir_all(&out);
 }
+
+#[test]
+fn a_moving_carrier_is_refused_with_what_to_use_instead() {
+    let exe = std::env::current_exe().unwrap();
+    let lib_dir = exe.parent().and_then(|d| d.parent()).unwrap().to_path_buf();
+    let out = std::env::temp_dir().join(format!("rins-fmu-test-ship-{}", std::process::id()));
+    let fmus = rins_scenarios::fmu::build(&out, &lib_dir).unwrap();
+    let text = r#"
+[scenario]
+name = "ship"
+duration_s = 1.0
+[carrier]
+kind = "ship"
+"#;
+    let sc = Scenario::from_toml(text, "test").unwrap();
+    let e = rins_scenarios::fmu::run(&fmus[0], &sc, 10, &mut [])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("carrier.kind") && e.contains("RinsCarrier"),
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}
