@@ -442,3 +442,71 @@ fn clean_control_proposes_nothing_in_at_least_19_of_20_seeds() {
     );
     assert!(bad.len() <= 1, "{bad:#?}");
 }
+
+/// The walkthrough's dataset (docs/model-vs-measurements.md), written by the plant through a
+/// declared effect (`docs/examples/discovery-truth.toml`: a gyro bias of 8 and −6 °/h per K/s
+/// of block temperature rate on x and z, one run through a chamber ramp up and down), diagnosed
+/// with the walkthrough's model, which lacks it.
+#[test]
+fn plant_written_temperature_rate_bias_is_discovered() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let truth = Scenario::load(&root.join("docs/examples/discovery-truth.toml")).unwrap();
+    let m = Scenario::load(&root.join("docs/examples/diagnosis-model.toml"))
+        .unwrap()
+        .plant;
+    let path = std::env::temp_dir().join(format!("rins-discover-{}.csv", std::process::id()));
+    rins_scenarios::diagnose::write_measurements(
+        &path,
+        &[("run0".into(), truth.plant.clone(), truth.samples())],
+    )
+    .unwrap();
+    let h = to_history(rins_mvm::reader::read(&path).unwrap(), "unit.csv").unwrap();
+    let _ = std::fs::remove_file(&path);
+    let report = discover(&m, &h);
+    let disc = report.discovery.as_ref().unwrap();
+    let p = &disc.proposals[0];
+    assert_eq!(p.name, "b_dtdt_block", "{:#?}", disc.proposals);
+    let coef = truth.plant.sensor.gyro.custom[0].coef;
+    for (a, ch) in [(0, "gyro_x"), (2, "gyro_z")] {
+        let t = p.terms.iter().find(|t| t.channel == ch).unwrap();
+        assert!(
+            t.passes_gate && t.ci95[0] <= coef[a] && coef[a] <= t.ci95[1],
+            "{t:#?}"
+        );
+        // The catalogue's stand-ins (accepted on the catalogue alone) are not accepted.
+        assert!(
+            disc.superseded
+                .iter()
+                .any(|s| s.channel == ch && s.effect == "gyro.temperature_bias"),
+            "{:#?}",
+            disc.superseded
+        );
+        let accepted: Vec<&str> = report
+            .accepted
+            .iter()
+            .filter(|r| r.channel == ch)
+            .map(|r| r.effect.as_str())
+            .collect();
+        assert_eq!(accepted, ["custom:b_dtdt_block"], "{ch}");
+    }
+    let m2 = rins_mvm::discover::with_proposal(&m, disc, &p.name).unwrap();
+    let eff = Effect::parse_in(&m2, "custom:b_dtdt_block").unwrap();
+    let an = analyse(
+        &m2,
+        &h,
+        &Options {
+            apply: vec![eff],
+            ..Options::default()
+        },
+    );
+    let fitted = an.applied.unwrap().unwrap().model;
+    let after = analyse(&fitted, &h, &Options::default()).comparison;
+    for ch in ["gyro_x", "gyro_z"] {
+        let c = after.channels.iter().find(|c| c.channel == ch).unwrap();
+        eprintln!(
+            "{ch}: {:.5} vs floor {:.5}",
+            c.residual_rms, c.noise_floor_rms
+        );
+        assert!(c.residual_rms <= 1.1 * c.noise_floor_rms, "{ch}: {c:?}");
+    }
+}

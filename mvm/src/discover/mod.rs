@@ -46,6 +46,9 @@ pub struct DiscoveredTerm {
     pub regressor: Option<String>,
     /// `bias` or `scale-factor`.
     pub kind: String,
+    /// What it was searched on: the `remainder after the catalogue` (its accepted effects in
+    /// the base model) or the residual of the `model as given`.
+    pub searched_on: String,
     /// Error-reduction ratio: the share of the remaining residual energy (whitened) its part
     /// orthogonal to the model before it explains.
     pub err: f64,
@@ -159,6 +162,7 @@ fn tested(
             CustomKind::Bias => "bias".into(),
             CustomKind::ScaleFactor => "scale-factor".into(),
         },
+        searched_on: String::new(),
         err: pick.err,
         delta_bic: pick.test.delta_bic,
         p_value: pick.test.p_value,
@@ -228,7 +232,10 @@ pub(crate) fn search(
             .collect()
     };
     let per_channel: Vec<Vec<usize>> = (0..6).map(lib_for).collect();
-    let tests: usize = per_channel.iter().map(Vec::len).sum();
+    // Every term on every channel, searched on the remainder and on the model as given.
+    let tests: usize = (0..6)
+        .map(|c| per_channel[c].len() * if selected[c].is_empty() { 1 } else { 2 })
+        .sum();
     let gate = Gate {
         max_delta_bic: -10.0,
         alpha: a.opts.alpha,
@@ -247,32 +254,49 @@ pub(crate) fn search(
             .map(|&t| file_unit_si(terms[t].kind(), accel))
             .collect();
         let complexity: Vec<u8> = idx.iter().map(|&t| terms[t].complexity()).collect();
-        let base = design(ws, &selected[c]);
-        let (picks, miss) = frols::select(
-            &a.data[c],
-            &base,
-            &cols,
-            &units,
-            &complexity,
-            &gate,
-            MAX_TERMS,
-        );
-        let chosen: Vec<usize> = picks.iter().map(|p| p.term).collect();
-        let freq = frols::bootstrap(&a.data[c], &base, &cols, &complexity, &chosen);
-        for (k, p) in picks.iter().enumerate() {
-            let t = idx[p.term];
-            let dt = tested(a, c, &terms[t], &cols[p.term], p, freq[k]);
-            kept.push((c, t, cols[p.term].clone(), dt));
-        }
-        if let Some(p) = miss {
-            refused.push(tested(
-                a,
-                c,
-                &terms[idx[p.term]],
-                &cols[p.term],
-                &p,
-                f64::NAN,
-            ));
+        // On the catalogue's remainder, and on the residual of the model as given: a
+        // catalogue effect accepted as a stand-in can leave too little of the remainder for
+        // the term it stands in for; the ranking then decides between them.
+        let bases: Vec<(&str, &[Group])> = if selected[c].is_empty() {
+            vec![("model as given", &[])]
+        } else {
+            vec![
+                ("remainder after the catalogue", &selected[c]),
+                ("model as given", &[]),
+            ]
+        };
+        for (on, groups) in bases {
+            let base = design(ws, groups);
+            let (picks, miss) = frols::select(
+                &a.data[c],
+                &base,
+                &cols,
+                &units,
+                &complexity,
+                &gate,
+                MAX_TERMS,
+            );
+            let chosen: Vec<usize> = picks.iter().map(|p| p.term).collect();
+            let freq = frols::bootstrap(&a.data[c], &base, &cols, &complexity, &chosen);
+            for (k, p) in picks.iter().enumerate() {
+                let t = idx[p.term];
+                if kept.iter().any(|(kc, kt, _, _)| *kc == c && *kt == t) {
+                    continue;
+                }
+                let mut dt = tested(a, c, &terms[t], &cols[p.term], p, freq[k]);
+                dt.searched_on = on.into();
+                kept.push((c, t, cols[p.term].clone(), dt));
+            }
+            if let Some(p) = miss
+                && !refused
+                    .iter()
+                    .any(|r: &DiscoveredTerm| r.channel == CHANNELS[c])
+                && picks.is_empty()
+            {
+                let mut dt = tested(a, c, &terms[idx[p.term]], &cols[p.term], &p, f64::NAN);
+                dt.searched_on = on.into();
+                refused.push(dt);
+            }
         }
     }
     // Group the kept terms into proposals: one per term and sensor, on every axis it was kept on.
