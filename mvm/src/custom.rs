@@ -35,6 +35,22 @@ pub struct CustomRef {
 }
 
 impl CustomRef {
+    /// A reference to an effect not (yet) in the model's list: a discovered term that would be
+    /// declared at `index` (`name` is cut to 32 bytes).
+    pub fn new(accel: bool, index: u16, kind: CustomKind, axes: u8, name: &str) -> Self {
+        let mut buf = [0u8; 32];
+        let n = name.len().min(32);
+        buf[..n].copy_from_slice(&name.as_bytes()[..n]);
+        Self {
+            accel,
+            index,
+            kind,
+            axes,
+            name: buf,
+            len: n as u8,
+        }
+    }
+
     /// The declared name.
     pub fn name(&self) -> &str {
         std::str::from_utf8(&self.name[..self.len as usize]).unwrap_or("?")
@@ -160,6 +176,18 @@ impl RowSignals {
             }
         }
         Self { rates, run_start_s }
+    }
+
+    /// Prepares the rates of every measured node (the gyro blocks, the accelerometer cluster
+    /// and, when measured, the housing): the signals discovery ([`crate::discover`]) reads.
+    pub fn all(h: &History) -> Self {
+        let mut s = Self::new([&CustomModel::default(), &CustomModel::default()], h);
+        for n in node::GYRO_X..node::COUNT {
+            if n != node::HOUSING || h.housing_temp_c.is_some() {
+                s.rates[n] = Some(rate_of(h, n));
+            }
+        }
+        s
     }
 
     /// The frame of row `k` (interval `dt_s`, true increment `dtheta`, mid attitude).

@@ -95,7 +95,7 @@ impl std::ops::Deref for Design {
 
 impl Design {
     /// The columns `cols` only.
-    fn select(&self, cols: &[usize]) -> Design {
+    pub fn select(&self, cols: &[usize]) -> Design {
         Design {
             x: DMatrix::from_fn(self.x.nrows(), cols.len(), |r, c| self.x[(r, cols[c])]),
             unit: cols.iter().map(|&c| self.unit[c]).collect(),
@@ -303,6 +303,64 @@ pub struct Candidate {
     pub theta_offset: usize,
 }
 
+/// A nested test of extra design columns against a base fit: what [`test_candidates`] computes
+/// for each candidate, and discovery ([`crate::discover`]) for each library term, so both go
+/// through the same [`Gate`].
+#[derive(Clone, Debug)]
+pub struct NestedTest {
+    /// The fit with the extra columns.
+    pub fit: Fit,
+    /// χ² drop.
+    pub delta_chi2: f64,
+    /// BIC change (negative favours the extra columns).
+    pub delta_bic: f64,
+    /// Nested F-test p-value.
+    pub p_value: f64,
+    /// Cross-validated RMSE gain, %.
+    pub cv_gain_pct: f64,
+    /// CV RMSE with them, rate units.
+    pub cv_rmse: f64,
+}
+
+/// Tests the design `x` (the base model's `base_cols` columns first, then the extra ones)
+/// against `base` (fitted on those first columns, CV RMSE `cv0`): ΔBIC, nested F test and
+/// cross-validated gain. `None` if `x` cannot be fitted or identifies none of the extra columns.
+pub fn nested_test(
+    base: &Fit,
+    cv0: f64,
+    base_cols: usize,
+    x: &Design,
+    d: &ChannelData,
+) -> Option<NestedTest> {
+    let fit = wls(x, d, None)?;
+    // Only the coefficients the data identify count as parameters (an unexcited one is
+    // not estimated); a candidate with none cannot explain anything.
+    let k = fit.identified_in(base_cols..x.ncols()) as f64;
+    if k == 0.0 {
+        return None;
+    }
+    let ln_n = (d.y.len() as f64).ln();
+    let delta_chi2 = base.chi2 - fit.chi2;
+    let dof = (fit.n - fit.identified_count()).max(1) as f64;
+    // Nested F test, with the noise floor as the variance unless the data say it is larger.
+    let s2 = (fit.chi2 / dof).max(1.0);
+    let p_value = f_sf(delta_chi2 / k / s2, k, dof);
+    let delta_bic = -delta_chi2 / s2 + k * ln_n;
+    let cv = cv_rmse(x, d);
+    Some(NestedTest {
+        fit,
+        delta_chi2,
+        delta_bic,
+        p_value,
+        cv_gain_pct: if cv0 > 0.0 {
+            100.0 * (1.0 - cv / cv0)
+        } else {
+            0.0
+        },
+        cv_rmse: cv,
+    })
+}
+
 /// Tests every group of `pool` added to `selected`.
 pub fn test_candidates(
     windows: &[Window],
@@ -313,41 +371,23 @@ pub fn test_candidates(
     let x0 = design(windows, selected);
     let base = wls(&x0, d, None).expect("the selected model is identifiable");
     let cv0 = cv_rmse(&x0, d);
-    let ln_n = (d.y.len() as f64).ln();
     let mut out: Vec<Candidate> = Vec::new();
     for g in pool.iter().flat_map(|g| g.orders()) {
         let mut groups = selected.to_vec();
         groups.push(g);
         let x = design(windows, &groups);
-        let Some(fit) = wls(&x, d, None) else {
+        let Some(t) = nested_test(&base, cv0, x0.ncols(), &x, d) else {
             continue;
         };
-        // Only the coefficients the data identify count as parameters (an unexcited one is
-        // not estimated); a candidate with none cannot explain anything.
-        let k = fit.identified_in(x0.ncols()..x0.ncols() + g.len) as f64;
-        if k == 0.0 {
-            continue;
-        }
-        let delta_chi2 = base.chi2 - fit.chi2;
-        let dof = (fit.n - fit.identified_count()).max(1) as f64;
-        // Nested F test, with the noise floor as the variance unless the data say it is larger.
-        let s2 = (fit.chi2 / dof).max(1.0);
-        let p_value = f_sf(delta_chi2 / k / s2, k, dof);
-        let delta_bic = -delta_chi2 / s2 + k * ln_n;
-        let cv = cv_rmse(&x, d);
         let cand = Candidate {
             group: g,
             theta_offset: x0.ncols(),
-            fit,
-            delta_chi2,
-            delta_bic,
-            p_value,
-            cv_gain_pct: if cv0 > 0.0 {
-                100.0 * (1.0 - cv / cv0)
-            } else {
-                0.0
-            },
-            cv_rmse: cv,
+            fit: t.fit,
+            delta_chi2: t.delta_chi2,
+            delta_bic: t.delta_bic,
+            p_value: t.p_value,
+            cv_gain_pct: t.cv_gain_pct,
+            cv_rmse: t.cv_rmse,
         };
         // Of a polynomial's orders (tried from the lowest), a higher one replaces a lower one
         // only if its extra terms are significant (nested F test, p < 0.001, as the orders are
@@ -391,9 +431,14 @@ pub struct Gate {
 impl Gate {
     /// Whether `c` passes.
     pub fn passes(&self, c: &Candidate) -> bool {
-        c.delta_bic < self.max_delta_bic
-            && c.p_value < self.alpha / self.tests.max(1) as f64
-            && c.cv_gain_pct > self.min_cv_gain_pct
+        self.passes_test(c.delta_bic, c.p_value, c.cv_gain_pct)
+    }
+
+    /// Whether a test with these figures passes.
+    pub fn passes_test(&self, delta_bic: f64, p_value: f64, cv_gain_pct: f64) -> bool {
+        delta_bic < self.max_delta_bic
+            && p_value < self.alpha / self.tests.max(1) as f64
+            && cv_gain_pct > self.min_cv_gain_pct
     }
 }
 

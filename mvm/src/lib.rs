@@ -21,6 +21,7 @@ pub mod apply;
 pub mod colmap;
 mod compare;
 pub mod custom;
+pub mod discover;
 pub mod fit;
 mod header;
 pub mod history;
@@ -59,6 +60,10 @@ pub struct Options {
     /// effects removed (`rins diagnose`); `false` compares the model as given only
     /// (`rins compare`).
     pub diagnose: bool,
+    /// After the catalogue's ranking, search a library of regressors built from the declared
+    /// effects' signals for what the catalogue lacks (`rins diagnose --discover`); needs
+    /// `diagnose`.
+    pub discover: bool,
     /// Effects to switch on and fit into the model (`rins diagnose --apply`); empty: none.
     pub apply: Vec<Effect>,
     /// The column map the data were read with (listed in the reports), if any.
@@ -73,6 +78,7 @@ impl Default for Options {
             time_window_s: 3600.0,
             alpha: 0.01,
             diagnose: false,
+            discover: false,
             apply: Vec::new(),
             column_map: None,
         }
@@ -123,11 +129,24 @@ impl Analysis {
 /// given, and with `opts.diagnose` the ranking, forward selection, fitted predictions and the
 /// comparison after them, and with `opts.apply` the model with those effects fitted.
 pub fn analyse(model: &PlantConfig, h: &History, opts: &Options) -> Analysis {
-    let p = prepare::prepare(model, h, opts);
+    let mut p = prepare::prepare(model, h, opts);
     let comparison = p.compare_report(&h.source, &p.zero_pred());
-    let diagnosis = opts
+    let mut diagnosis = opts
         .diagnose
         .then(|| selection::diagnose(&p, &h.source, &comparison));
+    if let Some(first) = diagnosis.as_mut().filter(|_| opts.discover) {
+        // The search runs on the catalogue's remainder; its proposals then join the ranking
+        // and the forward selection as declared candidates.
+        let found = discover::search(model, h, &p, &first.selected);
+        if found.augment(model, &mut p) {
+            let mut again = selection::diagnose(&p, &h.source, &comparison);
+            let report = found.finish(first, &mut again);
+            again.report.discovery = Some(report);
+            *first = again;
+        } else {
+            first.report.discovery = Some(found.into_report());
+        }
+    }
     let applied = (!opts.apply.is_empty()).then(|| apply::apply(model, &p, &opts.apply));
     let prepare::Prepared {
         run_names,

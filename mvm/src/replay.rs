@@ -313,15 +313,26 @@ fn quaternion_true_increments(
     }
 }
 
-struct Kinematics {
+/// The site kinematics the replay computes true increments with.
+pub(crate) struct Kinematics {
     c_vn: Matrix3<f64>,
     omega_ie_n: Vector3<f64>,
     f_n: Vector3<f64>,
 }
 
 impl Kinematics {
+    /// The kinematics of `model`'s site and mount.
+    pub(crate) fn new(model: &PlantConfig) -> Self {
+        let site = Site::new(&model.site, &model.earth);
+        Self {
+            c_vn: model.vehicle.c_vn(),
+            omega_ie_n: site.omega_ie_n,
+            f_n: Vector3::new(0.0, 0.0, site.gravity_mps2),
+        }
+    }
+
     /// True increments over row k (from the attitude at the ends of rows k − 1 and k).
-    fn row(&self, h: &History, k: usize, dt: f64) -> RowKinematics {
+    pub(crate) fn row(&self, h: &History, k: usize, dt: f64) -> RowKinematics {
         let j = k - 1;
         match &h.attitude {
             Attitude::Gimbal {
@@ -359,12 +370,7 @@ fn median_dt(h: &History) -> f64 {
 pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
     let gyro = GyroModel::new(&model.sensor.gyro);
     let accel = AccelModel::new(&model.sensor.accel);
-    let site = Site::new(&model.site, &model.earth);
-    let kin = Kinematics {
-        c_vn: model.vehicle.c_vn(),
-        omega_ie_n: site.omega_ie_n,
-        f_n: Vector3::new(0.0, 0.0, site.gravity_mps2),
-    };
+    let kin = Kinematics::new(model);
     let declared = Declared::new(model, h);
     let (groups, unavailable) = layout(&gyro, &accel, &declared, h);
     let nx = groups.iter().map(|g| g.len).sum::<usize>();

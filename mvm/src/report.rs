@@ -200,4 +200,7 @@ pub struct DiagnoseReport {
     pub unavailable: Vec<(String, String)>,
     /// The column map the data were read with (`None`: none).
     pub column_map: Option<crate::colmap::MapSummary>,
+    /// What `--discover` found (absent without it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub discovery: Option<crate::discover::DiscoveryReport>,
 }

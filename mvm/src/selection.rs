@@ -288,6 +288,7 @@ pub(crate) fn diagnose(a: &Prepared, source: &str, before: &CompareReport) -> Di
         unexplained,
         unavailable: a.replay.unavailable.clone(),
         column_map: before.column_map.clone(),
+        discovery: None,
     };
     Diagnosis {
         report,

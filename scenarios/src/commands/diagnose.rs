@@ -17,9 +17,15 @@ pub struct DiagnoseArgs {
     #[command(flatten)]
     pub data: DataArgs,
     /// Add this effect (e.g. gyro.temperature_gradient_bias, or custom:NAME for a declared
-    /// `[[sensor.gyro.custom]]` of the model), fitted on every axis it acts on, to the model.
+    /// `[[sensor.gyro.custom]]` of the model or a term --discover proposes), fitted on every
+    /// axis it acts on, to the model.
     #[arg(long)]
     pub apply: Option<String>,
+    /// After the catalogue, search a library of regressors built from the declared effects'
+    /// signals (degree ≤ 2 products, position indicators) for what the catalogue lacks, and
+    /// propose each find as a ready [[sensor.gyro.custom]] block (--apply custom:NAME adds it).
+    #[arg(long)]
+    pub discover: bool,
     /// Where --apply writes the new model (default: MODEL with -fitted before the extension).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -30,22 +36,58 @@ pub struct DiagnoseArgs {
 pub fn run(a: &DiagnoseArgs) -> Result<()> {
     let (model, h, mut opts) = load_data(&a.data)?;
     opts.diagnose = true;
+    opts.discover = a.discover;
+    // `custom:NAME` that the model does not declare: a discovered term (discovery runs).
+    let mut discovered = None;
     if let Some(effect) = &a.apply {
-        // A bad name fails before the analysis.
-        opts.apply.push(Effect::parse_in(&model, effect).with_context(|| {
-            let names: Vec<String> = Effect::all()
-                .into_iter()
-                .chain(rins_mvm::custom::declared(&model).into_iter().map(Effect::Custom))
-                .map(|e| e.name())
-                .collect();
-            format!(
-                "--apply {effect:?}: not an effect of the catalogue or a declared effect of the model; one of {names:?}"
-            )
-        })?);
+        match Effect::parse_in(&model, effect) {
+            Some(e) => opts.apply.push(e),
+            None if effect.starts_with("custom:") => {
+                opts.discover = true;
+                discovered = Some(effect.trim_start_matches("custom:").to_string());
+            }
+            // A bad name fails before the analysis.
+            None => {
+                let names: Vec<String> = Effect::all()
+                    .into_iter()
+                    .chain(
+                        rins_mvm::custom::declared(&model)
+                            .into_iter()
+                            .map(Effect::Custom),
+                    )
+                    .map(|e| e.name())
+                    .collect();
+                anyhow::bail!(
+                    "--apply {effect:?}: not an effect of the catalogue or a declared effect of the model; one of {names:?} (or custom:NAME of a term --discover proposes)"
+                );
+            }
+        }
     }
     let an = rins_mvm::analyse(&model, &h, &opts);
     let report = &an.diagnosis.as_ref().expect("opts.diagnose is set").report;
-    if let Some(effect) = &a.apply {
+    if let Some(name) = &discovered {
+        // The model with the proposal declared, then fitted like a declared effect.
+        let disc = report.discovery.as_ref().expect("opts.discover is set");
+        let with =
+            rins_mvm::discover::with_proposal(&model, disc, name).map_err(anyhow::Error::msg)?;
+        let effect = Effect::parse_in(&with, &format!("custom:{name}")).expect("declared above");
+        let fitted = rins_mvm::analyse(
+            &with,
+            &h,
+            &rins_mvm::Options {
+                diagnose: false,
+                discover: false,
+                apply: vec![effect],
+                ..opts.clone()
+            },
+        );
+        write_applied(
+            a,
+            a.apply.as_deref().unwrap_or_default(),
+            &fitted,
+            &h.source,
+        )?;
+    } else if let Some(effect) = &a.apply {
         write_applied(a, effect, &an, &h.source)?;
     }
     if a.data.report.is_some() || a.data.viz.rerun.is_some() {

@@ -478,8 +478,56 @@ pub fn diagnose<T: Serialize>(
             })
             .collect(),
     );
+    discovery(&mut r, &d);
     figures(&mut r, dir, &MVM_FIGURES)?;
     r.write(dir)
+}
+
+/// The `--discover` proposals (when the report has them), every figure from the JSON.
+fn discovery(r: &mut Report, d: &Doc) {
+    let Some(props) = d
+        .json
+        .pointer("/discovery/proposals")
+        .and_then(|v| v.as_array())
+    else {
+        return;
+    };
+    let mut rows = Vec::new();
+    for (k, p) in props.iter().enumerate() {
+        let n = p
+            .pointer("/terms")
+            .and_then(|t| t.as_array())
+            .map_or(0, Vec::len);
+        for j in 0..n {
+            let t = format!("discovery.proposals.{k}.terms.{j}");
+            rows.push(vec![
+                d.text(&format!("discovery.proposals.{k}.name")),
+                d.text(&format!("{t}.channel")),
+                d.text(&format!("{t}.term")),
+                d.num(&format!("{t}.coefficient"), 4),
+                d.num(&format!("{t}.ci95.0"), 4),
+                d.num(&format!("{t}.ci95.1"), 4),
+                d.text(&format!("{t}.unit")),
+                d.num(&format!("{t}.delta_bic"), 4),
+                d.num(&format!("{t}.bootstrap_frequency"), 2),
+            ]);
+        }
+    }
+    r.table(
+        "Discovered terms (--discover): proposals for [[sensor.*.custom]]",
+        &[
+            "proposal",
+            "channel",
+            "term",
+            "coefficient",
+            "95 % low",
+            "95 % high",
+            "unit",
+            "delta-BIC",
+            "bootstrap frequency",
+        ],
+        rows,
+    );
 }
 
 impl Cell {

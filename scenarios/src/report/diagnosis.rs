@@ -161,6 +161,68 @@ impl RenderText for DiagnoseReport {
         for u in &self.unexplained {
             let _ = writeln!(s, "  {u}");
         }
+        if let Some(d) = &self.discovery {
+            discovery(&mut s, d);
+        }
         s
+    }
+}
+
+/// The `--discover` part of the diagnosis text.
+fn discovery(s: &mut String, d: &rins_mvm::discover::DiscoveryReport) {
+    let terms: usize = d.library_terms.iter().map(|(_, n)| n).sum();
+    let _ = writeln!(
+        s,
+        "discovery: {terms} library terms over the channels (gate Bonferroni over {}), bootstrap over runs x{}",
+        d.tests, d.bootstrap_resamples
+    );
+    if d.proposals.is_empty() {
+        let _ = writeln!(s, "  nothing passes the gate");
+    }
+    for p in &d.proposals {
+        let _ = writeln!(s, "  proposal custom:{} ({})", p.name, p.sensor);
+        for t in &p.terms {
+            let _ = writeln!(
+                s,
+                "    {} {}: {:.5} [{:.5}, {:.5}] {}, dBIC {:.1}, p {:.2e}, CV {:.2} %, ERR {:.4}, bootstrap {:.2}",
+                t.channel,
+                t.term,
+                t.coefficient,
+                t.ci95[0],
+                t.ci95[1],
+                t.unit,
+                t.delta_bic,
+                t.p_value,
+                t.cv_rmse_gain_pct,
+                t.err,
+                t.bootstrap_frequency
+            );
+            for c in &t.confusable_with {
+                let _ = writeln!(
+                    s,
+                    "      confusable with {} (rho {:.3}, VIF {:.0}): separate by {}",
+                    c.effect, c.correlation, c.vif, c.separate_by
+                );
+            }
+        }
+        if let Some(t) = &p.toml {
+            for l in t.lines() {
+                let _ = writeln!(s, "    {l}");
+            }
+        }
+    }
+    for x in &d.superseded {
+        let _ = writeln!(
+            s,
+            "  {}: {} explains the residual better than {} (dBIC {:.1} vs {:.1}): {} is reported confusable, not accepted",
+            x.channel, x.by, x.effect, x.delta_bic_by, x.delta_bic_effect, x.effect
+        );
+    }
+    for t in &d.refused {
+        let _ = writeln!(
+            s,
+            "  nearest miss on {}: {} (dBIC {:.1}, p {:.2e}, CV {:.2} %)",
+            t.channel, t.term, t.delta_bic, t.p_value, t.cv_rmse_gain_pct
+        );
     }
 }

@@ -1,0 +1,261 @@
+//! Sparse forward selection of library terms by the error-reduction ratio of orthogonal
+//! forward regression (FROLS, Billings): the candidates and the residual are orthogonalised
+//! (modified Gram–Schmidt, in the whitened metric of the noise floor) against the model so far,
+//! the term whose orthogonal part explains most of the residual energy is the next, and it is
+//! kept only if it passes the catalogue's [`Gate`] (ΔBIC, nested F test, cross-validated
+//! gain) on top of that model. A bootstrap over runs repeats the orthogonal selection on
+//! resampled runs and counts how often each kept term is chosen.
+
+use nalgebra::DMatrix;
+use rand_chacha::ChaCha8Rng;
+use rand_chacha::rand_core::{RngCore, SeedableRng};
+use rayon::prelude::*;
+
+use crate::fit::{ChannelData, Design, Gate, NestedTest, cv_rmse, nested_test, wls};
+
+/// Seed of the bootstrap over runs.
+pub const BOOTSTRAP_SEED: u64 = 0xD15C_0BE7;
+/// The bootstrap's named stream of that seed.
+pub const BOOTSTRAP_STREAM: u64 = 0xB007_5742;
+/// How much more of the residual's χ² a more complex term must explain than the best simpler
+/// one to be preferred (the gate's ΔBIC threshold: "very strong" evidence).
+pub const PARSIMONY_CHI2: f64 = 10.0;
+/// Bootstrap resamples.
+pub const RESAMPLES: usize = 100;
+/// A candidate whose part orthogonal to the model keeps less than this share of its norm² is
+/// (nearly) in the model already: not selectable.
+const MIN_ORTHOGONAL_SHARE: f64 = 1e-8;
+
+/// The orthogonal-regression state of one channel: residual and candidates orthogonal to the
+/// model so far, all whitened (and weighted for a bootstrap resample).
+struct Ortho {
+    r: Vec<f64>,
+    q: Vec<Vec<f64>>,
+    norm0: Vec<f64>,
+    yy: f64,
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+fn remove(v: &mut [f64], e: &[f64]) {
+    let p = dot(e, v);
+    for (x, u) in v.iter_mut().zip(e) {
+        *x -= p * u;
+    }
+}
+
+impl Ortho {
+    /// `y` and `cands` (whitened) orthogonalised against the columns `base` (whitened).
+    fn new(y: Vec<f64>, base: &[Vec<f64>], cands: Vec<Vec<f64>>) -> Self {
+        let yy = dot(&y, &y);
+        let mut s = Ortho {
+            r: y,
+            norm0: cands.iter().map(|c| dot(c, c)).collect(),
+            q: cands,
+            yy,
+        };
+        let mut basis: Vec<Vec<f64>> = Vec::new();
+        for b in base {
+            let mut e = b.clone();
+            let n0 = dot(&e, &e);
+            for u in &basis {
+                remove(&mut e, u);
+            }
+            let n = dot(&e, &e);
+            if n > 1e-12 * n0 && n > 0.0 {
+                let inv = 1.0 / n.sqrt();
+                e.iter_mut().for_each(|x| *x *= inv);
+                basis.push(e);
+            }
+        }
+        for e in &basis {
+            s.take_direction(e);
+        }
+        s
+    }
+
+    fn take_direction(&mut self, e: &[f64]) {
+        remove(&mut self.r, e);
+        self.q.par_iter_mut().for_each(|q| remove(q, e));
+    }
+
+    /// The candidate (not in `skip`) with the largest error-reduction ratio, and that ratio,
+    /// preferring the simpler: a candidate of higher `complexity` (a product of two signals, an
+    /// indicator) is taken only if it explains more than the best simpler one by
+    /// [`PARSIMONY_CHI2`] (in units of the residual's variance); on data that cannot tell
+    /// T·Δθ from T·|ω|·Δθ (constant-rate moves), the degree-one term is proposed.
+    fn best(&self, skip: &[usize], complexity: &[u8]) -> Option<(usize, f64)> {
+        let scores: Vec<(usize, f64)> = (0..self.q.len())
+            .filter(|j| !skip.contains(j))
+            .filter_map(|j| {
+                let qq = dot(&self.q[j], &self.q[j]);
+                (qq > MIN_ORTHOGONAL_SHARE * self.norm0[j] && qq > 0.0).then(|| {
+                    let g = dot(&self.q[j], &self.r);
+                    (j, g * g / qq)
+                })
+            })
+            .collect();
+        let top = |max: u8| {
+            scores
+                .iter()
+                .filter(|(j, _)| complexity[*j] <= max)
+                .copied()
+                .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
+        };
+        let n = self.r.len().max(1) as f64;
+        let s2 = (dot(&self.r, &self.r) / n).max(1.0);
+        let mut pick = top(u8::MAX)?;
+        for level in (0..complexity[pick.0]).rev() {
+            if let Some(simple) = top(level)
+                && simple.1 >= pick.1 - PARSIMONY_CHI2 * s2
+            {
+                pick = simple;
+            }
+        }
+        Some((pick.0, pick.1 / self.yy.max(f64::MIN_POSITIVE)))
+    }
+
+    /// Moves candidate `j` into the model.
+    fn take(&mut self, j: usize) {
+        let mut e = self.q[j].clone();
+        let n = dot(&e, &e).sqrt();
+        e.iter_mut().for_each(|x| *x /= n);
+        self.take_direction(&e);
+    }
+}
+
+fn whiten(col: &[f64], d: &ChannelData, w: Option<&[f64]>) -> Vec<f64> {
+    (0..col.len())
+        .map(|r| col[r] / d.v[r].sqrt() * w.map_or(1.0, |w| w[r].sqrt()))
+        .collect()
+}
+
+/// A term the selection kept (or the best one it tried and the gate refused).
+#[derive(Clone, Debug)]
+pub struct Pick {
+    /// Index of the term in the library.
+    pub term: usize,
+    /// Its error-reduction ratio: the share of the residual energy (after the catalogue's
+    /// accepted effects and the terms before it) its orthogonal part explains.
+    pub err: f64,
+    /// The nested test on top of the model before it; its coefficient is the last.
+    pub test: NestedTest,
+    /// Whether it passed the gate.
+    pub passes: bool,
+}
+
+/// Forward selection on one channel: at most `max_terms` library terms (columns `cols`, SI
+/// coefficients with file units `units`, `complexity` 0 for one signal, 1 for a product or an
+/// indicator) on top of the design `base` (the catalogue's accepted
+/// effects). Returns the kept terms in order and the first one the gate refused, if any.
+pub fn select(
+    d: &ChannelData,
+    base: &Design,
+    cols: &[Vec<f64>],
+    units: &[f64],
+    complexity: &[u8],
+    gate: &Gate,
+    max_terms: usize,
+) -> (Vec<Pick>, Option<Pick>) {
+    let basew: Vec<Vec<f64>> = (0..base.ncols())
+        .map(|c| whiten(base.column(c).as_slice(), d, None))
+        .collect();
+    let candw: Vec<Vec<f64>> = cols.iter().map(|c| whiten(c, d, None)).collect();
+    let mut o = Ortho::new(whiten(&d.y, d, None), &basew, candw);
+    let Some(mut fit0) = wls(base, d, None) else {
+        return (Vec::new(), None);
+    };
+    let mut cv0 = cv_rmse(base, d);
+    let mut x = base.clone();
+    let mut kept: Vec<Pick> = Vec::new();
+    let mut tried: Vec<usize> = Vec::new();
+    while kept.len() < max_terms {
+        let Some((j, err)) = o.best(&tried, complexity) else {
+            break;
+        };
+        tried.push(j);
+        let x1 = append(&x, &cols[j], units[j]);
+        let Some(test) = nested_test(&fit0, cv0, x.ncols(), &x1, d) else {
+            // Not identifiable on top of the model: the next best.
+            continue;
+        };
+        let passes = gate.passes_test(test.delta_bic, test.p_value, test.cv_gain_pct);
+        let pick = Pick {
+            term: j,
+            err,
+            test,
+            passes,
+        };
+        if !passes {
+            return (kept, Some(pick));
+        }
+        o.take(j);
+        fit0 = pick.test.fit.clone();
+        cv0 = pick.test.cv_rmse;
+        x = x1;
+        kept.push(pick);
+    }
+    (kept, None)
+}
+
+/// `x` with the column `col` (file unit `unit`) appended.
+pub fn append(x: &Design, col: &[f64], unit: f64) -> Design {
+    let (n, p) = (x.nrows(), x.ncols());
+    let m = DMatrix::from_fn(n, p + 1, |r, c| if c < p { x[(r, c)] } else { col[r] });
+    let mut u = x.unit.clone();
+    u.push(unit);
+    Design { x: m, unit: u }
+}
+
+/// Selection frequency of each of `picked` (library indices) over [`RESAMPLES`] bootstrap
+/// resamples of the cross-validation units (runs, or blocks with fewer than three runs): in
+/// each resample the orthogonal selection takes `picked.len()` terms on top of `base`, and a
+/// term counts when it is among them.
+pub fn bootstrap(
+    d: &ChannelData,
+    base: &Design,
+    cols: &[Vec<f64>],
+    complexity: &[u8],
+    picked: &[usize],
+) -> Vec<f64> {
+    if picked.is_empty() || d.folds == 0 {
+        return Vec::new();
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(BOOTSTRAP_SEED);
+    rng.set_stream(BOOTSTRAP_STREAM);
+    // Draw every resample first (sequentially, so the result does not depend on threads).
+    let draws: Vec<Vec<f64>> = (0..RESAMPLES)
+        .map(|_| {
+            let mut count = vec![0.0; d.folds];
+            for _ in 0..d.folds {
+                count[(rng.next_u64() % d.folds as u64) as usize] += 1.0;
+            }
+            count
+        })
+        .collect();
+    let hits: Vec<Vec<bool>> = draws
+        .par_iter()
+        .map(|count| {
+            let w: Vec<f64> = d.fold.iter().map(|&f| count[f]).collect();
+            let basew: Vec<Vec<f64>> = (0..base.ncols())
+                .map(|c| whiten(base.column(c).as_slice(), d, Some(&w)))
+                .collect();
+            let candw: Vec<Vec<f64>> = cols.iter().map(|c| whiten(c, d, Some(&w))).collect();
+            let mut o = Ortho::new(whiten(&d.y, d, Some(&w)), &basew, candw);
+            let mut chosen = Vec::new();
+            while chosen.len() < picked.len() {
+                let Some((j, _)) = o.best(&chosen, complexity) else {
+                    break;
+                };
+                o.take(j);
+                chosen.push(j);
+            }
+            picked.iter().map(|p| chosen.contains(p)).collect()
+        })
+        .collect();
+    (0..picked.len())
+        .map(|i| hits.iter().filter(|h| h[i]).count() as f64 / RESAMPLES as f64)
+        .collect()
+}

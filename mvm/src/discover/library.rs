@@ -1,0 +1,439 @@
+//! The library of candidate regressors discovery searches, and their window sums.
+//!
+//! The terms are built from the documented signals a declared effect reads
+//! ([`rins_plant::effects::custom::signals`]): the acting axis's block temperature and the
+//! housing's, their time derivatives, the block-to-housing gradient, the body up direction
+//! u_x, u_y, u_z, the body rates and their absolute values, the gimbal angles and the time since
+//! the run's start; every one of them and every product of two (squares included), each as a
+//! bias and as a scale-factor term, per channel; plus one bias indicator per static table
+//! position. A term is written exactly as a declared effect's regressor (`"u_x*u_z"`,
+//! `"dtemp_dt:block"`), so a proposal is a ready `[[sensor.gyro.custom]]` block.
+//!
+//! One pass over the rows (in parallel over segments, rows assigned to the replay's windows)
+//! sums each signal times the row's weight (Δt, the true Δθ_i or Δv_i) per window, exactly,
+//! and the products of two up components exactly. A product of two signals is formed from those
+//! sums as (Σ a·w)·(Σ b·Δt)/(Σ Δt), with b the signal that stays constant while the table
+//! dwells (u, rates, gimbal angles) when there is one: exact in a dwell for the products the
+//! tests plant (u·u exactly, temperature × attitude exactly, a degree-one term always exactly),
+//! and within the variation of two slow signals over one window (≤ 30 s) for temperature
+//! products.
+
+use rayon::prelude::*;
+use rins_plant::effects::custom::CustomKind;
+use rins_plant::effects::custom::signals::{
+    ABS_RATE, DTEMP, INNER, NodeRef, OUTER, RATE, SLOTS, Signal, TEMP, TIME, UP, Unit,
+};
+use rins_plant::thermal::node;
+
+use crate::custom::RowSignals;
+use crate::history::{Attitude, History};
+use crate::replay::{Kinematics, Window};
+
+/// Weights a signal is summed with: Δt, Δθ_x..z, Δv_x..z.
+const WEIGHTS: usize = 7;
+
+/// A library term: a regressor of one or two factors, as a bias or a scale factor, or a
+/// position indicator.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Term {
+    /// `signal` or `signal_a*signal_b` (the same twice: a square), as a declared effect.
+    Product {
+        /// The factors (one or two).
+        factors: Vec<Signal>,
+        /// Bias or scale factor.
+        kind: CustomKind,
+    },
+    /// A bias only while the table dwells at one static position (mean up direction).
+    Position {
+        /// The position's up direction in body axes, rounded to 0.01.
+        up: [f64; 3],
+    },
+}
+
+/// Regressor notation of a signal, as a declared effect writes it.
+pub fn signal_name(s: Signal) -> String {
+    let node = |n: NodeRef| match n {
+        NodeRef::Block => "block".to_string(),
+        NodeRef::Node(i) => node::NAMES[i].to_string(),
+    };
+    let axis = |i: usize| ["x", "y", "z"][i];
+    match s {
+        Signal::Temp(n) => format!("temp:{}", node(n)),
+        Signal::TempRate(n) => format!("dtemp_dt:{}", node(n)),
+        Signal::Gradient(a, b) => format!("grad:{}-{}", node(a), node(b)),
+        Signal::Up(i) => format!("u_{}", axis(i)),
+        Signal::Rate(i) => format!("w_{}", axis(i)),
+        Signal::AbsRate(i) => format!("abs_w_{}", axis(i)),
+        Signal::Outer => "gimbal_outer".into(),
+        Signal::Inner => "gimbal_inner".into(),
+        Signal::Time => "time".into(),
+    }
+}
+
+/// A short name part of a signal (for proposal names of at most 32 characters).
+fn short(s: Signal) -> String {
+    let node = |n: NodeRef| match n {
+        NodeRef::Block => "block".to_string(),
+        NodeRef::Node(i) => node::NAMES[i].to_string(),
+    };
+    let axis = |i: usize| ["x", "y", "z"][i];
+    match s {
+        Signal::Temp(n) => format!("t_{}", node(n)),
+        Signal::TempRate(n) => format!("dtdt_{}", node(n)),
+        Signal::Gradient(..) => "grad_bh".into(),
+        Signal::Up(i) => format!("u_{}", axis(i)),
+        Signal::Rate(i) => format!("w_{}", axis(i)),
+        Signal::AbsRate(i) => format!("aw_{}", axis(i)),
+        Signal::Outer => "outer".into(),
+        Signal::Inner => "inner".into(),
+        Signal::Time => "time".into(),
+    }
+}
+
+/// Whether a signal stays constant while the table dwells (attitude and rate signals).
+fn dwell_constant(s: Signal) -> bool {
+    matches!(
+        s,
+        Signal::Up(_) | Signal::Rate(_) | Signal::AbsRate(_) | Signal::Outer | Signal::Inner
+    )
+}
+
+impl Term {
+    /// The regressor as a declared effect writes it (`None` for a position indicator).
+    pub fn regressor(&self) -> Option<String> {
+        match self {
+            Term::Product { factors, .. } => Some(match factors.as_slice() {
+                [a, b] if a == b => format!("{}^2", signal_name(*a)),
+                f => f
+                    .iter()
+                    .map(|s| signal_name(*s))
+                    .collect::<Vec<_>>()
+                    .join("*"),
+            }),
+            Term::Position { .. } => None,
+        }
+    }
+
+    /// The regressor's unit (`1` for an indicator).
+    pub fn unit(&self) -> Unit {
+        match self {
+            Term::Product { factors, .. } => {
+                factors.iter().fold(Unit::ONE, |u, s| u.times(s.unit()))
+            }
+            Term::Position { .. } => Unit::ONE,
+        }
+    }
+
+    /// 0 for one signal, 1 for a product of two or a position indicator: the selection prefers
+    /// the simpler of two terms the data cannot tell apart.
+    pub fn complexity(&self) -> u8 {
+        match self {
+            Term::Product { factors, .. } if factors.len() == 1 => 0,
+            _ => 1,
+        }
+    }
+
+    /// Bias or scale factor.
+    pub fn kind(&self) -> CustomKind {
+        match self {
+            Term::Product { kind, .. } => *kind,
+            Term::Position { .. } => CustomKind::Bias,
+        }
+    }
+
+    /// A name for the proposal (letters, digits, `_`; ≤ 32 characters): `b_` (bias) or `sf_`
+    /// (scale factor) and the factors (`b_dtdt_block`, `b_u_x_u_z`, `sf_t_block`).
+    pub fn name(&self) -> String {
+        match self {
+            Term::Product { factors, kind } => {
+                let k = if *kind == CustomKind::Bias { "b" } else { "sf" };
+                let f = match factors.as_slice() {
+                    [a, b] if a == b => format!("{}_sq", short(*a)),
+                    f => f.iter().map(|s| short(*s)).collect::<Vec<_>>().join("_"),
+                };
+                format!("{k}_{f}")
+            }
+            Term::Position { up } => format!(
+                "pos_{}_{}_{}",
+                (up[0] * 100.0).round() as i64,
+                (up[1] * 100.0).round() as i64,
+                (up[2] * 100.0).round() as i64
+            )
+            .replace('-', "m"),
+        }
+    }
+
+    /// Human-readable description.
+    pub fn describe(&self) -> String {
+        match self {
+            Term::Product { kind, .. } => format!(
+                "{} ∝ {}",
+                if *kind == CustomKind::Bias {
+                    "bias"
+                } else {
+                    "scale factor"
+                },
+                self.regressor().unwrap_or_default()
+            ),
+            Term::Position { up } => format!(
+                "bias only at the static position with up = ({:.2}, {:.2}, {:.2}) in body axes",
+                up[0], up[1], up[2]
+            ),
+        }
+    }
+}
+
+/// The signals the library is built from on a history (the housing's only when measured, the
+/// gimbal angles only with a gimbal attitude).
+pub fn library_signals(h: &History) -> Vec<Signal> {
+    let housing = NodeRef::Node(node::HOUSING);
+    let mut v = vec![
+        Signal::Temp(NodeRef::Block),
+        Signal::TempRate(NodeRef::Block),
+    ];
+    if h.housing_temp_c.is_some() {
+        v.extend([
+            Signal::Temp(housing),
+            Signal::TempRate(housing),
+            Signal::Gradient(NodeRef::Block, housing),
+        ]);
+    }
+    v.extend((0..3).map(Signal::Up));
+    v.extend((0..3).map(Signal::Rate));
+    v.extend((0..3).map(Signal::AbsRate));
+    if matches!(h.attitude, Attitude::Gimbal { .. }) {
+        v.extend([Signal::Outer, Signal::Inner]);
+    }
+    v.push(Signal::Time);
+    v
+}
+
+/// Every product term of the library over `sig`: each signal, each product of two (squares
+/// included), as a bias and as a scale factor.
+pub fn product_terms(sig: &[Signal]) -> Vec<Term> {
+    let mut out = Vec::new();
+    for kind in [CustomKind::Bias, CustomKind::ScaleFactor] {
+        for (i, a) in sig.iter().enumerate() {
+            out.push(Term::Product {
+                factors: vec![*a],
+                kind,
+            });
+            for b in &sig[i..] {
+                out.push(Term::Product {
+                    factors: vec![*a, *b],
+                    kind,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// Per-window sums of every signal slot times each weight, and of the up products.
+#[derive(Clone, Debug)]
+pub struct Moments {
+    /// `[window][slot * WEIGHTS + weight]`: Σ frame[slot]·w over the window's rows (slot
+    /// [`SLOTS`] is the constant 1).
+    pub m: Vec<Vec<f64>>,
+    /// `[window][a * 3 + b]`: Σ u_a·u_b·Δt.
+    pub uu: Vec<[f64; 9]>,
+    /// Mean up direction of each window.
+    pub up: Vec<[f64; 3]>,
+}
+
+/// Sums the signals of `h` over the replay's `windows` (one pass over the rows, in parallel over
+/// segments; the windows follow the segments in order, each row after a segment's first in the
+/// next window until its `rows` are used).
+pub(crate) fn moments(kin: &Kinematics, h: &History, windows: &[Window]) -> Moments {
+    let rs = RowSignals::all(h);
+    // The first window of each segment.
+    let mut first = Vec::with_capacity(h.segments.len());
+    let mut w = 0usize;
+    for seg in &h.segments {
+        first.push(w);
+        let mut rows = seg.len().saturating_sub(1);
+        while rows > 0 && w < windows.len() {
+            rows = rows.saturating_sub(windows[w].rows as usize);
+            w += 1;
+        }
+    }
+    let per: Vec<Vec<(Vec<f64>, [f64; 9])>> = h
+        .segments
+        .par_iter()
+        .zip(first.par_iter())
+        .map(|(seg, &w0)| {
+            let mut out = Vec::new();
+            let mut wi = w0;
+            let mut left = 0usize;
+            let mut acc = vec![0.0; (SLOTS + 1) * WEIGHTS];
+            let mut uu = [0.0; 9];
+            for k in seg.start + 1..seg.end {
+                if left == 0 {
+                    if k > seg.start + 1 {
+                        out.push((
+                            std::mem::replace(&mut acc, vec![0.0; (SLOTS + 1) * WEIGHTS]),
+                            uu,
+                        ));
+                        uu = [0.0; 9];
+                    }
+                    left = windows.get(wi).map_or(usize::MAX, |w| w.rows as usize);
+                    wi += 1;
+                }
+                left -= 1;
+                let dt = h.t_s[k] - h.t_s[k - 1];
+                let r = kin.row(h, k, dt);
+                let up_b = r.c_nb.column(2).into_owned();
+                let f = rs.frame(h, k, dt, &up_b, &r.dtheta_rad);
+                let wts = [
+                    dt,
+                    r.dtheta_rad[0],
+                    r.dtheta_rad[1],
+                    r.dtheta_rad[2],
+                    r.dv_mps[0],
+                    r.dv_mps[1],
+                    r.dv_mps[2],
+                ];
+                for s in 0..SLOTS {
+                    let v = f[s];
+                    let row = &mut acc[s * WEIGHTS..(s + 1) * WEIGHTS];
+                    for (a, w) in row.iter_mut().zip(&wts) {
+                        *a += v * w;
+                    }
+                }
+                let row = &mut acc[SLOTS * WEIGHTS..];
+                for (a, w) in row.iter_mut().zip(&wts) {
+                    *a += w;
+                }
+                for a in 0..3 {
+                    for b in a..3 {
+                        uu[a * 3 + b] += f[UP + a] * f[UP + b] * dt;
+                    }
+                }
+            }
+            if seg.len() > 1 {
+                out.push((acc, uu));
+            }
+            out
+        })
+        .collect();
+    let mut m = Vec::with_capacity(windows.len());
+    let mut uu = Vec::with_capacity(windows.len());
+    for (a, u) in per.into_iter().flatten() {
+        m.push(a);
+        uu.push(u);
+    }
+    let up = m
+        .iter()
+        .map(|a| {
+            let d = a[SLOTS * WEIGHTS].max(f64::MIN_POSITIVE);
+            [0, 1, 2].map(|i| a[(UP + i) * WEIGHTS] / d)
+        })
+        .collect();
+    Moments { m, uu, up }
+}
+
+/// The frame slot(s) of a signal on `axis` of the gyros (`accel = false`) or accelerometers:
+/// `(a, Some(b))` for a difference a − b.
+fn slots_of(s: Signal, accel: bool, axis: usize) -> (usize, Option<usize>) {
+    match s {
+        Signal::Temp(n) => (TEMP + n.resolve(accel, axis), None),
+        Signal::TempRate(n) => (DTEMP + n.resolve(accel, axis), None),
+        Signal::Gradient(a, b) => (
+            TEMP + a.resolve(accel, axis),
+            Some(TEMP + b.resolve(accel, axis)),
+        ),
+        Signal::Up(i) => (UP + i, None),
+        Signal::Rate(i) => (RATE + i, None),
+        Signal::AbsRate(i) => (ABS_RATE + i, None),
+        Signal::Outer => (OUTER, None),
+        Signal::Inner => (INNER, None),
+        Signal::Time => (TIME, None),
+    }
+}
+
+impl Moments {
+    /// Σ signal·weight over window `w`.
+    fn lin(&self, w: usize, s: Signal, accel: bool, axis: usize, weight: usize) -> f64 {
+        let m = &self.m[w];
+        let (a, b) = slots_of(s, accel, axis);
+        let v = m[a * WEIGHTS + weight];
+        b.map_or(v, |b| v - m[b * WEIGHTS + weight])
+    }
+
+    /// Duration of window `w`, s (Σ Δt).
+    fn duration(&self, w: usize) -> f64 {
+        self.m[w][SLOTS * WEIGHTS]
+    }
+
+    /// The column of `term` on `channel` (0–2 gyro, 3–5 accelerometer) over the windows, in
+    /// increment units per unit of the coefficient in SI (like the catalogue's regressors).
+    pub fn column(&self, term: &Term, channel: usize, windows: &[Window]) -> Vec<f64> {
+        let (accel, axis) = (channel >= 3, channel % 3);
+        let weight = match term.kind() {
+            CustomKind::Bias => 0,
+            CustomKind::ScaleFactor if accel => 4 + axis,
+            CustomKind::ScaleFactor => 1 + axis,
+        };
+        (0..self.m.len())
+            .map(|w| match term {
+                Term::Position { up } => {
+                    let at = !windows[w].moving
+                        && (0..3).all(|i| (self.up[w][i] - up[i]).abs() < 0.0051);
+                    if at { self.duration(w) } else { 0.0 }
+                }
+                Term::Product { factors, .. } => match factors.as_slice() {
+                    [a] => self.lin(w, *a, accel, axis, weight),
+                    [Signal::Up(i), Signal::Up(j)] if weight == 0 => {
+                        self.uu[w][(*i).min(*j) * 3 + (*i).max(*j)]
+                    }
+                    [a, b] => {
+                        // The dwell-constant factor as the window mean.
+                        let (var, mean) = if dwell_constant(*a) {
+                            (*b, *a)
+                        } else {
+                            (*a, *b)
+                        };
+                        let d = self.duration(w);
+                        if d > 0.0 {
+                            self.lin(w, var, accel, axis, weight)
+                                * self.lin(w, mean, accel, axis, 0)
+                                / d
+                        } else {
+                            0.0
+                        }
+                    }
+                    _ => 0.0,
+                },
+            })
+            .collect()
+    }
+
+    /// The static positions the windows dwell at (rounded up directions), at most `max`, in
+    /// order of first appearance.
+    pub fn positions(&self, windows: &[Window], max: usize) -> Vec<[f64; 3]> {
+        let mut out: Vec<[f64; 3]> = Vec::new();
+        for (w, win) in windows.iter().enumerate() {
+            if win.moving || out.len() >= max {
+                continue;
+            }
+            let up = self.up[w].map(|x| (x * 100.0).round() / 100.0);
+            if !out
+                .iter()
+                .any(|p| (0..3).all(|i| (p[i] - up[i]).abs() < 0.005))
+            {
+                out.push(up);
+            }
+        }
+        out
+    }
+}
+
+/// The file unit (SI) of a term's coefficient on a gyro (`accel = false`) or accelerometer.
+pub fn file_unit_si(kind: CustomKind, accel: bool) -> f64 {
+    use rins_plant::units::{DPH, PPM, UG};
+    match (kind, accel) {
+        (CustomKind::Bias, false) => DPH,
+        (CustomKind::Bias, true) => UG,
+        (CustomKind::ScaleFactor, _) => PPM,
+    }
+}

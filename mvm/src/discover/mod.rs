@@ -1,0 +1,532 @@
+//! Discovery (`rins diagnose --discover`): what the catalogue lacks, searched in a library of
+//! regressors built from the documented signals of declared effects ([`library`]), by sparse
+//! orthogonal forward selection with the error-reduction ratio and the catalogue's gate
+//! ([`frols`]), with a bootstrap over runs, a confusable list against the catalogue effects and
+//! a ready `[[sensor.gyro.custom]]` block per proposal ([`propose`]).
+//!
+//! The search runs on each channel's remainder after the catalogue's accepted effects. The
+//! proposals then enter the catalogue's ranking and forward selection as declared candidates
+//! (`custom:NAME`), so a catalogue effect that only stood in for one is ranked below it,
+//! reported confusable with it, and no longer accepted ([`Superseded`]).
+
+// Six channels indexed in parallel arrays: index loops read best.
+#![allow(clippy::needless_range_loop)]
+
+pub mod frols;
+pub mod library;
+pub mod propose;
+
+use rins_plant::PlantConfig;
+use rins_plant::effects::CustomSpec;
+use rins_plant::effects::custom::{Axis, CustomKind};
+use serde::Serialize;
+
+use crate::custom::CustomRef;
+use crate::fit::{Gate, design};
+use crate::history::History;
+use crate::prepare::Prepared;
+use crate::replay::{CHANNELS, Effect, Group, Kinematics};
+use crate::report::Confusable;
+use crate::selection::Diagnosis;
+use library::{Term, file_unit_si};
+
+/// Terms kept per channel at most.
+pub const MAX_TERMS: usize = 3;
+/// Position indicators in the library at most (distinct static positions).
+pub const MAX_POSITIONS: usize = 32;
+
+/// One library term tested on one channel.
+#[derive(Clone, Debug, Serialize)]
+pub struct DiscoveredTerm {
+    /// Channel.
+    pub channel: String,
+    /// What the term is (`bias ∝ dtemp_dt:block`).
+    pub term: String,
+    /// The regressor as a declared effect writes it (`null` for a position indicator).
+    pub regressor: Option<String>,
+    /// `bias` or `scale-factor`.
+    pub kind: String,
+    /// What it was searched on: the `remainder after the catalogue` (its accepted effects in
+    /// the base model) or the residual of the `model as given`.
+    pub searched_on: String,
+    /// Error-reduction ratio: the share of the remaining residual energy (whitened) its part
+    /// orthogonal to the model before it explains.
+    pub err: f64,
+    /// ΔBIC on top of the catalogue's accepted effects and the terms kept before it.
+    pub delta_bic: f64,
+    /// Nested F-test p-value.
+    pub p_value: f64,
+    /// Cross-validated RMSE gain, %.
+    pub cv_rmse_gain_pct: f64,
+    /// Coefficient in file units (°/h, µg or ppm per unit of the regressor).
+    pub coefficient: f64,
+    /// Its 95 % interval.
+    pub ci95: [f64; 2],
+    /// Unit of the coefficient.
+    pub unit: String,
+    /// Passes the gate (the catalogue's, Bonferroni over the library).
+    pub passes_gate: bool,
+    /// Share of bootstrap resamples over runs in which the orthogonal selection picks it.
+    pub bootstrap_frequency: f64,
+    /// Catalogue effects whose fitted contribution is collinear with its own.
+    pub confusable_with: Vec<Confusable>,
+}
+
+/// A proposal: one term on the axes it was found on, as a declared effect.
+#[derive(Clone, Debug, Serialize)]
+pub struct Proposal {
+    /// Name (`custom:NAME` for `--apply`).
+    pub name: String,
+    /// `gyro` or `accel`.
+    pub sensor: String,
+    /// The term's tests, per channel it was kept on.
+    pub terms: Vec<DiscoveredTerm>,
+    /// Coefficients per axis (x, y, z) in file units; 0 on axes it was not found on.
+    pub coef: [f64; 3],
+    /// The `[[sensor.gyro.custom]]` / `[[sensor.accel.custom]]` block (`null` when the term
+    /// cannot be declared: a position indicator).
+    pub toml: Option<String>,
+}
+
+/// A catalogue effect accepted on the catalogue alone that a discovered term replaced.
+#[derive(Clone, Debug, Serialize)]
+pub struct Superseded {
+    /// Channel.
+    pub channel: String,
+    /// The catalogue effect (now reported confusable, not accepted).
+    pub effect: String,
+    /// The discovered effect that explains the residual better.
+    pub by: String,
+    /// ΔBIC of the catalogue effect against the model as given.
+    pub delta_bic_effect: f64,
+    /// ΔBIC of the discovered one.
+    pub delta_bic_by: f64,
+}
+
+/// What `--discover` reports.
+#[derive(Clone, Debug, Serialize)]
+pub struct DiscoveryReport {
+    /// Library terms per channel (signals and their products as bias and scale factor, and
+    /// position indicators).
+    pub library_terms: Vec<(String, usize)>,
+    /// Tests the gate's Bonferroni split counts (every term on every channel).
+    pub tests: usize,
+    /// Bootstrap resamples over runs.
+    pub bootstrap_resamples: usize,
+    /// Proposals (terms that passed the gate), best first.
+    pub proposals: Vec<Proposal>,
+    /// Per channel, the best term the gate refused (the nearest miss).
+    pub refused: Vec<DiscoveredTerm>,
+    /// Catalogue effects replaced by a discovered one.
+    pub superseded: Vec<Superseded>,
+}
+
+/// A proposal with what augmentation needs.
+pub(crate) struct Found {
+    proposal: Proposal,
+    term: Term,
+    accel: bool,
+    /// Per channel it was kept on: the column.
+    columns: Vec<(usize, Vec<f64>)>,
+}
+
+/// The result of the search, before the proposals join the ranking.
+pub(crate) struct Search {
+    report: DiscoveryReport,
+    found: Vec<Found>,
+}
+
+fn tested(
+    a: &Prepared,
+    c: usize,
+    term: &Term,
+    col: &[f64],
+    pick: &frols::Pick,
+    freq: f64,
+) -> DiscoveredTerm {
+    let accel = c >= 3;
+    let unit = file_unit_si(term.kind(), accel);
+    let i = pick.test.fit.theta.len() - 1;
+    let (th, se) = (pick.test.fit.theta[i], pick.test.fit.cov[(i, i)].sqrt());
+    let identified = pick.test.fit.identified(i);
+    let u = match (term.kind(), accel) {
+        (CustomKind::Bias, false) => "deg/h",
+        (CustomKind::Bias, true) => "ug",
+        (CustomKind::ScaleFactor, _) => "ppm",
+    };
+    DiscoveredTerm {
+        channel: CHANNELS[c].into(),
+        term: term.describe(),
+        regressor: term.regressor(),
+        kind: match term.kind() {
+            CustomKind::Bias => "bias".into(),
+            CustomKind::ScaleFactor => "scale-factor".into(),
+        },
+        searched_on: String::new(),
+        err: pick.err,
+        delta_bic: pick.test.delta_bic,
+        p_value: pick.test.p_value,
+        cv_rmse_gain_pct: pick.test.cv_gain_pct,
+        coefficient: if identified { th / unit } else { f64::NAN },
+        ci95: if identified {
+            [(th - 1.96 * se) / unit, (th + 1.96 * se) / unit]
+        } else {
+            [f64::NAN; 2]
+        },
+        unit: format!("{u} per {}", term.unit()),
+        passes_gate: pick.passes,
+        bootstrap_frequency: freq,
+        confusable_with: if pick.passes {
+            let groups: Vec<Group> = a
+                .replay
+                .groups
+                .iter()
+                .filter(|g| g.channel == c)
+                .copied()
+                .collect();
+            propose::confusable(&a.replay.windows, &a.data[c], &groups, term, col, unit)
+        } else {
+            Vec::new()
+        },
+    }
+}
+
+/// Searches the library on each channel's remainder after `selected` (the catalogue's accepted
+/// groups per channel).
+pub(crate) fn search(
+    model: &PlantConfig,
+    h: &History,
+    a: &Prepared,
+    selected: &[Vec<Group>],
+) -> Search {
+    let ws = &a.replay.windows;
+    let mom = library::moments(&Kinematics::new(model), h, ws);
+    let sig = library::library_signals(h);
+    let mut terms = library::product_terms(&sig);
+    terms.extend(
+        mom.positions(ws, MAX_POSITIONS)
+            .into_iter()
+            .map(|up| Term::Position { up }),
+    );
+    // A term a declared effect of the model already is: tested by the catalogue step.
+    let declared: Vec<(bool, CustomKind, String)> = [false, true]
+        .into_iter()
+        .flat_map(|accel| {
+            let list = if accel {
+                &model.sensor.accel.custom
+            } else {
+                &model.sensor.gyro.custom
+            };
+            list.iter()
+                .map(move |s| (accel, s.kind, s.regressor.replace(' ', "")))
+        })
+        .collect();
+    let lib_for = |c: usize| -> Vec<usize> {
+        (0..terms.len())
+            .filter(|&t| {
+                let r = terms[t].regressor();
+                !declared.iter().any(|(acc, k, reg)| {
+                    *acc == (c >= 3) && *k == terms[t].kind() && Some(reg) == r.as_ref()
+                })
+            })
+            .collect()
+    };
+    let per_channel: Vec<Vec<usize>> = (0..6).map(lib_for).collect();
+    // Every term on every channel, searched on the remainder and on the model as given.
+    let tests: usize = (0..6)
+        .map(|c| per_channel[c].len() * if selected[c].is_empty() { 1 } else { 2 })
+        .sum();
+    let gate = Gate {
+        max_delta_bic: -10.0,
+        alpha: a.opts.alpha,
+        tests,
+        min_cv_gain_pct: 0.0,
+    };
+    let mut refused = Vec::new();
+    // (channel, term index, column, test)
+    let mut kept: Vec<(usize, usize, Vec<f64>, DiscoveredTerm)> = Vec::new();
+    for c in 0..6 {
+        let idx = &per_channel[c];
+        let accel = c >= 3;
+        let cols: Vec<Vec<f64>> = idx.iter().map(|&t| mom.column(&terms[t], c, ws)).collect();
+        let units: Vec<f64> = idx
+            .iter()
+            .map(|&t| file_unit_si(terms[t].kind(), accel))
+            .collect();
+        let complexity: Vec<u8> = idx.iter().map(|&t| terms[t].complexity()).collect();
+        // On the catalogue's remainder, and on the residual of the model as given: a
+        // catalogue effect accepted as a stand-in can leave too little of the remainder for
+        // the term it stands in for; the ranking then decides between them.
+        let bases: Vec<(&str, &[Group])> = if selected[c].is_empty() {
+            vec![("model as given", &[])]
+        } else {
+            vec![
+                ("remainder after the catalogue", &selected[c]),
+                ("model as given", &[]),
+            ]
+        };
+        for (on, groups) in bases {
+            let base = design(ws, groups);
+            let (picks, miss) = frols::select(
+                &a.data[c],
+                &base,
+                &cols,
+                &units,
+                &complexity,
+                &gate,
+                MAX_TERMS,
+            );
+            let chosen: Vec<usize> = picks.iter().map(|p| p.term).collect();
+            let freq = frols::bootstrap(&a.data[c], &base, &cols, &complexity, &chosen);
+            for (k, p) in picks.iter().enumerate() {
+                let t = idx[p.term];
+                if kept.iter().any(|(kc, kt, _, _)| *kc == c && *kt == t) {
+                    continue;
+                }
+                let mut dt = tested(a, c, &terms[t], &cols[p.term], p, freq[k]);
+                dt.searched_on = on.into();
+                kept.push((c, t, cols[p.term].clone(), dt));
+            }
+            if let Some(p) = miss
+                && !refused
+                    .iter()
+                    .any(|r: &DiscoveredTerm| r.channel == CHANNELS[c])
+                && picks.is_empty()
+            {
+                let mut dt = tested(a, c, &terms[idx[p.term]], &cols[p.term], &p, f64::NAN);
+                dt.searched_on = on.into();
+                refused.push(dt);
+            }
+        }
+    }
+    // Group the kept terms into proposals: one per term and sensor, on every axis it was kept on.
+    let mut found: Vec<Found> = Vec::new();
+    for (c, t, col, dt) in kept {
+        let accel = c >= 3;
+        let f = match found
+            .iter_mut()
+            .position(|f| f.accel == accel && f.term == terms[t])
+        {
+            Some(i) => &mut found[i],
+            None => {
+                found.push(Found {
+                    proposal: Proposal {
+                        name: terms[t].name(),
+                        sensor: if accel { "accel" } else { "gyro" }.into(),
+                        terms: Vec::new(),
+                        coef: [0.0; 3],
+                        toml: None,
+                    },
+                    term: terms[t].clone(),
+                    accel,
+                    columns: Vec::new(),
+                });
+                found.last_mut().expect("pushed")
+            }
+        };
+        f.proposal.coef[c % 3] = if dt.coefficient.is_finite() {
+            dt.coefficient
+        } else {
+            0.0
+        };
+        f.proposal.terms.push(dt);
+        f.columns.push((c, col));
+    }
+    for f in &mut found {
+        let ci: Vec<(usize, [f64; 2])> = f
+            .columns
+            .iter()
+            .zip(&f.proposal.terms)
+            .map(|((c, _), t)| (c % 3, t.ci95))
+            .collect();
+        f.proposal.toml =
+            propose::toml_block(&f.proposal.name, f.accel, &f.term, f.proposal.coef, &ci);
+    }
+    found.sort_by(|x, y| {
+        let best = |f: &Found| {
+            f.proposal
+                .terms
+                .iter()
+                .map(|t| t.delta_bic)
+                .fold(f64::INFINITY, f64::min)
+        };
+        best(x).total_cmp(&best(y))
+    });
+    Search {
+        report: DiscoveryReport {
+            library_terms: (0..6)
+                .map(|c| (CHANNELS[c].to_string(), per_channel[c].len()))
+                .collect(),
+            tests,
+            bootstrap_resamples: frols::RESAMPLES,
+            proposals: found.iter().map(|f| f.proposal.clone()).collect(),
+            refused,
+            superseded: Vec::new(),
+        },
+        found,
+    }
+}
+
+/// The declared-effect reference a proposal would have in `model` (declared after the model's
+/// own effects of its sensor, in proposal order), or `None` for an indicator.
+fn reference(model: &PlantConfig, found: &[Found], i: usize) -> Option<CustomRef> {
+    let f = &found[i];
+    f.proposal.toml.as_ref()?;
+    let own = if f.accel {
+        model.sensor.accel.custom.len()
+    } else {
+        model.sensor.gyro.custom.len()
+    };
+    let before = found[..i]
+        .iter()
+        .filter(|g| g.accel == f.accel && g.proposal.toml.is_some())
+        .count();
+    let axes = f.columns.iter().fold(0u8, |m, (c, _)| m | 1 << (c % 3));
+    Some(CustomRef::new(
+        f.accel,
+        (own + before) as u16,
+        f.term.kind(),
+        axes,
+        &f.proposal.name,
+    ))
+}
+
+impl Search {
+    /// The report as searched (nothing joined the ranking).
+    pub(crate) fn into_report(self) -> DiscoveryReport {
+        self.report
+    }
+
+    /// Adds the declarable proposals to `a` as candidates of the catalogue's ranking (groups
+    /// and window regressor sums), returning whether any was added.
+    pub(crate) fn augment(&self, model: &PlantConfig, a: &mut Prepared) -> bool {
+        let mut any = false;
+        for i in 0..self.found.len() {
+            let Some(r) = reference(model, &self.found, i) else {
+                continue;
+            };
+            for (c, col) in &self.found[i].columns {
+                let offset = a.replay.windows.first().map_or(0, |w| w.x.len());
+                for (w, v) in a.replay.windows.iter_mut().zip(col) {
+                    w.x.push(*v);
+                }
+                a.replay.groups.push(Group {
+                    channel: *c,
+                    effect: Effect::Custom(r),
+                    offset,
+                    len: 1,
+                });
+                any = true;
+            }
+        }
+        any
+    }
+
+    /// The report, with the catalogue effects `before` (accepted on the catalogue alone) that
+    /// the diagnosis with the proposals `after` no longer accepts: each is named superseded, and
+    /// reported confusable with the discovered term in `after`'s ranking.
+    pub(crate) fn finish(mut self, before: &Diagnosis, after: &mut Diagnosis) -> DiscoveryReport {
+        let disc: Vec<String> = self
+            .report
+            .proposals
+            .iter()
+            .map(|p| format!("custom:{}", p.name))
+            .collect();
+        for c in 0..6 {
+            let by = after.selected[c]
+                .iter()
+                .map(|g| g.effect.name())
+                .find(|n| disc.contains(n));
+            let Some(by) = by else { continue };
+            for g in &before.selected[c] {
+                if after.selected[c].iter().any(|s| s.effect == g.effect) {
+                    continue;
+                }
+                let name = g.effect.name();
+                let dbic = |n: &str| {
+                    after
+                        .report
+                        .ranking
+                        .iter()
+                        .find(|r| r.effect == n && r.channel == CHANNELS[c])
+                        .map_or(f64::NAN, |r| r.delta_bic)
+                };
+                let (de, db) = (dbic(&name), dbic(&by));
+                if let Some(r) = after
+                    .report
+                    .ranking
+                    .iter_mut()
+                    .find(|r| r.effect == name && r.channel == CHANNELS[c])
+                    && !r.confusable_with.iter().any(|x| x.effect.starts_with(&by))
+                {
+                    let term =
+                        &self.found[disc.iter().position(|d| *d == by).expect("listed")].term;
+                    r.confusable_with.push(Confusable {
+                        effect: by.clone(),
+                        delta_bic_gap: db - de,
+                        correlation: f64::NAN,
+                        vif: f64::NAN,
+                        separate_by: propose::separating(term, &name),
+                    });
+                }
+                self.report.superseded.push(Superseded {
+                    channel: CHANNELS[c].into(),
+                    effect: name,
+                    by: by.clone(),
+                    delta_bic_effect: de,
+                    delta_bic_by: db,
+                });
+            }
+        }
+        self.report
+    }
+}
+
+/// `model` with the proposal `name` declared after its own declared effects, with a zero
+/// coefficient on the axes it was found on: the model `--apply custom:NAME` fits.
+pub fn with_proposal(
+    model: &PlantConfig,
+    report: &DiscoveryReport,
+    name: &str,
+) -> Result<PlantConfig, String> {
+    let p = report
+        .proposals
+        .iter()
+        .find(|p| p.name == name)
+        .ok_or_else(|| {
+            let names: Vec<&str> = report.proposals.iter().map(|p| p.name.as_str()).collect();
+            format!("custom:{name} is neither declared in the model nor discovered; discovered: {names:?}")
+        })?;
+    let Some(t) = p.terms.first() else {
+        return Err(format!("custom:{name} was found on no channel"));
+    };
+    let Some(regressor) = &t.regressor else {
+        return Err(format!(
+            "custom:{name} is a position indicator, which a declared effect cannot express"
+        ));
+    };
+    let mut m = model.clone();
+    let spec = CustomSpec {
+        name: p.name.clone(),
+        enabled: true,
+        kind: if t.kind == "bias" {
+            CustomKind::Bias
+        } else {
+            CustomKind::ScaleFactor
+        },
+        regressor: regressor.clone(),
+        unit: t.unit.split(" per ").nth(1).unwrap_or("1").to_string(),
+        axes: p
+            .terms
+            .iter()
+            .map(|t| Axis::of(CHANNELS.iter().position(|c| *c == t.channel).unwrap_or(0) % 3))
+            .collect(),
+        coef: [0.0; 3],
+    };
+    if p.sensor == "accel" {
+        m.sensor.accel.custom.push(spec);
+    } else {
+        m.sensor.gyro.custom.push(spec);
+    }
+    Ok(m)
+}
