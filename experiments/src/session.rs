@@ -82,6 +82,11 @@ pub enum SessionError {
     /// Zero or negative times.
     #[error("{0}")]
     BadTimes(String),
+    /// Self-alignment asked for on a moving carrier.
+    #[error(
+        "self-alignment needs the static carrier; on a moving carrier the navigator starts aligned from truth (alignment = truth)"
+    )]
+    MovingBaseAlignment,
 }
 
 /// The reference navigator fed one sample at a time, with error records against the plant's
@@ -100,6 +105,9 @@ pub struct Tracker {
     records: u64,
     /// Encoder angles of the last pushed sample: the navigator's view of the table.
     encoder: rins_plant::table::GimbalAngles,
+    /// On a moving carrier: the table mount C_v^c; the errors are then taken against the
+    /// carrier's truth (position, velocity, attitude) instead of the site.
+    moving_mount: Option<Matrix3<f64>>,
 }
 
 impl Tracker {
@@ -126,31 +134,38 @@ impl Tracker {
             up_sum: 0.0,
             records: 0,
             encoder: rins_plant::table::GimbalAngles::default(),
+            moving_mount: None,
         }
+    }
+
+    /// The same tracker on a moving carrier with table mount `mount` (C_v^c): errors against the
+    /// carrier's truth (reference point position and velocity, C_c^n·C_v^c·R_z·R_x attitude).
+    pub fn on_moving_carrier(mut self, mount: Matrix3<f64>) -> Self {
+        self.moving_mount = Some(mount);
+        self
     }
 
     /// A navigator aligned to the truth of a freshly built plant (before its first step), at rest,
     /// with the vertical channel held at the site height.
     pub fn at_truth(plant: &Plant, record_every_s: f64) -> Self {
         let site = *plant.site();
-        let init = NavState {
-            q_bn: plant.attitude_q_bn(),
-            v_n: Vector3::zeros(),
-            lat_rad: site.lat_rad,
-            lon_rad: site.lon_rad,
-            height_m: site.height_m,
-        };
-        Self::new(
+        let init = initial_state(plant);
+        let t = Self::new(
             init,
             plant.dt_s(),
             VerticalChannel::Hold {
-                ref_height_m: site.height_m,
+                ref_height_m: init.height_m,
             },
             site,
             *plant.vehicle_to_nav(),
             None,
             record_every_s,
-        )
+        );
+        if plant.moving_carrier() {
+            t.on_moving_carrier(plant.config().vehicle.c_vn())
+        } else {
+            t
+        }
     }
 
     /// Integrates one sample; returns the error record when one is due.
@@ -175,6 +190,9 @@ impl Tracker {
     /// The error record now, against `truth` (the plant's truth after the last pushed sample).
     pub fn record(&mut self, truth: &Truth) -> NavRecord {
         let st = self.nav.state();
+        if let Some(mount) = self.moving_mount {
+            return self.record_moving(truth, &mount);
+        }
         let c_bn_true = rins_plant::table::body_to_nav(&self.c_vn, truth.gimbal.angles);
         let c_bn_nav = st.q_bn.to_rotation_matrix().into_inner();
         let phi = attitude_error(&c_bn_nav, &c_bn_true);
@@ -192,6 +210,33 @@ impl Tracker {
             att_err_rad: phi.into(),
             vehicle_att_err_rad: phi_v.into(),
             vel_err_mps: st.v_n.into(),
+            north_m: north,
+            east_m: east,
+            horizontal_m: horizontal,
+            trms_m: self.trms.value(),
+        }
+    }
+
+    /// [`Tracker::record`] on a moving carrier.
+    fn record_moving(&mut self, truth: &Truth, mount: &Matrix3<f64>) -> NavRecord {
+        let st = self.nav.state();
+        let c = &truth.carrier;
+        let c_vn = c.q_cn.to_rotation_matrix().into_inner() * mount;
+        let c_bn_true = rins_plant::table::body_to_nav(&c_vn, truth.gimbal.angles);
+        let c_bn_nav = st.q_bn.to_rotation_matrix().into_inner();
+        let phi = attitude_error(&c_bn_nav, &c_bn_true);
+        let c_vn_nav = vehicle_attitude(&c_bn_nav, self.encoder);
+        let phi_v = attitude_error(&c_vn_nav, &c_vn);
+        let (north, east) = position_error_m(st, c.lat_rad, c.lon_rad, c.height_m);
+        let horizontal = north.hypot(east);
+        self.trms.push(horizontal);
+        self.up_sum += phi.z.abs();
+        self.records += 1;
+        NavRecord {
+            t_s: self.k as f64 * self.dt_s,
+            att_err_rad: phi.into(),
+            vehicle_att_err_rad: phi_v.into(),
+            vel_err_mps: (st.v_n - c.v_n).into(),
             north_m: north,
             east_m: east,
             horizontal_m: horizontal,
@@ -220,24 +265,22 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
     }
     let dt = plant.dt_s();
     let site = *plant.site();
-    let mut init = NavState {
-        q_bn: plant.attitude_q_bn(),
-        v_n: Vector3::zeros(),
-        lat_rad: site.lat_rad,
-        lon_rad: site.lon_rad,
-        height_m: site.height_m,
-    };
+    let mut init = initial_state(plant);
     let vertical = match cfg.vertical {
         VerticalChannel::Hold { .. } => VerticalChannel::Hold {
-            ref_height_m: site.height_m,
+            ref_height_m: init.height_m,
         },
         VerticalChannel::Damped { tau_s, .. } => VerticalChannel::Damped {
-            ref_height_m: site.height_m,
+            ref_height_m: init.height_m,
             tau_s,
         },
     };
+    let moving = plant.moving_carrier();
     let mut alignment = None;
     if let Alignment::SelfAlign { coarse_s, fine_s } = cfg.alignment {
+        if moving {
+            return Err(SessionError::MovingBaseAlignment);
+        }
         if !(coarse_s > 0.0 && fine_s >= 0.0) {
             return Err(SessionError::BadTimes(format!(
                 "alignment times coarse {coarse_s} s, fine {fine_s} s"
@@ -256,6 +299,9 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
         cfg.compensation.as_ref(),
         cfg.record_every_s,
     );
+    if moving {
+        tracker = tracker.on_moving_carrier(plant.config().vehicle.c_vn());
+    }
     let samples = (nav_s / dt).round() as u64;
     let mut records = Vec::with_capacity((samples / tracker.every + 1) as usize);
     for k in 1..=samples {
@@ -272,6 +318,30 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
         alignment,
         up_att_mean_abs_rad,
     })
+}
+
+/// The navigator's start aligned from truth: the table's attitude, and the site at rest (static
+/// carrier) or the carrier's reference point with its velocity (moving carrier: the navigator
+/// starts aligned from truth on the moving base; there is no moored dwell).
+fn initial_state(plant: &Plant) -> NavState {
+    if plant.moving_carrier() {
+        let c = plant.truth().carrier;
+        return NavState {
+            q_bn: plant.attitude_q_bn(),
+            v_n: c.v_n,
+            lat_rad: c.lat_rad,
+            lon_rad: c.lon_rad,
+            height_m: c.height_m,
+        };
+    }
+    let site = *plant.site();
+    NavState {
+        q_bn: plant.attitude_q_bn(),
+        v_n: Vector3::zeros(),
+        lat_rad: site.lat_rad,
+        lon_rad: site.lon_rad,
+        height_m: site.height_m,
+    }
 }
 
 /// Coarse then fine alignment while the table dwells.

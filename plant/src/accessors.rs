@@ -73,7 +73,12 @@ impl Plant {
 
     /// True IMU attitude C_b^n now.
     pub fn attitude_c_bn(&self) -> Matrix3<f64> {
-        body_to_nav(&self.c_vn, self.gimbal_now.angles)
+        let mut a = self.gimbal_now.angles;
+        // With azimuth isolation the outer gimbal stands off the scheme by the loop's offset.
+        if let Some(i) = self.carrier.as_ref().and_then(|c| c.isolation.as_ref()) {
+            a.outer_rad += i.offset_rad(self.tick, self.cfg.substeps as u64);
+        }
+        body_to_nav(&self.c_vn, a)
     }
 
     /// True IMU attitude now as the quaternion q_b^n.

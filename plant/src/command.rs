@@ -122,3 +122,19 @@ impl Plant {
         self.dwell_cache = None;
     }
 }
+
+impl Plant {
+    /// Switches azimuth isolation on or off from the next output interval (the navigation
+    /// computer's command; `[carrier] azimuth_isolation` sets it at start). On: the loop restarts
+    /// from the table's attitude now and holds the scheme at its present azimuth in the
+    /// navigation frame. Off: the outer offset stays where it is. Refused on the static carrier.
+    pub fn command_azimuth_isolation(&mut self, on: bool) -> Result<(), String> {
+        let c_bn = self.attitude_c_bn();
+        let (angles, tick) = (self.gimbal_now.angles, self.tick);
+        let run = self.carrier.as_mut().ok_or(
+            "azimuth isolation needs a moving carrier ([carrier] kind = \"ship\" or \"trajectory\")",
+        )?;
+        run.set_isolation(on, &c_bn, angles, tick);
+        Ok(())
+    }
+}

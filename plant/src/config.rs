@@ -219,6 +219,10 @@ impl PlantConfig {
             let e = "a file name when kind = \"trajectory\"";
             c.fail("carrier.trajectory.file", e, "\"\"".into());
         }
+        if k.azimuth_isolation && k.kind == CarrierKind::Static {
+            let e = "false for the static carrier (nothing to isolate: kind = \"ship\" or \"trajectory\")";
+            c.fail("carrier.azimuth_isolation", e, "true".into());
+        }
         for (i, l) in k.ship.legs.iter().enumerate() {
             if !(l.duration_s > 0.0) {
                 let p = format!("carrier.ship.legs[{i}].duration_s");

@@ -534,14 +534,21 @@ impl Plant {
         tr.position_weight = weight;
         if let Some(c) = &self.carrier {
             tr.carrier = c.now.truth();
+            if let Some(i) = &c.isolation {
+                // Azimuth isolation turns the outer gimbal on top of the scheme.
+                tr.gimbal.angles.outer_rad += i.offset_rad(self.tick, self.cfg.substeps as u64);
+                tr.gimbal.outer_rate_rps += i.rate_rps(self.tick);
+            }
         }
-        ImuSample {
+        let sample = ImuSample {
             index,
             t_s: self.time_s(),
             dtheta_rad: dtheta_out,
             dv_mps: dv_out,
-            encoder: self.encoders.read(self.gimbal_now.angles),
+            encoder: self.encoders.read(self.truth.gimbal.angles),
             temps_c: self.temp_readings_c,
-        }
+        };
+        self.isolate(&sample);
+        sample
     }
 }

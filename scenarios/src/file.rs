@@ -218,7 +218,7 @@ pub enum ScenarioError {
 }
 
 /// The scenarios shipped with rins, by name.
-pub const BUILTIN: [(&str, &str); 6] = [
+pub const BUILTIN: [(&str, &str); 7] = [
     (
         "paper-16pos-week",
         include_str!("../files/paper-16pos-week.toml"),
@@ -239,6 +239,10 @@ pub const BUILTIN: [(&str, &str); 6] = [
     (
         "paper-static-week",
         include_str!("../files/paper-static-week.toml"),
+    ),
+    (
+        "ship-16pos-week",
+        include_str!("../files/ship-16pos-week.toml"),
     ),
 ];
 

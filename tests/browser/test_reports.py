@@ -175,6 +175,11 @@ def main():
             "--report", f"{t}/t4"])
     check_report("table4", f"{t}/t4/report.html", {"table4": t4}, PAIRED, shots)
 
+    sea = j(["paper", "sea", "--runs", "1", "--days", "0.02", "--json", "--out", f"{t}/sea",
+             "--report", f"{t}/sea"])
+    check_report("sea", f"{t}/sea/report.html", {"sea": sea},
+                 ["sea_horizontal_error", "sea_end_error"], shots)
+
     with open(f"{t}/camp.toml", "w") as f:
         f.write(CAMPAIGN)
     camp = j(["campaign", f"{t}/camp.toml", "--json", "--out", f"{t}/camp", "--report", f"{t}/camp"])
@@ -195,7 +200,7 @@ def main():
     check_report("diagnose", f"{t}/diag/report.html", {"diagnose": diag}, MVM, shots)
     comp = j(["compare", *data, "--report", f"{t}/comp"])
     check_report("compare", f"{t}/comp/report.html", {"compare": comp}, MVM, shots)
-    checked += 6
+    checked += 7
     print(f"{checked} passed, 0 failed: HTML reports in headless Chromium")
 
 

@@ -8,6 +8,7 @@
 //! [`CarrierState`] samples at the ends of each communication step, and the plant interpolates
 //! them inside the step (see `docs/carrier.md`).
 
+pub mod isolation;
 pub mod run;
 pub mod ship;
 pub mod spec;

@@ -3,6 +3,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use super::isolation::Isolation;
 use super::state::CarrierState;
 use super::track::TrackPosition;
 use super::{Carrier, GL_OFFSETS};
@@ -11,7 +12,7 @@ use crate::kinematics::{TableIncrements, carrier_points, moving_base_increments}
 use crate::plant::Plant;
 use crate::state::{Reader, StateError, Writer};
 use crate::table::gimbal::body_to_nav;
-use crate::table::{GimbalAngles, GimbalState};
+use crate::table::{GimbalAngles, GimbalState, Schedule};
 
 /// A moving carrier with what the plant needs around it.
 #[derive(Clone, Debug)]
@@ -30,13 +31,22 @@ pub struct CarrierRun {
     pub now: CarrierState,
     /// Last gimbal angles and their C_b^c.
     pub c_bc_cache: (GimbalAngles, Matrix3<f64>),
+    /// The azimuth isolation loop (`None`: never switched on, the original moving-base path).
+    pub isolation: Option<Isolation>,
 }
 
 impl CarrierRun {
     /// Wraps `carrier` with the mount, lever arm and Earth switches of `cfg`.
     pub fn new(mut carrier: Carrier, cfg: &PlantConfig) -> Box<Self> {
         let now = carrier.state_now();
+        let mount = cfg.vehicle.c_vn();
+        let isolation = cfg.carrier.azimuth_isolation.then(|| {
+            let g0 = Schedule::new(&cfg.scheme.resolve()).eval(0.0).angles;
+            let c_bn = body_to_nav(&(now.c_cn * mount), g0);
+            Isolation::new(&c_bn, g0.inner_rad, g0.outer_rad, 0.0, 0)
+        });
         Box::new(Self {
+            isolation,
             carrier,
             mount: cfg.vehicle.c_vn(),
             lever_c_m: Vector3::from(cfg.carrier.lever_arm_m),
@@ -53,6 +63,40 @@ impl CarrierRun {
             self.c_bc_cache = (a, body_to_nav(&self.mount, a));
         }
         self.c_bc_cache.1
+    }
+
+    /// Outer gimbal offset of the azimuth isolation at internal tick `tick` (`ticks` per output
+    /// interval), rad (0 without isolation).
+    pub fn isolation_rad(&self, tick: u64, ticks: u64) -> f64 {
+        self.isolation
+            .as_ref()
+            .map_or(0.0, |i| i.offset_rad(tick, ticks))
+    }
+
+    /// Switches azimuth isolation on (restarting its loop from the body attitude `c_bn`, inner
+    /// angle and scheme outer angle now, at internal tick `tick`) or off (the outer offset is
+    /// held where it is).
+    pub fn set_isolation(
+        &mut self,
+        on: bool,
+        c_bn: &Matrix3<f64>,
+        angles: GimbalAngles,
+        tick: u64,
+    ) {
+        let offset = self.isolation_rad(tick, 1);
+        match (&mut self.isolation, on) {
+            (Some(i), false) => i.active = false,
+            (None, false) => {}
+            (_, true) => {
+                self.isolation = Some(Isolation::new(
+                    c_bn,
+                    angles.inner_rad,
+                    angles.outer_rad,
+                    offset,
+                    tick,
+                ))
+            }
+        }
     }
 
     /// C_v^n = C_c^n·C_v^c now.
@@ -90,7 +134,23 @@ impl Plant {
         } else {
             [g1.angles; 2]
         };
+        let ticks = self.cfg.substeps as f64;
         let run = self.carrier.as_mut().expect("moving carrier");
+        // Azimuth isolation: the outer offset at the tick's ends and quadrature points.
+        let dt = self.dt_s;
+        let iso = run.isolation.as_ref().map(|i| {
+            let at = |f: f64| i.offset_at(tick as f64 + f, ticks, dt);
+            let rate = |f: f64| i.rate_at(tick as f64 + f, ticks, dt);
+            (at(0.0), at(1.0), GL_OFFSETS.map(at), GL_OFFSETS.map(rate))
+        });
+        let angles = match iso {
+            Some((_, _, nodes, _)) => {
+                let mut a = angles;
+                a.iter_mut().zip(nodes).for_each(|(a, o)| a.outer_rad += o);
+                a
+            }
+            None => angles,
+        };
         let mut nodes = [run.now; 2];
         let end = run.carrier.advance(&mut nodes);
         let pts = carrier_points(
@@ -108,12 +168,60 @@ impl Plant {
             si * (g1.angles.outer_rad - g0.angles.outer_rad),
             ci * (g1.angles.outer_rad - g0.angles.outer_rad),
         );
+        let gimbal = match iso {
+            // The offset turns the outer axis, [0, sin i, cos i] in body axes: the exact
+            // angle difference while the inner gimbal dwells, else two-point Gauss–Legendre of
+            // the offset rate times the axis.
+            Some((o0, o1, _, rates)) => {
+                if angles[0].inner_rad == angles[1].inner_rad {
+                    let (si, ci) = angles[0].inner_rad.sin_cos();
+                    gimbal + (o1 - o0) * Vector3::new(0.0, si, ci)
+                } else {
+                    let v = angles
+                        .iter()
+                        .zip(rates)
+                        .fold(Vector3::zeros(), |v, (a, r)| {
+                            let (si, ci) = a.inner_rad.sin_cos();
+                            v + r * Vector3::new(0.0, si, ci)
+                        });
+                    gimbal + 0.5 * h * v
+                }
+            }
+            None => gimbal,
+        };
         let inc = moving_base_increments(&c_bc, &pts, gimbal, h);
         let up_b = 0.5
             * (c_bc[0].transpose() * nodes[0].c_cn.row(2).transpose()
                 + c_bc[1].transpose() * nodes[1].c_cn.row(2).transpose());
         self.c_vn = run.c_vn();
         (inc, up_b)
+    }
+
+    /// True when the table rides a moving carrier (ship, trajectory or an external vessel model).
+    pub fn moving_carrier(&self) -> bool {
+        self.carrier.is_some()
+    }
+
+    /// Closes one output interval for the azimuth isolation loop: feeds it the sample just
+    /// output (measured increments and encoder reading) and the scheme's commanded outer angle.
+    pub(crate) fn isolate(&mut self, s: &crate::plant::ImuSample) {
+        let (tick, dt, outer) = (self.tick, self.dt_s, self.gimbal_now.angles.outer_rad);
+        let Some(run) = self.carrier.as_mut() else {
+            return;
+        };
+        let now = run.now;
+        if let Some(i) = run.isolation.as_mut() {
+            i.update(
+                &s.dtheta_rad,
+                s.encoder.inner_rad,
+                outer,
+                now.lat_rad,
+                now.height_m,
+                &now.v_n,
+                dt,
+                tick,
+            );
+        }
     }
 
     /// Writes the carrier's integrated state (the ship's mean-track position).
@@ -123,6 +231,16 @@ impl Plant {
             w.u64(tick);
             w.f64(p.lat_rad);
             w.f64(p.lon_rad);
+        }
+        if let Some(run) = &self.carrier {
+            // The isolation loop (a flag, then its state).
+            match &run.isolation {
+                Some(i) => {
+                    w.u64(1);
+                    i.write(w);
+                }
+                None => w.u64(0),
+            }
         }
     }
 
@@ -144,6 +262,10 @@ impl Plant {
             }
             Carrier::Trajectory { tick: t, .. } => *t = tick,
         }
+        run.isolation = match r.u64()? {
+            0 => None,
+            _ => Some(Isolation::read(r)?),
+        };
         run.now = run.carrier.state_now();
         self.c_vn = run.c_vn();
         self.truth.carrier = run.now.truth();

@@ -30,6 +30,10 @@ pub struct CarrierSpec {
     pub ship: ShipSpec,
     /// The trajectory file (used when `kind = "trajectory"`).
     pub trajectory: TrajectorySpec,
+    /// Azimuth isolation (off by default): the outer gimbal counter-rotates the carrier's yaw,
+    /// measured from the IMU's own increments and the inner encoder, so the scheme stays fixed
+    /// in the navigation frame ([`super::isolation`]). Needs a moving carrier.
+    pub azimuth_isolation: bool,
 }
 
 impl CarrierSpec {

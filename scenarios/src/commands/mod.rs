@@ -13,6 +13,7 @@ pub mod nav;
 pub mod paper;
 pub mod run;
 pub mod scenarios;
+pub mod sea;
 #[cfg(feature = "transport")]
 pub mod serve;
 pub mod table4;

@@ -7,6 +7,7 @@ use anyhow::Result;
 use rins_verify::paper::{Table4Options, Table4Report};
 
 use super::args::{RerunArgs, whole};
+use super::sea::{self, SeaArgs};
 use super::table4::{self, Table4Args};
 use super::table5::{self, Table5Args};
 use crate::figures::paper::write_table4_figures;
@@ -41,6 +42,10 @@ pub enum PaperCommand {
     /// Section 4.2 / Table 5 / Figures 9-10: 7-day static navigation with the fitted
     /// delta-beta(T) compensated in real time, against the same run uncompensated.
     Table5(Table5Args),
+    /// At sea: the 16-position week on a ship (10-15 kn, course changes, sea state 4-5)
+    /// without and with azimuth isolation, delta-beta uncompensated/compensated, beside the
+    /// static reference, over several seeds.
+    Sea(SeaArgs),
 }
 
 /// Runs the study asked for, or the headline job.
@@ -48,6 +53,7 @@ pub fn run(a: &PaperArgs) -> Result<()> {
     match &a.which {
         Some(PaperCommand::Table4(t)) => table4::run(t),
         Some(PaperCommand::Table5(t)) => table5::run(t),
+        Some(PaperCommand::Sea(t)) => sea::run(t),
         None => headline(a),
     }
 }

@@ -1,0 +1,206 @@
+//! Azimuth isolation: the outer gimbal counter-rotates the carrier's yaw so that the
+//! rotation scheme stays fixed in the navigation frame, as the table of a real RINS on a ship
+//! does (docs/carrier.md, "Azimuth isolation").
+//!
+//! The loop sees only what the navigation computer sees: the IMU's measured increments and the
+//! encoder reading of the inner gimbal (plus the scheme's own commanded outer angle). It keeps a
+//! measured attitude C_b^n by integrating the measured Δθ (two-sample coning correction, the
+//! navigation frame turned by ω_in^n), forms the measured azimuth of the outer gimbal frame
+//! C_o^n = C_b^n·R_x(inner)ᵀ, and counter-rotates its error from the scheme's azimuth exactly
+//! over the next output interval (a one-sample servo: the outer offset ramps linearly from its
+//! value to the corrected one). The error left is the carrier's yaw during one interval,
+//! |ψ̇|·Δt, plus the drift of the measured attitude (the gyros' errors, as any heading).
+//!
+//! ω_in^n = ω_ie^n + ω_en^n needs the ship's latitude and velocity: a real RINS takes them from
+//! its own navigation solution or the ship's log; here they come from the carrier state (their
+//! errors would enter as Ω·cos L·δL, below 1e-9 rad/s for a nautical mile). The yaw itself is
+//! never taken from the truth; the loop starts from the attitude at the moment it is switched
+//! on (as the navigator starts aligned from truth).
+
+use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+
+use crate::earth::{OMEGA_IE_RPS, radii_of_curvature};
+use crate::table::gimbal::rot_x;
+
+/// Azimuth (counter-clockwise from east, rad) of the x axis of the frame `c` (to ENU), from its
+/// horizontal projection.
+pub fn azimuth_rad(c: &Matrix3<f64>) -> f64 {
+    c[(1, 0)].atan2(c[(0, 0)])
+}
+
+/// `x` wrapped into [-π, π).
+fn wrap(x: f64) -> f64 {
+    (x + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
+}
+
+/// The isolation loop's state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Isolation {
+    /// Counter-rotating (true) or holding the last offset (switched off by a command).
+    pub active: bool,
+    /// Measured body attitude q_b^n.
+    q_bn: UnitQuaternion<f64>,
+    /// Previous measured Δθ (coning correction), rad.
+    prev_dtheta: Vector3<f64>,
+    /// Azimuth of the outer frame at scheme angle 0, rad: the target is az0 + scheme outer.
+    az0_rad: f64,
+    /// Outer offset at the start and end of the current output interval, rad.
+    from_rad: f64,
+    to_rad: f64,
+    /// Offset rate at the start and end of the current interval, rad/s.
+    from_rps: f64,
+    to_rps: f64,
+    /// Internal tick at which the current interval starts.
+    start_tick: u64,
+}
+
+impl Isolation {
+    /// A loop started at internal tick `tick` with body attitude `c_bn`, inner angle
+    /// `inner_rad`, scheme outer angle `scheme_outer_rad` and the outer offset already applied
+    /// `offset_rad` (held as the target: the table stays where it is in the navigation frame).
+    pub fn new(
+        c_bn: &Matrix3<f64>,
+        inner_rad: f64,
+        scheme_outer_rad: f64,
+        offset_rad: f64,
+        tick: u64,
+    ) -> Self {
+        let c_on = c_bn * rot_x(inner_rad).transpose();
+        Self {
+            active: true,
+            q_bn: UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*c_bn)),
+            prev_dtheta: Vector3::zeros(),
+            az0_rad: azimuth_rad(&c_on) - scheme_outer_rad,
+            from_rad: offset_rad,
+            to_rad: offset_rad,
+            from_rps: 0.0,
+            to_rps: 0.0,
+            start_tick: tick,
+        }
+    }
+
+    /// Outer offset at (fractional) internal tick `tick`, with `ticks` internal ticks per output
+    /// interval of `dt_s`: the cubic Hermite between the interval's end offsets with the rate
+    /// carried over from the previous interval at its start and the interval's mean rate at its
+    /// end, so the offset's rate is continuous (a rate step at every sample would excite the
+    /// navigator's coning and sculling algorithms at sea).
+    pub fn offset_at(&self, tick: f64, ticks: f64, dt_s: f64) -> f64 {
+        let x = ((tick - self.start_tick as f64) / ticks).clamp(0.0, 1.0);
+        let (x2, x3) = (x * x, x * x * x);
+        (2.0 * x3 - 3.0 * x2 + 1.0) * self.from_rad
+            + (x3 - 2.0 * x2 + x) * dt_s * self.from_rps
+            + (3.0 * x2 - 2.0 * x3) * self.to_rad
+            + (x3 - x2) * dt_s * self.to_rps
+    }
+
+    /// Rate of [`Isolation::offset_at`], rad/s.
+    pub fn rate_at(&self, tick: f64, ticks: f64, dt_s: f64) -> f64 {
+        let x = ((tick - self.start_tick as f64) / ticks).clamp(0.0, 1.0);
+        let x2 = x * x;
+        ((6.0 * x2 - 6.0 * x) * self.from_rad + (6.0 * x - 6.0 * x2) * self.to_rad) / dt_s
+            + (3.0 * x2 - 4.0 * x + 1.0) * self.from_rps
+            + (3.0 * x2 - 2.0 * x) * self.to_rps
+    }
+
+    /// Outer offset at internal tick `tick` (between output intervals: the table's offset now),
+    /// with `ticks` internal ticks per output interval, rad.
+    pub fn offset_rad(&self, tick: u64, ticks: u64) -> f64 {
+        let x = (tick.saturating_sub(self.start_tick)) as f64 / ticks as f64;
+        if x >= 1.0 {
+            self.to_rad
+        } else if x <= 0.0 {
+            self.from_rad
+        } else {
+            self.offset_at(tick as f64, ticks as f64, 1.0)
+        }
+    }
+
+    /// Outer offset rate at internal tick `tick` between output intervals, rad/s.
+    pub fn rate_rps(&self, tick: u64) -> f64 {
+        if tick > self.start_tick {
+            self.to_rps
+        } else {
+            self.from_rps
+        }
+    }
+
+    /// One output interval of `dt_s` has ended at internal tick `tick`: integrates the
+    /// measured `dtheta_rad`, measures the outer frame's azimuth with the inner encoder reading
+    /// and sets the offset at the end of the next interval to cancel its error against the
+    /// scheme's commanded outer angle. `lat_rad`, `height_m`, `v_n` give ω_in^n.
+    #[allow(clippy::too_many_arguments)]
+    pub fn update(
+        &mut self,
+        dtheta_rad: &Vector3<f64>,
+        inner_enc_rad: f64,
+        scheme_outer_rad: f64,
+        lat_rad: f64,
+        height_m: f64,
+        v_n: &Vector3<f64>,
+        dt_s: f64,
+        tick: u64,
+    ) {
+        self.from_rad = self.to_rad;
+        self.from_rps = self.to_rps;
+        self.start_tick = tick;
+        if !self.active {
+            self.to_rps = 0.0;
+            return;
+        }
+        // Two-sample coning correction (the wave motion cones at ~1e-3 rad/s).
+        let phi = dtheta_rad + self.prev_dtheta.cross(dtheta_rad) / 12.0;
+        self.prev_dtheta = *dtheta_rad;
+        let (rm, rn) = radii_of_curvature(lat_rad);
+        let (sl, cl) = lat_rad.sin_cos();
+        let w_in = Vector3::new(
+            -v_n.y / (rm + height_m),
+            OMEGA_IE_RPS * cl + v_n.x / (rn + height_m),
+            OMEGA_IE_RPS * sl + v_n.x * sl / cl / (rn + height_m),
+        );
+        self.q_bn = UnitQuaternion::from_scaled_axis(-w_in * dt_s)
+            * self.q_bn
+            * UnitQuaternion::from_scaled_axis(phi);
+        self.q_bn.renormalize_fast();
+        let c_on = self.q_bn.to_rotation_matrix().into_inner() * rot_x(inner_enc_rad).transpose();
+        let err = wrap(azimuth_rad(&c_on) - self.az0_rad - scheme_outer_rad);
+        self.to_rad -= err;
+        // The end rate: the interval's mean rate (the ramp of a one-sample servo).
+        self.to_rps = (self.to_rad - self.from_rad) / dt_s;
+    }
+
+    /// Writes the loop's state (see [`Isolation::read`]).
+    pub(crate) fn write(&self, w: &mut crate::state::Writer) {
+        w.u64(self.active as u64);
+        for x in [self.q_bn.w, self.q_bn.i, self.q_bn.j, self.q_bn.k] {
+            w.f64(x);
+        }
+        for x in self.prev_dtheta.iter() {
+            w.f64(*x);
+        }
+        w.f64(self.az0_rad);
+        w.f64(self.from_rad);
+        w.f64(self.to_rad);
+        w.f64(self.from_rps);
+        w.f64(self.to_rps);
+        w.u64(self.start_tick);
+    }
+
+    /// Reads what [`Isolation::write`] wrote.
+    pub(crate) fn read(r: &mut crate::state::Reader<'_>) -> Result<Self, crate::state::StateError> {
+        let active = r.u64()? != 0;
+        let (w, i, j, k) = (r.f64()?, r.f64()?, r.f64()?, r.f64()?);
+        let q_bn = UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(w, i, j, k));
+        let prev_dtheta = Vector3::new(r.f64()?, r.f64()?, r.f64()?);
+        Ok(Self {
+            active,
+            q_bn,
+            prev_dtheta,
+            az0_rad: r.f64()?,
+            from_rad: r.f64()?,
+            to_rad: r.f64()?,
+            from_rps: r.f64()?,
+            to_rps: r.f64()?,
+            start_tick: r.u64()?,
+        })
+    }
+}

@@ -1,0 +1,330 @@
+//! `rins paper sea`: the at-sea study. The paper's week (16-position scheme, Table 3 sensors)
+//! on a ship at 10-15 kn with course changes and sea state 4-5, without and with azimuth
+//! isolation, δβ uncompensated and compensated, over several seeds, beside the static reference
+//! (the same sensors and seeds on the static carrier). The navigator starts aligned from truth
+//! on the moving base. Runs on [`rins_verify::paper::sea`], Table 4's machinery.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use plotters::style::RGBColor;
+use rins_nav::NavRecord;
+use rins_verify::paper::{Band, SeaOptions, SeaReport, Table4Report};
+use serde::Serialize;
+
+use super::args::RerunArgs;
+use super::paper::check_runs_days;
+use crate::figures::plot::{Kind, Line, Panel, write_svg};
+use crate::file::Scenario;
+use crate::html::{Cell, Doc, Report};
+
+/// Arguments of `rins paper sea`.
+#[derive(clap::Args, Debug)]
+pub struct SeaArgs {
+    /// Seeds (each runs every case; both cores are used).
+    #[arg(long, default_value_t = 8, allow_negative_numbers = true)]
+    pub runs: i64,
+    /// Navigation time in days.
+    #[arg(long, default_value_t = 7.0, allow_negative_numbers = true)]
+    pub days: f64,
+    /// Scenario with a moving carrier (default: the built-in ship week).
+    #[arg(long, default_value = "builtin:ship-16pos-week")]
+    pub scenario: PathBuf,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    pub json: bool,
+    /// Output folder for sea.json, the figures and their data.
+    #[arg(long, default_value = "out/sea")]
+    pub out: PathBuf,
+    /// Write a self-contained HTML report to DIR/report.html.
+    #[arg(long, value_name = "DIR")]
+    pub report: Option<PathBuf>,
+    /// `--rerun DEST` and its bucket length (not recorded for this study).
+    #[command(flatten)]
+    pub viz: RerunArgs,
+}
+
+/// Uncompensated case.
+const UNC: RGBColor = RGBColor(200, 40, 40);
+/// Compensated case.
+const COMP: RGBColor = RGBColor(30, 90, 200);
+/// Category names of the end-error figure, in [`SeaReport::cases`] order.
+const CASES: [&str; 3] = ["static reference", "ship", "ship + isolation"];
+
+/// What the end-error figure plots, per case (written to `sea_end_error.json` so a test can
+/// compare it with `sea.json`).
+#[derive(Clone, Debug, Serialize)]
+pub struct EndErrorData {
+    /// Case name.
+    pub case: &'static str,
+    /// Horizontal error at the end, uncompensated: median and 5-95 % band, nmi.
+    pub uncompensated_nm: Band,
+    /// The same, compensated.
+    pub compensated_nm: Band,
+    /// The noise-free pair's horizontal error at the end (δβ alone), uncompensated and
+    /// compensated, nmi.
+    pub noise_free_nm: [f64; 2],
+}
+
+/// Runs the study: sea.json, the figures, the table (or JSON), and with `--report` the page.
+pub fn run(a: &SeaArgs) -> Result<()> {
+    let runs = check_runs_days(a.runs, a.days)?;
+    let sc = Scenario::load(&a.scenario)?;
+    if sc.plant.carrier.is_static() {
+        anyhow::bail!(
+            "{}: rins paper sea needs a moving carrier ([carrier] kind = \"ship\" or \"trajectory\")",
+            a.scenario.display()
+        );
+    }
+    if a.viz.target()?.is_some() {
+        eprintln!("rins paper sea: --rerun is not recorded for this study");
+    }
+    let mut reference = sc.plant.clone();
+    reference.carrier = Default::default();
+    let opt = SeaOptions {
+        ship: sc.plant.clone(),
+        paired: rins_verify::paper::Table4Options {
+            plant: reference,
+            runs,
+            duration_s: a.days * 86_400.0,
+            compensation: None,
+            nav: rins_experiments::NavRunConfig::default(),
+        },
+    };
+    let per_run = (opt.paired.duration_s * opt.ship.rate_hz) as u64;
+    let pb = crate::progress::bar((6 * runs as u64 + 8) * per_run, "sea");
+    let r = rins_verify::paper::sea(&opt, &|n| pb.inc(n));
+    pb.finish_and_clear();
+    super::create_dir(&a.out)?;
+    std::fs::write(a.out.join("sea.json"), serde_json::to_string_pretty(&r)?)?;
+    write_figures(&r, &a.out)?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+    } else {
+        print!("{}", r.to_text());
+        println!("  figures and sea.json in {}", a.out.display());
+    }
+    if let Some(dir) = &a.report {
+        let page = report(&r, &a.out, dir)?;
+        eprintln!("report: {}", page.display());
+    }
+    Ok(())
+}
+
+/// The end-error figure's data, per case.
+pub fn end_error_data(r: &SeaReport) -> Vec<EndErrorData> {
+    r.cases()
+        .iter()
+        .zip(CASES)
+        .map(|((_, t), case)| EndErrorData {
+            case,
+            uncompensated_nm: t.uncompensated.horizontal_nm,
+            compensated_nm: t.compensated.horizontal_nm,
+            noise_free_nm: [
+                t.noise_free.uncompensated.horizontal_nm,
+                t.noise_free.compensated.horizontal_nm,
+            ],
+        })
+        .collect()
+}
+
+fn hours(recs: &[NavRecord], f: &dyn Fn(&NavRecord) -> f64) -> Vec<(f64, f64)> {
+    recs.iter().map(|x| (x.t_s / 3600.0, f(x))).collect()
+}
+
+/// Writes `sea_horizontal_error.svg` (first seed, envelopes per case), `sea_end_error.svg`
+/// (categorical: median and 5-95 % band per case, side by side, and the noise-free δβ pair)
+/// and `sea_end_error.json` (the plotted numbers).
+pub fn write_figures(r: &SeaReport, out: &Path) -> Result<()> {
+    let nm = rins_nav::errors::nmi;
+    let panels: Vec<Panel> = r
+        .cases()
+        .iter()
+        .map(|(name, t): &(&str, &Table4Report)| {
+            let s = &t.first_seed;
+            Panel::new(
+                format!("{name}: horizontal error (first seed)"),
+                "error (nmi)",
+                vec![
+                    Line::new(
+                        "uncompensated",
+                        hours(&s.uncompensated, &|x| nm(x.horizontal_m)),
+                        UNC,
+                        Kind::Envelope,
+                    ),
+                    Line::new(
+                        "compensated",
+                        hours(&s.compensated, &|x| nm(x.horizontal_m)),
+                        COMP,
+                        Kind::Envelope,
+                    ),
+                ],
+            )
+        })
+        .collect();
+    write_svg(
+        &out.join("sea_horizontal_error.svg"),
+        "At sea: horizontal error, static reference and ship without / with azimuth isolation",
+        "time (h)",
+        &panels,
+    )?;
+    let data = end_error_data(r);
+    std::fs::write(
+        out.join("sea_end_error.json"),
+        serde_json::to_string_pretty(&data)?,
+    )?;
+    // Side by side at each category: uncompensated left, compensated right.
+    let bars = |dx: f64, f: &dyn Fn(&EndErrorData) -> Band| {
+        data.iter()
+            .enumerate()
+            .flat_map(|(k, d)| {
+                let b = f(d);
+                [(k as f64 + dx, b.p05), (k as f64 + dx, b.p95)]
+            })
+            .collect::<Vec<_>>()
+    };
+    let medians = |dx: f64, f: &dyn Fn(&EndErrorData) -> f64| {
+        data.iter()
+            .enumerate()
+            .map(|(k, d)| (k as f64 + dx, f(d)))
+            .collect::<Vec<_>>()
+    };
+    let end = Panel::new(
+        format!(
+            "Horizontal error at the end: median (dot) and 5-95 % over {} seeds",
+            r.runs
+        ),
+        "error (nmi)",
+        vec![
+            Line::new(
+                "",
+                bars(-0.12, &|d| d.uncompensated_nm),
+                UNC,
+                Kind::ErrorBars,
+            ),
+            Line::new("", bars(0.12, &|d| d.compensated_nm), COMP, Kind::ErrorBars),
+            Line::new(
+                "uncompensated",
+                medians(-0.12, &|d| d.uncompensated_nm.median),
+                UNC,
+                Kind::Dots,
+            ),
+            Line::new(
+                "compensated",
+                medians(0.12, &|d| d.compensated_nm.median),
+                COMP,
+                Kind::Dots,
+            ),
+        ],
+    )
+    .categorical(&CASES);
+    let nf = Panel::new(
+        "Noise-free pair (δβ alone): horizontal error at the end",
+        "error (nmi)",
+        vec![
+            Line::new(
+                "uncompensated",
+                medians(-0.12, &|d| d.noise_free_nm[0]),
+                UNC,
+                Kind::Dots,
+            ),
+            Line::new(
+                "compensated",
+                medians(0.12, &|d| d.noise_free_nm[1]),
+                COMP,
+                Kind::Dots,
+            ),
+        ],
+    )
+    .categorical(&CASES);
+    write_svg(
+        &out.join("sea_end_error.svg"),
+        "At sea: end-of-run horizontal error per case",
+        "case",
+        &[end, nf],
+    )
+}
+
+/// The HTML page: summary table (numbers from sea.json) and the figures in `fig_dir`.
+pub fn report(r: &SeaReport, fig_dir: &Path, out: &Path) -> Result<PathBuf> {
+    let v = serde_json::to_value(r)?;
+    let d = Doc {
+        src: "sea",
+        json: &v,
+    };
+    let mut page =
+        Report::new("At sea: 16-position RINS on a ship, without and with azimuth isolation");
+    page.text(
+        "Setup",
+        &format!(
+            "{} seeds x {:.2} days. The paper's 16-position scheme and Table 3 sensors on a ship at 10-15 kn with course changes in sea state 4-5, beside the same sensors on the static carrier. The navigator starts aligned from truth on the moving base; delta-beta is compensated with the plant's own coefficients.",
+            r.runs, r.days
+        ),
+    );
+    let keys = ["static_reference", "ship", "ship_isolated"];
+    let rows = keys
+        .iter()
+        .zip(CASES)
+        .map(|(k, name)| {
+            let mut row = vec![Cell::Text(name.to_string())];
+            for case in ["uncompensated", "compensated"] {
+                for q in ["median", "p05", "p95"] {
+                    row.push(d.num(&format!("{k}.{case}.horizontal_nm.{q}"), 4));
+                }
+            }
+            row.push(d.num(&format!("{k}.improvement_pct.horizontal"), 3));
+            row.push(d.num(&format!("{k}.noise_free.uncompensated.horizontal_nm"), 4));
+            row.push(d.num(&format!("{k}.noise_free.compensated.horizontal_nm"), 4));
+            row
+        })
+        .collect();
+    page.table(
+        "Horizontal error at the end (nmi)",
+        &[
+            "case",
+            "uncompensated median",
+            "5 %",
+            "95 %",
+            "compensated median",
+            "5 %",
+            "95 %",
+            "improvement %",
+            "noise-free unc",
+            "noise-free comp",
+        ],
+        rows,
+    );
+    page.table(
+        "Ideal IMU on the ship (every sensor error off)",
+        &[
+            "isolation",
+            "max horizontal error (m)",
+            "max attitude error (rad)",
+        ],
+        (0..2)
+            .map(|k| {
+                vec![
+                    Cell::Text(["off", "on"][k].into()),
+                    d.num(&format!("ideal.{k}.max_horizontal_m"), 3),
+                    d.num(&format!("ideal.{k}.max_attitude_rad"), 3),
+                ]
+            })
+            .collect(),
+    );
+    for (stem, caption) in [
+        (
+            "sea_horizontal_error",
+            "Horizontal error of the first seed, per case (envelopes: min-max per pixel column with the mean).",
+        ),
+        (
+            "sea_end_error",
+            "End-of-run horizontal error per case: median and 5-95 % band over the seeds; below, the noise-free pair.",
+        ),
+    ] {
+        let f = fig_dir.join(format!("{stem}.svg"));
+        if f.exists() {
+            page.figure(&f, caption)?;
+        }
+    }
+    page.write(out)
+}
