@@ -129,6 +129,11 @@ impl Plant {
     /// from the table's attitude now and holds the scheme at its present azimuth in the
     /// navigation frame. Off: the outer offset stays where it is. Refused on the static carrier.
     pub fn command_azimuth_isolation(&mut self, on: bool) -> Result<(), String> {
+        if self.cfg.carrier.is_static() {
+            // An external carrier (attached after building) keeps no isolation state in the
+            // plant's saved state, so it cannot run the loop.
+            return Err("azimuth isolation needs a moving carrier of the scenario ([carrier] kind = \"ship\" or \"trajectory\"), not an external one".into());
+        }
         let c_bn = self.attitude_c_bn();
         let (angles, tick) = (self.gimbal_now.angles, self.tick);
         let run = self.carrier.as_mut().ok_or(

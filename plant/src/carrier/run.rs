@@ -232,8 +232,13 @@ impl Plant {
             w.f64(p.lat_rad);
             w.f64(p.lon_rad);
         }
-        if let Some(run) = &self.carrier {
-            // The isolation loop (a flag, then its state).
+        // The isolation loop (a flag, then its state), for the scenario's own moving carrier;
+        // an external carrier is attached after a restore and never runs the loop.
+        if let Some(run) = self
+            .carrier
+            .as_ref()
+            .filter(|_| !self.cfg.carrier.is_static())
+        {
             match &run.isolation {
                 Some(i) => {
                     w.u64(1);
@@ -262,10 +267,12 @@ impl Plant {
             }
             Carrier::Trajectory { tick: t, .. } => *t = tick,
         }
-        run.isolation = match r.u64()? {
-            0 => None,
-            _ => Some(Isolation::read(r)?),
-        };
+        if !self.cfg.carrier.is_static() {
+            run.isolation = match r.u64()? {
+                0 => None,
+                _ => Some(Isolation::read(r)?),
+            };
+        }
         run.now = run.carrier.state_now();
         self.c_vn = run.c_vn();
         self.truth.carrier = run.now.truth();
