@@ -25,13 +25,20 @@ truth = true
 effects = true
 "#;
 
-#[test]
-fn the_fmu_writes_the_same_csv_bytes_as_the_in_process_plant() {
+/// The FMUs packaged from the cdylibs next to this test's binary, in a folder of the test's
+/// own (`tag`), removed by the caller.
+fn built_fmus(tag: &str) -> (Vec<std::path::PathBuf>, std::path::PathBuf) {
     let exe = std::env::current_exe().unwrap();
     let lib_dir = exe.parent().and_then(|d| d.parent()).unwrap().to_path_buf();
-    let out = std::env::temp_dir().join(format!("rins-fmu-test-{}", std::process::id()));
+    let out = std::env::temp_dir().join(format!("rins-fmu-test-{tag}-{}", std::process::id()));
     let fmus = rins_scenarios::fmu::build(&out, &lib_dir)
         .expect("FMI libraries built (cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3)");
+    (fmus, out)
+}
+
+#[test]
+fn the_fmu_writes_the_same_csv_bytes_as_the_in_process_plant() {
+    let (fmus, out) = built_fmus("csv");
     let sc = Scenario::from_toml(SCENARIO, "test").unwrap();
 
     let mut direct = CsvSink::new(Vec::new(), sc.outputs, &sc.plant).unwrap();
@@ -46,10 +53,7 @@ fn the_fmu_writes_the_same_csv_bytes_as_the_in_process_plant() {
 
 #[test]
 fn scheme_steps_are_refused_with_what_to_use_instead() {
-    let exe = std::env::current_exe().unwrap();
-    let lib_dir = exe.parent().and_then(|d| d.parent()).unwrap().to_path_buf();
-    let out = std::env::temp_dir().join(format!("rins-fmu-test-steps-{}", std::process::id()));
-    let fmus = rins_scenarios::fmu::build(&out, &lib_dir).unwrap();
+    let (fmus, out) = built_fmus("steps");
     let text = r#"
 [scenario]
 name = "steps"
@@ -75,10 +79,7 @@ steps = [{ axis = "outer", angle_deg = 90.0, rate_dps = 10.0, dwell_s = 5.0 }]
 /// scenario without it).
 #[test]
 fn declared_effects_reach_the_fmu_through_its_slots() {
-    let exe = std::env::current_exe().unwrap();
-    let lib_dir = exe.parent().and_then(|d| d.parent()).unwrap().to_path_buf();
-    let out = std::env::temp_dir().join(format!("rins-fmu-test-slots-{}", std::process::id()));
-    let fmus = rins_scenarios::fmu::build(&out, &lib_dir).unwrap();
+    let (fmus, out) = built_fmus("slots");
     let declared = r#"
 [[sensor.gyro.custom]]
 name = "trate"
@@ -121,10 +122,7 @@ coef = [0.0, 300.0, 0.0]
 
 #[test]
 fn a_moving_carrier_is_refused_with_what_to_use_instead() {
-    let exe = std::env::current_exe().unwrap();
-    let lib_dir = exe.parent().and_then(|d| d.parent()).unwrap().to_path_buf();
-    let out = std::env::temp_dir().join(format!("rins-fmu-test-ship-{}", std::process::id()));
-    let fmus = rins_scenarios::fmu::build(&out, &lib_dir).unwrap();
+    let (fmus, out) = built_fmus("ship");
     let text = r#"
 [scenario]
 name = "ship"
