@@ -166,3 +166,47 @@ fn week_long_figures_shrink_fivefold_as_envelopes_with_the_same_extremes() {
         }
     }
 }
+
+/// An asymmetric band (5 %, median, 95 %) is drawn with its dot at the estimate, not at the
+/// band's centre: the sea figure's medians sat at the 5-95 % midpoint before `Kind::Interval`.
+#[test]
+fn interval_dots_sit_at_the_estimate_not_the_band_centre() {
+    use rins_scenarios::figures::plot::{Line, Panel, render_svg};
+    // (low, estimate, high): the estimate at 10 %, 50 % and 90 % of each band.
+    let bands = [(1.0, 1.4, 5.0), (2.0, 4.0, 6.0), (0.5, 3.2, 3.5)];
+    let points: Vec<(f64, f64)> = bands
+        .iter()
+        .enumerate()
+        .flat_map(|(k, &(lo, est, hi))| [(k as f64, lo), (k as f64, est), (k as f64, hi)])
+        .collect();
+    let panel = Panel::new(
+        "bands",
+        "value",
+        vec![Line::new(
+            "estimate",
+            points,
+            plotters::style::RED,
+            Kind::Interval,
+        )],
+    )
+    .categorical(&["a", "b", "c"]);
+    let (_, g) = render_svg("t", "case", &[panel]).unwrap();
+    let marks = &g[0].marks;
+    let bars: Vec<_> = marks.iter().filter(|(a, b)| a.0 == b.0).collect();
+    let dots: Vec<_> = marks
+        .iter()
+        .filter(|(a, b)| a.1 == b.1 && b.0 - a.0 == 6)
+        .collect();
+    assert_eq!((bars.len(), dots.len()), (3, 3), "{marks:?}");
+    for ((bar, dot), &(lo, est, hi)) in bars.iter().zip(&dots).zip(&bands) {
+        // Pixel y is linear in the value: the dot's place along the bar is the estimate's.
+        let (y_lo, y_hi) = (bar.0.1 as f64, bar.1.1 as f64);
+        let frac_px = (dot.0.1 as f64 - y_lo) / (y_hi - y_lo);
+        let frac = (est - lo) / (hi - lo);
+        let one_px = 1.0 / (y_hi - y_lo).abs();
+        assert!(
+            (frac_px - frac).abs() <= 1.5 * one_px,
+            "dot at {frac_px:.3} of the bar, estimate at {frac:.3}"
+        );
+    }
+}

@@ -173,13 +173,14 @@ pub fn write_figures(r: &SeaReport, out: &Path) -> Result<()> {
         out.join("sea_end_error.json"),
         serde_json::to_string_pretty(&data)?,
     )?;
-    // Side by side at each category: uncompensated left, compensated right.
-    let bars = |dx: f64, f: &dyn Fn(&EndErrorData) -> Band| {
+    // Side by side at each category: uncompensated left, compensated right; the dot is the
+    // median (the 5-95 % band is not symmetric about it).
+    let bands = |dx: f64, f: &dyn Fn(&EndErrorData) -> Band| {
         data.iter()
             .enumerate()
             .flat_map(|(k, d)| {
-                let b = f(d);
-                [(k as f64 + dx, b.p05), (k as f64 + dx, b.p95)]
+                let (x, b) = (k as f64 + dx, f(d));
+                [(x, b.p05), (x, b.median), (x, b.p95)]
             })
             .collect::<Vec<_>>()
     };
@@ -197,23 +198,16 @@ pub fn write_figures(r: &SeaReport, out: &Path) -> Result<()> {
         "error (nmi)",
         vec![
             Line::new(
-                "",
-                bars(-0.12, &|d| d.uncompensated_nm),
-                UNC,
-                Kind::ErrorBars,
-            ),
-            Line::new("", bars(0.12, &|d| d.compensated_nm), COMP, Kind::ErrorBars),
-            Line::new(
                 "uncompensated",
-                medians(-0.12, &|d| d.uncompensated_nm.median),
+                bands(-0.12, &|d| d.uncompensated_nm),
                 UNC,
-                Kind::Dots,
+                Kind::Interval,
             ),
             Line::new(
                 "compensated",
-                medians(0.12, &|d| d.compensated_nm.median),
+                bands(0.12, &|d| d.compensated_nm),
                 COMP,
-                Kind::Dots,
+                Kind::Interval,
             ),
         ],
     )

@@ -46,6 +46,9 @@ pub enum Kind {
     /// Separate error bars: `points` holds (x, y − e), (x, y + e) pairs, one pair per bar,
     /// each drawn with a dot at its centre.
     ErrorBars,
+    /// Bars of an asymmetric band with its estimate: `points` holds (x, low), (x, estimate),
+    /// (x, high) triples (e.g. 5 %, median, 95 %), each drawn with a dot at the estimate.
+    Interval,
     /// Translucent dots, one per point (scatter).
     Dots,
     /// A long series: per pixel column the min–max band (translucent) and the mean line
@@ -185,7 +188,8 @@ pub fn render_svg(
 /// A line as drawn: the shapes it becomes after the rules are applied.
 enum Drawn {
     Path(Vec<(f64, f64)>, bool),
-    Bars(Vec<[(f64, f64); 2]>),
+    /// Low end, dot, high end.
+    Bars(Vec<[(f64, f64); 3]>),
     Dots(Vec<(f64, f64)>),
     Env(Vec<Column>),
 }
@@ -209,7 +213,14 @@ impl Drawn {
                 l.points
                     .chunks(2)
                     .filter(|c| c.len() == 2)
-                    .map(|c| [c[0], c[1]])
+                    .map(|c| [c[0], (c[0].0, 0.5 * (c[0].1 + c[1].1)), c[1]])
+                    .collect(),
+            ),
+            Kind::Interval => Drawn::Bars(
+                l.points
+                    .chunks(3)
+                    .filter(|c| c.len() == 3)
+                    .map(|c| [c[0], c[1], c[2]])
                     .collect(),
             ),
             Kind::Dots => Drawn::Dots(l.points.iter().filter(finite).copied().collect()),
@@ -232,11 +243,8 @@ impl Drawn {
             }
             Drawn::Bars(b) => b
                 .iter()
-                .filter(|b| ok(&b[0]) && ok(&b[1]))
-                .flat_map(|b| {
-                    let c = map((b[0].0, 0.5 * (b[0].1 + b[1].1)));
-                    [(map(b[0]), map(b[1])), dot(c)]
-                })
+                .filter(|b| b.iter().all(ok))
+                .flat_map(|b| [(map(b[0]), map(b[2])), dot(map(b[1]))])
                 .collect(),
             Drawn::Dots(d) => d.iter().map(|&p| dot(map(p))).collect(),
             Drawn::Env(cols) => {
@@ -342,7 +350,11 @@ fn draw_panel<DB: DrawingBackend>(
         // Category k sits at x = k, half a slot from each side.
         x0 = x0.min(0.0) - 0.5;
         x1 = x1.max(p.categories.len() as f64 - 1.0) + 0.5;
-    } else if p.lines.iter().all(|l| l.kind == Kind::ErrorBars) {
+    } else if p
+        .lines
+        .iter()
+        .all(|l| matches!(l.kind, Kind::ErrorBars | Kind::Interval))
+    {
         // Bars at discrete x keep their outer bars off the frame.
         x0 -= 0.5;
         x1 += 0.5;
@@ -429,14 +441,11 @@ fn draw_panel<DB: DrawingBackend>(
                 chart
                     .draw_series(
                         bars.iter()
-                            .map(|b| PathElement::new(vec![b[0], b[1]], c.stroke_width(2))),
+                            .map(|b| PathElement::new(vec![b[0], b[2]], c.stroke_width(2))),
                     )
                     .map_err(|x| e(&x))?;
                 chart
-                    .draw_series(
-                        bars.iter()
-                            .map(|b| Circle::new((b[0].0, 0.5 * (b[0].1 + b[1].1)), 3, c.filled())),
-                    )
+                    .draw_series(bars.iter().map(|b| Circle::new(b[1], 3, c.filled())))
                     .map_err(|x| e(&x))?;
             }
             Drawn::Dots(pts) => {
@@ -549,7 +558,7 @@ fn draw_legend<DB: DrawingBackend>(
                 3,
                 c.stroke_width(2),
             )),
-            Kind::ErrorBars => area
+            Kind::ErrorBars | Kind::Interval => area
                 .draw(&PathElement::new(
                     vec![(a + 11, y - 6), (a + 11, y + 6)],
                     c.stroke_width(2),
