@@ -110,7 +110,12 @@ impl CarrierRun {
 
     /// C_v^n = C_c^n·C_v^c now.
     pub fn c_vn(&self) -> Matrix3<f64> {
-        self.now.c_cn * self.mount
+        // The default mount is the identity: no product per tick.
+        if self.mount == Matrix3::identity() {
+            self.now.c_cn
+        } else {
+            self.now.c_cn * self.mount
+        }
     }
 }
 
