@@ -76,6 +76,46 @@ pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
     (x, w)
 }
 
+/// Nudges the weights `w` by a few ulps so that their sum, accumulated in order as
+/// [`SegmentRule`] combines node values, is exactly 1: a constant (an exact 0 or 1 of a level
+/// attitude, say) is then reproduced bit for bit. The nudge goes to the smallest weight that
+/// can do it (the finest step), so the rule moves by ~1e-19.
+fn sum_to_one(w: &mut [f64]) {
+    let sum = |w: &[f64]| w.iter().fold(0.0, |s, w| s + w);
+    if sum(w) == 1.0 {
+        return;
+    }
+    // The last weight as 1 − (the others' sum): exact when that difference is representable.
+    let last = w.len() - 1;
+    let keep = w[last];
+    w[last] = 1.0 - sum(&w[..last]);
+    if sum(w) == 1.0 {
+        return;
+    }
+    w[last] = keep;
+    let mut order: Vec<usize> = (0..w.len()).collect();
+    order.sort_by(|&a, &b| w[a].abs().total_cmp(&w[b].abs()));
+    for i in order {
+        let b = w[i];
+        for k in 1..=4096u64 {
+            let up = sum(w) < 1.0;
+            // One ulp of this weight towards the missing part.
+            let bits = if up == (w[i] > 0.0) {
+                w[i].to_bits() + 1
+            } else {
+                w[i].to_bits() - 1
+            };
+            w[i] = f64::from_bits(bits);
+            if sum(w) == 1.0 {
+                return;
+            }
+            if k == 4096 {
+                w[i] = b;
+            }
+        }
+    }
+}
+
 /// The weights of the segment rule for (n, M).
 #[derive(Clone, Debug)]
 pub struct SegmentRule {
@@ -141,6 +181,9 @@ impl SegmentRule {
         }
         for i in 0..=m {
             me.at_w.extend(basis(i as f64));
+        }
+        for w in [&mut me.mean_w, &mut me.at_w, &mut me.gl_w, &mut me.seg_w] {
+            w.chunks_mut(n).for_each(sum_to_one);
         }
         for &t in &node_ticks {
             me.disp_w
@@ -545,6 +588,19 @@ mod tests {
                     let m = rule.tick_mean(k, &y)[0] * n as f64;
                     assert!((m - e).abs() < 1e-12, "tick {k}: {m} vs {e}");
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn constants_are_reproduced_bit_for_bit() {
+        for m in [16, 64, 256] {
+            let rule = SegmentRule::new(SEGMENT_NODES, m);
+            let y = vec![[1.0; CHANNELS]; SEGMENT_NODES];
+            for k in 0..m as usize {
+                assert_eq!(rule.tick_mean(k, &y), [1.0; POINT_CHANNELS]);
+                assert_eq!(rule.tick_point(k, 1, &y), [1.0; POINT_CHANNELS]);
+                assert_eq!(rule.state_at(k + 1, &y), [1.0; CHANNELS - POINT_CHANNELS]);
             }
         }
     }
