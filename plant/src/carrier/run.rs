@@ -165,10 +165,17 @@ impl Plant {
             }
             None => angles,
         };
-        let c_bc = angles.map(|a| run.body_to_carrier(a));
+        // One cached C_b^c while the table dwells (both points have the same angles).
+        let turning = angles[0] != angles[1];
+        let c0 = run.body_to_carrier(angles[0]);
+        let c_bc = if turning {
+            [c0, run.body_to_carrier(angles[1])]
+        } else {
+            [c0; 2]
+        };
         let pts = match &mut run.carrier {
             Carrier::Ship(s) if s.segment_ticks().is_some() => {
-                s.advance_points(c_bc[0] != c_bc[1], &mut run.now)
+                s.advance_points(turning, &mut run.now)
             }
             _ => {
                 let mut nodes = [run.now; 2];
@@ -287,8 +294,8 @@ impl Plant {
         let Some(run) = self.carrier.as_mut() else {
             return;
         };
-        let now = run.now;
         if let Some(i) = run.isolation.as_mut() {
+            let now = &run.now;
             i.update(
                 &s.dtheta_rad,
                 s.encoder.inner_rad,
