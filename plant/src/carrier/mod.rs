@@ -10,6 +10,7 @@
 
 pub mod isolation;
 pub mod run;
+pub mod segment;
 pub mod ship;
 pub mod spec;
 pub mod state;

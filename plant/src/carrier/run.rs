@@ -4,11 +4,12 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::isolation::Isolation;
+use super::segment::{PointEnv, TickPoints};
 use super::state::CarrierState;
 use super::track::TrackPosition;
 use super::{Carrier, GL_OFFSETS};
 use crate::config::{ConfigError, PlantConfig};
-use crate::kinematics::{TableIncrements, carrier_points, moving_base_increments};
+use crate::kinematics::{CarrierPoint, TableIncrements, carrier_points, moving_base_increments};
 use crate::plant::Plant;
 use crate::state::{Reader, StateError, Writer};
 use crate::table::gimbal::body_to_nav;
@@ -38,6 +39,14 @@ pub struct CarrierRun {
 impl CarrierRun {
     /// Wraps `carrier` with the mount, lever arm and Earth switches of `cfg`.
     pub fn new(mut carrier: Carrier, cfg: &PlantConfig) -> Box<Self> {
+        // A ship takes the segment rule (docs/carrier.md) when its motion allows it.
+        if let Carrier::Ship(s) = &mut carrier {
+            s.enable_segments(PointEnv {
+                rotation: cfg.earth.rotation,
+                gravity: cfg.earth.gravity,
+                lever_c_m: Vector3::from(cfg.carrier.lever_arm_m),
+            });
+        }
         let now = carrier.state_now();
         let mount = cfg.vehicle.c_vn();
         let isolation = cfg.carrier.azimuth_isolation.then(|| {
@@ -101,7 +110,12 @@ impl CarrierRun {
 
     /// C_v^n = C_c^n·C_v^c now.
     pub fn c_vn(&self) -> Matrix3<f64> {
-        self.now.c_cn * self.mount
+        // The default mount is the identity: no product per tick.
+        if self.mount == Matrix3::identity() {
+            self.now.c_cn
+        } else {
+            self.now.c_cn * self.mount
+        }
     }
 }
 
@@ -151,22 +165,47 @@ impl Plant {
             }
             None => angles,
         };
-        let mut nodes = [run.now; 2];
-        let end = run.carrier.advance(&mut nodes);
-        let pts = carrier_points(
-            &run.carrier,
-            &nodes,
-            run.rotation,
-            run.gravity,
-            &run.lever_c_m,
-        );
-        let c_bc = angles.map(|a| run.body_to_carrier(a));
-        run.now = end;
-        let (si, ci) = gm.angles.inner_rad.sin_cos();
+        // One cached C_b^c while the table dwells (both points have the same angles).
+        let turning = angles[0] != angles[1];
+        let c0 = run.body_to_carrier(angles[0]);
+        let c_bc = if turning {
+            [c0, run.body_to_carrier(angles[1])]
+        } else {
+            [c0; 2]
+        };
+        let pts = match &mut run.carrier {
+            Carrier::Ship(s) if s.segment_ticks().is_some() => {
+                s.advance_points(turning, &mut run.now)
+            }
+            _ => {
+                let mut nodes = [run.now; 2];
+                let end = run.carrier.advance(&mut nodes);
+                let pts = carrier_points(
+                    &run.carrier,
+                    &nodes,
+                    run.rotation,
+                    run.gravity,
+                    &run.lever_c_m,
+                );
+                let up = |i: usize| nodes[i].c_cn.row(2).transpose();
+                run.now = end;
+                TickPoints::Nodes([
+                    [pts[0].omega_ic_c, pts[0].f_c, up(0)],
+                    [pts[1].omega_ic_c, pts[1].f_c, up(1)],
+                ])
+            }
+        };
+        let d_outer = g1.angles.outer_rad - g0.angles.outer_rad;
+        // No sine while the outer gimbal rests (most ticks): its terms are zero then.
+        let (si, ci) = if d_outer == 0.0 {
+            (0.0, 0.0)
+        } else {
+            gm.angles.inner_rad.sin_cos()
+        };
         let gimbal = Vector3::new(
             g1.angles.inner_rad - g0.angles.inner_rad,
-            si * (g1.angles.outer_rad - g0.angles.outer_rad),
-            ci * (g1.angles.outer_rad - g0.angles.outer_rad),
+            si * d_outer,
+            ci * d_outer,
         );
         let gimbal = match iso {
             // The offset turns the outer axis, [0, sin i, cos i] in body axes: the exact
@@ -189,12 +228,58 @@ impl Plant {
             }
             None => gimbal,
         };
-        let inc = moving_base_increments(&c_bc, &pts, gimbal, h);
-        let up_b = 0.5
-            * (c_bc[0].transpose() * nodes[0].c_cn.row(2).transpose()
-                + c_bc[1].transpose() * nodes[1].c_cn.row(2).transpose());
+        let (inc, up_b) = match pts {
+            // The segment rule while the table dwells: the tick's mean ω_ic^c, f^c and up axis.
+            TickPoints::Mean([w, f, up]) => {
+                let f_b = c_bc[0].tr_mul(&f);
+                let inc = TableIncrements {
+                    dtheta_rad: gimbal + h * c_bc[0].tr_mul(&w),
+                    dv_mps: h * f_b,
+                    f_b_mps2: f_b,
+                };
+                (inc, c_bc[0].tr_mul(&up))
+            }
+            TickPoints::Nodes(p) => {
+                let pts = p.map(|[w, f, _]| CarrierPoint {
+                    omega_ic_c: w,
+                    f_c: f,
+                });
+                let inc = moving_base_increments(&c_bc, &pts, gimbal, h);
+                let up_b = 0.5 * (c_bc[0].transpose() * p[0][2] + c_bc[1].transpose() * p[1][2]);
+                (inc, up_b)
+            }
+        };
         self.c_vn = run.c_vn();
         (inc, up_b)
+    }
+
+    /// Switches a ship between the segment rule (`true`, the default when its motion allows it)
+    /// and the exact per-tick evaluation (`false`, the reference the tests compare with); only
+    /// before the first step. Returns the segment length in ticks (`None`: per tick).
+    pub fn set_carrier_segments(&mut self, on: bool) -> Result<Option<u64>, String> {
+        if self.tick != 0 {
+            return Err("the carrier's segment rule is switched before the first step".into());
+        }
+        let Some(run) = self.carrier.as_mut() else {
+            return Ok(None);
+        };
+        let Carrier::Ship(s) = &mut run.carrier else {
+            return Ok(None);
+        };
+        if on && s.segment_ticks().is_none() {
+            s.enable_segments(PointEnv {
+                rotation: run.rotation,
+                gravity: run.gravity,
+                lever_c_m: run.lever_c_m,
+            });
+        } else if !on && s.segment_ticks().is_some() {
+            s.disable_segments();
+        }
+        let m = s.segment_ticks();
+        run.now = run.carrier.state_now();
+        self.c_vn = run.c_vn();
+        self.truth.carrier = run.now.truth();
+        Ok(m)
     }
 
     /// True when the table rides a moving carrier (ship, trajectory or an external vessel model).
@@ -209,8 +294,8 @@ impl Plant {
         let Some(run) = self.carrier.as_mut() else {
             return;
         };
-        let now = run.now;
         if let Some(i) = run.isolation.as_mut() {
+            let now = &run.now;
             i.update(
                 &s.dtheta_rad,
                 s.encoder.inner_rad,
@@ -227,7 +312,7 @@ impl Plant {
     /// Writes the carrier's integrated state (the ship's mean-track position).
     pub(crate) fn write_carrier_state(&self, w: &mut Writer) {
         if let Some(Carrier::Ship(s)) = self.carrier.as_ref().map(|r| &r.carrier) {
-            let (tick, p) = s.position();
+            let (tick, p) = s.segment_position().unwrap_or_else(|| s.position());
             w.u64(tick);
             w.f64(p.lat_rad);
             w.f64(p.lon_rad);
@@ -263,7 +348,12 @@ impl Plant {
                     lat_rad: r.f64()?,
                     lon_rad: r.f64()?,
                 };
-                s.set_position(t, pos);
+                if s.segment_ticks().is_some() {
+                    s.restore_segment(t, pos, tick)
+                        .map_err(StateError::Config)?;
+                } else {
+                    s.set_position(t, pos);
+                }
             }
             Carrier::Trajectory { tick: t, .. } => *t = tick,
         }

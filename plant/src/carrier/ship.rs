@@ -23,28 +23,30 @@ use crate::units::DEG;
 /// The ship, advanced tick by tick.
 #[derive(Clone, Debug)]
 pub struct Ship {
-    track: Track,
-    waves: Option<Waves>,
-    height_m: f64,
-    tick_s: f64,
-    start: TrackPosition,
+    pub(super) track: Track,
+    pub(super) waves: Option<Waves>,
+    pub(super) height_m: f64,
+    pub(super) tick_s: f64,
+    pub(super) start: TrackPosition,
     /// Mean-track position at tick `tick`.
-    pos: TrackPosition,
-    tick: u64,
-    leg_hint: usize,
+    pub(super) pos: TrackPosition,
+    pub(super) tick: u64,
+    pub(super) leg_hint: usize,
     /// Sea jet at tick `tick`.
-    jet_now: SeaJet,
+    pub(super) jet_now: SeaJet,
     /// Earth quantities about the mean-track position at tick `tick` (a function of it).
-    earth: LocalEarth,
+    pub(super) earth: LocalEarth,
     /// Those at that position.
-    earth_now: EarthPoint,
+    pub(super) earth_now: EarthPoint,
     /// The composition angles at tick `tick` with their exact sines and cosines.
-    trig_now: Trig,
+    pub(super) trig_now: Trig,
     /// In-tick evaluation points, fractions of a tick.
     offsets: Vec<f64>,
     /// Quintic Hermite weights at those points, per output (value, rate, acceleration) and per
     /// end datum (x₀, ẋ₀, ẍ₀, x₁, ẋ₁, ẍ₁), with the tick length folded in.
     basis: Vec<[[f64; 6]; 3]>,
+    /// The segment rule's state (`None`: the exact per-tick path).
+    pub(super) seg: Option<Box<super::segment::SegState>>,
 }
 
 impl Ship {
@@ -84,6 +86,7 @@ impl Ship {
             trig_now: Trig::default(),
             offsets: offsets.to_vec(),
             basis,
+            seg: None,
         };
         me.set_position(0, start);
         me
@@ -145,7 +148,7 @@ impl Ship {
         }
     }
 
-    fn track_at(&mut self, t_s: f64) -> TrackPoint {
+    pub(super) fn track_at(&mut self, t_s: f64) -> TrackPoint {
         self.leg_hint = self.track.leg_at(t_s, self.leg_hint);
         self.track.eval(self.leg_hint, t_s)
     }
@@ -153,6 +156,9 @@ impl Ship {
     /// State at the current tick (from the tick, the position and what `advance` or
     /// `set_position` derived from them: a restored ship continues bit for bit).
     pub fn state_now(&mut self) -> CarrierState {
+        if let Some(s) = self.segment_state_now() {
+            return s;
+        }
         let t = self.tick as f64 * self.tick_s;
         let tp = self.track_at(t);
         compose_with(
@@ -243,12 +249,13 @@ impl Ship {
     /// Restarts from tick 0 (for re-runs).
     pub fn reset(&mut self) {
         self.set_position(0, self.start);
+        self.restart_segments();
     }
 }
 
 /// The composition angles: course ψ, a = −(ψ + ψ_w), pitch θ_w, roll φ_w.
 #[inline]
-fn angles(tp: &TrackPoint, jet: &SeaJet) -> [f64; 4] {
+pub(super) fn angles(tp: &TrackPoint, jet: &SeaJet) -> [f64; 4] {
     [
         tp.psi_rad,
         -(tp.psi_rad + jet.x[dof::YAW]),
@@ -270,8 +277,8 @@ const TRIG_REACH_RAD: f64 = 0.01;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Trig {
     ang: [f64; 4],
-    sin: [f64; 4],
-    cos: [f64; 4],
+    pub(super) sin: [f64; 4],
+    pub(super) cos: [f64; 4],
 }
 
 impl Default for Trig {
@@ -287,7 +294,7 @@ impl Default for Trig {
 
 impl Trig {
     /// Exact sines and cosines.
-    fn exact(ang: [f64; 4]) -> Self {
+    pub(super) fn exact(ang: [f64; 4]) -> Self {
         let mut t = Self {
             ang,
             ..Self::default()
@@ -364,7 +371,7 @@ pub fn compose(tp: &TrackPoint, pos: TrackPosition, h0_m: f64, jet: &SeaJet) -> 
 /// [`compose`] with the angles' sines and cosines, the Earth expansion and the Earth quantities
 /// `e_track` at the mean-track position given.
 #[inline]
-fn compose_with(
+pub(super) fn compose_with(
     tp: &TrackPoint,
     pos: TrackPosition,
     h0_m: f64,

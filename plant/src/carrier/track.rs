@@ -124,6 +124,35 @@ impl Track {
         Self { legs }
     }
 
+    /// Times where a course or speed change starts or ends, s, ascending: the third derivative
+    /// of the course (and the second of the speed) jumps there, so a polynomial across one
+    /// is not accurate (the segment rule takes those segments tick by tick).
+    pub fn corners_s(&self) -> Vec<f64> {
+        let mut c: Vec<f64> = self
+            .legs
+            .iter()
+            .flat_map(|l| {
+                // Every leg start (a change cut short by the leg's end leaves a corner there).
+                let turn = (l.turn_s > 0.0).then_some(l.t0_s + l.turn_s);
+                let acc = (l.acc_s > 0.0).then_some(l.t0_s + l.acc_s);
+                std::iter::once(l.t0_s).chain(turn).chain(acc)
+            })
+            .collect();
+        c.sort_by(f64::total_cmp);
+        c.dedup();
+        c
+    }
+
+    /// Shortest course or speed change, s (infinite without one): its profile's angular
+    /// frequency 2π/T bounds the mean track's spectrum.
+    pub fn shortest_change_s(&self) -> f64 {
+        self.legs
+            .iter()
+            .flat_map(|l| [l.turn_s, l.acc_s])
+            .filter(|&d| d > 0.0)
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Index of the leg holding time `t_s`, searched from `hint` (calls run forward in time).
     pub fn leg_at(&self, t_s: f64, hint: usize) -> usize {
         let mut i = hint.min(self.legs.len() - 1);

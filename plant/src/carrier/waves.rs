@@ -116,6 +116,11 @@ pub struct Waves {
     z: Vec<Complex<f64>>,
     tick: u64,
     tick_s: f64,
+    /// Segment stride of [`Waves::seek_segment`], ticks (0: not set), and exp(iω_i·stride·h).
+    stride: u64,
+    rot_stride: Vec<Complex<f64>>,
+    /// True when `z` was last carried by strides (then a one-tick step must not continue it).
+    by_stride: bool,
 }
 
 impl Waves {
@@ -202,6 +207,9 @@ impl Waves {
             coef,
             tick: 0,
             tick_s,
+            stride: 0,
+            rot_stride: vec![],
+            by_stride: false,
         };
         me.resync(0);
         Some(me)
@@ -222,6 +230,60 @@ impl Waves {
         &self.phase_rad
     }
 
+    /// Highest component frequency, rad/s.
+    pub fn omega_top_rps(&self) -> f64 {
+        self.omega_rps.iter().fold(0.0, |a, &w| a.max(w))
+    }
+
+    /// Sets the segment stride of [`Waves::seek_segment`] (a divisor of [`RESYNC_TICKS`]) and
+    /// the in-segment offsets (in ticks from the segment start) that `jet(Some(j))` evaluates.
+    pub fn set_segment(&mut self, stride: u64, offsets_ticks: &[f64]) {
+        assert!(
+            stride > 0 && RESYNC_TICKS.is_multiple_of(stride),
+            "stride {stride}"
+        );
+        self.stride = stride;
+        let h = self.tick_s;
+        let rot = |f: f64| -> Vec<Complex<f64>> {
+            self.omega_rps
+                .iter()
+                .map(|w| Complex::from_polar(1.0, w * f * h))
+                .collect()
+        };
+        self.rot_stride = rot(stride as f64);
+        self.rot_offsets = offsets_ticks.iter().map(|&f| rot(f)).collect();
+        self.by_stride = false;
+        self.resync(0);
+    }
+
+    /// Moves the phasors to segment start `tick` (a multiple of the stride): one product per
+    /// component from the previous segment, else from the last resynchronisation point by
+    /// strides. So z there is a function of the tick alone (not the same bits as [`Waves::seek`]
+    /// carries, which is why a one-tick step never continues a stride-carried z).
+    pub fn seek_segment(&mut self, tick: u64) {
+        let m = self.stride;
+        debug_assert!(m > 0 && tick.is_multiple_of(m));
+        if self.by_stride && tick == self.tick {
+            return;
+        }
+        let step = |me: &mut Self| {
+            me.z.iter_mut()
+                .zip(&me.rot_stride)
+                .for_each(|(z, r)| *z *= r);
+            me.tick += m;
+        };
+        if self.by_stride && tick == self.tick.wrapping_add(m) && !tick.is_multiple_of(RESYNC_TICKS)
+        {
+            step(self);
+            return;
+        }
+        self.resync(tick - tick % RESYNC_TICKS);
+        while self.tick < tick {
+            step(self);
+        }
+        self.by_stride = true;
+    }
+
     fn resync(&mut self, tick: u64) {
         let t = tick as f64 * self.tick_s;
         for ((z, w), e) in self.z.iter_mut().zip(&self.omega_rps).zip(&self.phase_rad) {
@@ -233,10 +295,13 @@ impl Waves {
     /// Moves the phasors to tick `tick`: one product per component when stepping forward by one
     /// tick; otherwise from the last resynchronisation point.
     pub fn seek(&mut self, tick: u64) {
-        if tick == self.tick {
+        if tick == self.tick && !self.by_stride {
             return;
         }
-        if tick == self.tick + 1 && !tick.is_multiple_of(RESYNC_TICKS) {
+        if !self.by_stride
+            && tick == self.tick.wrapping_add(1)
+            && !tick.is_multiple_of(RESYNC_TICKS)
+        {
             self.z
                 .iter_mut()
                 .zip(&self.rot_tick)
@@ -246,6 +311,7 @@ impl Waves {
         }
         let base = tick - tick % RESYNC_TICKS;
         self.resync(base);
+        self.by_stride = false;
         while self.tick < tick {
             self.z
                 .iter_mut()

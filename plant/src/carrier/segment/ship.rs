@@ -1,0 +1,275 @@
+//! The ship on the segment rule: building a segment (the full carrier state at the nodes), the
+//! per-tick points and tick-end state from the interpolant, and the state codec's part.
+
+use std::sync::Arc;
+
+use nalgebra::{Matrix3, Vector3};
+
+use super::super::ship::{Ship, Trig, angles, compose_with};
+use super::super::state::CarrierState;
+use super::super::track::TrackPosition;
+use super::super::waves::SeaJet;
+use super::{CHANNELS, SEGMENT_NODES, SegmentRule, TickPoints};
+use crate::earth::LocalEarth;
+use crate::kinematics::carrier_point_near;
+
+/// Where the carrier points are taken: Earth switches and the lever arm (from the plant).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointEnv {
+    /// Earth rotation on.
+    pub rotation: bool,
+    /// Gravity on.
+    pub gravity: bool,
+    /// IMU position from the reference point, carrier axes, m.
+    pub lever_c_m: Vector3<f64>,
+}
+
+/// The ship's segment in progress.
+#[derive(Clone, Debug)]
+pub struct SegState {
+    rule: Arc<SegmentRule>,
+    env: PointEnv,
+    /// Corners of the mean track, s (see [`super::track::Track::corners_s`]).
+    corners_s: Vec<f64>,
+    /// Current tick.
+    tick: u64,
+    /// The segment: its first tick, the mean-track position there and at its end.
+    start_tick: u64,
+    start_pos: TrackPosition,
+    end_pos: TrackPosition,
+    /// True when the segment runs the exact per-tick path (it holds a corner).
+    exact: bool,
+    /// Node values ([`CHANNELS`]).
+    y: Vec<[f64; CHANNELS]>,
+}
+
+impl Ship {
+    /// Switches the segment rule on for points taken with `env` (call at tick 0). Returns the
+    /// segment length in ticks, or `None` when the motion is too fast for it (then the exact
+    /// per-tick path stays).
+    pub fn enable_segments(&mut self, env: PointEnv) -> Option<u64> {
+        assert_eq!(self.tick, 0, "segments are switched on at tick 0");
+        let wave_top = self.waves.as_ref().map_or(0.0, |w| w.omega_top_rps());
+        let track_top = 2.0 * std::f64::consts::PI / self.track.shortest_change_s();
+        let m = SegmentRule::choose(wave_top.max(track_top), self.tick_s)?;
+        let rule = SegmentRule::new(SEGMENT_NODES, m);
+        if let Some(w) = self.waves.as_mut() {
+            w.set_segment(m, &rule.node_ticks);
+        }
+        let start = self.pos;
+        self.seg = Some(Box::new(SegState {
+            rule: Arc::new(rule),
+            env,
+            corners_s: self.track.corners_s(),
+            tick: 0,
+            start_tick: 0,
+            start_pos: start,
+            end_pos: start,
+            exact: false,
+            y: vec![],
+        }));
+        self.build_segment(0, start);
+        Some(m)
+    }
+
+    /// Back to the exact per-tick path (at tick 0).
+    pub fn disable_segments(&mut self) {
+        assert_eq!(self.tick, 0, "segments are switched off at tick 0");
+        self.seg = None;
+        self.set_position(0, self.start);
+    }
+
+    /// Restarts the segment rule (if on) from tick 0.
+    pub(in crate::carrier) fn restart_segments(&mut self) {
+        if self.seg.is_some() {
+            self.build_segment(0, self.start);
+        }
+    }
+
+    /// The segment length in ticks when the segment rule is on.
+    pub fn segment_ticks(&self) -> Option<u64> {
+        self.seg.as_ref().map(|s| s.rule.m)
+    }
+
+    /// Builds segment `index` from the mean-track position `pos0` at its start and sets the
+    /// state to its first tick.
+    fn build_segment(&mut self, index: u64, pos0: TrackPosition) {
+        let mut seg = self.seg.take().expect("segment rule on");
+        let (m, h) = (seg.rule.m, self.tick_s);
+        let t0 = index * m;
+        let (a_s, b_s) = (t0 as f64 * h, (t0 + m) as f64 * h);
+        let i = seg.corners_s.partition_point(|&c| c <= a_s);
+        seg.exact = seg.corners_s.get(i).is_some_and(|&c| c < b_s);
+        (seg.tick, seg.start_tick, seg.start_pos) = (t0, t0, pos0);
+        if seg.exact {
+            self.set_position(t0, pos0);
+        } else {
+            self.nodes_of(&mut seg, t0, pos0);
+        }
+        self.seg = Some(seg);
+    }
+
+    /// The full carrier state at the nodes of the segment from tick `t0` at `pos0`.
+    fn nodes_of(&mut self, seg: &mut SegState, t0: u64, pos0: TrackPosition) {
+        let rule = seg.rule.clone();
+        let (h, n) = (self.tick_s, rule.n);
+        if let Some(w) = self.waves.as_mut() {
+            w.seek_segment(t0);
+        }
+        let mut parts = Vec::with_capacity(n);
+        let mut v = Vec::with_capacity(n);
+        for j in 0..n {
+            let tp = self.track_at((t0 as f64 + rule.node_ticks[j]) * h);
+            let jet = self
+                .waves
+                .as_ref()
+                .map_or(SeaJet::default(), |w| w.jet(Some(j)));
+            let trig = Trig::exact(angles(&tp, &jet));
+            v.push([tp.speed_mps * trig.sin[0], tp.speed_mps * trig.cos[0]]);
+            parts.push((tp, jet, trig));
+        }
+        let (disp, end) = rule.displacements(&v, rule.m as f64 * h);
+        if self.earth.lat0_rad() != LocalEarth::grid_lat_rad(pos0.lat_rad) {
+            self.earth = LocalEarth::near(pos0.lat_rad);
+        }
+        let here = self.earth.at(pos0.lat_rad);
+        let mut p = pos0;
+        let (_, _, mid) = p.advance_from(&self.earth, &here, end[1], end[0], self.height_m);
+        seg.end_pos = p;
+        let (i_rm, i_rn) = (
+            1.0 / (mid.rm_m + self.height_m),
+            1.0 / ((mid.rn_m + self.height_m) * mid.cos_lat),
+        );
+        seg.y.clear();
+        for ((tp, jet, trig), d) in parts.iter().zip(&disp) {
+            let pos = TrackPosition {
+                lat_rad: pos0.lat_rad + d[1] * i_rm,
+                lon_rad: pos0.lon_rad + d[0] * i_rn,
+            };
+            let s = compose_with(tp, pos, self.height_m, jet, &self.earth, &mid, trig);
+            let e = &seg.env;
+            let pt = carrier_point_near(&s, &self.earth, e.rotation, e.gravity, &e.lever_c_m);
+            let c = &s.c_cn;
+            let mut y = [0.0; CHANNELS];
+            y[0..3].copy_from_slice(pt.omega_ic_c.as_slice());
+            y[3..6].copy_from_slice(pt.f_c.as_slice());
+            y[6..9].copy_from_slice(&[c[(2, 0)], c[(2, 1)], c[(2, 2)]]);
+            y[9] = s.lat_rad - pos0.lat_rad;
+            y[10] = s.lon_rad - pos0.lon_rad;
+            y[11] = s.height_m;
+            y[12..15].copy_from_slice(s.v_n.as_slice());
+            y[15..18].copy_from_slice(s.a_n.as_slice());
+            for r in 0..3 {
+                for k in 0..3 {
+                    y[18 + 3 * r + k] = c[(r, k)];
+                }
+            }
+            y[27..30].copy_from_slice(s.omega_nc_c.as_slice());
+            y[30..33].copy_from_slice(s.alpha_nc_c.as_slice());
+            seg.y.push(y);
+        }
+    }
+
+    /// The segment rule's state now (`None` without it).
+    pub(in crate::carrier) fn segment_state_now(&mut self) -> Option<CarrierState> {
+        let seg = self.seg.take()?;
+        let mut now = CarrierState::at_rest(0.0, 0.0, 0.0, Matrix3::identity());
+        if seg.exact {
+            // The exact path's state at its tick: the bits its last `advance` returned.
+            self.seg = None;
+            now = self.state_now();
+        } else {
+            seg.state_into((seg.tick - seg.start_tick) as usize, &mut now);
+        }
+        self.seg = Some(seg);
+        Some(now)
+    }
+
+    /// One tick with the segment rule on: the tick's points (means while the table dwells,
+    /// `turning` false; else at its Gauss–Legendre points); the state at its end goes to `end`.
+    pub fn advance_points(&mut self, turning: bool, end: &mut CarrierState) -> TickPoints {
+        let mut seg = self.seg.take().expect("segment rule on");
+        let k = (seg.tick - seg.start_tick) as usize;
+        let pts = if seg.exact {
+            let mut nodes = [*end; 2];
+            *end = self.advance(&mut nodes);
+            let e = &seg.env;
+            TickPoints::Nodes(nodes.map(|n| {
+                let p = carrier_point_near(&n, &self.earth, e.rotation, e.gravity, &e.lever_c_m);
+                let up = n.c_cn.row(2).transpose();
+                [p.omega_ic_c, p.f_c, up]
+            }))
+        } else if turning {
+            TickPoints::Nodes([0, 1].map(|p| TickPoints::split(&seg.rule.tick_point(k, p, &seg.y))))
+        } else {
+            TickPoints::Mean(TickPoints::split(&seg.rule.tick_mean(k, &seg.y)))
+        };
+        seg.tick += 1;
+        let (next, m) = (seg.tick, seg.rule.m);
+        if next == seg.start_tick + m {
+            let pos = if seg.exact { self.pos } else { seg.end_pos };
+            self.seg = Some(seg);
+            self.build_segment(next / m, pos);
+            if let Some(s) = self.seg.as_deref().filter(|s| !s.exact) {
+                s.state_into(0, end);
+            } else {
+                *end = self.state_now();
+            }
+        } else {
+            if !seg.exact {
+                seg.state_into(k + 1, end);
+            }
+            self.seg = Some(seg);
+        }
+        pts
+    }
+
+    /// What the state codec saves with the segment rule on: the current segment's first tick
+    /// and the mean-track position there.
+    pub fn segment_position(&self) -> Option<(u64, TrackPosition)> {
+        self.seg.as_ref().map(|s| (s.start_tick, s.start_pos))
+    }
+
+    /// Restores from [`Ship::segment_position`] and continues at tick `tick` of that segment.
+    pub fn restore_segment(
+        &mut self,
+        start_tick: u64,
+        pos: TrackPosition,
+        tick: u64,
+    ) -> Result<(), String> {
+        let m = self.segment_ticks().ok_or("segment rule off")?;
+        if !start_tick.is_multiple_of(m) || tick < start_tick || tick - start_tick >= m {
+            return Err(format!(
+                "carrier state: segment start {start_tick} does not hold tick {tick} (segments of {m} ticks)"
+            ));
+        }
+        self.build_segment(start_tick / m, pos);
+        let exact = self.seg.as_ref().is_some_and(|s| s.exact);
+        let mut end = CarrierState::at_rest(0.0, 0.0, 0.0, Matrix3::identity());
+        for _ in start_tick..tick {
+            if exact {
+                self.advance_points(true, &mut end);
+            } else if let Some(s) = self.seg.as_mut() {
+                s.tick += 1;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl SegState {
+    /// The interpolated carrier state at tick boundary `i` of the segment, into `s`.
+    #[inline]
+    fn state_into(&self, i: usize, s: &mut CarrierState) {
+        let c = self.rule.state_at(i, &self.y);
+        let v = |o: usize| Vector3::new(c[o], c[o + 1], c[o + 2]);
+        s.lat_rad = self.start_pos.lat_rad + c[0];
+        s.lon_rad = self.start_pos.lon_rad + c[1];
+        s.height_m = c[2];
+        s.v_n = v(3);
+        s.a_n = v(6);
+        s.c_cn = Matrix3::new(c[9], c[10], c[11], c[12], c[13], c[14], c[15], c[16], c[17]);
+        s.omega_nc_c = v(18);
+        s.alpha_nc_c = v(21);
+    }
+}
