@@ -437,16 +437,20 @@ SLOT = {"sensor.gyro.slot[0].enabled": True, "sensor.gyro.slot[0].kind": 1,
 
 
 def test_declared_effect_slots_are_set_by_the_masters():
-    """Slot parameters set before initialization by ecos (FMI 2, and FMI 3 through the element
-    views) give the increments FMPy gives for the same start values; the slot changes them."""
+    """Slot parameters set before initialization by libcosim (OSP, FMI 2: booleans, integers
+    and reals through its initial-value calls) and by ecos (FMI 2, and FMI 3 through the
+    element views) give the increments FMPy gives for the same start values; the slot changes
+    them."""
     n = 2000
     start = dict(OSP_START, **SLOT)
     fm = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), n, start)
     plain = fmpy_run(os.path.join(FMU_DIR, "RinsImu.fmu"), n, OSP_START)
     assert not np.array_equal(fm[:, [0, 2]], plain[:, [0, 2]]), "the slot acts on x and z"
     assert np.array_equal(fm[:, 1], plain[:, 1]), "and not on y"
-    for name, fmu in [("ecos FMI 2", "RinsImu.fmu"), ("ecos FMI 3", "RinsImu3.fmu")]:
-        rows, _ = master("ecos", os.path.join(FMU_DIR, fmu), n, start=start)
+    runs = {name: master("ecos", os.path.join(FMU_DIR, fmu), n, start=start)[0]
+            for name, fmu in [("ecos FMI 2", "RinsImu.fmu"), ("ecos FMI 3", "RinsImu3.fmu")]}
+    runs["libcosim OSP (FMI 2)"] = master("libcosim", osp_dir(), n, start=SLOT)[0]
+    for name, rows in runs.items():
         assert np.array_equal(rows, fm), (name, np.abs(rows - fm).max())
 
 
