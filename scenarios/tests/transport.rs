@@ -64,9 +64,11 @@ fn lockstep_processes_over_one_hour_equal_the_in_process_run() {
     let cfg = rins_plant::presets::paper_16pos_config();
     let cmd = [rins_transport::ScheduledCommand {
         after_seq: 3000,
-        outer_rad: 90f64.to_radians(),
-        inner_rad: 180f64.to_radians(),
-        rate_rps: 5f64.to_radians(),
+        action: rins_transport::NavAction::MoveTo {
+            outer_rad: 90f64.to_radians(),
+            inner_rad: 180f64.to_radians(),
+            rate_rps: 5f64.to_radians(),
+        },
     }];
     let want = rins_transport::reference(&cfg, 360_000, 50, &cmd);
     assert_eq!(got["samples"], 360_000);

@@ -150,6 +150,12 @@ pub mod kind {
     /// A navigator has (re)joined: the plant resends the batch it is waiting on. Covers a
     /// restarted navigator that cleaned up its dead predecessor before the plant noticed.
     pub const HELLO: u32 = 3;
+    /// Acknowledge and switch azimuth isolation on from the first tick of the next batch (a
+    /// moving carrier of the plant's scenario only; docs/carrier.md, "Azimuth isolation").
+    pub const AZIMUTH_ISOLATION_ON: u32 = 4;
+    /// Acknowledge and switch azimuth isolation off from the first tick of the next batch (the
+    /// outer offset stays where it is).
+    pub const AZIMUTH_ISOLATION_OFF: u32 = 5;
 }
 
 /// From the navigation side to the plant.

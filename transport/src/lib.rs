@@ -8,6 +8,7 @@
 //! message, and receivers check sequence numbers. Lockstep makes results independent of the
 //! processes' speeds.
 
+pub mod action;
 pub mod layout;
 pub mod nav_side;
 pub mod pace;
@@ -18,6 +19,7 @@ pub mod services;
 pub mod session;
 pub mod signals;
 
+pub use action::NavAction;
 pub use nav_side::{
     NavOptions, NavProcessor, NavSummary, ScheduledCommand, navigate, navigate_probed,
 };
@@ -46,13 +48,7 @@ pub fn reference(
         }
         done += n;
         if let Some(c) = commands.iter().find(|c| c.after_seq == seq) {
-            plant
-                .command_gimbal(&rins_plant::GimbalCommand::MoveTo {
-                    outer_rad: c.outer_rad,
-                    inner_rad: c.inner_rad,
-                    rate_rps: c.rate_rps,
-                })
-                .expect("valid command");
+            c.action.apply(&mut plant).expect("valid command");
         }
         seq += 1;
     }

@@ -9,6 +9,7 @@ use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
 use rins_plant::PlantConfig;
 use rins_plant::table::{GimbalAngles, body_to_nav};
 
+use crate::action::NavAction;
 use crate::layout::{
     FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, LAYOUT_VERSION, NavCommand, NavSolution, kind,
 };
@@ -121,17 +122,13 @@ impl NavProcessor {
     }
 }
 
-/// A table command the navigator sends after a given batch.
+/// A command the navigator sends after a given batch.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScheduledCommand {
     /// Sent with the acknowledgement of this batch; the plant applies it from the next batch.
     pub after_seq: u64,
-    /// Target outer angle, rad.
-    pub outer_rad: f64,
-    /// Target inner angle, rad.
-    pub inner_rad: f64,
-    /// Cruise rate, rad/s.
-    pub rate_rps: f64,
+    /// What it asks.
+    pub action: NavAction,
 }
 
 /// How the navigator runs.
@@ -320,8 +317,7 @@ pub fn navigate_probed(
                 ..NavCommand::default()
             };
             if let Some(sc) = opts.commands.iter().find(|c| c.after_seq == seq) {
-                c.kind = kind::MOVE_TO;
-                (c.outer_rad, c.inner_rad, c.rate_rps) = (sc.outer_rad, sc.inner_rad, sc.rate_rps);
+                sc.action.write(&mut c);
             }
             cmd.send_copy(c)
                 .map_err(|e| ipc("sending the acknowledgement")(&e))?;

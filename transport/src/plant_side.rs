@@ -3,7 +3,9 @@
 
 use std::time::{Duration, Instant};
 
-use rins_plant::{GimbalCommand, ImuSample, Plant, Truth};
+use rins_plant::{ImuSample, Plant, Truth};
+
+use crate::action::NavAction;
 
 use crate::layout::{
     BATCH_CAPACITY, FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, LAYOUT_VERSION, NavCommand,
@@ -69,11 +71,11 @@ pub(crate) fn check_command(c: &NavCommand) -> Result<(), TransportError> {
             want: LAYOUT_VERSION,
         });
     }
-    if c.kind > kind::HELLO {
+    if c.kind > kind::AZIMUTH_ISOLATION_OFF {
         return Err(TransportError::Ipc {
             what: "navigator command".into(),
             detail: format!(
-                "kind {} is unknown (0 acknowledge, 1 move-to, 2 stop, 3 hello)",
+                "kind {} is unknown (0 acknowledge, 1 move-to, 2 stop, 3 hello, 4 azimuth isolation on, 5 azimuth isolation off)",
                 c.kind
             ),
         });
@@ -86,17 +88,11 @@ pub(crate) fn apply(
     c: &NavCommand,
     summary: &mut ServeSummary,
 ) -> Result<(), TransportError> {
-    if c.kind == kind::MOVE_TO {
-        plant
-            .command_gimbal(&GimbalCommand::MoveTo {
-                outer_rad: c.outer_rad,
-                inner_rad: c.inner_rad,
-                rate_rps: c.rate_rps,
-            })
-            .map_err(|e| TransportError::Ipc {
-                what: "navigator command".into(),
-                detail: e,
-            })?;
+    if let Some(action) = NavAction::from_command(c) {
+        action.apply(plant).map_err(|e| TransportError::Ipc {
+            what: format!("navigator command (kind {})", c.kind),
+            detail: e,
+        })?;
         summary.commands.push((plant.samples_done(), *c));
     }
     Ok(())

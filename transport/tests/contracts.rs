@@ -7,8 +7,8 @@ use std::time::Duration;
 use iceoryx2::prelude::*;
 use rins_transport::layout::{ImuBatch, LAYOUT_VERSION};
 use rins_transport::{
-    Mode, NavOptions, ScheduledCommand, ServeOptions, Session, TransportError, navigate, reference,
-    serve,
+    Mode, NavAction, NavOptions, ScheduledCommand, ServeOptions, Session, TransportError, navigate,
+    reference, serve,
 };
 
 fn session(tag: &str) -> String {
@@ -24,9 +24,11 @@ fn lockstep_in_threads_equals_the_reference_with_a_table_command() {
     let name = session("lock");
     let commands = vec![ScheduledCommand {
         after_seq: 40,
-        outer_rad: 1.0,
-        inner_rad: 0.5,
-        rate_rps: 0.2,
+        action: NavAction::MoveTo {
+            outer_rad: 1.0,
+            inner_rad: 0.5,
+            rate_rps: 0.2,
+        },
     }];
     let nav_cmds = commands.clone();
     let n2 = name.clone();

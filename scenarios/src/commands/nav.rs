@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use rins_transport::ScheduledCommand;
+use rins_transport::{NavAction, ScheduledCommand};
 
 use super::args::{Overrides, load};
 use super::serve::peer_timeout;
@@ -22,6 +22,10 @@ pub struct NavArgs {
     /// Command the table after batch SEQ: SEQ:OUTER_DEG:INNER_DEG:RATE_DPS (repeatable).
     #[arg(long)]
     pub command_after: Vec<String>,
+    /// Switch azimuth isolation after batch SEQ: SEQ:on or SEQ:off (repeatable; a moving
+    /// carrier only, docs/carrier.md).
+    #[arg(long)]
+    pub isolation_after: Vec<String>,
     /// Seconds without a plant before giving up.
     #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
     pub peer_timeout_s: f64,
@@ -33,11 +37,22 @@ pub struct NavArgs {
 /// Navigates on the served stream to its end and prints the final state as one JSON line.
 pub fn run(a: &NavArgs) -> Result<()> {
     let sc = load(&a.scenario, &a.overrides)?;
-    let commands = a
+    let mut commands = a
         .command_after
         .iter()
         .map(|c| parse_command(c))
+        .chain(a.isolation_after.iter().map(|c| parse_isolation(c)))
         .collect::<Result<Vec<_>>>()?;
+    commands.sort_by_key(|c| c.after_seq);
+    if let Some(w) = commands
+        .windows(2)
+        .find(|w| w[0].after_seq == w[1].after_seq)
+    {
+        anyhow::bail!(
+            "two commands after batch {}: one command per acknowledgement (docs/transport.md)",
+            w[0].after_seq
+        );
+    }
     let opts = rins_transport::NavOptions {
         acknowledge: !a.no_ack,
         commands,
@@ -74,8 +89,25 @@ fn parse_command(c: &str) -> Result<ScheduledCommand> {
     let f = |s: &str| s.parse::<f64>().map_err(|_| bad());
     Ok(ScheduledCommand {
         after_seq: p[0].parse().map_err(|_| bad())?,
-        outer_rad: f(p[1])?.to_radians(),
-        inner_rad: f(p[2])?.to_radians(),
-        rate_rps: f(p[3])?.to_radians(),
+        action: NavAction::MoveTo {
+            outer_rad: f(p[1])?.to_radians(),
+            inner_rad: f(p[2])?.to_radians(),
+            rate_rps: f(p[3])?.to_radians(),
+        },
+    })
+}
+
+/// One `--isolation-after SEQ:on|off`.
+fn parse_isolation(c: &str) -> Result<ScheduledCommand> {
+    let bad = || anyhow::anyhow!("--isolation-after {c:?}: expected SEQ:on or SEQ:off");
+    let (seq, state) = c.split_once(':').ok_or_else(bad)?;
+    let on = match state {
+        "on" => true,
+        "off" => false,
+        _ => return Err(bad()),
+    };
+    Ok(ScheduledCommand {
+        after_seq: seq.parse().map_err(|_| bad())?,
+        action: NavAction::AzimuthIsolation(on),
     })
 }
