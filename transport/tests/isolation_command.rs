@@ -5,37 +5,17 @@
 
 use std::time::Duration;
 
-use rins_plant::carrier::{CarrierKind, LegSpec, SpectrumKind};
 use rins_plant::{Plant, PlantConfig};
 use rins_transport::layout::kind;
 use rins_transport::{
     Mode, NavAction, NavOptions, ScheduledCommand, ServeOptions, navigate, reference, serve,
 };
 
+mod ship;
+use ship::ship;
+
 fn session(tag: &str) -> String {
     format!("iso{}{tag}", std::process::id())
-}
-
-/// The 16-position scheme on a ship at sea state 5 turning from 30° to 120° after 60 s.
-fn ship() -> PlantConfig {
-    let mut cfg = rins_plant::presets::paper_16pos_config();
-    let c = &mut cfg.carrier;
-    c.kind = CarrierKind::Ship;
-    c.ship.legs = vec![
-        LegSpec {
-            heading_deg: 30.0,
-            speed_kn: 12.0,
-            duration_s: 60.0,
-        },
-        LegSpec {
-            heading_deg: 120.0,
-            speed_kn: 12.0,
-            duration_s: 3600.0,
-        },
-    ];
-    c.ship.sea.spectrum = SpectrumKind::Jonswap;
-    c.ship.sea.sea_state = 5;
-    cfg
 }
 
 fn serve_opts() -> ServeOptions {
@@ -126,6 +106,7 @@ fn isolation_commanded_over_shared_memory_equals_the_in_process_run() {
     };
     let turned = (outer_after(&commands) - outer_after(&[])).to_degrees();
     let wrapped = (turned + 180.0).rem_euclid(360.0) - 180.0;
+    println!("outer gimbal with isolation through the turn: {wrapped:+.1}° from the run without");
     assert!(
         (wrapped - 90.0).abs() < 10.0,
         "the outer gimbal counter-rotated the 90° course change: {wrapped:.1}°"

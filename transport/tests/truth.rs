@@ -2,38 +2,16 @@
 //! every record, the plant's carrier truth and IMU attitude bit for bit, and the navigator's
 //! result does not depend on it (the navigator side never reads it).
 
+mod ship;
+use ship::ship;
 use std::time::{Duration, Instant};
 
-use rins_plant::carrier::{CarrierKind, LegSpec, SpectrumKind};
-use rins_plant::{Plant, PlantConfig};
+use rins_plant::Plant;
 use rins_transport::layout::{FLAG_END, LAYOUT_VERSION, NavCommand, TruthRecord, kind};
 use rins_transport::{Mode, NavOptions, ServeOptions, Session, navigate, reference, serve};
 
 fn session(tag: &str) -> String {
     format!("tr{}{tag}", std::process::id())
-}
-
-/// The 16-position scheme on a ship at sea state 5 with a course change and a lever arm.
-fn ship() -> PlantConfig {
-    let mut cfg = rins_plant::presets::paper_16pos_config();
-    let c = &mut cfg.carrier;
-    c.kind = CarrierKind::Ship;
-    c.lever_arm_m = [1.0, 5.0, -2.0];
-    c.ship.legs = vec![
-        LegSpec {
-            heading_deg: 30.0,
-            speed_kn: 14.0,
-            duration_s: 60.0,
-        },
-        LegSpec {
-            heading_deg: 120.0,
-            speed_kn: 10.0,
-            duration_s: 3600.0,
-        },
-    ];
-    c.ship.sea.spectrum = SpectrumKind::Jonswap;
-    c.ship.sea.sea_state = 5;
-    cfg
 }
 
 fn opts(mode: Mode, batch: usize) -> ServeOptions {
