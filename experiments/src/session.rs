@@ -157,7 +157,7 @@ impl Tracker {
                 ref_height_m: init.height_m,
             },
             site,
-            *plant.vehicle_to_nav(),
+            plant.vehicle_to_nav(),
             None,
             record_every_s,
         );
@@ -295,7 +295,7 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
         dt,
         vertical,
         site,
-        *plant.vehicle_to_nav(),
+        plant.vehicle_to_nav(),
         cfg.compensation.as_ref(),
         cfg.record_every_s,
     );
@@ -306,10 +306,10 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
     let mut records = Vec::with_capacity((samples / tracker.every + 1) as usize);
     for k in 1..=samples {
         let s = plant.step();
-        if let Some(r) = tracker.push(&s, plant.truth()) {
+        if let Some(r) = tracker.push(&s, &plant.truth()) {
             records.push(r);
         } else if k == samples {
-            records.push(tracker.record(plant.truth()));
+            records.push(tracker.record(&plant.truth()));
         }
     }
     let up_att_mean_abs_rad = tracker.up_att_mean_abs_rad();

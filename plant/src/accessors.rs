@@ -36,9 +36,14 @@ impl Plant {
         self.tick as f64 / self.internal_rate_hz
     }
 
-    /// Truth over the last interval.
-    pub fn truth(&self) -> &Truth {
-        &self.truth
+    /// Truth over the last interval. On a moving carrier the carrier's part is evaluated here,
+    /// when asked for, not at every tick (it is a copy for that reason).
+    pub fn truth(&self) -> Truth {
+        let mut t = self.truth;
+        if let Some(c) = &self.carrier {
+            t.carrier = c.state().truth();
+        }
+        t
     }
 
     /// The temperature-sensor readings of the last sample (a measured output), °C.
@@ -66,9 +71,12 @@ impl Plant {
         &self.accel
     }
 
-    /// Vehicle mount attitude C_v^n.
-    pub fn vehicle_to_nav(&self) -> &Matrix3<f64> {
-        &self.c_vn
+    /// Vehicle mount attitude C_v^n now (on a moving carrier, C_c^n·C_v^c).
+    pub fn vehicle_to_nav(&self) -> Matrix3<f64> {
+        match &self.carrier {
+            Some(c) => c.c_vn(),
+            None => self.c_vn,
+        }
     }
 
     /// True IMU attitude C_b^n now.
@@ -78,7 +86,7 @@ impl Plant {
         if let Some(i) = self.carrier.as_ref().and_then(|c| c.isolation.as_ref()) {
             a.outer_rad += i.offset_rad(self.tick, self.cfg.substeps as u64);
         }
-        body_to_nav(&self.c_vn, a)
+        body_to_nav(&self.vehicle_to_nav(), a)
     }
 
     /// True IMU attitude now as the quaternion q_b^n.

@@ -3,6 +3,8 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use crate::table::GimbalFrame;
+
 /// Error-free increments over one interval, with the specific force the effects see.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TableIncrements {
@@ -161,28 +163,28 @@ pub fn carrier_points(
 }
 
 /// Increments over one interval of `dt_s` on a moving carrier, from the carrier points at the
-/// two Gauss–Legendre instants and the body-to-carrier matrices C_b^c there:
-/// Δθ = gimbal part + (Δt/2)·Σ_j C_c^b(t_j)·ω_ic^c(t_j), Δv = (Δt/2)·Σ_j C_c^b(t_j)·f^c(t_j).
-/// The quadrature errs by Δt⁵·max|d⁴(·)/dt⁴|/4320 (for ship motion at 100 Hz below 1e-13 rad
-/// and m/s per step, see docs/carrier.md); the gimbal part is the exact angle difference of
-/// [`table_increments`].
+/// two Gauss–Legendre instants, in the table mount's axes (C_c^v already applied), and the gimbal
+/// frames there: Δθ = gimbal part + (Δt/2)·Σ_j C_v^b(t_j)·ω_ic^v(t_j),
+/// Δv = (Δt/2)·Σ_j C_v^b(t_j)·f^v(t_j). The quadrature errs by Δt⁵·max|d⁴(·)/dt⁴|/4320 (for ship
+/// motion at 100 Hz below 1e-13 rad and m/s per step, see docs/carrier.md); the gimbal part is
+/// the exact angle difference of [`table_increments`].
 #[inline]
 pub fn moving_base_increments(
-    c_bc: &[Matrix3<f64>; 2],
+    frames: &[GimbalFrame; 2],
     pts: &[CarrierPoint; 2],
     gimbal_rad: Vector3<f64>,
     dt_s: f64,
 ) -> TableIncrements {
-    let (w, f) = if c_bc[0] == c_bc[1] {
+    let (w, f) = if frames[0] == frames[1] {
         // The table dwells: one rotation of the sums.
         (
-            c_bc[0].tr_mul(&(pts[0].omega_ic_c + pts[1].omega_ic_c)),
-            c_bc[0].tr_mul(&(pts[0].f_c + pts[1].f_c)),
+            frames[0].to_body(&(pts[0].omega_ic_c + pts[1].omega_ic_c)),
+            frames[0].to_body(&(pts[0].f_c + pts[1].f_c)),
         )
     } else {
         (
-            c_bc[0].tr_mul(&pts[0].omega_ic_c) + c_bc[1].tr_mul(&pts[1].omega_ic_c),
-            c_bc[0].tr_mul(&pts[0].f_c) + c_bc[1].tr_mul(&pts[1].f_c),
+            frames[0].to_body(&pts[0].omega_ic_c) + frames[1].to_body(&pts[1].omega_ic_c),
+            frames[0].to_body(&pts[0].f_c) + frames[1].to_body(&pts[1].f_c),
         )
     };
     TableIncrements {

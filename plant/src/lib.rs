@@ -23,9 +23,11 @@ pub mod kinematics;
 pub mod params;
 pub mod plant;
 pub mod presets;
+mod simd;
 pub mod state;
 pub mod table;
 pub mod thermal;
+mod trig;
 pub mod units;
 
 pub use command::GimbalCommand;

@@ -74,6 +74,7 @@ pub struct Truth {
     /// The declared accelerometer effects' summed increment error, m/s.
     pub custom_accel_mps: Vector3<f64>,
     /// The carrier at the end of the interval (the site and `[vehicle]` attitude when static).
+    /// [`Plant::truth`] fills it in on a moving carrier.
     pub carrier: CarrierTruth,
 }
 
@@ -120,6 +121,7 @@ pub(crate) struct MidCache {
 pub struct Plant {
     pub(crate) cfg: PlantConfig,
     pub(crate) site: Site,
+    /// C_v^n of the static carrier (a moving carrier's is [`Plant::vehicle_to_nav`]).
     pub(crate) c_vn: Matrix3<f64>,
     pub(crate) f_n: Vector3<f64>,
     pub(crate) schedule: Schedule,
@@ -533,7 +535,7 @@ impl Plant {
         tr.temps = temps;
         tr.position_weight = weight;
         if let Some(c) = &self.carrier {
-            tr.carrier = c.now.truth();
+            // The carrier's own truth is filled in by `Plant::truth` when asked for.
             if let Some(i) = &c.isolation {
                 // Azimuth isolation turns the outer gimbal on top of the scheme.
                 tr.gimbal.angles.outer_rad += i.offset_rad(self.tick, self.cfg.substeps as u64);

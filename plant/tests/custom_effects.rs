@@ -67,7 +67,7 @@ fn tilt_product_bias_matches_the_geometry_on_both_sensors() {
     let (s, c) = 30f64.to_radians().sin_cos();
     for _ in 0..500 {
         let out = p.step();
-        let tr = *p.truth();
+        let tr = p.truth();
         let gyro_err = out.dtheta_rad - tr.dtheta_true_rad;
         let accel_err = out.dv_mps - tr.dv_true_mps;
         assert_relative_eq!(gyro_err.y, 2.5 * DPH * s * c * dt, max_relative = 1e-9);

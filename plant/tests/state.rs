@@ -18,7 +18,7 @@ fn outputs(p: &mut Plant, n: usize) -> Vec<u64> {
     (0..n)
         .flat_map(|_| {
             let s = p.step();
-            let t = *p.truth();
+            let t = p.truth();
             let mut v: Vec<f64> = vec![s.t_s];
             v.extend(s.dtheta_rad.iter().chain(s.dv_mps.iter()));
             v.extend(t.gyro_terms_rad.iter().flat_map(|x| x.iter().copied()));

@@ -37,7 +37,7 @@ fn with_rerun(
     let mut r = RunRecorder::new(
         rec.stream(),
         cfg,
-        p.vehicle_to_nav(),
+        &p.vehicle_to_nav(),
         RunOptions {
             bucket_samples,
             navigate,
@@ -47,7 +47,7 @@ fn with_rerun(
     .expect("recorder");
     for _ in 0..n {
         let s = p.step();
-        r.sample(&s, p.truth()).expect("log");
+        r.sample(&s, &p.truth()).expect("log");
     }
     r.finish().expect("finish");
     rins_rerun::blueprint::send(

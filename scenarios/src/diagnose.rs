@@ -35,7 +35,7 @@ pub fn write_measurements(path: &Path, runs: &[(String, PlantConfig, u64)]) -> R
         let mut plant = crate::runner::new_plant(cfg, label)?;
         for _ in 0..*samples {
             let s = plant.step();
-            crate::runner::Sink::sample(&mut sink, &s, plant.truth())?;
+            crate::runner::Sink::sample(&mut sink, &s, &plant.truth())?;
         }
         crate::runner::Sink::finish(&mut sink)?;
     }

@@ -59,7 +59,7 @@ pub fn run(scenario: &Scenario, samples: u64, sinks: &mut [&mut dyn Sink]) -> Re
         }
         let s = plant.step();
         for sink in sinks.iter_mut() {
-            sink.sample(&s, plant.truth())?;
+            sink.sample(&s, &plant.truth())?;
         }
         if k % CHUNK == 0 {
             pb.set_position(k);

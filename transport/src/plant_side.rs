@@ -158,7 +158,7 @@ pub fn serve_probed(
         };
         for k in 0..n {
             let s = plant.step();
-            observe(&s, plant.truth());
+            observe(&s, &plant.truth());
             batch.records[k] = ImuRecord::from_sample(&s);
             batch.truth[k] = TruthRecord::from_plant(plant);
         }

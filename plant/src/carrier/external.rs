@@ -97,10 +97,7 @@ impl Plant {
     pub fn attach_external_carrier(&mut self, start: &CarrierSample) -> Result<(), String> {
         let tick_s = self.tick_s();
         let seg = segment(start, start, 1, tick_s)?;
-        let run = CarrierRun::new(seg, &self.cfg);
-        self.c_vn = run.c_vn();
-        self.truth.carrier = run.now.truth();
-        self.carrier = Some(run);
+        self.carrier = Some(CarrierRun::new(seg, &self.cfg));
         Ok(())
     }
 

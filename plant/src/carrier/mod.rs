@@ -14,6 +14,7 @@ pub mod segment;
 pub mod ship;
 pub mod spec;
 pub mod state;
+mod tick;
 pub mod track;
 pub mod trajectory;
 pub mod waves;

@@ -18,13 +18,14 @@
 use nalgebra::Vector3;
 
 use super::GL_OFFSETS;
+use crate::simd::{LANES, combine_blocks};
 
 mod ship;
 
 pub use ship::{PointEnv, SegState};
 
 /// Nodes per segment.
-pub const SEGMENT_NODES: usize = 12;
+pub const SEGMENT_NODES: usize = 16;
 
 /// Relative interpolation error the segment length is chosen for (of the motion's amplitude at
 /// twice the top frequency).
@@ -35,16 +36,26 @@ pub const SEGMENT_MAX_TICKS: u64 = 256;
 
 /// Shortest segment worth it, ticks: below this the n node evaluations cost more than the
 /// exact per-tick path's three.
-pub const SEGMENT_MIN_TICKS: u64 = 8;
+pub const SEGMENT_MIN_TICKS: u64 = LANES as u64;
 
-/// Channels per node: ω_ic^c (0..3), f^c at the IMU (3..6), the up axis in carrier axes
-/// (6..9), then the carrier state: latitude and longitude from the segment start (9, 10),
+/// Channels per node: ω_ic (0..3), f at the IMU (3..6) and the up axis (6..9), in the table
+/// mount's axes (C_c^v applied; the carrier's for the default mount), then the carrier state: latitude and longitude from the segment start (9, 10),
 /// height (11), v^n (12..15), v̇^n (15..18), C_c^n row by row (18..27), ω_nc^c (27..30),
 /// α_nc^c (30..33).
 pub const CHANNELS: usize = 33;
 
 /// Channels a tick's increments need (ω_ic^c, f^c, up axis).
 pub const POINT_CHANNELS: usize = 9;
+
+/// Per-row weights (`w[r·n + j]`, n per row) as blocks of [`LANES`] rows, node after node
+/// (the layout of [`combine_blocks`]). Segment lengths are powers of two ≥ [`LANES`].
+fn blocks_of(w: &[f64], n: usize) -> Vec<[f64; LANES]> {
+    let blocks = w.len() / n / LANES;
+    (0..n)
+        .flat_map(|j| (0..blocks).map(move |b| (j, b)))
+        .map(|(j, b)| std::array::from_fn(|l| w[(b * LANES + l) * n + j]))
+        .collect()
+}
 
 /// Gauss–Legendre nodes and weights on [−1, 1] (Newton on the Legendre recurrence).
 pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
@@ -123,6 +134,9 @@ pub struct SegmentRule {
     pub node_ticks: Vec<f64>,
     /// Per tick k: the mean of each Lagrange basis polynomial over [k, k + 1].
     mean_w: Vec<f64>,
+    /// `mean_w` transposed into blocks of ticks, node after node: what
+    /// [`SegmentRule::tick_means_all`] streams through.
+    mean_w_t: Vec<[f64; LANES]>,
     /// Per tick boundary i = 0..=M: the basis at i.
     at_w: Vec<f64>,
     /// Per tick k and in-tick Gauss–Legendre point p: the basis there.
@@ -162,6 +176,7 @@ impl SegmentRule {
             n,
             m,
             mean_w: Vec::with_capacity(n * m as usize),
+            mean_w_t: Vec::new(),
             at_w: Vec::with_capacity(n * (m as usize + 1)),
             gl_w: Vec::with_capacity(2 * n * m as usize),
             disp_w: Vec::with_capacity(n * n),
@@ -181,6 +196,7 @@ impl SegmentRule {
         for w in [&mut me.mean_w, &mut me.at_w, &mut me.gl_w, &mut me.seg_w] {
             w.chunks_mut(n).for_each(sum_to_one);
         }
+        me.mean_w_t = blocks_of(&me.mean_w, n);
         for &t in &node_ticks {
             me.disp_w
                 .extend(mean(0.0, t).into_iter().map(|v| v * t / mf));
@@ -233,6 +249,49 @@ impl SegmentRule {
         Self::combine(&self.mean_w[k * self.n..(k + 1) * self.n], y, 0)
     }
 
+    /// [`SegmentRule::tick_mean`] for every tick of the segment at once, channel-major
+    /// (`out[c·M + k]`): the same sums in the same order, so the same bits, but a block of ticks
+    /// shares each pass over the node values and the products run as wide as the CPU allows
+    /// ([`crate::simd`]).
+    pub fn tick_means_all(&self, y: &[[f64; CHANNELS]], out: &mut Vec<f64>) {
+        out.resize(POINT_CHANNELS * self.m as usize, 0.0);
+        combine_blocks(&self.mean_w_t, &y[..self.n], out);
+    }
+
+    /// The point channels at the two Gauss–Legendre instants of tick `k` from every tick's
+    /// means `means` (channel-major, as [`SegmentRule::tick_means_all`] writes them):
+    /// p(τ) = w̄ + w′·τ at τ = ∓h/(2√3) from the tick's middle, w′ from the neighbouring ticks'
+    /// means (central difference; second-order one-sided ones at the segment's ends).
+    ///
+    /// At those instants τ² = h²/12, so the mean's w″h²/24 is exactly the points' second-order
+    /// term: the points err by about 0.08·|w‴|·h³, equal and opposite at the two instants, plus
+    /// O(h⁴). In the increments only the rotation between the instants (the turning gimbal's
+    /// angle step, (√3/3)·h·rate) weights that odd part: below 0.03·rate·|w‴|·h⁵, e.g. 6e-13
+    /// for a 2°/s gimbal and a 1 m/s² sea at 2 rad/s at 100 Hz: the size of the segment
+    /// rule's own interpolation error ([`SEGMENT_EPS`]·h).
+    #[inline]
+    pub fn points_from_means(&self, means: &[f64], k: usize) -> [[f64; POINT_CHANNELS]; 2] {
+        /// 1/(4√3): w′·τ = (2h·w′)·(±1/(4√3)).
+        const STEP: f64 = 0.144_337_567_297_406_44;
+        let m = self.m as usize;
+        let mut p = [[0.0; POINT_CHANNELS]; 2];
+        for c in 0..POINT_CHANNELS {
+            let at = |k: usize| means[c * m + k];
+            // 2h·w′.
+            let d = if k == 0 {
+                4.0 * at(1) - 3.0 * at(0) - at(2)
+            } else if k + 1 == m {
+                3.0 * at(k) - 4.0 * at(k - 1) + at(k - 2)
+            } else {
+                at(k + 1) - at(k - 1)
+            };
+            let (mean, step) = (at(k), STEP * d);
+            p[0][c] = mean - step;
+            p[1][c] = mean + step;
+        }
+        p
+    }
+
     /// The interpolated ω_ic^c, f^c and up axis at in-tick Gauss–Legendre point `p` of tick `k`.
     #[inline]
     pub fn tick_point(&self, k: usize, p: usize, y: &[[f64; CHANNELS]]) -> [f64; POINT_CHANNELS] {
@@ -265,14 +324,14 @@ impl SegmentRule {
     }
 }
 
-/// What a tick of a moving carrier gives the increments: the carrier points (ω_ic^c, f^c at the
-/// IMU) and the up axis in carrier axes, either as means over the tick (the segment rule while
-/// the table dwells) or at the tick's two Gauss–Legendre points.
+/// What a tick of a moving carrier gives the increments: the carrier points (ω_ic, f at the
+/// IMU) and the up axis, either as means over the tick in body axes (the segment rule while the
+/// table dwells) or at the tick's two Gauss–Legendre points in the table mount's axes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum TickPoints {
-    /// Means over the tick: (ω_ic^c, f^c, up^c).
-    Mean([Vector3<f64>; 3]),
-    /// At the two Gauss–Legendre points: (ω_ic^c, f^c, up^c) each.
+    /// Means over the tick, body axes: (ω_ib^b without the gimbals' part, f^b, up^b).
+    BodyMean([Vector3<f64>; 3]),
+    /// At the two Gauss–Legendre points, mount axes: (ω_ic^v, f^v, up^v) each.
     Nodes([[Vector3<f64>; 3]; 2]),
 }
 
@@ -328,6 +387,58 @@ mod tests {
     }
 
     #[test]
+    fn all_tick_means_at_once_are_the_per_tick_means_bit_for_bit() {
+        let rule = SegmentRule::new(SEGMENT_NODES, 64);
+        let y: Vec<[f64; CHANNELS]> = (0..SEGMENT_NODES)
+            .map(|j| std::array::from_fn(|c| ((j * 7 + c * 3) as f64 * 0.37).sin() * 1e3))
+            .collect();
+        let mut all = Vec::new();
+        rule.tick_means_all(&y, &mut all);
+        for k in 0..64 {
+            let one = rule.tick_mean(k, &y);
+            for c in 0..POINT_CHANNELS {
+                assert_eq!(
+                    all[c * 64 + k].to_bits(),
+                    one[c].to_bits(),
+                    "tick {k} channel {c}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn quadrature_points_from_the_means_err_oddly_by_the_third_derivative() {
+        // A 2 rad/s sinusoid of unit amplitude on a 128-tick segment at 100 Hz: the points from
+        // the means against the interpolant's own points (which are exact to 1e-10).
+        let (h, m, w) = (0.01, 128u64, 2.0);
+        let rule = SegmentRule::new(SEGMENT_NODES, m);
+        let y: Vec<[f64; CHANNELS]> = rule
+            .node_ticks
+            .iter()
+            .map(|&t| std::array::from_fn(|c| (w * t * h + 0.4 * c as f64).sin()))
+            .collect();
+        let mut means = Vec::new();
+        rule.tick_means_all(&y, &mut means);
+        let (mut odd, mut even) = (0.0f64, 0.0f64);
+        for k in 0..m as usize {
+            let p = rule.points_from_means(&means, k);
+            let exact = [0, 1].map(|i| rule.tick_point(k, i, &y));
+            for c in 0..POINT_CHANNELS {
+                let (e0, e1) = (p[0][c] - exact[0][c], p[1][c] - exact[1][c]);
+                odd = odd.max((0.5 * (e0 - e1)).abs());
+                even = even.max((0.5 * (e0 + e1)).abs());
+            }
+        }
+        // |w‴| = w³; the one-sided differences at the ends are the worst (about twice).
+        let bound = 0.2 * w.powi(3) * h.powi(3);
+        assert!(
+            odd <= bound && odd > 0.1 * bound,
+            "odd {odd:e} vs {bound:e}"
+        );
+        assert!(even <= 1e-3 * bound, "even {even:e}");
+    }
+
+    #[test]
     fn constants_are_reproduced_bit_for_bit() {
         for m in [16, 64, 256] {
             let rule = SegmentRule::new(SEGMENT_NODES, m);
@@ -345,9 +456,9 @@ mod tests {
         // κ₂ = 2²·(2!)²/4! = 2/3: bound (x/2)²·(2/3)/2.
         let x = 0.7f64;
         assert!((SegmentRule::error_bound(2, x) - (x / 2.0).powi(2) / 3.0).abs() < 1e-15);
-        // sin(ωt) on a 64-tick segment at 100 Hz, ω = 3 rad/s: the interpolant's largest
+        // sin(ωt) on a 256-tick segment at 100 Hz, ω = 3 rad/s: the interpolant's largest
         // error over the tick boundaries stays below the bound.
-        let (h, m) = (0.01, 64u64);
+        let (h, m) = (0.01, 256u64);
         let rule = SegmentRule::new(SEGMENT_NODES, m);
         let w = 3.0;
         let y: Vec<[f64; CHANNELS]> = rule

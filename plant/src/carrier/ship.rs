@@ -18,6 +18,7 @@ use super::state::{CarrierState, quintic_basis};
 use super::track::{Track, TrackPoint, TrackPosition};
 use super::waves::{JET_LEN, SeaJet, Waves, dof};
 use crate::earth::{EarthPoint, LocalEarth};
+use crate::trig::{SMALL_STEP_RAD, WIDE_STEP_RAD, sin_cos_step, sin_cos_step_wide};
 use crate::units::DEG;
 
 /// The ship, advanced tick by tick.
@@ -268,11 +269,6 @@ pub(super) fn angles(tp: &TrackPoint, jet: &SeaJet) -> [f64; 4] {
 /// carried tick to tick by [`Trig::near`] in between.
 pub const TRIG_RESYNC_TICKS: u64 = 64;
 
-/// Largest angle step a [`Trig::near`] series covers, rad; sin δ to δ⁵ and cos δ to δ⁶ then
-/// err by < δ⁷/7! ≈ 2e-18 (a fiftieth of an ulp of 1). Within a tick the angles move by
-/// |rate|·h: below 5e-3 rad for ship motion at 100 Hz.
-const TRIG_REACH_RAD: f64 = 0.01;
-
 /// Angles with their sines and cosines.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Trig {
@@ -306,7 +302,8 @@ impl Trig {
     }
 
     /// sin and cos of `a` from those of angle `i` by the addition theorem with the series of
-    /// the small step δ = a − angᵢ (exact sin_cos beyond [`TRIG_REACH_RAD`]).
+    /// the small step δ = a − angᵢ (exact sin_cos beyond [`SMALL_STEP_RAD`]; within a tick the
+    /// angles move by |rate|·h: below 5e-3 rad for ship motion at 100 Hz).
     #[inline]
     fn near_one(&self, i: usize, a: f64) -> (f64, f64) {
         let d = a - self.ang[i];
@@ -315,17 +312,31 @@ impl Trig {
             // would give these bits too.
             return (self.sin[i], self.cos[i]);
         }
-        if d.abs() > TRIG_REACH_RAD {
+        if d.abs() > SMALL_STEP_RAD {
             return a.sin_cos();
         }
-        // Multiplications by constant reciprocals: a division would lengthen the chain.
-        let d2 = d * d;
-        let sd = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0)));
-        let cd = 1.0 + d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0)));
-        (
-            self.sin[i] * cd + self.cos[i] * sd,
-            self.cos[i] * cd - self.sin[i] * sd,
-        )
+        sin_cos_step(self.sin[i], self.cos[i], d)
+    }
+
+    /// All four angles up to [`WIDE_STEP_RAD`] from these, by the series of
+    /// [`sin_cos_step_wide`] (exact sin_cos beyond): the ship's segment nodes, each from the one
+    /// before.
+    pub(super) fn near_wide(&self, ang: [f64; 4]) -> Self {
+        let mut t = Self {
+            ang,
+            ..Self::default()
+        };
+        for (i, a) in ang.iter().enumerate() {
+            let d = a - self.ang[i];
+            (t.sin[i], t.cos[i]) = if d == 0.0 {
+                (self.sin[i], self.cos[i])
+            } else if d.abs() <= WIDE_STEP_RAD {
+                sin_cos_step_wide(self.sin[i], self.cos[i], d)
+            } else {
+                a.sin_cos()
+            };
+        }
+        t
     }
 
     /// All four angles near these (see [`Trig::near_one`]).

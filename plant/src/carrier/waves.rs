@@ -18,6 +18,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::spec::{SeaSpec, SpectrumKind};
+use crate::simd::jet_sum;
 use crate::units::DEG;
 
 /// Random stream of the sea-state realisation (distinct from the sensor noise streams).
@@ -323,32 +324,18 @@ impl Waves {
 
     /// The jet at the current tick (`offset = None`) or at in-tick offset number `offset`.
     pub fn jet(&self, offset: Option<usize>) -> SeaJet {
-        match offset {
-            Some(o) => self.sum(self.z.iter().zip(&self.rot_offsets[o]).map(|(z, r)| z * r)),
-            None => self.sum(self.z.iter().copied()),
-        }
+        let rot = offset.map(|o| &self.rot_offsets[o][..]);
+        SeaJet::from_flat(&jet_sum(&self.z, rot, &self.jet_re, &self.jet_im))
     }
 
     /// The jet at an arbitrary time (sines and cosines: for checks and trajectory export).
     pub fn jet_at_time(&self, t_s: f64) -> SeaJet {
-        self.sum(
-            self.omega_rps
-                .iter()
-                .zip(&self.phase_rad)
-                .map(|(w, e)| Complex::from_polar(1.0, w * t_s + e)),
-        )
-    }
-
-    /// Σ_i Re(C_{j,i}·z_i) for the 18 jet values j, given the phasors z_i:
-    /// x += Re(c·z), ẋ += Re(iω·c·z), ẍ += Re(−ω²·c·z).
-    #[inline]
-    fn sum(&self, z: impl Iterator<Item = Complex<f64>>) -> SeaJet {
-        let mut acc = [0.0; JET_LEN];
-        for ((z, re), im) in z.zip(&self.jet_re).zip(&self.jet_im) {
-            for j in 0..JET_LEN {
-                acc[j] += re[j] * z.re - im[j] * z.im;
-            }
-        }
-        SeaJet::from_flat(&acc)
+        let z: Vec<Complex<f64>> = self
+            .omega_rps
+            .iter()
+            .zip(&self.phase_rad)
+            .map(|(w, e)| Complex::from_polar(1.0, w * t_s + e))
+            .collect();
+        SeaJet::from_flat(&jet_sum(&z, None, &self.jet_re, &self.jet_im))
     }
 }

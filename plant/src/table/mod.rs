@@ -5,6 +5,6 @@ pub mod profile;
 pub mod schedule;
 pub mod scheme;
 
-pub use gimbal::{GimbalAngles, body_to_nav, gimbal_body_rate, position_label};
+pub use gimbal::{GimbalAngles, GimbalFrame, body_to_nav, gimbal_body_rate, position_label};
 pub use schedule::{Cursor, GimbalState, Schedule};
 pub use scheme::{GimbalAxis, RotationStep, SchemeKind, SchemeSpec};

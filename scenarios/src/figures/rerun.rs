@@ -39,7 +39,7 @@ impl RerunSink {
         let run = RunRecorder::new(
             recorder.stream(),
             &scenario.plant,
-            plant.vehicle_to_nav(),
+            &plant.vehicle_to_nav(),
             RunOptions {
                 bucket_samples,
                 navigate,
@@ -131,7 +131,7 @@ pub fn record_paired(
     let mut run = RunRecorder::new(
         rec,
         plant_cfg,
-        plant.vehicle_to_nav(),
+        &plant.vehicle_to_nav(),
         RunOptions {
             bucket_samples,
             navigate: false,
@@ -147,7 +147,7 @@ pub fn record_paired(
             pb.set_position(k);
         }
         let s = plant.step();
-        run.sample(&s, plant.truth())?;
+        run.sample(&s, &plant.truth())?;
     }
     pb.finish_and_clear();
     run.finish()?;

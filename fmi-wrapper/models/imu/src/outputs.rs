@@ -17,7 +17,7 @@ pub struct View<'a> {
     /// The running plant.
     pub plant: &'a Plant,
     /// Its truth at the end of the step.
-    pub truth: &'a Truth,
+    pub truth: Truth,
     /// The last IMU sample, its increments summed over the communication step (`None` before
     /// the first step).
     pub sample: Option<&'a ImuSample>,
@@ -60,7 +60,7 @@ impl Record {
         let sample = p.step();
         Ok(Self {
             sample,
-            truth: *p.truth(),
+            truth: p.truth(),
         })
     }
 }

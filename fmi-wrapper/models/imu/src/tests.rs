@@ -68,7 +68,7 @@ fn the_output_table_rebuilds_the_in_process_sample_and_truth() {
             }
         }
         assert_eq!(rec.sample, s, "sample {k}");
-        assert_eq!(rec.truth, *plant.truth(), "truth {k}");
+        assert_eq!(rec.truth, plant.truth(), "truth {k}");
         moving += rec.truth.gimbal.moving as u32;
     }
     assert!(

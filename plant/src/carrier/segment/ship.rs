@@ -12,6 +12,7 @@ use super::super::waves::SeaJet;
 use super::{CHANNELS, SEGMENT_NODES, SegmentRule, TickPoints};
 use crate::earth::LocalEarth;
 use crate::kinematics::carrier_point_near;
+use crate::table::GimbalFrame;
 
 /// Where the carrier points are taken: Earth switches and the lever arm (from the plant).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,6 +23,20 @@ pub struct PointEnv {
     pub gravity: bool,
     /// IMU position from the reference point, carrier axes, m.
     pub lever_c_m: Vector3<f64>,
+    /// C_c^v, carrier axes to the table mount's (`None`: the identity, the default mount): the
+    /// points are kept in mount axes.
+    pub mount_t: Option<Matrix3<f64>>,
+}
+
+impl PointEnv {
+    /// `v` (carrier axes) in the table mount's axes.
+    #[inline]
+    pub fn to_mount(&self, v: Vector3<f64>) -> Vector3<f64> {
+        match &self.mount_t {
+            None => v,
+            Some(m) => m * v,
+        }
+    }
 }
 
 /// The ship's segment in progress.
@@ -41,6 +56,17 @@ pub struct SegState {
     exact: bool,
     /// Node values ([`CHANNELS`]).
     y: Vec<[f64; CHANNELS]>,
+    /// Every tick's mean points in body axes ([`SegmentRule::tick_means_all`] of the node
+    /// values turned into the body frame `means_frame`), computed at the segment's first
+    /// dwelling tick and again if the table dwells elsewhere later in the segment.
+    means: Vec<f64>,
+    means_frame: Option<GimbalFrame>,
+    /// Scratch: the node values with their points in body axes.
+    y_body: Vec<[f64; CHANNELS]>,
+    /// Every tick's mean points in mount axes ([`SegmentRule::tick_means_all`]), computed at
+    /// the segment's first turning tick (`mount_ready`).
+    means_mount: Vec<f64>,
+    mount_ready: bool,
 }
 
 impl Ship {
@@ -67,6 +93,11 @@ impl Ship {
             end_pos: start,
             exact: false,
             y: vec![],
+            means: vec![],
+            means_frame: None,
+            y_body: vec![],
+            means_mount: vec![],
+            mount_ready: false,
         }));
         self.build_segment(0, start);
         Some(m)
@@ -101,6 +132,7 @@ impl Ship {
         let i = seg.corners_s.partition_point(|&c| c <= a_s);
         seg.exact = seg.corners_s.get(i).is_some_and(|&c| c < b_s);
         (seg.tick, seg.start_tick, seg.start_pos) = (t0, t0, pos0);
+        (seg.means_frame, seg.mount_ready) = (None, false);
         if seg.exact {
             self.set_position(t0, pos0);
         } else {
@@ -118,13 +150,21 @@ impl Ship {
         }
         let mut parts = Vec::with_capacity(n);
         let mut v = Vec::with_capacity(n);
+        let mut trig = Trig::default();
         for j in 0..n {
             let tp = self.track_at((t0 as f64 + rule.node_ticks[j]) * h);
             let jet = self
                 .waves
                 .as_ref()
                 .map_or(SeaJet::default(), |w| w.jet(Some(j)));
-            let trig = Trig::exact(angles(&tp, &jet));
+            // Exact sines at the first node, then each node's from the one before (nodes are
+            // under a tenth of a segment apart: steps of hundredths of a radian at sea).
+            let ang = angles(&tp, &jet);
+            trig = if j == 0 {
+                Trig::exact(ang)
+            } else {
+                trig.near_wide(ang)
+            };
             v.push([tp.speed_mps * trig.sin[0], tp.speed_mps * trig.cos[0]]);
             parts.push((tp, jet, trig));
         }
@@ -151,9 +191,10 @@ impl Ship {
             let pt = carrier_point_near(&s, &self.earth, e.rotation, e.gravity, &e.lever_c_m);
             let c = &s.c_cn;
             let mut y = [0.0; CHANNELS];
-            y[0..3].copy_from_slice(pt.omega_ic_c.as_slice());
-            y[3..6].copy_from_slice(pt.f_c.as_slice());
-            y[6..9].copy_from_slice(&[c[(2, 0)], c[(2, 1)], c[(2, 2)]]);
+            let up = Vector3::new(c[(2, 0)], c[(2, 1)], c[(2, 2)]);
+            y[0..3].copy_from_slice(e.to_mount(pt.omega_ic_c).as_slice());
+            y[3..6].copy_from_slice(e.to_mount(pt.f_c).as_slice());
+            y[6..9].copy_from_slice(e.to_mount(up).as_slice());
             y[9] = s.lat_rad - pos0.lat_rad;
             y[10] = s.lon_rad - pos0.lon_rad;
             y[11] = s.height_m;
@@ -185,9 +226,26 @@ impl Ship {
         Some(now)
     }
 
-    /// One tick with the segment rule on: the tick's points (means while the table dwells,
-    /// `turning` false; else at its Gauss–Legendre points); the state at its end goes to `end`.
-    pub fn advance_points(&mut self, turning: bool, end: &mut CarrierState) -> TickPoints {
+    /// The interpolated state at the current tick (`None` without the segment rule or while
+    /// the segment runs the exact path: its state is the one [`Ship::advance_points`] wrote).
+    pub(in crate::carrier) fn segment_state(&self) -> Option<CarrierState> {
+        let seg = self.seg.as_ref().filter(|s| !s.exact)?;
+        let mut now = CarrierState::at_rest(0.0, 0.0, 0.0, Matrix3::identity());
+        seg.state_into((seg.tick - seg.start_tick) as usize, &mut now);
+        Some(now)
+    }
+
+    /// One tick with the segment rule on: the tick's points (in mount axes at its quadrature
+    /// points while the table turns, `turning`; while it dwells, the tick's means already in
+    /// the body axes of `frame`). While the segment runs the exact path the state at the
+    /// tick's end goes to `end`; an interpolated segment leaves `end` alone (its state is
+    /// [`Ship::segment_state`], computed when asked for).
+    pub fn advance_points(
+        &mut self,
+        frame: &GimbalFrame,
+        turning: bool,
+        end: &mut CarrierState,
+    ) -> TickPoints {
         let mut seg = self.seg.take().expect("segment rule on");
         let k = (seg.tick - seg.start_tick) as usize;
         let pts = if seg.exact {
@@ -197,31 +255,70 @@ impl Ship {
             TickPoints::Nodes(nodes.map(|n| {
                 let p = carrier_point_near(&n, &self.earth, e.rotation, e.gravity, &e.lever_c_m);
                 let up = n.c_cn.row(2).transpose();
-                [p.omega_ic_c, p.f_c, up]
+                [p.omega_ic_c, p.f_c, up].map(|v| e.to_mount(v))
             }))
         } else if turning {
-            TickPoints::Nodes([0, 1].map(|p| TickPoints::split(&seg.rule.tick_point(k, p, &seg.y))))
+            if !seg.mount_ready {
+                seg.rule.tick_means_all(&seg.y, &mut seg.means_mount);
+                seg.mount_ready = true;
+            }
+            TickPoints::Nodes(seg.quadrature_points(k))
         } else {
-            TickPoints::Mean(TickPoints::split(&seg.rule.tick_mean(k, &seg.y)))
+            if seg.means_frame != Some(*frame) {
+                seg.body_means(frame);
+            }
+            let m = seg.rule.m as usize;
+            let c = |i: usize| seg.means[i * m + k];
+            TickPoints::BodyMean([
+                Vector3::new(c(0), c(1), c(2)),
+                Vector3::new(c(3), c(4), c(5)),
+                Vector3::new(c(6), c(7), c(8)),
+            ])
         };
+        self.finish_tick(seg, end);
+        pts
+    }
+
+    /// The common tick, while the table dwells: the tick's means in the body axes of `frame`
+    /// (ω_ic without the gimbals' part, f, up), or `None` without an interpolated segment
+    /// (then [`Ship::advance_points`] runs). `end` as there.
+    #[inline]
+    pub fn dwell_means(
+        &mut self,
+        frame: &GimbalFrame,
+        end: &mut CarrierState,
+    ) -> Option<[Vector3<f64>; 3]> {
+        let mut seg = self.seg.take_if(|s| !s.exact)?;
+        if seg.means_frame != Some(*frame) {
+            seg.body_means(frame);
+        }
+        let (m, k) = (seg.rule.m as usize, (seg.tick - seg.start_tick) as usize);
+        let c = |i: usize| seg.means[i * m + k];
+        let means = [
+            Vector3::new(c(0), c(1), c(2)),
+            Vector3::new(c(3), c(4), c(5)),
+            Vector3::new(c(6), c(7), c(8)),
+        ];
+        self.finish_tick(seg, end);
+        Some(means)
+    }
+
+    /// Closes a tick of segment `seg` (taken out of `self`): the next tick, or the next
+    /// segment after its last.
+    #[inline]
+    fn finish_tick(&mut self, mut seg: Box<SegState>, end: &mut CarrierState) {
         seg.tick += 1;
         let (next, m) = (seg.tick, seg.rule.m);
         if next == seg.start_tick + m {
             let pos = if seg.exact { self.pos } else { seg.end_pos };
             self.seg = Some(seg);
             self.build_segment(next / m, pos);
-            if let Some(s) = self.seg.as_deref().filter(|s| !s.exact) {
-                s.state_into(0, end);
-            } else {
+            if self.seg.as_deref().is_some_and(|s| s.exact) {
                 *end = self.state_now();
             }
         } else {
-            if !seg.exact {
-                seg.state_into(k + 1, end);
-            }
             self.seg = Some(seg);
         }
-        pts
     }
 
     /// What the state codec saves with the segment rule on: the current segment's first tick
@@ -246,9 +343,15 @@ impl Ship {
         self.build_segment(start_tick / m, pos);
         let exact = self.seg.as_ref().is_some_and(|s| s.exact);
         let mut end = CarrierState::at_rest(0.0, 0.0, 0.0, Matrix3::identity());
+        let frame = GimbalFrame {
+            sin_outer: 0.0,
+            cos_outer: 1.0,
+            sin_inner: 0.0,
+            cos_inner: 1.0,
+        };
         for _ in start_tick..tick {
             if exact {
-                self.advance_points(true, &mut end);
+                self.advance_points(&frame, true, &mut end);
             } else if let Some(s) = self.seg.as_mut() {
                 s.tick += 1;
             }
@@ -258,6 +361,31 @@ impl Ship {
 }
 
 impl SegState {
+    /// The points at the two Gauss–Legendre instants of tick `k` (mount axes), from the tick
+    /// means ([`SegmentRule::points_from_means`]).
+    #[inline]
+    fn quadrature_points(&self, k: usize) -> [[Vector3<f64>; 3]; 2] {
+        self.rule
+            .points_from_means(&self.means_mount, k)
+            .map(|p| TickPoints::split(&p))
+    }
+
+    /// Every tick's mean points in the body axes of `frame`: the node values' points turned
+    /// into the body frame (the rotation commutes with the interpolation), then combined.
+    fn body_means(&mut self, frame: &GimbalFrame) {
+        self.y_body.clear();
+        self.y_body.extend(self.y.iter().map(|y| {
+            let mut b = *y;
+            for o in [0, 3, 6] {
+                let v = frame.to_body(&Vector3::new(y[o], y[o + 1], y[o + 2]));
+                b[o..o + 3].copy_from_slice(v.as_slice());
+            }
+            b
+        }));
+        self.rule.tick_means_all(&self.y_body, &mut self.means);
+        self.means_frame = Some(*frame);
+    }
+
     /// The interpolated carrier state at tick boundary `i` of the segment, into `s`.
     #[inline]
     fn state_into(&self, i: usize, s: &mut CarrierState) {

@@ -1,0 +1,153 @@
+//! Runtime CPU dispatch for the plant's two widest loops: the ship's segment rule (every tick's
+//! interpolated carrier points from the node values) and the sea state's jet (a sum over wave
+//! components). Each loop is written once, as plain Rust; here it is also compiled for AVX-512F
+//! and AVX2 and the widest the CPU has is run.
+//!
+//! The bits do not depend on the choice. Every output lane is its own sum, accumulated in the
+//! same order at any vector width, and rustc never fuses a multiply and an add (no fused
+//! multiply-add unless written as `mul_add`), so the wide builds compute exactly what the
+//! baseline (SSE2) build does; the tests in `carrier::segment` and `carrier::waves` compare
+//! them bit for bit.
+#![allow(unsafe_code)]
+
+use nalgebra::Complex;
+
+use crate::carrier::segment::{CHANNELS, POINT_CHANNELS};
+use crate::carrier::waves::JET_LEN;
+
+/// Rows per block of [`combine_blocks`]: one AVX-512 vector of f64.
+pub(crate) const LANES: usize = 8;
+
+/// Compiles `$body` for AVX-512F and AVX2 as well and runs the widest the CPU supports.
+macro_rules! multiversion {
+    ($(#[$doc:meta])* $vis:vis fn $name:ident($($a:ident: $t:ty),*) $(-> $r:ty)?
+        = $body:ident, $wide:ident, $avx2:ident) => {
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx512f")]
+        fn $wide($($a: $t),*) $(-> $r)? {
+            $body($($a),*)
+        }
+
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx2")]
+        fn $avx2($($a: $t),*) $(-> $r)? {
+            $body($($a),*)
+        }
+
+        $(#[$doc])*
+        $vis fn $name($($a: $t),*) $(-> $r)? {
+            #[cfg(target_arch = "x86_64")]
+            {
+                if std::arch::is_x86_feature_detected!("avx512f") {
+                    // SAFETY: the CPU has AVX-512F, checked just above.
+                    return unsafe { $wide($($a),*) };
+                }
+                if std::arch::is_x86_feature_detected!("avx2") {
+                    // SAFETY: the CPU has AVX2, checked just above.
+                    return unsafe { $avx2($($a),*) };
+                }
+            }
+            $body($($a),*)
+        }
+    };
+}
+
+#[inline(always)]
+fn combine_blocks_body(w_t: &[[f64; LANES]], y: &[[f64; CHANNELS]], out: &mut [f64]) {
+    let blocks = w_t.len() / y.len().max(1);
+    let rows = blocks * LANES;
+    for b in 0..blocks {
+        let mut acc = [[0.0; LANES]; POINT_CHANNELS];
+        for (j, v) in y.iter().enumerate() {
+            let w = &w_t[j * blocks + b];
+            for c in 0..POINT_CHANNELS {
+                for l in 0..LANES {
+                    acc[c][l] += w[l] * v[c];
+                }
+            }
+        }
+        for (c, a) in acc.iter().enumerate() {
+            out[c * rows + b * LANES..c * rows + (b + 1) * LANES].copy_from_slice(a);
+        }
+    }
+}
+
+multiversion! {
+    /// out[c·R + r] = Σ_j W[j][r]·y[j][c] for the point channels c (0..[`POINT_CHANNELS`]), rows
+    /// r = 0..R, the sum over the nodes j in order; `w_t` holds node j's weights as R/[`LANES`]
+    /// blocks, node after node; `out` holds [`POINT_CHANNELS`]·R values.
+    pub(crate) fn combine_blocks(w_t: &[[f64; LANES]], y: &[[f64; CHANNELS]], out: &mut [f64])
+        = combine_blocks_body, combine_blocks_avx512, combine_blocks_avx2
+}
+
+#[inline(always)]
+fn jet_sum_body(
+    z: &[Complex<f64>],
+    rot: Option<&[Complex<f64>]>,
+    re: &[[f64; JET_LEN]],
+    im: &[[f64; JET_LEN]],
+) -> [f64; JET_LEN] {
+    let mut acc = [0.0; JET_LEN];
+    for (i, (re, im)) in re.iter().zip(im).enumerate() {
+        let z = match rot {
+            Some(r) => z[i] * r[i],
+            None => z[i],
+        };
+        for j in 0..JET_LEN {
+            acc[j] += re[j] * z.re - im[j] * z.im;
+        }
+    }
+    acc
+}
+
+multiversion! {
+    /// Σ_i Re(C_{j,i}·z_i·r_i) for the jet values j (C = `re` + i·`im` per component, r_i = 1
+    /// without `rot`), the sum over the components in order.
+    pub(crate) fn jet_sum(
+        z: &[Complex<f64>],
+        rot: Option<&[Complex<f64>]>,
+        re: &[[f64; JET_LEN]],
+        im: &[[f64; JET_LEN]]
+    ) -> [f64; JET_LEN]
+        = jet_sum_body, jet_sum_avx512, jet_sum_avx2
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The dispatched build (the widest this CPU has) against the baseline body.
+    #[test]
+    fn wide_builds_give_the_baseline_bits() {
+        let val =
+            |k: usize| ((k * 7919 % 1013) as f64 * 0.731).sin() * 10f64.powi(k as i32 % 7 - 3);
+        let z: Vec<Complex<f64>> = (0..16).map(|i| Complex::new(val(i), val(i + 99))).collect();
+        let r: Vec<Complex<f64>> = (0..16)
+            .map(|i| Complex::from_polar(1.0, val(i + 7)))
+            .collect();
+        let re: Vec<[f64; JET_LEN]> = (0..16)
+            .map(|i| std::array::from_fn(|j| val(i * 31 + j)))
+            .collect();
+        let im: Vec<[f64; JET_LEN]> = (0..16)
+            .map(|i| std::array::from_fn(|j| val(i * 37 + j + 5)))
+            .collect();
+        for rot in [None, Some(&r[..])] {
+            let a = jet_sum(&z, rot, &re, &im);
+            let b = jet_sum_body(&z, rot, &re, &im);
+            assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits));
+        }
+        let y: Vec<[f64; CHANNELS]> = (0..12)
+            .map(|j| std::array::from_fn(|c| val(j * 41 + c)))
+            .collect();
+        let w_t: Vec<[f64; LANES]> = (0..12 * 8)
+            .map(|k| std::array::from_fn(|l| val(k * 8 + l + 3)))
+            .collect();
+        let (mut a, mut b) = (vec![0.0; 9 * 64], vec![0.0; 9 * 64]);
+        combine_blocks(&w_t, &y, &mut a);
+        combine_blocks_body(&w_t, &y, &mut b);
+        assert_eq!(
+            a.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            b.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+        );
+    }
+}

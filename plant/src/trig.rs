@@ -1,0 +1,179 @@
+//! Sines and cosines without libm where an angle moves by small steps: the ship's composition
+//! angles from tick to tick and the gimbal angles between a tick's two quadrature points.
+
+/// Largest step [`sin_cos_step`] covers, rad: its series (sin δ to δ⁵, cos δ to δ⁶) then errs
+/// by < δ⁷/7! ≈ 2e-18, a fiftieth of an ulp of 1.
+pub(crate) const SMALL_STEP_RAD: f64 = 0.01;
+
+/// sin and cos of a₀ + δ from s₀ = sin a₀ and c₀ = cos a₀ by the addition theorem with the
+/// series of the small step δ (|δ| ≤ [`SMALL_STEP_RAD`]).
+#[inline]
+pub(crate) fn sin_cos_step(s0: f64, c0: f64, d: f64) -> (f64, f64) {
+    // Multiplications by constant reciprocals: a division would lengthen the chain.
+    let d2 = d * d;
+    let sd = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0)));
+    let cd = 1.0 + d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0)));
+    (s0 * cd + c0 * sd, c0 * cd - s0 * sd)
+}
+
+/// Largest step [`sin_cos_step_wide`] covers, rad: its series (sin δ to δ⁹, cos δ to δ¹⁰) then
+/// errs by < δ¹¹/11! ≈ 2.5e-19.
+pub(crate) const WIDE_STEP_RAD: f64 = 0.1;
+
+/// [`sin_cos_step`] for steps up to [`WIDE_STEP_RAD`] (the ship's segment nodes, up to a tenth of
+/// a segment apart).
+#[inline]
+pub(crate) fn sin_cos_step_wide(s0: f64, c0: f64, d: f64) -> (f64, f64) {
+    let d2 = d * d;
+    let sd = d
+        * (1.0
+            + d2 * (-1.0 / 6.0
+                + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 + d2 * (1.0 / 362_880.0)))));
+    let cd = 1.0
+        + d2 * (-0.5
+            + d2 * (1.0 / 24.0
+                + d2 * (-1.0 / 720.0 + d2 * (1.0 / 40_320.0 + d2 * (-1.0 / 3_628_800.0)))));
+    (s0 * cd + c0 * sd, c0 * cd - s0 * sd)
+}
+
+/// Spacing of the grid [`GridTrig`] takes sines and cosines at, rad (steps from it stay below
+/// it, inside [`SMALL_STEP_RAD`]).
+const GRID_RAD: f64 = 0.01;
+
+/// Sines and cosines of angles that move a little every tick (a turning gimbal): libm at the
+/// grid point of a 0.01 rad grid towards zero (held while the angle stays near it), the series of
+/// [`sin_cos_step`] from there. The result is a function of the angle alone, whatever came
+/// before, so a restored plant gets the same bits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct GridTrig {
+    k: f64,
+    sin: f64,
+    cos: f64,
+}
+
+impl Default for GridTrig {
+    /// No grid point yet.
+    fn default() -> Self {
+        Self {
+            k: f64::NAN,
+            sin: f64::NAN,
+            cos: f64::NAN,
+        }
+    }
+}
+
+impl GridTrig {
+    /// sin and cos of `a`.
+    #[inline]
+    pub(crate) fn sin_cos(&mut self, a: f64) -> (f64, f64) {
+        // Truncation, not `round` (a libm call on the baseline x86-64): steps stay below one
+        // grid spacing, still within the series' reach.
+        let k = ((a * (1.0 / GRID_RAD)) as i64) as f64;
+        let g = k * GRID_RAD;
+        let d = a - g;
+        if !(d.abs() <= SMALL_STEP_RAD) {
+            return a.sin_cos();
+        }
+        if k != self.k {
+            (self.sin, self.cos) = g.sin_cos();
+            self.k = k;
+        }
+        // a and g are within a factor of two of each other (or both tiny): the step is exact.
+        sin_cos_step(self.sin, self.cos, d)
+    }
+}
+
+/// An angle with its sine and cosine, recomputed only when the angle changes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct AngleTrig {
+    rad: f64,
+    sin: f64,
+    cos: f64,
+}
+
+impl Default for AngleTrig {
+    /// No angle yet (a NaN matches nothing).
+    fn default() -> Self {
+        Self {
+            rad: f64::NAN,
+            sin: f64::NAN,
+            cos: f64::NAN,
+        }
+    }
+}
+
+impl AngleTrig {
+    /// sin and cos of `a` (libm when `a` differs from the held angle); `a` is held after.
+    #[inline]
+    pub(crate) fn at(&mut self, a: f64) -> (f64, f64) {
+        if a != self.rad {
+            (self.sin, self.cos) = a.sin_cos();
+            self.rad = a;
+        }
+        (self.sin, self.cos)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn small_steps_match_libm_to_an_ulp() {
+        let mut t = AngleTrig::default();
+        let mut worst = 0.0f64;
+        for k in 0..2000 {
+            let a0 = k as f64 * 0.0137 - 13.0;
+            let (s0, c0) = t.at(a0);
+            for d in [1e-9, -3e-5, 2.2e-4, -0.004, 0.0099] {
+                // The step the sum really makes (a0 + d rounds).
+                let a = a0 + d;
+                let (s, c) = sin_cos_step(s0, c0, a - a0);
+                let (se, ce) = a.sin_cos();
+                worst = worst.max((s - se).abs()).max((c - ce).abs());
+            }
+        }
+        assert!(worst < 4.5e-16, "{worst:e}");
+    }
+
+    #[test]
+    fn wide_steps_match_libm_to_an_ulp() {
+        let mut worst = 0.0f64;
+        for k in 0..2000 {
+            let a0 = k as f64 * 0.0137 - 13.0;
+            let (s0, c0) = a0.sin_cos();
+            for d in [-0.1, -0.061, 0.003, 0.0437, 0.0999] {
+                let a = a0 + d;
+                let (s, c) = sin_cos_step_wide(s0, c0, a - a0);
+                let (se, ce) = a.sin_cos();
+                worst = worst.max((s - se).abs()).max((c - ce).abs());
+            }
+        }
+        assert!(worst < 4.5e-16, "{worst:e}");
+    }
+
+    #[test]
+    fn grid_sines_match_libm_and_do_not_depend_on_history() {
+        let (mut a, mut b) = (GridTrig::default(), GridTrig::default());
+        let mut worst = 0.0f64;
+        for k in 0..20_000 {
+            let x = k as f64 * 3.7e-4 - 2.0;
+            let (s, c) = a.sin_cos(x);
+            let (se, ce) = x.sin_cos();
+            worst = worst.max((s - se).abs()).max((c - ce).abs());
+            // A fresh grid (a restored plant) and one that saw other angles give the same bits.
+            b.sin_cos(x * 7.0 + 1.0);
+            assert_eq!(b.sin_cos(x), (s, c));
+            assert_eq!(GridTrig::default().sin_cos(x), (s, c));
+        }
+        assert!(worst < 4.5e-16, "{worst:e}");
+    }
+
+    #[test]
+    fn held_angles_are_exact() {
+        let mut t = AngleTrig::default();
+        assert_eq!(t.at(0.3), 0.3f64.sin_cos());
+        assert_eq!(t.at(0.3), 0.3f64.sin_cos());
+        assert_eq!(t.at(0.5), 0.5f64.sin_cos());
+    }
+}
