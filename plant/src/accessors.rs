@@ -3,6 +3,7 @@
 
 use nalgebra::{Matrix3, UnitQuaternion};
 
+use crate::carrier::CarrierTruth;
 use crate::config::PlantConfig;
 use crate::earth::Site;
 use crate::effects::{AccelModel, GyroModel};
@@ -39,11 +40,19 @@ impl Plant {
     /// Truth over the last interval. On a moving carrier the carrier's part is evaluated here,
     /// when asked for, not at every tick (it is a copy for that reason).
     pub fn truth(&self) -> Truth {
-        let mut t = self.truth;
-        if let Some(c) = &self.carrier {
-            t.carrier = c.state().truth();
+        Truth {
+            carrier: self.carrier_truth(),
+            ..self.truth
         }
-        t
+    }
+
+    /// The carrier's part of [`Plant::truth`] alone (the site and `[vehicle]` attitude when
+    /// static), without copying the rest.
+    pub fn carrier_truth(&self) -> CarrierTruth {
+        match &self.carrier {
+            Some(c) => c.state().truth(),
+            None => self.truth.carrier,
+        }
     }
 
     /// The temperature-sensor readings of the last sample (a measured output), °C.

@@ -193,3 +193,20 @@ pub fn moving_base_increments(
         f_b_mps2: 0.5 * f,
     }
 }
+
+/// [`moving_base_increments`] while the table dwells, from the carrier part's means over the
+/// interval already in body axes (the ship's segment rule turns its node values into the body
+/// frame): Δθ = gimbal part + Δt·ω̄_ib^b, Δv = Δt·f̄^b.
+#[inline]
+pub fn dwell_increments(
+    gimbal_rad: Vector3<f64>,
+    mean_omega_b: Vector3<f64>,
+    mean_f_b: Vector3<f64>,
+    dt_s: f64,
+) -> TableIncrements {
+    TableIncrements {
+        dtheta_rad: gimbal_rad + dt_s * mean_omega_b,
+        dv_mps: dt_s * mean_f_b,
+        f_b_mps2: mean_f_b,
+    }
+}

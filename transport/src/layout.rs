@@ -80,7 +80,7 @@ impl TruthRecord {
     /// The truth of `plant` now (after its last step). The static carrier gives the site, zero
     /// velocity and the `[vehicle]` attitude.
     pub fn from_plant(plant: &rins_plant::Plant) -> Self {
-        let c = &plant.truth().carrier;
+        let c = plant.carrier_truth();
         let q_cn = c.q_cn.quaternion();
         let q_bn = nalgebra::UnitQuaternion::from_rotation_matrix(
             &nalgebra::Rotation3::from_matrix_unchecked(plant.attitude_c_bn()),

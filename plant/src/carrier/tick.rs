@@ -6,7 +6,9 @@ use nalgebra::Vector3;
 
 use super::segment::TickPoints;
 use super::{Carrier, GL_OFFSETS};
-use crate::kinematics::{CarrierPoint, TableIncrements, carrier_points, moving_base_increments};
+use crate::kinematics::{
+    CarrierPoint, TableIncrements, carrier_points, dwell_increments, moving_base_increments,
+};
 use crate::plant::Plant;
 use crate::table::{GimbalAngles, GimbalFrame, GimbalState};
 use crate::trig::{AngleTrig, GridTrig};
@@ -80,12 +82,7 @@ impl Plant {
             if let (None, Carrier::Ship(s)) = (&run.isolation, &mut run.carrier) {
                 let frame = run.trig.frame(g1.angles);
                 if let Some([w, f, up]) = s.dwell_means(&frame, &mut run.now) {
-                    let inc = TableIncrements {
-                        dtheta_rad: h * w,
-                        dv_mps: h * f,
-                        f_b_mps2: f,
-                    };
-                    return (inc, up);
+                    return (dwell_increments(Vector3::zeros(), w, f, h), up);
                 }
             }
         }
@@ -179,14 +176,7 @@ impl Plant {
         };
         match pts {
             // The segment rule while the table dwells: the tick's means, already in body axes.
-            TickPoints::BodyMean([w, f, up]) => {
-                let inc = TableIncrements {
-                    dtheta_rad: gimbal + h * w,
-                    dv_mps: h * f,
-                    f_b_mps2: f,
-                };
-                (inc, up)
-            }
+            TickPoints::BodyMean([w, f, up]) => (dwell_increments(gimbal, w, f, h), up),
             TickPoints::Nodes(p) => {
                 let pts = p.map(|[w, f, _]| CarrierPoint {
                     omega_ic_c: w,
