@@ -53,9 +53,12 @@ macro_rules! multiversion {
 }
 
 #[inline(always)]
-fn combine_blocks_body(w_t: &[[f64; LANES]], y: &[[f64; CHANNELS]], out: &mut [f64]) {
+fn combine_blocks_body(
+    w_t: &[[f64; LANES]],
+    y: &[[f64; CHANNELS]],
+    out: &mut [[f64; POINT_CHANNELS]],
+) {
     let blocks = w_t.len() / y.len().max(1);
-    let rows = blocks * LANES;
     for b in 0..blocks {
         let mut acc = [[0.0; LANES]; POINT_CHANNELS];
         for (j, v) in y.iter().enumerate() {
@@ -66,17 +69,21 @@ fn combine_blocks_body(w_t: &[[f64; LANES]], y: &[[f64; CHANNELS]], out: &mut [f
                 }
             }
         }
-        for (c, a) in acc.iter().enumerate() {
-            out[c * rows + b * LANES..c * rows + (b + 1) * LANES].copy_from_slice(a);
+        for (l, row) in out[b * LANES..(b + 1) * LANES].iter_mut().enumerate() {
+            *row = std::array::from_fn(|c| acc[c][l]);
         }
     }
 }
 
 multiversion! {
-    /// out[c·R + r] = Σ_j W[j][r]·y[j][c] for the point channels c (0..[`POINT_CHANNELS`]), rows
-    /// r = 0..R, the sum over the nodes j in order; `w_t` holds node j's weights as R/[`LANES`]
-    /// blocks, node after node; `out` holds [`POINT_CHANNELS`]·R values.
-    pub(crate) fn combine_blocks(w_t: &[[f64; LANES]], y: &[[f64; CHANNELS]], out: &mut [f64])
+    /// out[r][c] = Σ_j W[j][r]·y[j][c] for the point channels c (0..[`POINT_CHANNELS`]) and
+    /// rows r = 0..R, the sum over the nodes j in order; `w_t` holds node j's weights as
+    /// R/[`LANES`] blocks, node after node; `out` holds R rows.
+    pub(crate) fn combine_blocks(
+        w_t: &[[f64; LANES]],
+        y: &[[f64; CHANNELS]],
+        out: &mut [[f64; POINT_CHANNELS]]
+    )
         = combine_blocks_body, combine_blocks_avx512, combine_blocks_avx2
 }
 

@@ -249,17 +249,16 @@ impl SegmentRule {
         Self::combine(&self.mean_w[k * self.n..(k + 1) * self.n], y, 0)
     }
 
-    /// [`SegmentRule::tick_mean`] for every tick of the segment at once, channel-major
-    /// (`out[c·M + k]`): the same sums in the same order, so the same bits, but a block of ticks
+    /// [`SegmentRule::tick_mean`] for every tick of the segment at once (`out[k]`): the same sums in the same order, so the same bits, but a block of ticks
     /// shares each pass over the node values and the products run as wide as the CPU allows
     /// ([`crate::simd`]).
-    pub fn tick_means_all(&self, y: &[[f64; CHANNELS]], out: &mut Vec<f64>) {
-        out.resize(POINT_CHANNELS * self.m as usize, 0.0);
+    pub fn tick_means_all(&self, y: &[[f64; CHANNELS]], out: &mut Vec<[f64; POINT_CHANNELS]>) {
+        out.resize(self.m as usize, [0.0; POINT_CHANNELS]);
         combine_blocks(&self.mean_w_t, &y[..self.n], out);
     }
 
     /// The point channels at the two Gauss–Legendre instants of tick `k` from every tick's
-    /// means `means` (channel-major, as [`SegmentRule::tick_means_all`] writes them):
+    /// means `means` (as [`SegmentRule::tick_means_all`] writes them):
     /// p(τ) = w̄ + w′·τ at τ = ∓h/(2√3) from the tick's middle, w′ from the neighbouring ticks'
     /// means (central difference; second-order one-sided ones at the segment's ends).
     ///
@@ -270,13 +269,17 @@ impl SegmentRule {
     /// for a 2°/s gimbal and a 1 m/s² sea at 2 rad/s at 100 Hz: the size of the segment
     /// rule's own interpolation error ([`SEGMENT_EPS`]·h).
     #[inline]
-    pub fn points_from_means(&self, means: &[f64], k: usize) -> [[f64; POINT_CHANNELS]; 2] {
+    pub fn points_from_means(
+        &self,
+        means: &[[f64; POINT_CHANNELS]],
+        k: usize,
+    ) -> [[f64; POINT_CHANNELS]; 2] {
         /// 1/(4√3): w′·τ = (2h·w′)·(±1/(4√3)).
         const STEP: f64 = 0.144_337_567_297_406_44;
         let m = self.m as usize;
         let mut p = [[0.0; POINT_CHANNELS]; 2];
         for c in 0..POINT_CHANNELS {
-            let at = |k: usize| means[c * m + k];
+            let at = |k: usize| means[k][c];
             // 2h·w′.
             let d = if k == 0 {
                 4.0 * at(1) - 3.0 * at(0) - at(2)
@@ -398,7 +401,7 @@ mod tests {
             let one = rule.tick_mean(k, &y);
             for c in 0..POINT_CHANNELS {
                 assert_eq!(
-                    all[c * 64 + k].to_bits(),
+                    all[k][c].to_bits(),
                     one[c].to_bits(),
                     "tick {k} channel {c}"
                 );

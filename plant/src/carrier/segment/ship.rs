@@ -9,7 +9,7 @@ use super::super::ship::{Ship, Trig, angles, compose_with};
 use super::super::state::CarrierState;
 use super::super::track::TrackPosition;
 use super::super::waves::SeaJet;
-use super::{CHANNELS, SEGMENT_NODES, SegmentRule, TickPoints};
+use super::{CHANNELS, POINT_CHANNELS, SEGMENT_NODES, SegmentRule, TickPoints};
 use crate::earth::LocalEarth;
 use crate::kinematics::carrier_point_near;
 use crate::table::GimbalFrame;
@@ -59,13 +59,13 @@ pub struct SegState {
     /// Every tick's mean points in body axes ([`SegmentRule::tick_means_all`] of the node
     /// values turned into the body frame `means_frame`), computed at the segment's first
     /// dwelling tick and again if the table dwells elsewhere later in the segment.
-    means: Vec<f64>,
+    means: Vec<[f64; POINT_CHANNELS]>,
     means_frame: Option<GimbalFrame>,
     /// Scratch: the node values with their points in body axes.
     y_body: Vec<[f64; CHANNELS]>,
     /// Every tick's mean points in mount axes ([`SegmentRule::tick_means_all`]), computed at
     /// the segment's first turning tick (`mount_ready`).
-    means_mount: Vec<f64>,
+    means_mount: Vec<[f64; POINT_CHANNELS]>,
     mount_ready: bool,
 }
 
@@ -267,8 +267,8 @@ impl Ship {
             if seg.means_frame != Some(*frame) {
                 seg.body_means(frame);
             }
-            let m = seg.rule.m as usize;
-            let c = |i: usize| seg.means[i * m + k];
+            let c = seg.means[k];
+            let c = |i: usize| c[i];
             TickPoints::BodyMean([
                 Vector3::new(c(0), c(1), c(2)),
                 Vector3::new(c(3), c(4), c(5)),
@@ -292,8 +292,9 @@ impl Ship {
         if seg.means_frame != Some(*frame) {
             seg.body_means(frame);
         }
-        let (m, k) = (seg.rule.m as usize, (seg.tick - seg.start_tick) as usize);
-        let c = |i: usize| seg.means[i * m + k];
+        let k = (seg.tick - seg.start_tick) as usize;
+        let c = seg.means[k];
+        let c = |i: usize| c[i];
         let means = [
             Vector3::new(c(0), c(1), c(2)),
             Vector3::new(c(3), c(4), c(5)),
