@@ -264,16 +264,7 @@ impl Ship {
             }
             TickPoints::Nodes(seg.quadrature_points(k))
         } else {
-            if seg.means_frame != Some(*frame) {
-                seg.body_means(frame);
-            }
-            let c = seg.means[k];
-            let c = |i: usize| c[i];
-            TickPoints::BodyMean([
-                Vector3::new(c(0), c(1), c(2)),
-                Vector3::new(c(3), c(4), c(5)),
-                Vector3::new(c(6), c(7), c(8)),
-            ])
+            TickPoints::BodyMean(seg.body_mean(frame, k))
         };
         self.finish_tick(seg, end);
         pts
@@ -289,17 +280,7 @@ impl Ship {
         end: &mut CarrierState,
     ) -> Option<[Vector3<f64>; 3]> {
         let mut seg = self.seg.take_if(|s| !s.exact)?;
-        if seg.means_frame != Some(*frame) {
-            seg.body_means(frame);
-        }
-        let k = (seg.tick - seg.start_tick) as usize;
-        let c = seg.means[k];
-        let c = |i: usize| c[i];
-        let means = [
-            Vector3::new(c(0), c(1), c(2)),
-            Vector3::new(c(3), c(4), c(5)),
-            Vector3::new(c(6), c(7), c(8)),
-        ];
+        let means = seg.body_mean(frame, (seg.tick - seg.start_tick) as usize);
         self.finish_tick(seg, end);
         Some(means)
     }
@@ -369,6 +350,16 @@ impl SegState {
         self.rule
             .points_from_means(&self.means_mount, k)
             .map(|p| TickPoints::split(&p))
+    }
+
+    /// Tick `k`'s mean points in the body axes of `frame` (ω_ic without the gimbals' part, f,
+    /// up), from the segment's means, computed first if they are for another frame.
+    #[inline]
+    fn body_mean(&mut self, frame: &GimbalFrame, k: usize) -> [Vector3<f64>; 3] {
+        if self.means_frame != Some(*frame) {
+            self.body_means(frame);
+        }
+        TickPoints::split(&self.means[k])
     }
 
     /// Every tick's mean points in the body axes of `frame`: the node values' points turned
