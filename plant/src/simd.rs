@@ -53,36 +53,35 @@ macro_rules! multiversion {
 }
 
 #[inline(always)]
-fn combine_blocks_body(
-    w_t: &[[f64; LANES]],
-    y: &[[f64; CHANNELS]],
-    out: &mut [[f64; POINT_CHANNELS]],
-) {
-    let blocks = w_t.len() / y.len().max(1);
+fn combine_blocks_body(w_t: &[[f64; LANES]], y: &[[f64; CHANNELS]], out: &mut [f64]) {
+    let rows = out.len() / POINT_CHANNELS;
+    let blocks = rows / LANES;
     for b in 0..blocks {
         let mut acc = [[0.0; LANES]; POINT_CHANNELS];
         for (j, v) in y.iter().enumerate() {
             let w = &w_t[j * blocks + b];
-            for c in 0..POINT_CHANNELS {
+            for (acc, &v) in acc.iter_mut().zip(v) {
                 for l in 0..LANES {
-                    acc[c][l] += w[l] * v[c];
+                    acc[l] += w[l] * v;
                 }
             }
         }
-        for (l, row) in out[b * LANES..(b + 1) * LANES].iter_mut().enumerate() {
-            *row = std::array::from_fn(|c| acc[c][l]);
+        // Channel after channel: each block of a channel is one vector store.
+        for (c, acc) in acc.iter().enumerate() {
+            let o = c * rows + b * LANES;
+            out[o..o + LANES].copy_from_slice(acc);
         }
     }
 }
 
 multiversion! {
-    /// out[r][c] = Σ_j W[j][r]·y[j][c] for the point channels c (0..[`POINT_CHANNELS`]) and
+    /// out[c·R + r] = Σ_j W[j][r]·y[j][c] for the point channels c (0..[`POINT_CHANNELS`]) and
     /// rows r = 0..R, the sum over the nodes j in order; `w_t` holds node j's weights as
-    /// R/[`LANES`] blocks, node after node; `out` holds R rows.
+    /// R/[`LANES`] blocks, node after node; `out` holds the R rows channel after channel.
     pub(crate) fn combine_blocks(
         w_t: &[[f64; LANES]],
         y: &[[f64; CHANNELS]],
-        out: &mut [[f64; POINT_CHANNELS]]
+        out: &mut [f64]
     )
         = combine_blocks_body, combine_blocks_avx512, combine_blocks_avx2
 }
@@ -149,10 +148,10 @@ mod tests {
         let w_t: Vec<[f64; LANES]> = (0..12 * 8)
             .map(|k| std::array::from_fn(|l| val(k * 8 + l + 3)))
             .collect();
-        let (mut a, mut b) = (vec![[0.0; 9]; 64], vec![[0.0; 9]; 64]);
+        let (mut a, mut b) = (vec![0.0; 9 * 64], vec![0.0; 9 * 64]);
         combine_blocks(&w_t, &y, &mut a);
         combine_blocks_body(&w_t, &y, &mut b);
-        let bits = |v: &[[f64; 9]]| v.iter().flatten().map(|v| v.to_bits()).collect::<Vec<_>>();
+        let bits = |v: &[f64]| v.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&a), bits(&b));
     }
 }

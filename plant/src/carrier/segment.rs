@@ -153,15 +153,30 @@ impl SegmentRule {
         let (x, w) = gauss_legendre(n);
         let mf = m as f64;
         let node_ticks: Vec<f64> = x.iter().map(|x| 0.5 * (1.0 + x) * mf).collect();
+        // The Lagrange basis at t: l_j(t) = Π_{i<j}(t − x_i)·Π_{i>j}(t − x_i)/Π_{i≠j}(x_j − x_i),
+        // the two products carried from either end (O(n) per t, defined at the nodes too).
+        let inv_den: Vec<f64> = (0..n)
+            .map(|j| {
+                let d: f64 = (0..n)
+                    .filter(|&i| i != j)
+                    .map(|i| node_ticks[j] - node_ticks[i])
+                    .product();
+                1.0 / d
+            })
+            .collect();
         let basis = |t: f64| -> Vec<f64> {
-            (0..n)
-                .map(|j| {
-                    (0..n)
-                        .filter(|&i| i != j)
-                        .map(|i| (t - node_ticks[i]) / (node_ticks[j] - node_ticks[i]))
-                        .product()
-                })
-                .collect()
+            let mut l = vec![0.0; n];
+            let mut before = 1.0;
+            for (l, x) in l.iter_mut().zip(&node_ticks) {
+                *l = before;
+                before *= t - x;
+            }
+            let mut after = 1.0;
+            for j in (0..n).rev() {
+                l[j] *= after * inv_den[j];
+                after *= t - node_ticks[j];
+            }
+            l
         };
         // ∫_a^b of the basis by the n-point rule (exact: the basis has degree n − 1), / (b − a).
         let mean = |a: f64, b: f64| -> Vec<f64> {
@@ -249,12 +264,13 @@ impl SegmentRule {
         Self::combine(&self.mean_w[k * self.n..(k + 1) * self.n], y, 0)
     }
 
-    /// [`SegmentRule::tick_mean`] for every tick of the segment at once (`out[k]`): the same sums in the same order, so the same bits, but a block of ticks
-    /// shares each pass over the node values and the products run as wide as the CPU allows
-    /// ([`crate::simd`]).
-    pub fn tick_means_all(&self, y: &[[f64; CHANNELS]], out: &mut Vec<[f64; POINT_CHANNELS]>) {
-        out.resize(self.m as usize, [0.0; POINT_CHANNELS]);
-        combine_blocks(&self.mean_w_t, &y[..self.n], out);
+    /// [`SegmentRule::tick_mean`] for every tick of the segment at once: the same sums in the
+    /// same order, so the same bits, but a block of ticks shares each pass over the node values
+    /// and the products run as wide as the CPU allows ([`crate::simd`]).
+    pub fn tick_means_all(&self, y: &[[f64; CHANNELS]], out: &mut TickMeans) {
+        out.ticks = self.m as usize;
+        out.v.resize(POINT_CHANNELS * out.ticks, 0.0);
+        combine_blocks(&self.mean_w_t, &y[..self.n], &mut out.v);
     }
 
     /// The point channels at the two Gauss–Legendre instants of tick `k` from every tick's
@@ -269,28 +285,25 @@ impl SegmentRule {
     /// for a 2°/s gimbal and a 1 m/s² sea at 2 rad/s at 100 Hz: the size of the segment
     /// rule's own interpolation error ([`SEGMENT_EPS`]·h).
     #[inline]
-    pub fn points_from_means(
-        &self,
-        means: &[[f64; POINT_CHANNELS]],
-        k: usize,
-    ) -> [[f64; POINT_CHANNELS]; 2] {
+    pub fn points_from_means(&self, means: &TickMeans, k: usize) -> [[f64; POINT_CHANNELS]; 2] {
         /// 1/(4√3): w′·τ = (2h·w′)·(±1/(4√3)).
         const STEP: f64 = 0.144_337_567_297_406_44;
-        let m = self.m as usize;
+        let m = means.ticks;
         let mut p = [[0.0; POINT_CHANNELS]; 2];
-        for c in 0..POINT_CHANNELS {
-            let at = |k: usize| means[k][c];
+        let [p0, p1] = &mut p;
+        for (c, (p0, p1)) in p0.iter_mut().zip(p1).enumerate() {
+            let ch = means.channel(c);
             // 2h·w′.
             let d = if k == 0 {
-                4.0 * at(1) - 3.0 * at(0) - at(2)
+                4.0 * ch[1] - 3.0 * ch[0] - ch[2]
             } else if k + 1 == m {
-                3.0 * at(k) - 4.0 * at(k - 1) + at(k - 2)
+                3.0 * ch[k] - 4.0 * ch[k - 1] + ch[k - 2]
             } else {
-                at(k + 1) - at(k - 1)
+                ch[k + 1] - ch[k - 1]
             };
-            let (mean, step) = (at(k), STEP * d);
-            p[0][c] = mean - step;
-            p[1][c] = mean + step;
+            let (mean, step) = (ch[k], STEP * d);
+            *p0 = mean - step;
+            *p1 = mean + step;
         }
         p
     }
@@ -324,6 +337,29 @@ impl SegmentRule {
             .map(|i| d(&self.disp_w[i * n..(i + 1) * n]))
             .collect();
         (nodes, d(&self.seg_w))
+    }
+}
+
+/// Every tick's mean points of a segment ([`SegmentRule::tick_means_all`]), channel after
+/// channel: a channel's ticks are contiguous, which is how they are computed (one vector per
+/// block of ticks) and how [`SegmentRule::points_from_means`] reads neighbours.
+#[derive(Clone, Debug, Default)]
+pub struct TickMeans {
+    ticks: usize,
+    v: Vec<f64>,
+}
+
+impl TickMeans {
+    /// Channel `c` (of [`POINT_CHANNELS`]) over the segment's ticks.
+    #[inline]
+    pub fn channel(&self, c: usize) -> &[f64] {
+        &self.v[c * self.ticks..(c + 1) * self.ticks]
+    }
+
+    /// Tick `k`'s point channels.
+    #[inline]
+    pub fn row(&self, k: usize) -> [f64; POINT_CHANNELS] {
+        std::array::from_fn(|c| self.v[c * self.ticks + k])
     }
 }
 
@@ -395,13 +431,13 @@ mod tests {
         let y: Vec<[f64; CHANNELS]> = (0..SEGMENT_NODES)
             .map(|j| std::array::from_fn(|c| ((j * 7 + c * 3) as f64 * 0.37).sin() * 1e3))
             .collect();
-        let mut all = Vec::new();
+        let mut all = TickMeans::default();
         rule.tick_means_all(&y, &mut all);
         for k in 0..64 {
             let one = rule.tick_mean(k, &y);
             for c in 0..POINT_CHANNELS {
                 assert_eq!(
-                    all[k][c].to_bits(),
+                    all.row(k)[c].to_bits(),
                     one[c].to_bits(),
                     "tick {k} channel {c}"
                 );
@@ -420,7 +456,7 @@ mod tests {
             .iter()
             .map(|&t| std::array::from_fn(|c| (w * t * h + 0.4 * c as f64).sin()))
             .collect();
-        let mut means = Vec::new();
+        let mut means = TickMeans::default();
         rule.tick_means_all(&y, &mut means);
         let (mut odd, mut even) = (0.0f64, 0.0f64);
         for k in 0..m as usize {

@@ -9,7 +9,7 @@ use super::super::ship::{Ship, Trig, angles, compose_with};
 use super::super::state::CarrierState;
 use super::super::track::TrackPosition;
 use super::super::waves::SeaJet;
-use super::{CHANNELS, POINT_CHANNELS, SEGMENT_NODES, SegmentRule, TickPoints};
+use super::{CHANNELS, SEGMENT_NODES, SegmentRule, TickMeans, TickPoints};
 use crate::earth::LocalEarth;
 use crate::kinematics::carrier_point_near;
 use crate::table::GimbalFrame;
@@ -59,13 +59,13 @@ pub struct SegState {
     /// Every tick's mean points in body axes ([`SegmentRule::tick_means_all`] of the node
     /// values turned into the body frame `means_frame`), computed at the segment's first
     /// dwelling tick and again if the table dwells elsewhere later in the segment.
-    means: Vec<[f64; POINT_CHANNELS]>,
+    means: TickMeans,
     means_frame: Option<GimbalFrame>,
     /// Scratch: the node values with their points in body axes.
     y_body: Vec<[f64; CHANNELS]>,
     /// Every tick's mean points in mount axes ([`SegmentRule::tick_means_all`]), computed at
     /// the segment's first turning tick (`mount_ready`).
-    means_mount: Vec<[f64; POINT_CHANNELS]>,
+    means_mount: TickMeans,
     mount_ready: bool,
 }
 
@@ -93,10 +93,10 @@ impl Ship {
             end_pos: start,
             exact: false,
             y: vec![],
-            means: vec![],
+            means: TickMeans::default(),
             means_frame: None,
             y_body: vec![],
-            means_mount: vec![],
+            means_mount: TickMeans::default(),
             mount_ready: false,
         }));
         self.build_segment(0, start);
@@ -359,7 +359,7 @@ impl SegState {
         if self.means_frame != Some(*frame) {
             self.body_means(frame);
         }
-        TickPoints::split(&self.means[k])
+        TickPoints::split(&self.means.row(k))
     }
 
     /// Every tick's mean points in the body axes of `frame`: the node values' points turned
