@@ -118,6 +118,121 @@ multiversion! {
         = jet_sum_body, jet_sum_avx512, jet_sum_avx2
 }
 
+/// Lane-wise a + (b·s − c·t): one vector expression, so the compiler keeps the lanes as the
+/// vector (left to itself it vectorised `node_jets` across the jet values, with gathers).
+#[inline(always)]
+fn acc_diff(a: [f64; LANES], b: &[f64; LANES], s: f64, c: &[f64; LANES], t: f64) -> [f64; LANES] {
+    std::array::from_fn(|l| a[l] + (s * b[l] - t * c[l]))
+}
+
+#[inline(always)]
+fn node_jets_body(
+    z: &[Complex<f64>],
+    rot_re: &[[f64; LANES]],
+    rot_im: &[[f64; LANES]],
+    re: &[[f64; JET_LEN]],
+    im: &[[f64; JET_LEN]],
+    out: &mut [[f64; LANES]],
+) {
+    let nc = z.len();
+    let blocks = rot_re.len() / nc.max(1);
+    for b in 0..blocks {
+        let mut acc = [[0.0; LANES]; JET_LEN];
+        for i in 0..nc {
+            let (rr, ri, z) = (&rot_re[b * nc + i], &rot_im[b * nc + i], z[i]);
+            // u = z·r as `Complex`'s product forms it: (z.re·r.re − z.im·r.im, z.re·r.im + z.im·r.re).
+            let ur: [f64; LANES] = std::array::from_fn(|l| z.re * rr[l] - z.im * ri[l]);
+            let ui: [f64; LANES] = std::array::from_fn(|l| z.re * ri[l] + z.im * rr[l]);
+            for j in 0..JET_LEN {
+                acc[j] = acc_diff(acc[j], &ur, re[i][j], &ui, im[i][j]);
+            }
+        }
+        out[b * JET_LEN..(b + 1) * JET_LEN].copy_from_slice(&acc);
+    }
+}
+
+/// [`node_jets_body`] for AVX-512F written with the vector operations themselves: left to
+/// itself the compiler vectorised the loop over components (with gathers and scatters). The
+/// same operations in the same order (no fused multiply-add), so the same bits.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn node_jets_avx512(
+    z: &[Complex<f64>],
+    rot_re: &[[f64; LANES]],
+    rot_im: &[[f64; LANES]],
+    re: &[[f64; JET_LEN]],
+    im: &[[f64; JET_LEN]],
+    out: &mut [[f64; LANES]],
+) {
+    use std::arch::x86_64::{
+        _mm512_add_pd, _mm512_loadu_pd, _mm512_mul_pd, _mm512_set1_pd, _mm512_setzero_pd,
+        _mm512_storeu_pd, _mm512_sub_pd,
+    };
+    let nc = z.len();
+    let blocks = rot_re.len() / nc.max(1);
+    for b in 0..blocks {
+        let mut acc = [_mm512_setzero_pd(); JET_LEN];
+        for i in 0..nc {
+            let (rr, ri) = (&rot_re[b * nc + i], &rot_im[b * nc + i]);
+            // SAFETY: each is a whole [f64; 8], the 64 bytes an unaligned load reads.
+            let (rr, ri) = unsafe { (_mm512_loadu_pd(rr.as_ptr()), _mm512_loadu_pd(ri.as_ptr())) };
+            let (zr, zi) = (_mm512_set1_pd(z[i].re), _mm512_set1_pd(z[i].im));
+            let ur = _mm512_sub_pd(_mm512_mul_pd(zr, rr), _mm512_mul_pd(zi, ri));
+            let ui = _mm512_add_pd(_mm512_mul_pd(zr, ri), _mm512_mul_pd(zi, rr));
+            for (acc, (&cr, &ci)) in acc.iter_mut().zip(re[i].iter().zip(&im[i])) {
+                let t = _mm512_sub_pd(
+                    _mm512_mul_pd(_mm512_set1_pd(cr), ur),
+                    _mm512_mul_pd(_mm512_set1_pd(ci), ui),
+                );
+                *acc = _mm512_add_pd(*acc, t);
+            }
+        }
+        for (o, acc) in out[b * JET_LEN..(b + 1) * JET_LEN].iter_mut().zip(acc) {
+            // SAFETY: `o` is a whole [f64; 8], the 64 bytes an unaligned store writes.
+            unsafe { _mm512_storeu_pd(o.as_mut_ptr(), acc) };
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn node_jets_avx2(
+    z: &[Complex<f64>],
+    rot_re: &[[f64; LANES]],
+    rot_im: &[[f64; LANES]],
+    re: &[[f64; JET_LEN]],
+    im: &[[f64; JET_LEN]],
+    out: &mut [[f64; LANES]],
+) {
+    node_jets_body(z, rot_re, rot_im, re, im, out)
+}
+
+/// [`jet_sum`] with rotations for [`LANES`] nodes side by side: for each block b of nodes
+/// (`rot_re`/`rot_im` hold block b's rotations component after component),
+/// out[b·JET_LEN + j][l] = Σ_i Re(C_{j,i}·z_i·r_{i,l}), the same operations in the same order
+/// as [`jet_sum`] for one node.
+pub(crate) fn node_jets(
+    z: &[Complex<f64>],
+    rot_re: &[[f64; LANES]],
+    rot_im: &[[f64; LANES]],
+    re: &[[f64; JET_LEN]],
+    im: &[[f64; JET_LEN]],
+    out: &mut [[f64; LANES]],
+) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU has AVX-512F, checked just above.
+            return unsafe { node_jets_avx512(z, rot_re, rot_im, re, im, out) };
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2, checked just above.
+            return unsafe { node_jets_avx2(z, rot_re, rot_im, re, im, out) };
+        }
+    }
+    node_jets_body(z, rot_re, rot_im, re, im, out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -142,6 +257,15 @@ mod tests {
             let b = jet_sum_body(&z, rot, &re, &im);
             assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits));
         }
+        let rot: Vec<[f64; LANES]> = (0..32)
+            .map(|k| std::array::from_fn(|l| val(k * 8 + l + 11)))
+            .collect();
+        let (mut a, mut b) = (vec![[0.0; LANES]; 2 * JET_LEN], vec![[0.0; LANES]; 2 * JET_LEN]);
+        let rot_im: Vec<[f64; LANES]> = rot.iter().map(|r| r.map(|v| v * 0.7 - 0.1)).collect();
+        node_jets(&z, &rot, &rot_im, &re, &im, &mut a);
+        node_jets_body(&z, &rot, &rot_im, &re, &im, &mut b);
+        let bits = |v: &[[f64; LANES]]| v.iter().flatten().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&a), bits(&b));
         let y: Vec<[f64; CHANNELS]> = (0..12)
             .map(|j| std::array::from_fn(|c| val(j * 41 + c)))
             .collect();

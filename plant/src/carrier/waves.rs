@@ -18,7 +18,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::spec::{SeaSpec, SpectrumKind};
-use crate::simd::jet_sum;
+use crate::simd::{LANES, jet_sum, node_jets};
 use crate::units::DEG;
 
 /// Random stream of the sea-state realisation (distinct from the sensor noise streams).
@@ -122,6 +122,13 @@ pub struct Waves {
     rot_stride: Vec<Complex<f64>>,
     /// True when `z` was last carried by strides (then a one-tick step must not continue it).
     by_stride: bool,
+    /// The segment's node rotations (`rot_offsets` after [`Waves::set_segment`]) as blocks of
+    /// [`LANES`] nodes, component after component in a block, real and imaginary parts apart
+    /// (padded with zeros): what [`Waves::node_jets`] streams through.
+    rot_nodes_re: Vec<[f64; LANES]>,
+    rot_nodes_im: Vec<[f64; LANES]>,
+    /// Scratch of [`Waves::node_jets`]: per block of nodes, the jet values, each over the block.
+    node_jet_blocks: Vec<[f64; LANES]>,
 }
 
 impl Waves {
@@ -211,6 +218,9 @@ impl Waves {
             stride: 0,
             rot_stride: vec![],
             by_stride: false,
+            rot_nodes_re: vec![],
+            rot_nodes_im: vec![],
+            node_jet_blocks: vec![],
         };
         me.resync(0);
         Some(me)
@@ -253,6 +263,18 @@ impl Waves {
         };
         self.rot_stride = rot(stride as f64);
         self.rot_offsets = offsets_ticks.iter().map(|&f| rot(f)).collect();
+        let blocks = offsets_ticks.len().div_ceil(LANES);
+        let part = |b: usize, i: usize, re: bool| -> [f64; LANES] {
+            std::array::from_fn(|l| {
+                self.rot_offsets
+                    .get(b * LANES + l)
+                    .map_or(0.0, |r| if re { r[i].re } else { r[i].im })
+            })
+        };
+        let nc = self.omega_rps.len();
+        let pairs = || (0..blocks).flat_map(|b| (0..nc).map(move |i| (b, i)));
+        self.rot_nodes_re = pairs().map(|(b, i)| part(b, i, true)).collect();
+        self.rot_nodes_im = pairs().map(|(b, i)| part(b, i, false)).collect();
         self.by_stride = false;
         self.resync(0);
     }
@@ -328,6 +350,29 @@ impl Waves {
         SeaJet::from_flat(&jet_sum(&self.z, rot, &self.jet_re, &self.jet_im))
     }
 
+    /// The jets at every in-segment offset of [`Waves::set_segment`] into `out`: the values
+    /// `jet(Some(j))` gives, bit for bit, with the nodes side by side in the vector lanes.
+    pub fn node_jets(&mut self, out: &mut Vec<SeaJet>) {
+        let n = self.rot_offsets.len();
+        let blocks = n.div_ceil(LANES);
+        self.node_jet_blocks
+            .resize(blocks * JET_LEN, [0.0; LANES]);
+        node_jets(
+            &self.z,
+            &self.rot_nodes_re,
+            &self.rot_nodes_im,
+            &self.jet_re,
+            &self.jet_im,
+            &mut self.node_jet_blocks,
+        );
+        out.clear();
+        out.extend((0..n).map(|j| {
+            let (b, l) = (j / LANES, j % LANES);
+            let flat = std::array::from_fn(|v| self.node_jet_blocks[b * JET_LEN + v][l]);
+            SeaJet::from_flat(&flat)
+        }));
+    }
+
     /// The jet at an arbitrary time (sines and cosines: for checks and trajectory export).
     pub fn jet_at_time(&self, t_s: f64) -> SeaJet {
         let z: Vec<Complex<f64>> = self
@@ -337,5 +382,41 @@ impl Waves {
             .map(|(w, e)| Complex::from_polar(1.0, w * t_s + e))
             .collect();
         SeaJet::from_flat(&jet_sum(&z, None, &self.jet_re, &self.jet_im))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::carrier::segment::{SEGMENT_NODES, SegmentRule};
+
+    #[test]
+    fn node_jets_side_by_side_are_each_nodes_jet_bit_for_bit() {
+        let spec = SeaSpec {
+            spectrum: SpectrumKind::Jonswap,
+            sea_state: 5,
+            ..SeaSpec::default()
+        };
+        let mut w = Waves::new(&spec, 7, 0.01, &[]).expect("a sea");
+        // 13 nodes: the last block of lanes is part padding.
+        for n in [SEGMENT_NODES, 13] {
+            let rule = SegmentRule::new(n, 128);
+            w.set_segment(128, &rule.node_ticks);
+            for tick in [0, 128, 4096 + 256] {
+                w.seek_segment(tick);
+                let mut jets = Vec::new();
+                w.node_jets(&mut jets);
+                assert_eq!(jets.len(), n);
+                for (j, jet) in jets.iter().enumerate() {
+                    let one = w.jet(Some(j));
+                    assert_eq!(
+                        jet.flat().map(f64::to_bits),
+                        one.flat().map(f64::to_bits),
+                        "{n} nodes, tick {tick}, node {j}"
+                    );
+                    assert!(one.x.iter().any(|&x| x != 0.0));
+                }
+            }
+        }
     }
 }

@@ -56,6 +56,8 @@ pub struct SegState {
     exact: bool,
     /// Node values ([`CHANNELS`]).
     y: Vec<[f64; CHANNELS]>,
+    /// Scratch: the sea state's jets at the nodes.
+    jets: Vec<SeaJet>,
     /// Every tick's mean points in body axes ([`SegmentRule::tick_means_all`] of the node
     /// values turned into the body frame `means_frame`), computed at the segment's first
     /// dwelling tick and again if the table dwells elsewhere later in the segment.
@@ -93,6 +95,7 @@ impl Ship {
             end_pos: start,
             exact: false,
             y: vec![],
+            jets: vec![],
             means: TickMeans::default(),
             means_frame: None,
             y_body: vec![],
@@ -151,12 +154,13 @@ impl Ship {
         let mut parts = Vec::with_capacity(n);
         let mut v = Vec::with_capacity(n);
         let mut trig = Trig::default();
+        match self.waves.as_mut() {
+            Some(w) => w.node_jets(&mut seg.jets),
+            None => seg.jets = vec![SeaJet::default(); n],
+        }
         for j in 0..n {
             let tp = self.track_at((t0 as f64 + rule.node_ticks[j]) * h);
-            let jet = self
-                .waves
-                .as_ref()
-                .map_or(SeaJet::default(), |w| w.jet(Some(j)));
+            let jet = seg.jets[j];
             // Exact sines at the first node, then each node's from the one before (nodes are
             // under a tenth of a segment apart: steps of hundredths of a radian at sea).
             let ang = angles(&tp, &jet);
