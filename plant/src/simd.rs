@@ -260,7 +260,10 @@ mod tests {
         let rot: Vec<[f64; LANES]> = (0..32)
             .map(|k| std::array::from_fn(|l| val(k * 8 + l + 11)))
             .collect();
-        let (mut a, mut b) = (vec![[0.0; LANES]; 2 * JET_LEN], vec![[0.0; LANES]; 2 * JET_LEN]);
+        let (mut a, mut b) = (
+            vec![[0.0; LANES]; 2 * JET_LEN],
+            vec![[0.0; LANES]; 2 * JET_LEN],
+        );
         let rot_im: Vec<[f64; LANES]> = rot.iter().map(|r| r.map(|v| v * 0.7 - 0.1)).collect();
         node_jets(&z, &rot, &rot_im, &re, &im, &mut a);
         node_jets_body(&z, &rot, &rot_im, &re, &im, &mut b);

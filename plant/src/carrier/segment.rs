@@ -288,24 +288,36 @@ impl SegmentRule {
     pub fn points_from_means(&self, means: &TickMeans, k: usize) -> [[f64; POINT_CHANNELS]; 2] {
         /// 1/(4√3): w′·τ = (2h·w′)·(±1/(4√3)).
         const STEP: f64 = 0.144_337_567_297_406_44;
+        let (mean, diff) = self.mean_and_slope(means, k);
+        [
+            std::array::from_fn(|c| mean[c] - STEP * diff[c]),
+            std::array::from_fn(|c| mean[c] + STEP * diff[c]),
+        ]
+    }
+
+    /// Tick `k`'s means and D = 2h·w′ from the neighbouring ticks' means (central difference;
+    /// second-order one-sided ones at the segment's ends).
+    #[inline]
+    pub fn mean_and_slope(
+        &self,
+        means: &TickMeans,
+        k: usize,
+    ) -> ([f64; POINT_CHANNELS], [f64; POINT_CHANNELS]) {
         let m = means.ticks;
-        let mut p = [[0.0; POINT_CHANNELS]; 2];
-        let [p0, p1] = &mut p;
-        for (c, (p0, p1)) in p0.iter_mut().zip(p1).enumerate() {
+        let mut mean = [0.0; POINT_CHANNELS];
+        let mut diff = [0.0; POINT_CHANNELS];
+        for (c, (mean, diff)) in mean.iter_mut().zip(&mut diff).enumerate() {
             let ch = means.channel(c);
-            // 2h·w′.
-            let d = if k == 0 {
+            *diff = if k == 0 {
                 4.0 * ch[1] - 3.0 * ch[0] - ch[2]
             } else if k + 1 == m {
                 3.0 * ch[k] - 4.0 * ch[k - 1] + ch[k - 2]
             } else {
                 ch[k + 1] - ch[k - 1]
             };
-            let (mean, step) = (ch[k], STEP * d);
-            *p0 = mean - step;
-            *p1 = mean + step;
+            *mean = ch[k];
         }
-        p
+        (mean, diff)
     }
 
     /// The interpolated ω_ic^c, f^c and up axis at in-tick Gauss–Legendre point `p` of tick `k`.

@@ -10,7 +10,7 @@ use crate::kinematics::{
     CarrierPoint, TableIncrements, carrier_points, dwell_increments, moving_base_increments,
 };
 use crate::plant::Plant;
-use crate::table::{GimbalAngles, GimbalFrame, GimbalState};
+use crate::table::{GimbalAngles, GimbalFrame, GimbalState, SmoothTurn};
 use crate::trig::{AngleTrig, GridTrig};
 
 /// The gimbal angles' sines and cosines: held while the table dwells (libm once per dwell),
@@ -29,6 +29,29 @@ impl GimbalTrig {
     fn frame(&mut self, a: GimbalAngles) -> GimbalFrame {
         let (so, co) = self.outer.at(a.outer_rad);
         let (si, ci) = self.inner.at(a.inner_rad);
+        GimbalFrame {
+            sin_outer: so,
+            cos_outer: co,
+            sin_inner: si,
+            cos_inner: ci,
+        }
+    }
+
+    /// The gimbal frame at angles `a` in the middle of a tick on which the outer gimbal
+    /// (`outer_turns`) or the inner one turns: the turning angle from the grid, the other held.
+    #[inline]
+    fn frame_turning(&mut self, a: GimbalAngles, outer_turns: bool) -> GimbalFrame {
+        let ((so, co), (si, ci)) = if outer_turns {
+            (
+                self.outer_grid.sin_cos(a.outer_rad),
+                self.inner.at(a.inner_rad),
+            )
+        } else {
+            (
+                self.outer.at(a.outer_rad),
+                self.inner_grid.sin_cos(a.inner_rad),
+            )
+        };
         GimbalFrame {
             sin_outer: so,
             cos_outer: co,
@@ -83,6 +106,27 @@ impl Plant {
                 let frame = run.trig.frame(g1.angles);
                 if let Some([w, f, up]) = s.dwell_means(&frame, &mut run.now) {
                     return (dwell_increments(Vector3::zeros(), w, f, h), up);
+                }
+            }
+        }
+        // Turning ticks of a ship on its segment rule: the tick's means and slopes through the
+        // turning frame (no quadrature points), unless a profile phase changes inside the tick.
+        if g0.angles != g1.angles {
+            let run = self.carrier.as_mut().expect("moving carrier");
+            if let (None, Carrier::Ship(s)) = (&run.isolation, &mut run.carrier)
+                && s.segment_ticks().is_some()
+                && let Some(turn) = SmoothTurn::of(g0, gm, g1)
+            {
+                let frame = run.trig.frame_turning(gm.angles, turn.outer);
+                if let Some([w, f, up]) = s.turn_means(&frame, &turn, &mut run.now) {
+                    // The inner gimbal rests while the outer turns: its angle is the frame's.
+                    let d_outer = g1.angles.outer_rad - g0.angles.outer_rad;
+                    let gimbal = Vector3::new(
+                        g1.angles.inner_rad - g0.angles.inner_rad,
+                        frame.sin_inner * d_outer,
+                        frame.cos_inner * d_outer,
+                    );
+                    return (dwell_increments(gimbal, w, f, h), up);
                 }
             }
         }

@@ -355,8 +355,7 @@ impl Waves {
     pub fn node_jets(&mut self, out: &mut Vec<SeaJet>) {
         let n = self.rot_offsets.len();
         let blocks = n.div_ceil(LANES);
-        self.node_jet_blocks
-            .resize(blocks * JET_LEN, [0.0; LANES]);
+        self.node_jet_blocks.resize(blocks * JET_LEN, [0.0; LANES]);
         node_jets(
             &self.z,
             &self.rot_nodes_re,

@@ -92,14 +92,21 @@ impl GimbalFrame {
     /// C_v^b·v = R_x(inner)ᵀ·R_z(outer)ᵀ·v.
     #[inline]
     pub fn to_body(&self, v: &Vector3<f64>) -> Vector3<f64> {
-        let (so, co, si, ci) = (
-            self.sin_outer,
-            self.cos_outer,
-            self.sin_inner,
-            self.cos_inner,
-        );
-        let (x, y) = (co * v.x + so * v.y, co * v.y - so * v.x);
-        Vector3::new(x, ci * y + si * v.z, ci * v.z - si * y)
+        self.inner_to(&self.outer_to(v))
+    }
+
+    /// R_z(outer)ᵀ·v: the outer gimbal's plane rotation alone.
+    #[inline]
+    pub fn outer_to(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        let (so, co) = (self.sin_outer, self.cos_outer);
+        Vector3::new(co * v.x + so * v.y, co * v.y - so * v.x, v.z)
+    }
+
+    /// R_x(inner)ᵀ·v: the inner gimbal's plane rotation alone.
+    #[inline]
+    pub fn inner_to(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        let (si, ci) = (self.sin_inner, self.cos_inner);
+        Vector3::new(v.x, ci * v.y + si * v.z, ci * v.z - si * v.y)
     }
 }
 

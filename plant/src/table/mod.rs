@@ -4,7 +4,9 @@ pub mod gimbal;
 pub mod profile;
 pub mod schedule;
 pub mod scheme;
+pub mod turn;
 
 pub use gimbal::{GimbalAngles, GimbalFrame, body_to_nav, gimbal_body_rate, position_label};
 pub use schedule::{Cursor, GimbalState, Schedule};
 pub use scheme::{GimbalAxis, RotationStep, SchemeKind, SchemeSpec};
+pub use turn::SmoothTurn;

@@ -12,7 +12,7 @@ use super::super::waves::SeaJet;
 use super::{CHANNELS, SEGMENT_NODES, SegmentRule, TickMeans, TickPoints};
 use crate::earth::LocalEarth;
 use crate::kinematics::carrier_point_near;
-use crate::table::GimbalFrame;
+use crate::table::{GimbalFrame, SmoothTurn};
 
 /// Where the carrier points are taken: Earth switches and the lever arm (from the plant).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -287,6 +287,30 @@ impl Ship {
         let means = seg.body_mean(frame, (seg.tick - seg.start_tick) as usize);
         self.finish_tick(seg, end);
         Some(means)
+    }
+
+    /// A tick on which the table turns smoothly (`turn`, `frame` the gimbal frame at the tick's
+    /// middle): the tick's means in body axes (ω_ic without the gimbals' part, f, up) from the
+    /// mount-axis tick means and their slopes ([`SmoothTurn::mean_in_body`]), or `None` without
+    /// an interpolated segment. `end` as in [`Ship::advance_points`].
+    #[inline]
+    pub fn turn_means(
+        &mut self,
+        frame: &GimbalFrame,
+        turn: &SmoothTurn,
+        end: &mut CarrierState,
+    ) -> Option<[Vector3<f64>; 3]> {
+        let mut seg = self.seg.take_if(|s| !s.exact)?;
+        if !seg.mount_ready {
+            seg.rule.tick_means_all(&seg.y, &mut seg.means_mount);
+            seg.mount_ready = true;
+        }
+        let k = (seg.tick - seg.start_tick) as usize;
+        let (mean, diff) = seg.rule.mean_and_slope(&seg.means_mount, k);
+        let (mean, diff) = (TickPoints::split(&mean), TickPoints::split(&diff));
+        let out = [0, 1, 2].map(|i| turn.mean_in_body(frame, &mean[i], &diff[i]));
+        self.finish_tick(seg, end);
+        Some(out)
     }
 
     /// Closes a tick of segment `seg` (taken out of `self`): the next tick, or the next

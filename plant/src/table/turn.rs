@@ -1,0 +1,217 @@
+//! A tick on which one gimbal turns smoothly, and the mean over that tick of a carrier vector
+//! seen in the turning body frame, from the vector's tick mean and slope: what the moving base
+//! needs while the table turns, without evaluating the table and the carrier at the tick's
+//! quadrature points.
+//!
+//! Over a tick of length h with middle t_m, let the turning gimbal's angle be
+//! a(t_m + τ) = a_m + r·τ + ½α·τ² (exact within one phase of the move profile) and a carrier
+//! vector w(t_m + τ) = w̄ + w′·τ + ½w″·(τ² − h²/12) + … (w̄ its mean over the tick). The frame
+//! turns by R(τ) = exp(−a(τ)·K) about the gimbal's axis, K the generator (K·v = v × axis for
+//! the transposed rotation the body frame applies). To O(h⁴):
+//!
+//! (1/h)∫R(τ)·w dτ = w̄ + (h²/12)·[K·(r·w′ + ½α·w̄) + ½r²·K²·w̄]
+//!               = w̄ + (4Q·K·w̄ + Δ·K·D + Δ²·K²·w̄)/24,
+//!
+//! with Δ = a(end) − a(start) = r·h, Q = a(start) − 2a(middle) + a(end) = α·h²/4 and
+//! D = 2h·w′ (the difference of the neighbouring ticks' means), plus the largest fourth-order
+//! term, Q²/40·K²·w̄ (α²h⁴/640: the table's acceleration phases). What is left is mostly the
+//! slope's: a central difference of tick means errs by about 0.4·h³·w‴, so the mean errs by
+//! about Δ·h³·|w‴|/60: 5e-11 m/s² (5e-13 m/s per step) for a 2°/s table at 100 Hz under a
+//! 1 m/s² sea at 2 rad/s, the size of the two-point Gauss–Legendre rule's own error there.
+
+use nalgebra::Vector3;
+
+use super::{GimbalFrame, GimbalState};
+
+/// Largest departure from a linear rate over the tick that still counts as one profile phase,
+/// rad/s: rounding leaves ~1e-17; a phase change inside the tick leaves α times its distance
+/// from the tick's end (a distance under 3e-12 s at 20°/s² then errs by ~1e-24 rad).
+const RATE_KINK_RPS: f64 = 1e-12;
+
+/// One gimbal turning over a tick with its angle quadratic in time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SmoothTurn {
+    /// True when the outer gimbal turns (else the inner).
+    pub outer: bool,
+    /// Δ = a(end) − a(start), rad.
+    pub delta_rad: f64,
+    /// Q = a(start) − 2·a(middle) + a(end) = α·h²/4, rad.
+    pub q_rad: f64,
+}
+
+impl SmoothTurn {
+    /// The turn over a tick from the table states at its start, middle and end; `None` when
+    /// both gimbals turn or a phase of the move profile changes inside the tick (the rate is not
+    /// linear across it: the angle is not one quadratic).
+    pub fn of(g0: &GimbalState, gm: &GimbalState, g1: &GimbalState) -> Option<Self> {
+        let (a0, a1) = (g0.angles, g1.angles);
+        let outer = a0.outer_rad != a1.outer_rad;
+        if outer && a0.inner_rad != a1.inner_rad {
+            return None;
+        }
+        let pick = |g: &GimbalState| {
+            if outer {
+                (g.angles.outer_rad, g.outer_rate_rps)
+            } else {
+                (g.angles.inner_rad, g.inner_rate_rps)
+            }
+        };
+        let ((x0, r0), (xm, rm), (x1, r1)) = (pick(g0), pick(gm), pick(g1));
+        if !((r0 + r1 - 2.0 * rm).abs() <= RATE_KINK_RPS) {
+            return None;
+        }
+        Some(Self {
+            outer,
+            delta_rad: x1 - x0,
+            q_rad: x0 - 2.0 * xm + x1,
+        })
+    }
+
+    /// The mean over the tick of C_v^b(t)·w(t) (module docs), from the mean `mean` of w and
+    /// `diff` = D = 2h·w′ in the table mount's axes; `frame` is the gimbal frame at the tick's
+    /// middle.
+    #[inline]
+    pub fn mean_in_body(
+        &self,
+        frame: &GimbalFrame,
+        mean: &Vector3<f64>,
+        diff: &Vector3<f64>,
+    ) -> Vector3<f64> {
+        let (dl, q) = (self.delta_rad, self.q_rad);
+        // K²·w̄ also takes the largest fourth-order term, α²h⁴/640 = Q²/40 (the table's
+        // acceleration phases).
+        let (c_w, c_d, c_kw) = (q / 6.0, dl / 24.0, dl * dl / 24.0 + q * q / 40.0);
+        if self.outer {
+            // R_z(a_m + δ)ᵀ = R_z(δ)ᵀ·R_z(a_m)ᵀ: the turn acts between the two plane rotations.
+            let (w, d) = (frame.outer_to(mean), frame.outer_to(diff));
+            let kw = k_outer(&w);
+            frame.inner_to(&(w + c_w * kw + c_d * k_outer(&d) + c_kw * k_outer(&kw)))
+        } else {
+            // R_x(a_m + δ)ᵀ = R_x(δ)ᵀ·R_x(a_m)ᵀ: the turn acts last, in body axes.
+            let (w, d) = (frame.to_body(mean), frame.to_body(diff));
+            let kw = k_inner(&w);
+            w + c_w * kw + c_d * k_inner(&d) + c_kw * k_inner(&kw)
+        }
+    }
+}
+
+/// d/dδ of R_z(δ)ᵀ·v at δ = 0.
+#[inline]
+fn k_outer(v: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(v.y, -v.x, 0.0)
+}
+
+/// d/dδ of R_x(δ)ᵀ·v at δ = 0.
+#[inline]
+fn k_inner(v: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(0.0, v.z, -v.y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::table::GimbalAngles;
+
+    fn state(outer: f64, inner: f64, outer_rate: f64, inner_rate: f64) -> GimbalState {
+        GimbalState {
+            angles: GimbalAngles::new(outer, inner),
+            outer_rate_rps: outer_rate,
+            inner_rate_rps: inner_rate,
+            step_index: 0,
+            moving: true,
+        }
+    }
+
+    fn frame(outer: f64, inner: f64) -> GimbalFrame {
+        let (so, co) = outer.sin_cos();
+        let (si, ci) = inner.sin_cos();
+        GimbalFrame {
+            sin_outer: so,
+            cos_outer: co,
+            sin_inner: si,
+            cos_inner: ci,
+        }
+    }
+
+    /// The tick mean of C_v^b(t)·w(t) by 64-point composite Simpson, against the expansion,
+    /// for either gimbal accelerating through a tick while w varies as a sinusoid.
+    #[test]
+    fn the_expansion_is_the_tick_mean_of_the_turning_frame() {
+        let h = 0.01;
+        for (r, alpha) in [(0.5, 3.0), (0.035, 0.35), (0.035, 0.0)] {
+            let w = |t: f64| {
+                Vector3::new(
+                    0.3 * (2.0 * t).sin() + 0.1,
+                    -0.2 * (1.3 * t + 0.4).cos(),
+                    9.8 + 0.5 * (0.7 * t).sin(),
+                )
+            };
+            let t_m = 0.37;
+            let mean_of = |f: &dyn Fn(f64) -> Vector3<f64>| {
+                let n = 64;
+                (0..=n).fold(Vector3::zeros(), |acc, i| {
+                    let wt = if i == 0 || i == n {
+                        1.0
+                    } else if i % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
+                    acc + wt * f(t_m - 0.5 * h + i as f64 * h / n as f64)
+                }) / (3.0 * n as f64)
+            };
+            for outer in [true, false] {
+                let (o0, i0) = (0.8, -0.6);
+                let angle = |t: f64| {
+                    let tau = t - t_m;
+                    1.1 + r * tau + 0.5 * alpha * tau * tau
+                };
+                let rate = |t: f64| r + alpha * (t - t_m);
+                let g = |t: f64| {
+                    if outer {
+                        state(angle(t), i0, rate(t), 0.0)
+                    } else {
+                        state(o0, angle(t), 0.0, rate(t))
+                    }
+                };
+                let fr = |t: f64| {
+                    let s = g(t).angles;
+                    frame(s.outer_rad, s.inner_rad)
+                };
+                let turn = SmoothTurn::of(&g(t_m - 0.5 * h), &g(t_m), &g(t_m + 0.5 * h)).unwrap();
+                assert_eq!(turn.outer, outer);
+                // The carrier vector's mean and slope over the tick, as the segment rule gives them.
+                let mean = mean_of(&w);
+                let neighbour = |dt: f64| mean_of(&|t| w(t + dt));
+                let diff = neighbour(h) - neighbour(-h);
+                let got = turn.mean_in_body(&fr(t_m), &mean, &diff);
+                let exact = mean_of(&|t| fr(t).to_body(&w(t)));
+                let err = (got - exact).norm();
+                // Leaving the terms out altogether errs by the whole correction: the expansion must
+                // be far below that.
+                let plain = (fr(t_m).to_body(&mean) - exact).norm();
+                // What is left is the slope's: a central difference of tick means errs by about
+                // 0.4·h³·w‴ (|w‴| ≤ 2.4 here), weighted by Δ/24.
+                let bound = turn.delta_rad.abs() * h.powi(3) * 2.4 / 40.0;
+                assert!(
+                    err <= bound && err < 1e-4 * plain,
+                    "r {r}, α {alpha}, outer {outer}: {err:e} (bound {bound:e}, uncorrected {plain:e})"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_phase_change_inside_the_tick_is_no_smooth_turn() {
+        // Accelerating, then at constant rate from the middle on.
+        let (g0, gm, g1) = (
+            state(0.0, 0.0, 0.0, 0.0),
+            state(0.001, 0.0, 0.02, 0.0),
+            state(0.002, 0.0, 0.02, 0.0),
+        );
+        assert!(SmoothTurn::of(&g0, &gm, &g1).is_none());
+        // Both gimbals turning.
+        let g1 = state(0.002, 0.001, 0.02, 0.01);
+        assert!(SmoothTurn::of(&g0, &gm, &g1).is_none());
+    }
+}
