@@ -12,7 +12,7 @@
 
 use nalgebra::Complex;
 
-use crate::carrier::segment::{CHANNELS, POINT_CHANNELS};
+use crate::carrier::segment::POINT_CHANNELS;
 use crate::carrier::waves::JET_LEN;
 
 /// Rows per block of [`combine_blocks`]: one AVX-512 vector of f64.
@@ -53,7 +53,7 @@ macro_rules! multiversion {
 }
 
 #[inline(always)]
-fn combine_blocks_body(w_t: &[[f64; LANES]], y: &[[f64; CHANNELS]], out: &mut [f64]) {
+fn combine_blocks_body(w_t: &[[f64; LANES]], y: &[[f64; POINT_CHANNELS]], out: &mut [f64]) {
     let rows = out.len() / POINT_CHANNELS;
     let blocks = rows / LANES;
     for b in 0..blocks {
@@ -80,7 +80,7 @@ multiversion! {
     /// R/[`LANES`] blocks, node after node; `out` holds the R rows channel after channel.
     pub(crate) fn combine_blocks(
         w_t: &[[f64; LANES]],
-        y: &[[f64; CHANNELS]],
+        y: &[[f64; POINT_CHANNELS]],
         out: &mut [f64]
     )
         = combine_blocks_body, combine_blocks_avx512, combine_blocks_avx2
@@ -269,7 +269,7 @@ mod tests {
         node_jets_body(&z, &rot, &rot_im, &re, &im, &mut b);
         let bits = |v: &[[f64; LANES]]| v.iter().flatten().map(|v| v.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&a), bits(&b));
-        let y: Vec<[f64; CHANNELS]> = (0..12)
+        let y: Vec<[f64; POINT_CHANNELS]> = (0..12)
             .map(|j| std::array::from_fn(|c| val(j * 41 + c)))
             .collect();
         let w_t: Vec<[f64; LANES]> = (0..12 * 8)

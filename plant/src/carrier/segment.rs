@@ -267,7 +267,7 @@ impl SegmentRule {
     /// [`SegmentRule::tick_mean`] for every tick of the segment at once: the same sums in the
     /// same order, so the same bits, but a block of ticks shares each pass over the node values
     /// and the products run as wide as the CPU allows ([`crate::simd`]).
-    pub fn tick_means_all(&self, y: &[[f64; CHANNELS]], out: &mut TickMeans) {
+    pub fn tick_means_all(&self, y: &[[f64; POINT_CHANNELS]], out: &mut TickMeans) {
         out.ticks = self.m as usize;
         out.v.resize(POINT_CHANNELS * out.ticks, 0.0);
         combine_blocks(&self.mean_w_t, &y[..self.n], &mut out.v);
@@ -402,6 +402,11 @@ impl TickPoints {
 mod tests {
     use super::*;
 
+    /// The point channels of node values.
+    fn points_of(y: &[[f64; CHANNELS]]) -> Vec<[f64; POINT_CHANNELS]> {
+        y.iter().map(|r| std::array::from_fn(|c| r[c])).collect()
+    }
+
     #[test]
     fn tick_means_sum_to_the_gauss_legendre_rule_and_reproduce_polynomials() {
         let rule = SegmentRule::new(SEGMENT_NODES, 64);
@@ -444,7 +449,7 @@ mod tests {
             .map(|j| std::array::from_fn(|c| ((j * 7 + c * 3) as f64 * 0.37).sin() * 1e3))
             .collect();
         let mut all = TickMeans::default();
-        rule.tick_means_all(&y, &mut all);
+        rule.tick_means_all(&points_of(&y), &mut all);
         for k in 0..64 {
             let one = rule.tick_mean(k, &y);
             for c in 0..POINT_CHANNELS {
@@ -469,7 +474,7 @@ mod tests {
             .map(|&t| std::array::from_fn(|c| (w * t * h + 0.4 * c as f64).sin()))
             .collect();
         let mut means = TickMeans::default();
-        rule.tick_means_all(&y, &mut means);
+        rule.tick_means_all(&points_of(&y), &mut means);
         let (mut odd, mut even) = (0.0f64, 0.0f64);
         for k in 0..m as usize {
             let p = rule.points_from_means(&means, k);

@@ -9,7 +9,7 @@ use super::super::ship::{Ship, Trig, angles, compose_with};
 use super::super::state::CarrierState;
 use super::super::track::TrackPosition;
 use super::super::waves::SeaJet;
-use super::{CHANNELS, SEGMENT_NODES, SegmentRule, TickMeans, TickPoints};
+use super::{CHANNELS, POINT_CHANNELS, SEGMENT_NODES, SegmentRule, TickMeans, TickPoints};
 use crate::earth::LocalEarth;
 use crate::kinematics::carrier_point_near;
 use crate::table::{GimbalFrame, SmoothTurn};
@@ -63,8 +63,10 @@ pub struct SegState {
     /// dwelling tick and again if the table dwells elsewhere later in the segment.
     means: TickMeans,
     means_frame: Option<GimbalFrame>,
-    /// Scratch: the node values with their points in body axes.
-    y_body: Vec<[f64; CHANNELS]>,
+    /// The node values' point channels (mount axes), apart: what the tick means combine.
+    y_pts: Vec<[f64; POINT_CHANNELS]>,
+    /// Scratch: the node values' points in body axes.
+    y_body: Vec<[f64; POINT_CHANNELS]>,
     /// Every tick's mean points in mount axes ([`SegmentRule::tick_means_all`]), computed at
     /// the segment's first turning tick (`mount_ready`).
     means_mount: TickMeans,
@@ -98,6 +100,7 @@ impl Ship {
             jets: vec![],
             means: TickMeans::default(),
             means_frame: None,
+            y_pts: vec![],
             y_body: vec![],
             means_mount: TickMeans::default(),
             mount_ready: false,
@@ -185,6 +188,7 @@ impl Ship {
             1.0 / ((mid.rn_m + self.height_m) * mid.cos_lat),
         );
         seg.y.clear();
+        seg.y_pts.clear();
         for ((tp, jet, trig), d) in parts.iter().zip(&disp) {
             let pos = TrackPosition {
                 lat_rad: pos0.lat_rad + d[1] * i_rm,
@@ -211,6 +215,7 @@ impl Ship {
             }
             y[27..30].copy_from_slice(s.omega_nc_c.as_slice());
             y[30..33].copy_from_slice(s.alpha_nc_c.as_slice());
+            seg.y_pts.push(std::array::from_fn(|c| y[c]));
             seg.y.push(y);
         }
     }
@@ -263,7 +268,7 @@ impl Ship {
             }))
         } else if turning {
             if !seg.mount_ready {
-                seg.rule.tick_means_all(&seg.y, &mut seg.means_mount);
+                seg.rule.tick_means_all(&seg.y_pts, &mut seg.means_mount);
                 seg.mount_ready = true;
             }
             TickPoints::Nodes(seg.quadrature_points(k))
@@ -302,7 +307,7 @@ impl Ship {
     ) -> Option<[Vector3<f64>; 3]> {
         let mut seg = self.seg.take_if(|s| !s.exact)?;
         if !seg.mount_ready {
-            seg.rule.tick_means_all(&seg.y, &mut seg.means_mount);
+            seg.rule.tick_means_all(&seg.y_pts, &mut seg.means_mount);
             seg.mount_ready = true;
         }
         let k = (seg.tick - seg.start_tick) as usize;
@@ -394,13 +399,10 @@ impl SegState {
     /// into the body frame (the rotation commutes with the interpolation), then combined.
     fn body_means(&mut self, frame: &GimbalFrame) {
         self.y_body.clear();
-        self.y_body.extend(self.y.iter().map(|y| {
-            let mut b = *y;
-            for o in [0, 3, 6] {
-                let v = frame.to_body(&Vector3::new(y[o], y[o + 1], y[o + 2]));
-                b[o..o + 3].copy_from_slice(v.as_slice());
-            }
-            b
+        self.y_body.extend(self.y_pts.iter().map(|y| {
+            let v = |o: usize| frame.to_body(&Vector3::new(y[o], y[o + 1], y[o + 2]));
+            let (w, f, up) = (v(0), v(3), v(6));
+            [w.x, w.y, w.z, f.x, f.y, f.z, up.x, up.y, up.z]
         }));
         self.rule.tick_means_all(&self.y_body, &mut self.means);
         self.means_frame = Some(*frame);
