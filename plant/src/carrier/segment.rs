@@ -333,9 +333,9 @@ impl SegmentRule {
         Self::combine(&self.at_w[i * self.n..(i + 1) * self.n], y, POINT_CHANNELS)
     }
 
-    /// Displacements from the segment start to each node and to the segment end, from the
-    /// node velocities `v` (m/s) over a segment of `seg_s` seconds.
-    pub fn displacements(&self, v: &[[f64; 2]], seg_s: f64) -> (Vec<[f64; 2]>, [f64; 2]) {
+    /// Displacements from the segment start to each node (into `nodes`) and to the segment end
+    /// (returned), from the node velocities `v` (m/s) over a segment of `seg_s` seconds.
+    pub fn displacements(&self, v: &[[f64; 2]], seg_s: f64, nodes: &mut Vec<[f64; 2]>) -> [f64; 2] {
         let n = self.n;
         let d = |w: &[f64]| -> [f64; 2] {
             let mut s = [0.0; 2];
@@ -345,10 +345,9 @@ impl SegmentRule {
             }
             [s[0] * seg_s, s[1] * seg_s]
         };
-        let nodes = (0..n)
-            .map(|i| d(&self.disp_w[i * n..(i + 1) * n]))
-            .collect();
-        (nodes, d(&self.seg_w))
+        nodes.clear();
+        nodes.extend(self.disp_w.chunks_exact(n).map(d));
+        d(&self.seg_w)
     }
 }
 

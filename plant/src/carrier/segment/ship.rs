@@ -7,7 +7,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use super::super::ship::{Ship, Trig, angles, compose_with};
 use super::super::state::CarrierState;
-use super::super::track::TrackPosition;
+use super::super::track::{TrackPoint, TrackPosition};
 use super::super::waves::SeaJet;
 use super::{CHANNELS, POINT_CHANNELS, SEGMENT_NODES, SegmentRule, TickMeans, TickPoints};
 use crate::earth::LocalEarth;
@@ -56,8 +56,13 @@ pub struct SegState {
     exact: bool,
     /// Node values ([`CHANNELS`]).
     y: Vec<[f64; CHANNELS]>,
-    /// Scratch: the sea state's jets at the nodes.
+    /// Scratch: the sea state's jets, the mean track, the composition angles' sines and
+    /// cosines, the mean-track velocity and the displacement from the segment start at the
+    /// nodes.
     jets: Vec<SeaJet>,
+    tracks: Vec<(TrackPoint, Trig)>,
+    v: Vec<[f64; 2]>,
+    disp: Vec<[f64; 2]>,
     /// Every tick's mean points in body axes ([`SegmentRule::tick_means_all`] of the node
     /// values turned into the body frame `means_frame`), computed at the segment's first
     /// dwelling tick and again if the table dwells elsewhere later in the segment.
@@ -98,6 +103,9 @@ impl Ship {
             exact: false,
             y: vec![],
             jets: vec![],
+            tracks: vec![],
+            v: vec![],
+            disp: vec![],
             means: TickMeans::default(),
             means_frame: None,
             y_pts: vec![],
@@ -154,28 +162,31 @@ impl Ship {
         if let Some(w) = self.waves.as_mut() {
             w.seek_segment(t0);
         }
-        let mut parts = Vec::with_capacity(n);
-        let mut v = Vec::with_capacity(n);
-        let mut trig = Trig::default();
         match self.waves.as_mut() {
             Some(w) => w.node_jets(&mut seg.jets),
-            None => seg.jets = vec![SeaJet::default(); n],
+            None => {
+                seg.jets.clear();
+                seg.jets.resize(n, SeaJet::default());
+            }
         }
-        for j in 0..n {
+        seg.tracks.clear();
+        seg.v.clear();
+        let mut trig = Trig::default();
+        for (j, jet) in seg.jets.iter().enumerate() {
             let tp = self.track_at((t0 as f64 + rule.node_ticks[j]) * h);
-            let jet = seg.jets[j];
             // Exact sines at the first node, then each node's from the one before (nodes are
             // under a tenth of a segment apart: steps of hundredths of a radian at sea).
-            let ang = angles(&tp, &jet);
+            let ang = angles(&tp, jet);
             trig = if j == 0 {
                 Trig::exact(ang)
             } else {
                 trig.near_wide(ang)
             };
-            v.push([tp.speed_mps * trig.sin[0], tp.speed_mps * trig.cos[0]]);
-            parts.push((tp, jet, trig));
+            seg.v
+                .push([tp.speed_mps * trig.sin[0], tp.speed_mps * trig.cos[0]]);
+            seg.tracks.push((tp, trig));
         }
-        let (disp, end) = rule.displacements(&v, rule.m as f64 * h);
+        let end = rule.displacements(&seg.v, rule.m as f64 * h, &mut seg.disp);
         if self.earth.lat0_rad() != LocalEarth::grid_lat_rad(pos0.lat_rad) {
             self.earth = LocalEarth::near(pos0.lat_rad);
         }
@@ -187,22 +198,36 @@ impl Ship {
             1.0 / (mid.rm_m + self.height_m),
             1.0 / ((mid.rn_m + self.height_m) * mid.cos_lat),
         );
-        seg.y.clear();
-        seg.y_pts.clear();
-        for ((tp, jet, trig), d) in parts.iter().zip(&disp) {
+        seg.y.resize(n, [0.0; CHANNELS]);
+        seg.y_pts.resize(n, [0.0; POINT_CHANNELS]);
+        let e = seg.env;
+        for j in 0..n {
+            let ((tp, trig), d) = (&seg.tracks[j], seg.disp[j]);
             let pos = TrackPosition {
                 lat_rad: pos0.lat_rad + d[1] * i_rm,
                 lon_rad: pos0.lon_rad + d[0] * i_rn,
             };
-            let s = compose_with(tp, pos, self.height_m, jet, &self.earth, &mid, trig);
-            let e = &seg.env;
+            let s = compose_with(
+                tp,
+                pos,
+                self.height_m,
+                &seg.jets[j],
+                &self.earth,
+                &mid,
+                trig,
+            );
             let pt = carrier_point_near(&s, &self.earth, e.rotation, e.gravity, &e.lever_c_m);
             let c = &s.c_cn;
-            let mut y = [0.0; CHANNELS];
             let up = Vector3::new(c[(2, 0)], c[(2, 1)], c[(2, 2)]);
-            y[0..3].copy_from_slice(e.to_mount(pt.omega_ic_c).as_slice());
-            y[3..6].copy_from_slice(e.to_mount(pt.f_c).as_slice());
-            y[6..9].copy_from_slice(e.to_mount(up).as_slice());
+            let (w, f, up) = (
+                e.to_mount(pt.omega_ic_c),
+                e.to_mount(pt.f_c),
+                e.to_mount(up),
+            );
+            let y = &mut seg.y[j];
+            y[0..3].copy_from_slice(w.as_slice());
+            y[3..6].copy_from_slice(f.as_slice());
+            y[6..9].copy_from_slice(up.as_slice());
             y[9] = s.lat_rad - pos0.lat_rad;
             y[10] = s.lon_rad - pos0.lon_rad;
             y[11] = s.height_m;
@@ -215,8 +240,7 @@ impl Ship {
             }
             y[27..30].copy_from_slice(s.omega_nc_c.as_slice());
             y[30..33].copy_from_slice(s.alpha_nc_c.as_slice());
-            seg.y_pts.push(std::array::from_fn(|c| y[c]));
-            seg.y.push(y);
+            seg.y_pts[j] = [w.x, w.y, w.z, f.x, f.y, f.z, up.x, up.y, up.z];
         }
     }
 
