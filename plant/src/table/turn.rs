@@ -37,6 +37,8 @@ pub struct SmoothTurn {
     pub delta_rad: f64,
     /// Q = a(start) − 2·a(middle) + a(end) = α·h²/4, rad.
     pub q_rad: f64,
+    /// The expansion's coefficients of K·w̄, K·D and K²·w̄: Q/6, Δ/24, Δ²/24 + Q²/40.
+    coef: [f64; 3],
 }
 
 impl SmoothTurn {
@@ -60,10 +62,14 @@ impl SmoothTurn {
         if !((r0 + r1 - 2.0 * rm).abs() <= RATE_KINK_RPS) {
             return None;
         }
+        let (dl, q) = (x1 - x0, x0 - 2.0 * xm + x1);
         Some(Self {
             outer,
-            delta_rad: x1 - x0,
-            q_rad: x0 - 2.0 * xm + x1,
+            delta_rad: dl,
+            q_rad: q,
+            // K²·w̄ also takes the largest fourth-order term, α²h⁴/640 = Q²/40 (the table's
+            // acceleration phases).
+            coef: [q / 6.0, dl / 24.0, dl * dl / 24.0 + q * q / 40.0],
         })
     }
 
@@ -77,10 +83,7 @@ impl SmoothTurn {
         mean: &Vector3<f64>,
         diff: &Vector3<f64>,
     ) -> Vector3<f64> {
-        let (dl, q) = (self.delta_rad, self.q_rad);
-        // K²·w̄ also takes the largest fourth-order term, α²h⁴/640 = Q²/40 (the table's
-        // acceleration phases).
-        let (c_w, c_d, c_kw) = (q / 6.0, dl / 24.0, dl * dl / 24.0 + q * q / 40.0);
+        let [c_w, c_d, c_kw] = self.coef;
         if self.outer {
             // R_z(a_m + δ)ᵀ = R_z(δ)ᵀ·R_z(a_m)ᵀ: the turn acts between the two plane rotations.
             let (w, d) = (frame.outer_to(mean), frame.outer_to(diff));
