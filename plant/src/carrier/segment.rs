@@ -304,20 +304,18 @@ impl SegmentRule {
         k: usize,
     ) -> ([f64; POINT_CHANNELS], [f64; POINT_CHANNELS]) {
         let m = means.ticks;
-        let mut mean = [0.0; POINT_CHANNELS];
-        let mut diff = [0.0; POINT_CHANNELS];
-        for (c, (mean, diff)) in mean.iter_mut().zip(&mut diff).enumerate() {
-            let ch = means.channel(c);
-            *diff = if k == 0 {
-                4.0 * ch[1] - 3.0 * ch[0] - ch[2]
-            } else if k + 1 == m {
-                3.0 * ch[k] - 4.0 * ch[k - 1] + ch[k - 2]
-            } else {
-                ch[k + 1] - ch[k - 1]
-            };
-            *mean = ch[k];
-        }
-        (mean, diff)
+        assert!(k < m && m >= 3, "tick {k} of a {m}-tick segment");
+        let v = &means.v[..POINT_CHANNELS * m];
+        let at = |c: usize, k: usize| v[c * m + k];
+        // The case once, not per channel.
+        let diff: [f64; POINT_CHANNELS] = if k == 0 {
+            std::array::from_fn(|c| 4.0 * at(c, 1) - 3.0 * at(c, 0) - at(c, 2))
+        } else if k + 1 == m {
+            std::array::from_fn(|c| 3.0 * at(c, k) - 4.0 * at(c, k - 1) + at(c, k - 2))
+        } else {
+            std::array::from_fn(|c| at(c, k + 1) - at(c, k - 1))
+        };
+        (std::array::from_fn(|c| at(c, k)), diff)
     }
 
     /// The interpolated ω_ic^c, f^c and up axis at in-tick Gauss–Legendre point `p` of tick `k`.

@@ -86,28 +86,23 @@ impl SmoothTurn {
         let [c_w, c_d, c_kw] = self.coef;
         if self.outer {
             // R_z(a_m + δ)ᵀ = R_z(δ)ᵀ·R_z(a_m)ᵀ: the turn acts between the two plane rotations.
-            let (w, d) = (frame.outer_to(mean), frame.outer_to(diff));
-            let kw = k_outer(&w);
-            frame.inner_to(&(w + c_w * kw + c_d * k_outer(&d) + c_kw * k_outer(&kw)))
+            // K = K_z leaves the z component alone and sees only D's x and y.
+            let w = frame.outer_to(mean);
+            let (so, co) = (frame.sin_outer, frame.cos_outer);
+            let (dx, dy) = (co * diff.x + so * diff.y, co * diff.y - so * diff.x);
+            // w + c_w·K·w + c_d·K·D + c_kw·K²·w with K(x, y, z) = (y, −x, 0), K² = −1 on x, y.
+            let x = w.x + c_w * w.y + c_d * dy - c_kw * w.x;
+            let y = w.y - c_w * w.x - c_d * dx - c_kw * w.y;
+            frame.inner_to(&Vector3::new(x, y, w.z))
         } else {
-            // R_x(a_m + δ)ᵀ = R_x(δ)ᵀ·R_x(a_m)ᵀ: the turn acts last, in body axes.
+            // R_x(a_m + δ)ᵀ = R_x(δ)ᵀ·R_x(a_m)ᵀ: the turn acts last, in body axes, where
+            // K = K_x(x, y, z) = (0, z, −y) leaves x alone.
             let (w, d) = (frame.to_body(mean), frame.to_body(diff));
-            let kw = k_inner(&w);
-            w + c_w * kw + c_d * k_inner(&d) + c_kw * k_inner(&kw)
+            let y = w.y + c_w * w.z + c_d * d.z - c_kw * w.y;
+            let z = w.z - c_w * w.y - c_d * d.y - c_kw * w.z;
+            Vector3::new(w.x, y, z)
         }
     }
-}
-
-/// d/dδ of R_z(δ)ᵀ·v at δ = 0.
-#[inline]
-fn k_outer(v: &Vector3<f64>) -> Vector3<f64> {
-    Vector3::new(v.y, -v.x, 0.0)
-}
-
-/// d/dδ of R_x(δ)ᵀ·v at δ = 0.
-#[inline]
-fn k_inner(v: &Vector3<f64>) -> Vector3<f64> {
-    Vector3::new(0.0, v.z, -v.y)
 }
 
 #[cfg(test)]
