@@ -143,6 +143,8 @@ pub struct SegmentRule {
     gl_w: Vec<f64>,
     /// Per node i: the basis integrated from the segment start to node i, over T.
     disp_w: Vec<f64>,
+    /// `disp_w` transposed (`[j·n + i]`: node j's weight in node i's displacement).
+    disp_w_t: Vec<f64>,
     /// The Gauss–Legendre weights over 2 (they sum to 1): the basis means over the segment.
     seg_w: Vec<f64>,
 }
@@ -195,6 +197,7 @@ impl SegmentRule {
             at_w: Vec::with_capacity(n * (m as usize + 1)),
             gl_w: Vec::with_capacity(2 * n * m as usize),
             disp_w: Vec::with_capacity(n * n),
+            disp_w_t: Vec::new(),
             seg_w: w.iter().map(|w| 0.5 * w).collect(),
             node_ticks: node_ticks.clone(),
         };
@@ -216,6 +219,7 @@ impl SegmentRule {
             me.disp_w
                 .extend(mean(0.0, t).into_iter().map(|v| v * t / mf));
         }
+        me.disp_w_t = (0..n * n).map(|k| me.disp_w[(k % n) * n + k / n]).collect();
         me
     }
 
@@ -343,8 +347,19 @@ impl SegmentRule {
             }
             [s[0] * seg_s, s[1] * seg_s]
         };
+        // Node after node in the outer loop: the n sums run side by side (each still over the
+        // nodes j in order, so the same bits as one sum at a time), not as n dependent chains.
         nodes.clear();
-        nodes.extend(self.disp_w.chunks_exact(n).map(d));
+        nodes.resize(n, [0.0; 2]);
+        for (j, vj) in v.iter().enumerate() {
+            for (s, w) in nodes.iter_mut().zip(&self.disp_w_t[j * n..(j + 1) * n]) {
+                s[0] += w * vj[0];
+                s[1] += w * vj[1];
+            }
+        }
+        for s in nodes.iter_mut() {
+            *s = [s[0] * seg_s, s[1] * seg_s];
+        }
         d(&self.seg_w)
     }
 }
