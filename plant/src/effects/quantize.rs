@@ -45,11 +45,14 @@ impl Quantizer {
     }
 }
 
-/// floor(x) for |x| < 2⁶³ without a libm call (x86-64 baseline has no SSE4.1 `roundsd`).
+/// floor(x) for |x| < 2⁶³ without a libm call (x86-64 baseline has no SSE4.1 `roundsd`) and
+/// without a branch: on a moving carrier the increments change sign from sample to sample, and a
+/// mispredicted branch per axis cost more than the whole quantiser.
 #[inline]
 fn floor_small(x: f64) -> f64 {
     let t = x as i64 as f64;
-    if t > x { t - 1.0 } else { t }
+    // Truncation rounds negative non-integers up: take one off then (t − 0 = t exactly).
+    t - f64::from(u8::from(t > x))
 }
 
 #[cfg(test)]

@@ -347,16 +347,23 @@ impl Ship {
     #[inline]
     fn finish_tick(&mut self, mut seg: Box<SegState>, end: &mut CarrierState) {
         seg.tick += 1;
-        let (next, m) = (seg.tick, seg.rule.m);
-        if next == seg.start_tick + m {
-            let pos = if seg.exact { self.pos } else { seg.end_pos };
-            self.seg = Some(seg);
-            self.build_segment(next / m, pos);
-            if self.seg.as_deref().is_some_and(|s| s.exact) {
-                *end = self.state_now();
-            }
+        if seg.tick == seg.start_tick + seg.rule.m {
+            self.next_segment(seg, end);
         } else {
             self.seg = Some(seg);
+        }
+    }
+
+    /// Builds the segment after `seg` (once every M ticks: kept out of the per-tick path).
+    #[cold]
+    #[inline(never)]
+    fn next_segment(&mut self, seg: Box<SegState>, end: &mut CarrierState) {
+        let (next, m) = (seg.tick, seg.rule.m);
+        let pos = if seg.exact { self.pos } else { seg.end_pos };
+        self.seg = Some(seg);
+        self.build_segment(next / m, pos);
+        if self.seg.as_deref().is_some_and(|s| s.exact) {
+            *end = self.state_now();
         }
     }
 
