@@ -279,15 +279,15 @@ impl SegmentRule {
 
     /// The point channels at the two Gauss–Legendre instants of tick `k` from every tick's
     /// means `means` (as [`SegmentRule::tick_means_all`] writes them):
-    /// p(τ) = w̄ + w′·τ at τ = ∓h/(2√3) from the tick's middle, w′ from the neighbouring ticks'
-    /// means (central difference; second-order one-sided ones at the segment's ends).
+    /// p(τ) = w̄ + w′·τ at τ = ∓h/(2√3) from the tick's middle, w′ from the ticks' means
+    /// around it ([`SegmentRule::mean_and_slope`]).
     ///
     /// At those instants τ² = h²/12, so the mean's w″h²/24 is exactly the points' second-order
-    /// term: the points err by about 0.08·|w‴|·h³, equal and opposite at the two instants, plus
-    /// O(h⁴). In the increments only the rotation between the instants (the turning gimbal's
-    /// angle step, (√3/3)·h·rate) weights that odd part: below 0.03·rate·|w‴|·h⁵, e.g. 6e-13
-    /// for a 2°/s gimbal and a 1 m/s² sea at 2 rad/s at 100 Hz: the size of the segment
-    /// rule's own interpolation error ([`SEGMENT_EPS`]·h).
+    /// term: the points err by the cubic term the line leaves out, w‴τ³/6 ≈ 0.008·|w‴|·h³, equal
+    /// and opposite at the two instants, plus O(h⁴). In the increments only the rotation between
+    /// the instants (the turning gimbal's angle step, (√3/3)·h·rate) weights that odd part:
+    /// below 0.003·rate·|w‴|·h⁵, e.g. 6e-14 for a 2°/s gimbal and a 1 m/s² sea at 2 rad/s at
+    /// 100 Hz, below the segment rule's own interpolation error ([`SEGMENT_EPS`]·h).
     #[inline]
     pub fn points_from_means(&self, means: &TickMeans, k: usize) -> [[f64; POINT_CHANNELS]; 2] {
         /// 1/(4√3): w′·τ = (2h·w′)·(±1/(4√3)).
@@ -299,25 +299,48 @@ impl SegmentRule {
         ]
     }
 
-    /// Tick `k`'s means and D = 2h·w′ from the neighbouring ticks' means (central difference;
-    /// second-order one-sided ones at the segment's ends).
+    /// Tick `k`'s means and D = 2h·w′ (w′ at the tick's middle) from the means of the ticks
+    /// around it: five of them, so that the difference is exact for polynomials to degree 4 (the
+    /// weights solve the moment equations of tick means, not of point values). In the interior
+    /// D = (17/12)·(m₊₁ − m₋₁) − (5/24)·(m₊₂ − m₋₂), erring by ≈ 0.09·h⁵·|w⁽⁵⁾|; the two ticks at
+    /// either end of the segment take one-sided five-tick stencils (≈ 0.26·h⁵·|w⁽⁵⁾|).
     #[inline]
     pub fn mean_and_slope(
         &self,
         means: &TickMeans,
         k: usize,
     ) -> ([f64; POINT_CHANNELS], [f64; POINT_CHANNELS]) {
+        /// From the segment's first tick, ticks 0..5.
+        const FIRST: [f64; 5] = [-95.0 / 24.0, 29.0 / 4.0, -5.0, 25.0 / 12.0, -3.0 / 8.0];
+        /// From its second tick, ticks −1..4.
+        const SECOND: [f64; 5] = [-3.0 / 8.0, -25.0 / 12.0, 7.0 / 2.0, -5.0 / 4.0, 5.0 / 24.0];
         let m = means.ticks;
-        assert!(k < m && m >= 3, "tick {k} of a {m}-tick segment");
+        assert!(k < m && m >= 5, "tick {k} of a {m}-tick segment");
         let v = &means.v[..POINT_CHANNELS * m];
         let at = |c: usize, k: usize| v[c * m + k];
+        let stencil = |c: usize, from: usize, w: &[f64; 5], sign: f64| -> f64 {
+            let mut d = 0.0;
+            for (i, w) in w.iter().enumerate() {
+                // Mirrored stencils read backwards with the sign flipped (w′ is odd).
+                let t = if sign > 0.0 { from + i } else { from - i };
+                d += w * at(c, t);
+            }
+            sign * d
+        };
         // The case once, not per channel.
-        let diff: [f64; POINT_CHANNELS] = if k == 0 {
-            std::array::from_fn(|c| 4.0 * at(c, 1) - 3.0 * at(c, 0) - at(c, 2))
+        let diff: [f64; POINT_CHANNELS] = if k >= 2 && k + 2 < m {
+            std::array::from_fn(|c| {
+                17.0 / 12.0 * (at(c, k + 1) - at(c, k - 1))
+                    - 5.0 / 24.0 * (at(c, k + 2) - at(c, k - 2))
+            })
+        } else if k == 0 {
+            std::array::from_fn(|c| stencil(c, 0, &FIRST, 1.0))
+        } else if k == 1 {
+            std::array::from_fn(|c| stencil(c, 0, &SECOND, 1.0))
         } else if k + 1 == m {
-            std::array::from_fn(|c| 3.0 * at(c, k) - 4.0 * at(c, k - 1) + at(c, k - 2))
+            std::array::from_fn(|c| stencil(c, k, &FIRST, -1.0))
         } else {
-            std::array::from_fn(|c| at(c, k + 1) - at(c, k - 1))
+            std::array::from_fn(|c| stencil(c, k + 1, &SECOND, -1.0))
         };
         (std::array::from_fn(|c| at(c, k)), diff)
     }
@@ -477,7 +500,7 @@ mod tests {
     }
 
     #[test]
-    fn quadrature_points_from_the_means_err_oddly_by_the_third_derivative() {
+    fn quadrature_points_from_the_means_err_by_the_cubic_term_they_leave_out() {
         // A 2 rad/s sinusoid of unit amplitude on a 128-tick segment at 100 Hz: the points from
         // the means against the interpolant's own points (which are exact to 1e-10).
         let (h, m, w) = (0.01, 128u64, 2.0);
@@ -499,13 +522,15 @@ mod tests {
                 even = even.max((0.5 * (e0 + e1)).abs());
             }
         }
-        // |w‴| = w³; the one-sided differences at the ends are the worst (about twice).
-        let bound = 0.2 * w.powi(3) * h.powi(3);
+        // |w‴| = w³: the odd part is the cubic term w‴τ³/6 at τ = h/(2√3) (the slope itself is
+        // exact to O(h⁵)); the even part is fourth order, w⁗h⁴·(1/1920 − 1/3456).
+        let cubic = w.powi(3) * (h / (2.0 * 3f64.sqrt())).powi(3) / 6.0;
         assert!(
-            odd <= bound && odd > 0.1 * bound,
-            "odd {odd:e} vs {bound:e}"
+            odd <= 1.05 * cubic && odd > 0.95 * cubic,
+            "odd {odd:e} vs {cubic:e}"
         );
-        assert!(even <= 1e-3 * bound, "even {even:e}");
+        let quartic = w.powi(4) * h.powi(4) * (1.0 / 1920.0 - 1.0 / 3456.0);
+        assert!(even <= 1.1 * quartic, "even {even:e} vs {quartic:e}");
     }
 
     #[test]

@@ -6,18 +6,21 @@
 //! Over a tick of length h with middle t_m, let the turning gimbal's angle be
 //! a(t_m + τ) = a_m + r·τ + ½α·τ² (exact within one phase of the move profile) and a carrier
 //! vector w(t_m + τ) = w̄ + w′·τ + ½w″·(τ² − h²/12) + … (w̄ its mean over the tick). The frame
-//! turns by R(τ) = exp(−a(τ)·K) about the gimbal's axis, K the generator (K·v = v × axis for
-//! the transposed rotation the body frame applies). To O(h⁴):
+//! turns by R(τ) = exp(a(τ)·K) relative to the middle, K the generator of the transposed
+//! rotation the body frame applies (K·v = v × axis; on the plane of the turn K² = −1, so K³ = −K
+//! and K⁴ = −K²). Integrating the series of R(τ)·w(τ) over the tick, to O(h⁴) in everything but
+//! w″ and w‴:
 //!
-//! (1/h)∫R(τ)·w dτ = w̄ + (h²/12)·[K·(r·w′ + ½α·w̄) + ½r²·K²·w̄]
-//!               = w̄ + (4Q·K·w̄ + Δ·K·D + Δ²·K²·w̄)/24,
+//! (1/h)∫R(τ)·w dτ = w̄ + K·[(Q/6 − QΔ²/80)·w̄ + (Δ/24 − Δ³/960)·D]
+//!                      + K²·[(Δ²/24 + Q²/40 − Δ⁴/1920)·w̄ + (QΔ/80)·D],
 //!
 //! with Δ = a(end) − a(start) = r·h, Q = a(start) − 2a(middle) + a(end) = α·h²/4 and
-//! D = 2h·w′ (the difference of the neighbouring ticks' means), plus the largest fourth-order
-//! term, Q²/40·K²·w̄ (α²h⁴/640: the table's acceleration phases). What is left is mostly the
-//! slope's: a central difference of tick means errs by about 0.4·h³·w‴, so the mean errs by
-//! about Δ·h³·|w‴|/60: 5e-11 m/s² (5e-13 m/s per step) for a 2°/s table at 100 Hz under a
-//! 1 m/s² sea at 2 rad/s, the size of the two-point Gauss–Legendre rule's own error there.
+//! D = 2h·w′ ([`crate::carrier::segment::SegmentRule::mean_and_slope`]: from five tick means,
+//! exact to O(h⁵)). The second-order part is Δ·K·D/24 + Q·K·w̄/6 + Δ²·K²·w̄/24; the rest are
+//! the fourth-order terms in w̄ and D (Q²/40: the table's acceleration phases). Left out:
+//! K·(α·w″/720 + r·w‴/480)·h⁴ and K²·r²·w″·h⁴/720, e.g. 6e-12 m/s² (6e-14 m/s per step) for a
+//! 2°/s table under a 1 m/s² sea at 2 rad/s at 100 Hz, below the two-point Gauss–Legendre
+//! rule's own error there.
 
 use nalgebra::Vector3;
 
@@ -37,8 +40,8 @@ pub struct SmoothTurn {
     pub delta_rad: f64,
     /// Q = a(start) − 2·a(middle) + a(end) = α·h²/4, rad.
     pub q_rad: f64,
-    /// The expansion's coefficients of K·w̄, K·D and K²·w̄: Q/6, Δ/24, Δ²/24 + Q²/40.
-    coef: [f64; 3],
+    /// The expansion's coefficients of K·w̄, K·D, K²·w̄ and K²·D (module docs).
+    coef: [f64; 4],
 }
 
 impl SmoothTurn {
@@ -67,9 +70,12 @@ impl SmoothTurn {
             outer,
             delta_rad: dl,
             q_rad: q,
-            // K²·w̄ also takes the largest fourth-order term, α²h⁴/640 = Q²/40 (the table's
-            // acceleration phases).
-            coef: [q / 6.0, dl / 24.0, dl * dl / 24.0 + q * q / 40.0],
+            coef: [
+                q / 6.0 - q * dl * dl / 80.0,
+                dl / 24.0 - dl * dl * dl / 960.0,
+                dl * dl / 24.0 + q * q / 40.0 - dl * dl * dl * dl / 1920.0,
+                q * dl / 80.0,
+            ],
         })
     }
 
@@ -83,23 +89,24 @@ impl SmoothTurn {
         mean: &Vector3<f64>,
         diff: &Vector3<f64>,
     ) -> Vector3<f64> {
-        let [c_w, c_d, c_kw] = self.coef;
+        let [c_w, c_d, c_kw, c_kd] = self.coef;
         if self.outer {
             // R_z(a_m + δ)ᵀ = R_z(δ)ᵀ·R_z(a_m)ᵀ: the turn acts between the two plane rotations.
             // K = K_z leaves the z component alone and sees only D's x and y.
             let w = frame.outer_to(mean);
             let (so, co) = (frame.sin_outer, frame.cos_outer);
             let (dx, dy) = (co * diff.x + so * diff.y, co * diff.y - so * diff.x);
-            // w + c_w·K·w + c_d·K·D + c_kw·K²·w with K(x, y, z) = (y, −x, 0), K² = −1 on x, y.
-            let x = w.x + c_w * w.y + c_d * dy - c_kw * w.x;
-            let y = w.y - c_w * w.x - c_d * dx - c_kw * w.y;
+            // w + c_w·K·w + c_d·K·D + c_kw·K²·w + c_kd·K²·D with K(x, y, z) = (y, −x, 0),
+            // K² = −1 on x, y.
+            let x = w.x + c_w * w.y + c_d * dy - c_kw * w.x - c_kd * dx;
+            let y = w.y - c_w * w.x - c_d * dx - c_kw * w.y - c_kd * dy;
             frame.inner_to(&Vector3::new(x, y, w.z))
         } else {
             // R_x(a_m + δ)ᵀ = R_x(δ)ᵀ·R_x(a_m)ᵀ: the turn acts last, in body axes, where
             // K = K_x(x, y, z) = (0, z, −y) leaves x alone.
             let (w, d) = (frame.to_body(mean), frame.to_body(diff));
-            let y = w.y + c_w * w.z + c_d * d.z - c_kw * w.y;
-            let z = w.z - c_w * w.y - c_d * d.y - c_kw * w.z;
+            let y = w.y + c_w * w.z + c_d * d.z - c_kw * w.y - c_kd * d.y;
+            let z = w.z - c_w * w.y - c_d * d.y - c_kw * w.z - c_kd * d.z;
             Vector3::new(w.x, y, z)
         }
     }
@@ -178,19 +185,24 @@ mod tests {
                 };
                 let turn = SmoothTurn::of(&g(t_m - 0.5 * h), &g(t_m), &g(t_m + 0.5 * h)).unwrap();
                 assert_eq!(turn.outer, outer);
-                // The carrier vector's mean and slope over the tick, as the segment rule gives them.
+                // The carrier vector's mean and slope over the tick, as the segment rule gives
+                // them (D from five tick means).
                 let mean = mean_of(&w);
                 let neighbour = |dt: f64| mean_of(&|t| w(t + dt));
-                let diff = neighbour(h) - neighbour(-h);
+                let diff = 17.0 / 12.0 * (neighbour(h) - neighbour(-h))
+                    - 5.0 / 24.0 * (neighbour(2.0 * h) - neighbour(-2.0 * h));
                 let got = turn.mean_in_body(&fr(t_m), &mean, &diff);
                 let exact = mean_of(&|t| fr(t).to_body(&w(t)));
                 let err = (got - exact).norm();
                 // Leaving the terms out altogether errs by the whole correction: the expansion must
                 // be far below that.
                 let plain = (fr(t_m).to_body(&mean) - exact).norm();
-                // What is left is the slope's: a central difference of tick means errs by about
-                // 0.4·h³·w‴ (|w‴| ≤ 2.4 here), weighted by Δ/24.
-                let bound = turn.delta_rad.abs() * h.powi(3) * 2.4 / 40.0;
+                // What is left are the terms in w″ and w‴ (module docs), here |w″| ≤ 1.2 and
+                // |w‴| ≤ 2.4 per component; three times that for the vector and higher orders.
+                let left =
+                    (alpha.abs() * 1.2 / 720.0 + r.abs() * 2.4 / 480.0 + r * r * 1.2 / 720.0)
+                        * h.powi(4);
+                let bound = 3.0 * left;
                 assert!(
                     err <= bound && err < 1e-4 * plain,
                     "r {r}, α {alpha}, outer {outer}: {err:e} (bound {bound:e}, uncorrected {plain:e})"
