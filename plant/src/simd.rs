@@ -18,7 +18,8 @@ use crate::carrier::waves::JET_LEN;
 /// Rows per block of [`combine_blocks`]: one AVX-512 vector of f64.
 pub(crate) const LANES: usize = 8;
 
-/// Compiles `$body` for AVX-512F and AVX2 as well and runs the widest the CPU supports.
+/// Compiles `$body` for AVX-512F and AVX2 as well and runs the widest the CPU supports; with
+/// `use $wide` the AVX-512F build is the hand-written function `$wide` instead.
 macro_rules! multiversion {
     ($(#[$doc:meta])* $vis:vis fn $name:ident($($a:ident: $t:ty),*) $(-> $r:ty)?
         = $body:ident, $wide:ident, $avx2:ident) => {
@@ -28,6 +29,12 @@ macro_rules! multiversion {
             $body($($a),*)
         }
 
+        multiversion! {
+            $(#[$doc])* $vis fn $name($($a: $t),*) $(-> $r)? = $body, use $wide, $avx2
+        }
+    };
+    ($(#[$doc:meta])* $vis:vis fn $name:ident($($a:ident: $t:ty),*) $(-> $r:ty)?
+        = $body:ident, use $wide:ident, $avx2:ident) => {
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = "avx2")]
         fn $avx2($($a: $t),*) $(-> $r)? {
@@ -125,26 +132,37 @@ fn acc_diff(a: [f64; LANES], b: &[f64; LANES], s: f64, c: &[f64; LANES], t: f64)
     std::array::from_fn(|l| a[l] + (s * b[l] - t * c[l]))
 }
 
+/// What [`node_jets`] reads: the phasors z_i; the nodes' rotations r_{i,l} as blocks of
+/// [`LANES`] nodes, component after component in a block, real and imaginary parts apart; and
+/// each component's jet factors C = `re` + i·`im`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NodeJetInputs<'a> {
+    pub z: &'a [Complex<f64>],
+    pub rot_re: &'a [[f64; LANES]],
+    pub rot_im: &'a [[f64; LANES]],
+    pub re: &'a [[f64; JET_LEN]],
+    pub im: &'a [[f64; JET_LEN]],
+}
+
+impl NodeJetInputs<'_> {
+    /// Blocks of nodes.
+    fn blocks(&self) -> usize {
+        self.rot_re.len() / self.z.len().max(1)
+    }
+}
+
 #[inline(always)]
-fn node_jets_body(
-    z: &[Complex<f64>],
-    rot_re: &[[f64; LANES]],
-    rot_im: &[[f64; LANES]],
-    re: &[[f64; JET_LEN]],
-    im: &[[f64; JET_LEN]],
-    out: &mut [[f64; LANES]],
-) {
-    let nc = z.len();
-    let blocks = rot_re.len() / nc.max(1);
-    for b in 0..blocks {
+fn node_jets_body(x: &NodeJetInputs<'_>, out: &mut [[f64; LANES]]) {
+    let nc = x.z.len();
+    for b in 0..x.blocks() {
         let mut acc = [[0.0; LANES]; JET_LEN];
         for i in 0..nc {
-            let (rr, ri, z) = (&rot_re[b * nc + i], &rot_im[b * nc + i], z[i]);
+            let (rr, ri, z) = (&x.rot_re[b * nc + i], &x.rot_im[b * nc + i], x.z[i]);
             // u = z·r as `Complex`'s product forms it: (z.re·r.re − z.im·r.im, z.re·r.im + z.im·r.re).
             let ur: [f64; LANES] = std::array::from_fn(|l| z.re * rr[l] - z.im * ri[l]);
             let ui: [f64; LANES] = std::array::from_fn(|l| z.re * ri[l] + z.im * rr[l]);
-            for j in 0..JET_LEN {
-                acc[j] = acc_diff(acc[j], &ur, re[i][j], &ui, im[i][j]);
+            for (acc, (&cr, &ci)) in acc.iter_mut().zip(x.re[i].iter().zip(&x.im[i])) {
+                *acc = acc_diff(*acc, &ur, cr, &ui, ci);
             }
         }
         out[b * JET_LEN..(b + 1) * JET_LEN].copy_from_slice(&acc);
@@ -156,30 +174,22 @@ fn node_jets_body(
 /// same operations in the same order (no fused multiply-add), so the same bits.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
-fn node_jets_avx512(
-    z: &[Complex<f64>],
-    rot_re: &[[f64; LANES]],
-    rot_im: &[[f64; LANES]],
-    re: &[[f64; JET_LEN]],
-    im: &[[f64; JET_LEN]],
-    out: &mut [[f64; LANES]],
-) {
+fn node_jets_avx512(x: &NodeJetInputs<'_>, out: &mut [[f64; LANES]]) {
     use std::arch::x86_64::{
         _mm512_add_pd, _mm512_loadu_pd, _mm512_mul_pd, _mm512_set1_pd, _mm512_setzero_pd,
         _mm512_storeu_pd, _mm512_sub_pd,
     };
-    let nc = z.len();
-    let blocks = rot_re.len() / nc.max(1);
-    for b in 0..blocks {
+    let nc = x.z.len();
+    for b in 0..x.blocks() {
         let mut acc = [_mm512_setzero_pd(); JET_LEN];
         for i in 0..nc {
-            let (rr, ri) = (&rot_re[b * nc + i], &rot_im[b * nc + i]);
+            let (rr, ri) = (&x.rot_re[b * nc + i], &x.rot_im[b * nc + i]);
             // SAFETY: each is a whole [f64; 8], the 64 bytes an unaligned load reads.
             let (rr, ri) = unsafe { (_mm512_loadu_pd(rr.as_ptr()), _mm512_loadu_pd(ri.as_ptr())) };
-            let (zr, zi) = (_mm512_set1_pd(z[i].re), _mm512_set1_pd(z[i].im));
+            let (zr, zi) = (_mm512_set1_pd(x.z[i].re), _mm512_set1_pd(x.z[i].im));
             let ur = _mm512_sub_pd(_mm512_mul_pd(zr, rr), _mm512_mul_pd(zi, ri));
             let ui = _mm512_add_pd(_mm512_mul_pd(zr, ri), _mm512_mul_pd(zi, rr));
-            for (acc, (&cr, &ci)) in acc.iter_mut().zip(re[i].iter().zip(&im[i])) {
+            for (acc, (&cr, &ci)) in acc.iter_mut().zip(x.re[i].iter().zip(&x.im[i])) {
                 let t = _mm512_sub_pd(
                     _mm512_mul_pd(_mm512_set1_pd(cr), ur),
                     _mm512_mul_pd(_mm512_set1_pd(ci), ui),
@@ -194,43 +204,12 @@ fn node_jets_avx512(
     }
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn node_jets_avx2(
-    z: &[Complex<f64>],
-    rot_re: &[[f64; LANES]],
-    rot_im: &[[f64; LANES]],
-    re: &[[f64; JET_LEN]],
-    im: &[[f64; JET_LEN]],
-    out: &mut [[f64; LANES]],
-) {
-    node_jets_body(z, rot_re, rot_im, re, im, out)
-}
-
-/// [`jet_sum`] with rotations for [`LANES`] nodes side by side: for each block b of nodes
-/// (`rot_re`/`rot_im` hold block b's rotations component after component),
-/// out[b·JET_LEN + j][l] = Σ_i Re(C_{j,i}·z_i·r_{i,l}), the same operations in the same order
-/// as [`jet_sum`] for one node.
-pub(crate) fn node_jets(
-    z: &[Complex<f64>],
-    rot_re: &[[f64; LANES]],
-    rot_im: &[[f64; LANES]],
-    re: &[[f64; JET_LEN]],
-    im: &[[f64; JET_LEN]],
-    out: &mut [[f64; LANES]],
-) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::arch::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU has AVX-512F, checked just above.
-            return unsafe { node_jets_avx512(z, rot_re, rot_im, re, im, out) };
-        }
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2, checked just above.
-            return unsafe { node_jets_avx2(z, rot_re, rot_im, re, im, out) };
-        }
-    }
-    node_jets_body(z, rot_re, rot_im, re, im, out)
+multiversion! {
+    /// [`jet_sum`] with rotations for [`LANES`] nodes side by side: for each block b of nodes,
+    /// out[b·JET_LEN + j][l] = Σ_i Re(C_{j,i}·z_i·r_{i,l}), the same operations in the same
+    /// order as [`jet_sum`] for one node.
+    pub(crate) fn node_jets(x: &NodeJetInputs<'_>, out: &mut [[f64; LANES]])
+        = node_jets_body, use node_jets_avx512, node_jets_avx2
 }
 
 #[cfg(test)]
@@ -265,8 +244,15 @@ mod tests {
             vec![[0.0; LANES]; 2 * JET_LEN],
         );
         let rot_im: Vec<[f64; LANES]> = rot.iter().map(|r| r.map(|v| v * 0.7 - 0.1)).collect();
-        node_jets(&z, &rot, &rot_im, &re, &im, &mut a);
-        node_jets_body(&z, &rot, &rot_im, &re, &im, &mut b);
+        let x = NodeJetInputs {
+            z: &z,
+            rot_re: &rot,
+            rot_im: &rot_im,
+            re: &re,
+            im: &im,
+        };
+        node_jets(&x, &mut a);
+        node_jets_body(&x, &mut b);
         let bits = |v: &[[f64; LANES]]| v.iter().flatten().map(|v| v.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&a), bits(&b));
         let y: Vec<[f64; POINT_CHANNELS]> = (0..12)

@@ -18,7 +18,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::spec::{SeaSpec, SpectrumKind};
-use crate::simd::{LANES, jet_sum, node_jets};
+use crate::simd::{LANES, NodeJetInputs, jet_sum, node_jets};
 use crate::units::DEG;
 
 /// Random stream of the sea-state realisation (distinct from the sensor noise streams).
@@ -356,14 +356,14 @@ impl Waves {
         let n = self.rot_offsets.len();
         let blocks = n.div_ceil(LANES);
         self.node_jet_blocks.resize(blocks * JET_LEN, [0.0; LANES]);
-        node_jets(
-            &self.z,
-            &self.rot_nodes_re,
-            &self.rot_nodes_im,
-            &self.jet_re,
-            &self.jet_im,
-            &mut self.node_jet_blocks,
-        );
+        let x = NodeJetInputs {
+            z: &self.z,
+            rot_re: &self.rot_nodes_re,
+            rot_im: &self.rot_nodes_im,
+            re: &self.jet_re,
+            im: &self.jet_im,
+        };
+        node_jets(&x, &mut self.node_jet_blocks);
         out.clear();
         out.extend((0..n).map(|j| {
             let (b, l) = (j / LANES, j % LANES);
