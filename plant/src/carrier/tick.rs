@@ -27,36 +27,23 @@ impl GimbalTrig {
     /// The gimbal frame at angles `a` while the table dwells (held for the next call).
     #[inline]
     fn frame(&mut self, a: GimbalAngles) -> GimbalFrame {
-        let (so, co) = self.outer.at(a.outer_rad);
-        let (si, ci) = self.inner.at(a.inner_rad);
-        GimbalFrame {
-            sin_outer: so,
-            cos_outer: co,
-            sin_inner: si,
-            cos_inner: ci,
-        }
+        GimbalFrame::from_sin_cos(self.outer.at(a.outer_rad), self.inner.at(a.inner_rad))
     }
 
     /// The gimbal frame at angles `a` in the middle of a tick on which the outer gimbal
     /// (`outer_turns`) or the inner one turns: the turning angle from the grid, the other held.
     #[inline]
     fn frame_turning(&mut self, a: GimbalAngles, outer_turns: bool) -> GimbalFrame {
-        let ((so, co), (si, ci)) = if outer_turns {
-            (
+        if outer_turns {
+            GimbalFrame::from_sin_cos(
                 self.outer_grid.sin_cos(a.outer_rad),
                 self.inner.at(a.inner_rad),
             )
         } else {
-            (
+            GimbalFrame::from_sin_cos(
                 self.outer.at(a.outer_rad),
                 self.inner_grid.sin_cos(a.inner_rad),
             )
-        };
-        GimbalFrame {
-            sin_outer: so,
-            cos_outer: co,
-            sin_inner: si,
-            cos_inner: ci,
         }
     }
 
@@ -77,20 +64,16 @@ impl GimbalTrig {
         } else {
             a.map(|a| self.inner_grid.sin_cos(a.inner_rad))
         };
-        [0, 1].map(|i| GimbalFrame {
-            sin_outer: outer[i].0,
-            cos_outer: outer[i].1,
-            sin_inner: inner[i].0,
-            cos_inner: inner[i].1,
-        })
+        [0, 1].map(|i| GimbalFrame::from_sin_cos(outer[i], inner[i]))
     }
 }
 
 impl Plant {
-    /// One tick on the moving carrier from table state `g0` to `g1`: the increments (two-point
-    /// Gauss–Legendre on the carrier part, or the tick means of the ship's segment rule while
-    /// the table dwells; exact angle differences for the gimbal part) and the up axis in body
-    /// axes (the mean over the tick).
+    /// One tick on the moving carrier from table state `g0` to `g1` (`gm` at its middle): the
+    /// increments and the up axis in body axes (the mean over the tick). The carrier part is the
+    /// ship's segment-rule tick means while the table dwells, their turning-frame expansion
+    /// ([`SmoothTurn`]) while a gimbal turns within one profile phase, and two-point
+    /// Gauss–Legendre otherwise; the gimbal part is the exact angle difference.
     pub(crate) fn carrier_tick(
         &mut self,
         g0: &GimbalState,

@@ -89,6 +89,25 @@ pub struct GimbalFrame {
 }
 
 impl GimbalFrame {
+    /// From (sin, cos) of the outer and of the inner angle.
+    #[inline]
+    pub fn from_sin_cos(
+        (sin_outer, cos_outer): (f64, f64),
+        (sin_inner, cos_inner): (f64, f64),
+    ) -> Self {
+        Self {
+            sin_outer,
+            cos_outer,
+            sin_inner,
+            cos_inner,
+        }
+    }
+
+    /// At the gimbal angles `a` (libm sines and cosines).
+    pub fn at(a: GimbalAngles) -> Self {
+        Self::from_sin_cos(a.outer_rad.sin_cos(), a.inner_rad.sin_cos())
+    }
+
     /// C_v^b·v = R_x(inner)ᵀ·R_z(outer)ᵀ·v.
     #[inline]
     pub fn to_body(&self, v: &Vector3<f64>) -> Vector3<f64> {

@@ -127,17 +127,6 @@ mod tests {
         }
     }
 
-    fn frame(outer: f64, inner: f64) -> GimbalFrame {
-        let (so, co) = outer.sin_cos();
-        let (si, ci) = inner.sin_cos();
-        GimbalFrame {
-            sin_outer: so,
-            cos_outer: co,
-            sin_inner: si,
-            cos_inner: ci,
-        }
-    }
-
     /// The tick mean of C_v^b(t)·w(t) by 64-point composite Simpson, against the expansion,
     /// for either gimbal accelerating through a tick while w varies as a sinusoid.
     #[test]
@@ -181,7 +170,7 @@ mod tests {
                 };
                 let fr = |t: f64| {
                     let s = g(t).angles;
-                    frame(s.outer_rad, s.inner_rad)
+                    GimbalFrame::at(s)
                 };
                 let turn = SmoothTurn::of(&g(t_m - 0.5 * h), &g(t_m), &g(t_m + 0.5 * h)).unwrap();
                 assert_eq!(turn.outer, outer);

@@ -389,12 +389,7 @@ impl Ship {
         self.build_segment(start_tick / m, pos);
         let exact = self.seg.as_ref().is_some_and(|s| s.exact);
         let mut end = CarrierState::at_rest(0.0, 0.0, 0.0, Matrix3::identity());
-        let frame = GimbalFrame {
-            sin_outer: 0.0,
-            cos_outer: 1.0,
-            sin_inner: 0.0,
-            cos_inner: 1.0,
-        };
+        let frame = GimbalFrame::from_sin_cos((0.0, 1.0), (0.0, 1.0));
         for _ in start_tick..tick {
             if exact {
                 self.advance_points(&frame, true, &mut end);
