@@ -1,8 +1,8 @@
 //! An externally driven carrier: a vessel model outside the plant (an FMU connected to the IMU
-//! FMU's carrier inputs) supplies [`CarrierSample`]s at the ends of each communication step,
+//! FMU's carrier inputs) supplies `CarrierSample`s at the ends of each communication step,
 //! and the plant moves between two of them exactly as between two rows of a trajectory file
-//! ([`super::trajectory`]): cubic Hermite position from the two positions and velocities,
-//! constant-rate attitude between the two attitudes. The segment is a two-row [`Trajectory`]
+//! (`carrier::trajectory`): cubic Hermite position from the two positions and velocities,
+//! constant-rate attitude between the two attitudes. The segment is a two-row `Trajectory`
 //! swapped into the plant's carrier before the step, so no new carrier kind is needed.
 //!
 //! Two identical samples (bit for bit) hold the carrier at rest at that sample for the step: a

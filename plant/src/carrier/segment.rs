@@ -270,7 +270,7 @@ impl SegmentRule {
 
     /// [`SegmentRule::tick_mean`] for every tick of the segment at once: the same sums in the
     /// same order, so the same bits, but a block of ticks shares each pass over the node values
-    /// and the products run as wide as the CPU allows ([`crate::simd`]).
+    /// and the products run as wide as the CPU allows (`crate::simd`).
     pub fn tick_means_all(&self, y: &[[f64; POINT_CHANNELS]], out: &mut TickMeans) {
         out.ticks = self.m as usize;
         out.v.resize(POINT_CHANNELS * out.ticks, 0.0);

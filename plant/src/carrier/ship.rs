@@ -266,7 +266,7 @@ pub(super) fn angles(tp: &TrackPoint, jet: &SeaJet) -> [f64; 4] {
 }
 
 /// The composition angles' sines and cosines are exact at multiples of this tick count and
-/// carried tick to tick by [`Trig::near`] in between.
+/// carried tick to tick by `Trig::near` in between.
 pub const TRIG_RESYNC_TICKS: u64 = 64;
 
 /// Angles with their sines and cosines.
@@ -278,7 +278,7 @@ pub struct Trig {
 }
 
 impl Default for Trig {
-    /// No angle known (NaN angles match nothing in [`Trig::exact`]).
+    /// No angle known (NaN angles match nothing in `Trig::exact`).
     fn default() -> Self {
         Self {
             ang: [f64::NAN; 4],

@@ -129,7 +129,7 @@ impl GimbalFrame {
     }
 }
 
-/// Body rate of the IMU relative to the vehicle, ω_vb^b = R_x(inner)ᵀ·[0,0,ȯuter] + [ịnner,0,0].
+/// Body rate of the IMU relative to the vehicle, ω_vb^b = R_x(inner)ᵀ·(0, 0, ȯuter) + (ịnner, 0, 0).
 pub fn gimbal_body_rate(inner_rad: f64, outer_rate: f64, inner_rate: f64) -> Vector3<f64> {
     let (s, c) = inner_rad.sin_cos();
     Vector3::new(inner_rate, s * outer_rate, c * outer_rate)

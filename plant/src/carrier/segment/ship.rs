@@ -272,7 +272,7 @@ impl Ship {
     /// points while the table turns, `turning`; while it dwells, the tick's means already in
     /// the body axes of `frame`). While the segment runs the exact path the state at the
     /// tick's end goes to `end`; an interpolated segment leaves `end` alone (its state is
-    /// [`Ship::segment_state`], computed when asked for).
+    /// `Ship::segment_state`, computed when asked for).
     pub fn advance_points(
         &mut self,
         frame: &GimbalFrame,

@@ -10,7 +10,7 @@ pub const MAX_POWER: i32 = 8;
 pub struct Factor {
     /// The signal.
     pub signal: Signal,
-    /// Its power, 1 ≤ power ≤ [`MAX_POWER`].
+    /// Its power, 1 ≤ power ≤ `MAX_POWER`.
     pub power: i32,
 }
 
