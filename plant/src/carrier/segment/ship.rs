@@ -291,10 +291,6 @@ impl Ship {
                 [p.omega_ic_c, p.f_c, up].map(|v| e.to_mount(v))
             }))
         } else if turning {
-            if !seg.mount_ready {
-                seg.rule.tick_means_all(&seg.y_pts, &mut seg.means_mount);
-                seg.mount_ready = true;
-            }
             TickPoints::Nodes(seg.quadrature_points(k))
         } else {
             TickPoints::BodyMean(seg.body_mean(frame, k))
@@ -330,11 +326,8 @@ impl Ship {
         end: &mut CarrierState,
     ) -> Option<[Vector3<f64>; 3]> {
         let mut seg = self.seg.take_if(|s| !s.exact)?;
-        if !seg.mount_ready {
-            seg.rule.tick_means_all(&seg.y_pts, &mut seg.means_mount);
-            seg.mount_ready = true;
-        }
         let k = (seg.tick - seg.start_tick) as usize;
+        seg.ensure_mount_means();
         let (mean, diff) = seg.rule.mean_and_slope(&seg.means_mount, k);
         let (mean, diff) = (TickPoints::split(&mean), TickPoints::split(&diff));
         let out = [0, 1, 2].map(|i| turn.mean_in_body(frame, &mean[i], &diff[i]));
@@ -405,10 +398,21 @@ impl SegState {
     /// The points at the two Gauss–Legendre instants of tick `k` (mount axes), from the tick
     /// means ([`SegmentRule::points_from_means`]).
     #[inline]
-    fn quadrature_points(&self, k: usize) -> [[Vector3<f64>; 3]; 2] {
+    fn quadrature_points(&mut self, k: usize) -> [[Vector3<f64>; 3]; 2] {
+        self.ensure_mount_means();
         self.rule
             .points_from_means(&self.means_mount, k)
             .map(|p| TickPoints::split(&p))
+    }
+
+    /// Computes every tick's mean points in mount axes (`means_mount`) at the segment's first
+    /// turning tick.
+    #[inline]
+    fn ensure_mount_means(&mut self) {
+        if !self.mount_ready {
+            self.rule.tick_means_all(&self.y_pts, &mut self.means_mount);
+            self.mount_ready = true;
+        }
     }
 
     /// Tick `k`'s mean points in the body axes of `frame` (ω_ic without the gimbals' part, f,
