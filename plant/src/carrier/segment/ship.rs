@@ -330,7 +330,12 @@ impl Ship {
         seg.ensure_mount_means();
         let (mean, diff) = seg.rule.mean_and_slope(&seg.means_mount, k);
         let (mean, diff) = (TickPoints::split(&mean), TickPoints::split(&diff));
-        let out = [0, 1, 2].map(|i| turn.mean_in_body(frame, &mean[i], &diff[i]));
+        // Written out: as an array map the compiler kept the call behind a closure.
+        let out = [
+            turn.mean_in_body(frame, &mean[0], &diff[0]),
+            turn.mean_in_body(frame, &mean[1], &diff[1]),
+            turn.mean_in_body(frame, &mean[2], &diff[2]),
+        ];
         self.finish_tick(seg, end);
         Some(out)
     }
