@@ -15,7 +15,7 @@ use nalgebra::Complex;
 use crate::carrier::segment::POINT_CHANNELS;
 use crate::carrier::waves::JET_LEN;
 
-/// Rows per block of [`combine_blocks`]: one AVX-512 vector of f64.
+/// Rows per block of [`combine_mirrored`]: one AVX-512 vector of f64.
 pub(crate) const LANES: usize = 8;
 
 /// Compiles `$body` for AVX-512F and AVX2 as well and runs the widest the CPU supports; with
@@ -59,38 +59,59 @@ macro_rules! multiversion {
     };
 }
 
+/// Most node pairs [`combine_mirrored`] takes.
+pub(crate) const MAX_PAIRS: usize = 16;
+
 #[inline(always)]
-fn combine_blocks_body(w_t: &[[f64; LANES]], y: &[[f64; POINT_CHANNELS]], out: &mut [f64]) {
+fn combine_mirrored_body(
+    w_t: &[[f64; LANES]],
+    even: &[[f64; POINT_CHANNELS]],
+    odd: &[[f64; POINT_CHANNELS]],
+    out: &mut [f64],
+) {
     let rows = out.len() / POINT_CHANNELS;
-    let blocks = rows / LANES;
+    let blocks = rows / 2 / LANES;
+    let pairs = even.len();
     for b in 0..blocks {
-        let mut acc = [[0.0; LANES]; POINT_CHANNELS];
-        for (j, v) in y.iter().enumerate() {
-            let w = &w_t[j * blocks + b];
-            for (acc, &v) in acc.iter_mut().zip(v) {
+        let mut s = [[0.0; LANES]; POINT_CHANNELS];
+        let mut d = [[0.0; LANES]; POINT_CHANNELS];
+        for (j, (e, o)) in even.iter().zip(odd).enumerate() {
+            let (we, wo) = (&w_t[j * blocks + b], &w_t[(pairs + j) * blocks + b]);
+            for c in 0..POINT_CHANNELS {
                 for l in 0..LANES {
-                    acc[l] += w[l] * v;
+                    s[c][l] += we[l] * e[c];
+                    d[c][l] += wo[l] * o[c];
                 }
             }
         }
-        // Channel after channel: each block of a channel is one vector store.
-        for (c, acc) in acc.iter().enumerate() {
-            let o = c * rows + b * LANES;
-            out[o..o + LANES].copy_from_slice(acc);
+        // Channel after channel: rows k = 8b..8b + 8 get S + D, their mirrors R − 1 − k
+        // (stored in increasing order, so lane-reversed) S − D.
+        for c in 0..POINT_CHANNELS {
+            let lo = c * rows + b * LANES;
+            let hi = c * rows + rows - (b + 1) * LANES;
+            let (s, d) = (&s[c], &d[c]);
+            let sum: [f64; LANES] = std::array::from_fn(|l| s[l] + d[l]);
+            let mirror: [f64; LANES] = std::array::from_fn(|l| s[LANES - 1 - l] - d[LANES - 1 - l]);
+            out[lo..lo + LANES].copy_from_slice(&sum);
+            out[hi..hi + LANES].copy_from_slice(&mirror);
         }
     }
 }
 
 multiversion! {
-    /// out[c·R + r] = Σ_j W[j][r]·y[j][c] for the point channels c (0..[`POINT_CHANNELS`]) and
-    /// rows r = 0..R, the sum over the nodes j in order; `w_t` holds node j's weights as
-    /// R/[`LANES`] blocks, node after node; `out` holds the R rows channel after channel.
-    pub(crate) fn combine_blocks(
+    /// A symmetric rule's rows from its first half (`crate::carrier::segment::SegmentRule`):
+    /// with S_r = Σ_j E_j[r]·e_j and D_r = Σ_j O_j[r]·o_j (sums over the node pairs j in order),
+    /// out[c·R + r] = S_r + D_r and out[c·R + R − 1 − r] = S_r − D_r for the point channels c
+    /// and the rows r < R/2. `w_t` holds the pairs' even weights E_j, then their odd weights
+    /// O_j, each as R/2/[`LANES`] blocks of rows; `even` and `odd` the pairs' half sums and half
+    /// differences; `out` the R rows channel after channel.
+    pub(crate) fn combine_mirrored(
         w_t: &[[f64; LANES]],
-        y: &[[f64; POINT_CHANNELS]],
+        even: &[[f64; POINT_CHANNELS]],
+        odd: &[[f64; POINT_CHANNELS]],
         out: &mut [f64]
     )
-        = combine_blocks_body, combine_blocks_avx512, combine_blocks_avx2
+        = combine_mirrored_body, combine_mirrored_avx512, combine_mirrored_avx2
 }
 
 #[inline(always)]
@@ -255,15 +276,18 @@ mod tests {
         node_jets_body(&x, &mut b);
         let bits = |v: &[[f64; LANES]]| v.iter().flatten().map(|v| v.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&a), bits(&b));
-        let y: Vec<[f64; POINT_CHANNELS]> = (0..12)
-            .map(|j| std::array::from_fn(|c| val(j * 41 + c)))
-            .collect();
-        let w_t: Vec<[f64; LANES]> = (0..12 * 8)
+        let (e, o): (Vec<[f64; POINT_CHANNELS]>, Vec<_>) = (0..6)
+            .map(|j| {
+                let f = |k: usize| std::array::from_fn(|c| val(j * 41 + c + k));
+                (f(0), f(500))
+            })
+            .unzip();
+        let w_t: Vec<[f64; LANES]> = (0..12 * 4)
             .map(|k| std::array::from_fn(|l| val(k * 8 + l + 3)))
             .collect();
         let (mut a, mut b) = (vec![0.0; 9 * 64], vec![0.0; 9 * 64]);
-        combine_blocks(&w_t, &y, &mut a);
-        combine_blocks_body(&w_t, &y, &mut b);
+        combine_mirrored(&w_t, &e, &o, &mut a);
+        combine_mirrored_body(&w_t, &e, &o, &mut b);
         let bits = |v: &[f64]| v.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&a), bits(&b));
     }

@@ -66,7 +66,15 @@ fn trajectory_of_the_ships_truth_reproduces_its_increments() {
     // ω̇ ≤ 0.1 rad/s², h = 0.01 s this is ≤ 1e-9 rad per step and, through g, ≤ 1e-6 m/s.
     assert!(th < 1e-9, "{th:e}");
     assert!(dv < 1e-6, "{dv:e}");
-    assert!(pos_m < 1e-6, "{pos_m:e}");
+    // The file's positions are the exact path's, which adds a ~1e-8 rad step to latitude and
+    // longitude every tick, each addition rounding by up to half an ulp; the ship's segment rule
+    // adds once per segment. The reference's own rounding bounds the difference (as in
+    // `carrier_segment.rs`).
+    let rounding_m = n as f64 * 0.5 * f64::EPSILON * pa.lat_rad.abs().max(pa.lon_rad.abs()) * 6.4e6;
+    assert!(
+        pos_m < rounding_m,
+        "{pos_m:e} (rounding bound {rounding_m:.1e} m)"
+    );
     assert!(th_max > 1e-4, "the sea state moved the ship: {th_max:e}");
 }
 

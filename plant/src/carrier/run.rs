@@ -117,7 +117,10 @@ impl CarrierRun {
 
     /// C_v^n = C_c^n·C_v^c now.
     pub fn c_vn(&self) -> Matrix3<f64> {
-        let c_cn = self.state().c_cn;
+        let c_cn = match &self.carrier {
+            Carrier::Ship(s) => s.segment_attitude().unwrap_or(self.now.c_cn),
+            _ => self.now.c_cn,
+        };
         // The default mount is the identity: no product.
         if self.mount == Matrix3::identity() {
             c_cn

@@ -18,25 +18,39 @@
 use nalgebra::Vector3;
 
 use super::GL_OFFSETS;
-use crate::simd::{LANES, combine_blocks};
+use crate::simd::{LANES, MAX_PAIRS, combine_mirrored};
 
 mod ship;
 
 pub use ship::{PointEnv, SegState};
 
-/// Nodes per segment.
+/// Nodes per segment the tests take (the ship chooses its own: [`SegmentRule::choose`]).
 pub const SEGMENT_NODES: usize = 16;
+
+/// Fewest nodes per segment [`SegmentRule::choose`] considers.
+pub const SEGMENT_MIN_NODES: usize = 6;
+
+/// Most nodes per segment [`SegmentRule::choose`] considers: beyond, the weights of a 256-tick
+/// segment outgrow the first-level cache.
+pub const SEGMENT_MAX_NODES: usize = 24;
+
+/// What a node costs (the full carrier state, the sea state's jet and the carrier points),
+/// in products of one node's values into one tick's means (measured on the 16-position
+/// benchmark at sea state 5: about 120 ns against 0.18 ns).
+pub const NODE_COST_TICKS: f64 = 650.0;
 
 /// Relative interpolation error the segment length is chosen for (of the motion's amplitude at
 /// twice the top frequency).
 pub const SEGMENT_EPS: f64 = 1e-10;
 
 /// Longest segment, ticks (a power of two dividing the sea state's resynchronisation period).
+/// 512 measured slower at every sea state: a segment's tick means (9 channels × M) then no
+/// longer stay in the first-level cache.
 pub const SEGMENT_MAX_TICKS: u64 = 256;
 
 /// Shortest segment worth it, ticks: below this the n node evaluations cost more than the
-/// exact per-tick path's three.
-pub const SEGMENT_MIN_TICKS: u64 = LANES as u64;
+/// exact per-tick path's three (and the mirrored combine wants a block of ticks per half).
+pub const SEGMENT_MIN_TICKS: u64 = 2 * LANES as u64;
 
 /// Channels per node: ω_ic (0..3), f at the IMU (3..6) and the up axis (6..9), in the table
 /// mount's axes (C_c^v applied; the carrier's for the default mount), then the carrier state: latitude and longitude from the segment start (9, 10),
@@ -47,14 +61,30 @@ pub const CHANNELS: usize = 33;
 /// Channels a tick's increments need (ω_ic^c, f^c, up axis).
 pub const POINT_CHANNELS: usize = 9;
 
-/// Per-row weights (`w[r·n + j]`, n per row) as blocks of [`LANES`] rows, node after node
-/// (the layout of [`combine_blocks`]). Segment lengths are powers of two ≥ [`LANES`].
+/// Per-row weights (`w[r·n + j]`, n per row) as blocks of [`LANES`] rows, weight after weight
+/// (the layout of [`combine_mirrored`]). Half segments are powers of two ≥ [`LANES`] ticks.
 fn blocks_of(w: &[f64], n: usize) -> Vec<[f64; LANES]> {
     let blocks = w.len() / n / LANES;
     (0..n)
         .flat_map(|j| (0..blocks).map(move |b| (j, b)))
         .map(|(j, b)| std::array::from_fn(|l| w[(b * LANES + l) * n + j]))
         .collect()
+}
+
+/// Half sums or half differences of the point channels of node pairs.
+type Pairs = [[f64; POINT_CHANNELS]; MAX_PAIRS];
+
+/// Node j's and its mirror node's weights in a row `w` of n: their sum (the weight of the
+/// pair's half sum); the middle node of an odd n alone.
+fn pair_sum(w: &[f64], j: usize) -> f64 {
+    let k = w.len() - 1 - j;
+    if k == j { w[j] } else { w[j] + w[k] }
+}
+
+/// Their difference (the weight of the pair's half difference; none for a middle node).
+fn pair_difference(w: &[f64], j: usize) -> f64 {
+    let k = w.len() - 1 - j;
+    if k == j { 0.0 } else { w[j] - w[k] }
 }
 
 /// Gauss–Legendre nodes and weights on [−1, 1] (Newton on the Legendre recurrence).
@@ -132,11 +162,16 @@ pub struct SegmentRule {
     pub m: u64,
     /// Node times, ticks from the segment start.
     pub node_ticks: Vec<f64>,
-    /// Per tick k: the mean of each Lagrange basis polynomial over [k, k + 1].
-    mean_w: Vec<f64>,
-    /// `mean_w` transposed into blocks of ticks, node after node: what
+    /// Per tick k < M/2, for the node pairs (j, n − 1 − j) (the nodes are symmetric about the
+    /// segment's middle, so tick M − 1 − k weights the pair's nodes the other way round): the
+    /// pair's even weights a + b, then its odd weights a − b (a, b: node j's and node
+    /// n − 1 − j's mean over the tick). Tick k's mean is S + D and tick M − 1 − k's S − D, with
+    /// S the even weights applied to the pairs' half sums and D the odd weights to their half
+    /// differences: half the products of the plain rule.
+    mirror_w: Vec<f64>,
+    /// `mirror_w` transposed into blocks of ticks, weight after weight: what
     /// [`SegmentRule::tick_means_all`] streams through.
-    mean_w_t: Vec<[f64; LANES]>,
+    mirror_w_t: Vec<[f64; LANES]>,
     /// Per tick boundary i = 0..=M: the basis at i.
     at_w: Vec<f64>,
     /// Per tick k and in-tick Gauss–Legendre point p: the basis there.
@@ -192,8 +227,8 @@ impl SegmentRule {
         let mut me = Self {
             n,
             m,
-            mean_w: Vec::with_capacity(n * m as usize),
-            mean_w_t: Vec::new(),
+            mirror_w: Vec::with_capacity(n.div_ceil(2) * m as usize),
+            mirror_w_t: Vec::new(),
             at_w: Vec::with_capacity(n * (m as usize + 1)),
             gl_w: Vec::with_capacity(2 * n * m as usize),
             disp_w: Vec::with_capacity(n * n),
@@ -201,20 +236,34 @@ impl SegmentRule {
             seg_w: w.iter().map(|w| 0.5 * w).collect(),
             node_ticks: node_ticks.clone(),
         };
+        let pairs = n.div_ceil(2);
+        assert!(
+            pairs <= MAX_PAIRS && m >= SEGMENT_MIN_TICKS,
+            "{n} nodes on {m} ticks"
+        );
         for k in 0..m {
-            let k = k as f64;
-            me.mean_w.extend(mean(k, k + 1.0));
+            let kf = k as f64;
+            if k < m / 2 {
+                let w = mean(kf, kf + 1.0);
+                let mut even: Vec<f64> = (0..pairs).map(|j| pair_sum(&w, j)).collect();
+                // The pairs' half sums then carry the constants: even weights that sum to one
+                // keep a constant's bits.
+                sum_to_one(&mut even);
+                me.mirror_w.extend(even);
+                me.mirror_w
+                    .extend((0..pairs).map(|j| pair_difference(&w, j)));
+            }
             for f in GL_OFFSETS {
-                me.gl_w.extend(basis(k + f));
+                me.gl_w.extend(basis(kf + f));
             }
         }
         for i in 0..=m {
             me.at_w.extend(basis(i as f64));
         }
-        for w in [&mut me.mean_w, &mut me.at_w, &mut me.gl_w, &mut me.seg_w] {
+        for w in [&mut me.at_w, &mut me.gl_w, &mut me.seg_w] {
             w.chunks_mut(n).for_each(sum_to_one);
         }
-        me.mean_w_t = blocks_of(&me.mean_w, n);
+        me.mirror_w_t = blocks_of(&me.mirror_w, 2 * pairs);
         for &t in &node_ticks {
             me.disp_w
                 .extend(mean(0.0, t).into_iter().map(|v| v * t / mf));
@@ -234,19 +283,30 @@ impl SegmentRule {
         b
     }
 
-    /// Segment length, ticks, for motion up to `omega_top_rps` at ticks of `tick_s`: the
-    /// largest power of two ≤ [`SEGMENT_MAX_TICKS`] with [`SegmentRule::error_bound`] at
-    /// 2·ω_top ≤ [`SEGMENT_EPS`]; `None` when that is below [`SEGMENT_MIN_TICKS`].
-    pub fn choose(omega_top_rps: f64, tick_s: f64) -> Option<u64> {
-        let mut m = SEGMENT_MAX_TICKS;
-        while m >= SEGMENT_MIN_TICKS {
-            let wt = 2.0 * omega_top_rps * m as f64 * tick_s;
-            if Self::error_bound(SEGMENT_NODES, wt) <= SEGMENT_EPS {
-                return Some(m);
+    /// Nodes and segment length, ticks, for motion up to `omega_top_rps` at ticks of `tick_s`:
+    /// of the rules with [`SegmentRule::error_bound`] at 2·ω_top ≤ [`SEGMENT_EPS`] (n in
+    /// [`SEGMENT_MIN_NODES`]..=[`SEGMENT_MAX_NODES`], M a power of two in
+    /// [`SEGMENT_MIN_TICKS`]..=[`SEGMENT_MAX_TICKS`]) the one that costs least per tick,
+    /// n·([`NODE_COST_TICKS`]/M + ½) (a tick's means cost half a product per node: the mirrored
+    /// combine); `None` when no rule qualifies.
+    pub fn choose(omega_top_rps: f64, tick_s: f64) -> Option<(usize, u64)> {
+        let cost = |n: usize, m: u64| n as f64 * (NODE_COST_TICKS / m as f64 + 0.5);
+        let mut best: Option<(usize, u64)> = None;
+        for n in SEGMENT_MIN_NODES..=SEGMENT_MAX_NODES {
+            let mut m = SEGMENT_MAX_TICKS;
+            while m >= SEGMENT_MIN_TICKS {
+                let wt = 2.0 * omega_top_rps * m as f64 * tick_s;
+                if Self::error_bound(n, wt) <= SEGMENT_EPS {
+                    // Ties go to the fewer nodes (found first).
+                    if best.is_none_or(|(bn, bm)| cost(n, m) < cost(bn, bm)) {
+                        best = Some((n, m));
+                    }
+                    break;
+                }
+                m /= 2;
             }
-            m /= 2;
         }
-        None
+        best
     }
 
     /// Σ_j w_j·y_j over the channels `range` of the node values `y`, into `out`.
@@ -262,10 +322,48 @@ impl SegmentRule {
         out
     }
 
-    /// Mean over tick `k` of the interpolated ω_ic^c, f^c and up axis.
-    #[inline]
+    /// Mean over tick `k` of the interpolated ω_ic^c, f^c and up axis (one tick of
+    /// [`SegmentRule::tick_means_all`], bit for bit).
     pub fn tick_mean(&self, k: usize, y: &[[f64; CHANNELS]]) -> [f64; POINT_CHANNELS] {
-        Self::combine(&self.mean_w[k * self.n..(k + 1) * self.n], y, 0)
+        let pts: Vec<[f64; POINT_CHANNELS]> =
+            y.iter().map(|r| std::array::from_fn(|c| r[c])).collect();
+        let (mut even, mut odd) = (
+            [[0.0; POINT_CHANNELS]; MAX_PAIRS],
+            [[0.0; POINT_CHANNELS]; MAX_PAIRS],
+        );
+        let p = self.node_pairs(&pts, &mut even, &mut odd);
+        let m = self.m as usize;
+        let (row, upper) = if k < m / 2 {
+            (k, false)
+        } else {
+            (m - 1 - k, true)
+        };
+        let w = &self.mirror_w[row * 2 * p..(row + 1) * 2 * p];
+        let (mut s, mut d) = ([0.0; POINT_CHANNELS], [0.0; POINT_CHANNELS]);
+        for j in 0..p {
+            for c in 0..POINT_CHANNELS {
+                s[c] += w[j] * even[j][c];
+                d[c] += w[p + j] * odd[j][c];
+            }
+        }
+        std::array::from_fn(|c| if upper { s[c] - d[c] } else { s[c] + d[c] })
+    }
+
+    /// The node pairs' half sums and half differences, (y_j ± y_{n−1−j})/2 for
+    /// j < ⌈n/2⌉ (an odd n's middle node pairs with itself: its half sum is its value), into
+    /// the first ⌈n/2⌉ rows of `even` and `odd`; returns ⌈n/2⌉.
+    #[inline]
+    fn node_pairs(&self, y: &[[f64; POINT_CHANNELS]], even: &mut Pairs, odd: &mut Pairs) -> usize {
+        let n = self.n;
+        let p = n.div_ceil(2);
+        for j in 0..p {
+            let (a, b) = (&y[j], &y[n - 1 - j]);
+            for c in 0..POINT_CHANNELS {
+                even[j][c] = 0.5 * (a[c] + b[c]);
+                odd[j][c] = 0.5 * (a[c] - b[c]);
+            }
+        }
+        p
     }
 
     /// [`SegmentRule::tick_mean`] for every tick of the segment at once: the same sums in the
@@ -274,7 +372,12 @@ impl SegmentRule {
     pub fn tick_means_all(&self, y: &[[f64; POINT_CHANNELS]], out: &mut TickMeans) {
         out.ticks = self.m as usize;
         out.v.resize(POINT_CHANNELS * out.ticks, 0.0);
-        combine_blocks(&self.mean_w_t, &y[..self.n], &mut out.v);
+        let (mut even, mut odd) = (
+            [[0.0; POINT_CHANNELS]; MAX_PAIRS],
+            [[0.0; POINT_CHANNELS]; MAX_PAIRS],
+        );
+        let p = self.node_pairs(&y[..self.n], &mut even, &mut odd);
+        combine_mirrored(&self.mirror_w_t, &even[..p], &odd[..p], &mut out.v);
     }
 
     /// The point channels at the two Gauss–Legendre instants of tick `k` from every tick's
@@ -360,6 +463,13 @@ impl SegmentRule {
     #[inline]
     pub fn state_at(&self, i: usize, y: &[[f64; CHANNELS]]) -> [f64; CHANNELS - POINT_CHANNELS] {
         Self::combine(&self.at_w[i * self.n..(i + 1) * self.n], y, POINT_CHANNELS)
+    }
+
+    /// The interpolated C_c^n (channels 18..27, row by row) at tick boundary `i`: the same bits
+    /// as those channels of [`SegmentRule::state_at`], without the other fifteen.
+    #[inline]
+    pub fn attitude_at(&self, i: usize, y: &[[f64; CHANNELS]]) -> [f64; 9] {
+        Self::combine(&self.at_w[i * self.n..(i + 1) * self.n], y, 18)
     }
 
     /// Displacements from the segment start to each node (into `nodes`) and to the segment end

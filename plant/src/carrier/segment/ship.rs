@@ -9,7 +9,7 @@ use super::super::ship::{Ship, Trig, angles, compose_with};
 use super::super::state::CarrierState;
 use super::super::track::{TrackPoint, TrackPosition};
 use super::super::waves::SeaJet;
-use super::{CHANNELS, POINT_CHANNELS, SEGMENT_NODES, SegmentRule, TickMeans, TickPoints};
+use super::{CHANNELS, POINT_CHANNELS, SegmentRule, TickMeans, TickPoints};
 use crate::earth::LocalEarth;
 use crate::kinematics::carrier_point_near;
 use crate::table::{GimbalFrame, SmoothTurn};
@@ -86,8 +86,8 @@ impl Ship {
         assert_eq!(self.tick, 0, "segments are switched on at tick 0");
         let wave_top = self.waves.as_ref().map_or(0.0, |w| w.omega_top_rps());
         let track_top = 2.0 * std::f64::consts::PI / self.track.shortest_change_s();
-        let m = SegmentRule::choose(wave_top.max(track_top), self.tick_s)?;
-        let rule = SegmentRule::new(SEGMENT_NODES, m);
+        let (n, m) = SegmentRule::choose(wave_top.max(track_top), self.tick_s)?;
+        let rule = SegmentRule::new(n, m);
         if let Some(w) = self.waves.as_mut() {
             w.set_segment(m, &rule.node_ticks);
         }
@@ -266,6 +266,16 @@ impl Ship {
         let mut now = CarrierState::at_rest(0.0, 0.0, 0.0, Matrix3::identity());
         seg.state_into((seg.tick - seg.start_tick) as usize, &mut now);
         Some(now)
+    }
+
+    /// The interpolated C_c^n at the current tick (`None` as for [`Ship::segment_state`]): what
+    /// the thermal network and the attitude accessors need, without the rest of the state.
+    pub(in crate::carrier) fn segment_attitude(&self) -> Option<Matrix3<f64>> {
+        let seg = self.seg.as_ref().filter(|s| !s.exact)?;
+        let c = seg
+            .rule
+            .attitude_at((seg.tick - seg.start_tick) as usize, &seg.y);
+        Some(Matrix3::from_row_slice(&c))
     }
 
     /// One tick with the segment rule on: the tick's points (in mount axes at its quadrature
