@@ -201,8 +201,8 @@ impl SegmentRule {
                 1.0 / d
             })
             .collect();
-        let basis = |t: f64| -> Vec<f64> {
-            let mut l = vec![0.0; n];
+        // Into a caller's buffer: a rule evaluates the basis some 10⁴ times.
+        let basis_into = |t: f64, l: &mut [f64]| {
             let mut before = 1.0;
             for (l, x) in l.iter_mut().zip(&node_ticks) {
                 *l = before;
@@ -213,14 +213,19 @@ impl SegmentRule {
                 l[j] *= after * inv_den[j];
                 after *= t - node_ticks[j];
             }
+        };
+        let basis = |t: f64| -> Vec<f64> {
+            let mut l = vec![0.0; n];
+            basis_into(t, &mut l);
             l
         };
         // ∫_a^b of the basis by the n-point rule (exact: the basis has degree n − 1), / (b − a).
-        let mean = |a: f64, b: f64| -> Vec<f64> {
+        let mut l = vec![0.0; n];
+        let mut mean = |a: f64, b: f64| -> Vec<f64> {
             let mut acc = vec![0.0; n];
             for (xq, wq) in x.iter().zip(&w) {
-                let l = basis(a + 0.5 * (1.0 + xq) * (b - a));
-                acc.iter_mut().zip(l).for_each(|(s, l)| *s += 0.5 * wq * l);
+                basis_into(a + 0.5 * (1.0 + xq) * (b - a), &mut l);
+                acc.iter_mut().zip(&l).for_each(|(s, l)| *s += 0.5 * wq * l);
             }
             acc
         };
