@@ -168,8 +168,10 @@ impl Tracker {
         }
     }
 
-    /// Integrates one sample; returns the error record when one is due.
-    pub fn push(&mut self, s: &ImuSample, truth: &Truth) -> Option<NavRecord> {
+    /// Integrates one sample; returns the error record when one is due, against the truth
+    /// `truth` gives (asked for then only: on a moving carrier the truth is interpolated when
+    /// asked for, and a record is due once in many samples).
+    pub fn push(&mut self, s: &ImuSample, truth: impl FnOnce() -> Truth) -> Option<NavRecord> {
         let mut dtheta = s.dtheta_rad;
         if let Some(c) = &self.comp {
             let up_b = self
@@ -184,7 +186,7 @@ impl Tracker {
         self.k += 1;
         self.k
             .is_multiple_of(self.every)
-            .then(|| self.record(truth))
+            .then(|| self.record(&truth()))
     }
 
     /// The error record now, against `truth` (the plant's truth after the last pushed sample).
@@ -306,7 +308,7 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
     let mut records = Vec::with_capacity((samples / tracker.every + 1) as usize);
     for k in 1..=samples {
         let s = plant.step();
-        if let Some(r) = tracker.push(&s, &plant.truth()) {
+        if let Some(r) = tracker.push(&s, || plant.truth()) {
             records.push(r);
         } else if k == samples {
             records.push(tracker.record(&plant.truth()));

@@ -32,7 +32,7 @@ fn run(encoders: bool) -> (f64, f64, f64) {
     let (mut worst, mut peak, mut imu_att) = (0.0f64, 0.0f64, 0.0f64);
     for _ in 0..360_000 {
         let s = p.step();
-        let Some(r) = nav.push(&s, &p.truth()) else {
+        let Some(r) = nav.push(&s, || p.truth()) else {
             continue;
         };
         let g = p.truth().gimbal.angles;
