@@ -11,9 +11,14 @@
 //!
 //! Interpolation error on [0, T] with the Gauss–Legendre nodes, for a component of amplitude A
 //! and angular frequency ω: |f − p| ≤ A·(ωT/2)ⁿ·κₙ/n!, κₙ = 2ⁿ(n!)²/(2n)! (the largest value of
-//! the monic Legendre polynomial on [−1, 1]). [`SegmentRule::choose`] takes M as the largest
-//! power of two with that bound ≤ [`SEGMENT_EPS`] at ω = 2·ω_top (products of two motions, e.g.
-//! Coriolis and the rotation of gravity, reach twice the highest frequency).
+//! the monic Legendre polynomial on [−1, 1]). [`SegmentRule::choose`] takes, of the (n, M) with
+//! that bound ≤ [`SEGMENT_EPS`] at ω = 2·ω_top (products of two motions, e.g. Coriolis and the
+//! rotation of gravity, reach twice the highest frequency), the one that costs least per tick.
+//!
+//! The nodes are symmetric about the segment's middle, so tick M − 1 − k weights each mirrored
+//! pair of nodes the other way round from tick k; the tick means are computed for the first half
+//! of the ticks from the pairs' half sums and half differences, and both halves follow
+//! (`crate::simd::combine_mirrored`): half the products of the plain combination.
 
 use nalgebra::Vector3;
 
