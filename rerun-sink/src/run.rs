@@ -282,7 +282,7 @@ impl RunRecorder {
         }
         if let Some((t, series)) = &mut self.tracker {
             self.last_truth = Some(*tr);
-            let r = t.push(s, tr);
+            let r = t.push(s, || *tr);
             self.nav_at_last = r.is_some();
             if let Some(r) = r {
                 series.push(&self.rec, s.index, &r)?;
