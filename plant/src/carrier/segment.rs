@@ -293,6 +293,13 @@ impl SegmentRule {
         b
     }
 
+    /// What a rule of `n` nodes on `m` ticks costs per tick, in products of one node's values
+    /// into one tick's means: n·([`NODE_COST_TICKS`]/M + ½) (the mirrored combine spends half a
+    /// product per node and tick).
+    pub fn cost_per_tick(n: usize, m: u64) -> f64 {
+        n as f64 * (NODE_COST_TICKS / m as f64 + 0.5)
+    }
+
     /// Nodes and segment length, ticks, for motion up to `omega_top_rps` at ticks of `tick_s`:
     /// of the rules with [`SegmentRule::error_bound`] at 2·ω_top ≤ [`SEGMENT_EPS`] (n in
     /// [`SEGMENT_MIN_NODES`]..=[`SEGMENT_MAX_NODES`], M a power of two in
@@ -300,7 +307,7 @@ impl SegmentRule {
     /// n·([`NODE_COST_TICKS`]/M + ½) (a tick's means cost half a product per node: the mirrored
     /// combine); `None` when no rule qualifies.
     pub fn choose(omega_top_rps: f64, tick_s: f64) -> Option<(usize, u64)> {
-        let cost = |n: usize, m: u64| n as f64 * (NODE_COST_TICKS / m as f64 + 0.5);
+        let cost = Self::cost_per_tick;
         let mut best: Option<(usize, u64)> = None;
         for n in SEGMENT_MIN_NODES..=SEGMENT_MAX_NODES {
             let mut m = SEGMENT_MAX_TICKS;

@@ -166,7 +166,7 @@ fn the_chosen_rule_meets_the_bound_with_the_fewest_nodes_for_its_length() {
             n - 1
         );
         // No cheaper rule qualifies: every (n', M') is either outside the bound or costs more.
-        let cost = |n: usize, m: u64| n as f64 * (NODE_COST_TICKS / m as f64 + 0.5);
+        let cost = SegmentRule::cost_per_tick;
         for n2 in SEGMENT_MIN_NODES..=SEGMENT_MAX_NODES {
             let mut m2 = SEGMENT_MIN_TICKS;
             while m2 <= SEGMENT_MAX_TICKS {
