@@ -3,7 +3,8 @@
 //! A generic FMI 2.0 / 3.0 co-simulation layer, without C: the model interface it is generic
 //! over ([`model`]), the variable table ([`vars`]), the FMI state machine ([`instance`]), the FMU
 //! state codec ([`state`]), modelDescription.xml ([`xml`], [`fmu`]), `.fmu` packaging
-//! ([`package`], [`zip`]) and the C-ABI helpers both FMI versions share ([`ffi`]). It knows no
+//! ([`package`], [`zip`]: stored and deflated archives through the `zip` crate) and the C-ABI
+//! helpers both FMI versions share ([`ffi`]). It knows no
 //! model: the exported C functions are in `rins-fmi2` / `rins-fmi3`, generic too, and each model
 //! is exported by a one-line cdylib crate (`rins_fmi2::export_fmi2!(Model)`).
 

@@ -117,7 +117,8 @@ variable `a[i]` (i = 0…n−1, row-major; value references after all variables 
 same value: setting either sets both. They are for masters that read FMI 3 variables as scalars \
 (ecos 0.7.2) and let one SSP file or `.ssv` set name the same variables in FMI 2 and FMI 3.\n";
 
-/// Writes the `.fmu` for `version` into `out_dir` from the shared library `lib`; returns its path.
+/// Writes the `.fmu` for `version` into `out_dir` from the shared library `lib`, its entries
+/// deflated with fixed timestamps (the same library gives the same bytes); returns its path.
 ///
 /// `lib` must be the library exporting `M` for `version`: the token in the description written
 /// here is what its instantiate function checks.
@@ -148,6 +149,9 @@ pub fn build_fmu<M: Model>(
     ];
     std::fs::create_dir_all(out_dir)?;
     let path = out_dir.join(fmu_file::<M>(version));
-    std::fs::write(&path, crate::zip::write(&entries)?)?;
+    std::fs::write(
+        &path,
+        crate::zip::write(&entries, crate::zip::Compression::Deflated)?,
+    )?;
     Ok(path)
 }

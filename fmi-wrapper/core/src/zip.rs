@@ -1,160 +1,94 @@
-//! A minimal ZIP writer and reader (stored entries, no compression): enough to package and
-//! unpack FMUs without another dependency. Readers that inflate (FMPy, every FMI tool) read
-//! stored entries; our reader refuses compressed entries with a clear message.
+//! `.fmu` archives through the maintained `zip` crate: stored and deflated entries (method 0
+//! and 8, what FMI tools and `zip`/`7z` write), read back with their CRC checked. Written
+//! archives are reproducible: every entry carries the fixed timestamp 1980-01-01 00:00 and no
+//! extra fields, so the same entries give the same bytes on every build.
 
-use std::io;
+use std::io::{self, Cursor, Read, Write};
 
-const fn crc_table() -> [u32; 256] {
-    let mut t = [0u32; 256];
-    let mut i = 0;
-    while i < 256 {
-        let mut c = i as u32;
-        let mut k = 0;
-        while k < 8 {
-            c = if c & 1 != 0 {
-                0xEDB8_8320 ^ (c >> 1)
-            } else {
-                c >> 1
-            };
-            k += 1;
-        }
-        t[i] = c;
-        i += 1;
+use ::zip::result::ZipError;
+use ::zip::write::SimpleFileOptions;
+use ::zip::{CompressionMethod, DateTime, ZipArchive, ZipWriter};
+
+/// How [`write`] stores the entries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Compression {
+    /// Method 0: the bytes as they are.
+    Stored,
+    /// Method 8 (deflate, default level): how FMUs are usually packaged.
+    Deflated,
+}
+
+fn io_err(context: &str, e: ZipError) -> io::Error {
+    match e {
+        ZipError::Io(e) => io::Error::new(e.kind(), format!("{context}: {e}")),
+        e => io::Error::new(io::ErrorKind::InvalidData, format!("{context}: {e}")),
     }
-    t
 }
 
-static CRC: [u32; 256] = crc_table();
-
-/// CRC-32 (IEEE) of `data`.
-pub fn crc32(data: &[u8]) -> u32 {
-    !data.iter().fold(!0u32, |c, b| {
-        CRC[((c ^ *b as u32) & 0xff) as usize] ^ (c >> 8)
-    })
-}
-
-/// Writes `entries` (path, bytes) as a ZIP archive with stored entries and a fixed timestamp
-/// (1980-01-01), so the same inputs give the same bytes.
-pub fn write(entries: &[(String, Vec<u8>)]) -> io::Result<Vec<u8>> {
-    let mut out = Vec::new();
-    let mut central = Vec::new();
+/// Writes `entries` (path, bytes) as a ZIP archive with `compression`, the fixed timestamp
+/// 1980-01-01 00:00 and Unix modes (0755 for `.so` binaries, 0644 otherwise), so the same
+/// inputs give the same bytes.
+pub fn write(entries: &[(String, Vec<u8>)], compression: Compression) -> io::Result<Vec<u8>> {
+    let method = match compression {
+        Compression::Stored => CompressionMethod::Stored,
+        Compression::Deflated => CompressionMethod::Deflated,
+    };
+    let mut z = ZipWriter::new(Cursor::new(Vec::new()));
     for (name, data) in entries {
-        if data.len() > u32::MAX as usize || name.len() > u16::MAX as usize {
-            return Err(io::Error::new(
-                io::ErrorKind::InvalidInput,
-                format!("{name}: too large for a ZIP32 entry"),
-            ));
-        }
-        let offset = out.len() as u32;
-        let crc = crc32(data);
-        let (size, nlen) = (data.len() as u32, name.len() as u16);
-        let common = |v: &mut Vec<u8>| {
-            v.extend_from_slice(&20u16.to_le_bytes()); // version needed
-            v.extend_from_slice(&0u16.to_le_bytes()); // flags
-            v.extend_from_slice(&0u16.to_le_bytes()); // stored
-            v.extend_from_slice(&0u16.to_le_bytes()); // time
-            v.extend_from_slice(&0x21u16.to_le_bytes()); // date 1980-01-01
-            v.extend_from_slice(&crc.to_le_bytes());
-            v.extend_from_slice(&size.to_le_bytes());
-            v.extend_from_slice(&size.to_le_bytes());
-            v.extend_from_slice(&nlen.to_le_bytes());
-            v.extend_from_slice(&0u16.to_le_bytes()); // extra length
-        };
-        out.extend_from_slice(&0x0403_4b50u32.to_le_bytes());
-        common(&mut out);
-        out.extend_from_slice(name.as_bytes());
-        out.extend_from_slice(data);
-
-        central.extend_from_slice(&0x0201_4b50u32.to_le_bytes());
-        central.extend_from_slice(&0x0314u16.to_le_bytes()); // made by: Unix, 2.0
-        common(&mut central);
-        central.extend_from_slice(&0u16.to_le_bytes()); // comment length
-        central.extend_from_slice(&0u16.to_le_bytes()); // disk
-        central.extend_from_slice(&0u16.to_le_bytes()); // internal attributes
-        let mode: u32 = if name.ends_with(".so") {
-            0o100755
-        } else {
-            0o100644
-        };
-        central.extend_from_slice(&(mode << 16).to_le_bytes());
-        central.extend_from_slice(&offset.to_le_bytes());
-        central.extend_from_slice(name.as_bytes());
+        let mode = if name.ends_with(".so") { 0o755 } else { 0o644 };
+        let options = SimpleFileOptions::default()
+            .compression_method(method)
+            .last_modified_time(DateTime::default())
+            .unix_permissions(mode)
+            .large_file(data.len() as u64 >= u64::from(u32::MAX));
+        z.start_file(name.as_str(), options)
+            .map_err(|e| io_err(name, e))?;
+        z.write_all(data)?;
     }
-    let cd_offset = out.len() as u32;
-    let cd_size = central.len() as u32;
-    out.extend_from_slice(&central);
-    out.extend_from_slice(&0x0605_4b50u32.to_le_bytes());
-    out.extend_from_slice(&[0; 4]); // disk numbers
-    let n = entries.len() as u16;
-    out.extend_from_slice(&n.to_le_bytes());
-    out.extend_from_slice(&n.to_le_bytes());
-    out.extend_from_slice(&cd_size.to_le_bytes());
-    out.extend_from_slice(&cd_offset.to_le_bytes());
-    out.extend_from_slice(&0u16.to_le_bytes());
-    Ok(out)
+    Ok(z.finish().map_err(|e| io_err("ZIP", e))?.into_inner())
 }
 
-fn bad(msg: String) -> io::Error {
-    io::Error::new(io::ErrorKind::InvalidData, msg)
-}
-
-/// Reads every entry of a ZIP archive of stored entries (directories skipped).
+/// Reads every file entry of a ZIP archive, stored or deflated (directories skipped), checking
+/// each CRC. An entry of another method, or whose path would leave the folder it is unpacked
+/// into (`..`, an absolute path), is refused naming the entry.
 pub fn read(bytes: &[u8]) -> io::Result<Vec<(String, Vec<u8>)>> {
-    let u16_at = |p: usize| {
-        bytes
-            .get(p..p + 2)
-            .map(|b| u16::from_le_bytes([b[0], b[1]]) as usize)
-    };
-    let u32_at = |p: usize| {
-        bytes
-            .get(p..p + 4)
-            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize)
-    };
-    let eocd = (0..bytes.len().saturating_sub(21))
-        .rev()
-        .find(|&p| u32_at(p) == Some(0x0605_4b50))
-        .ok_or_else(|| bad("not a ZIP archive (no end of central directory)".into()))?;
-    let n = u16_at(eocd + 10).ok_or_else(|| bad("truncated ZIP".into()))?;
-    let mut p = u32_at(eocd + 16).ok_or_else(|| bad("truncated ZIP".into()))?;
-    let mut out = Vec::with_capacity(n);
-    for _ in 0..n {
-        let field =
-            |q: Option<usize>| q.ok_or_else(|| bad("truncated ZIP central directory".into()));
-        if field(u32_at(p))? != 0x0201_4b50 {
-            return Err(bad(format!("bad central directory entry at byte {p}")));
-        }
-        let method = field(u16_at(p + 10))?;
-        let crc = field(u32_at(p + 16))? as u32;
-        let csize = field(u32_at(p + 20))?;
-        let (nlen, xlen, clen) = (
-            field(u16_at(p + 28))?,
-            field(u16_at(p + 30))?,
-            field(u16_at(p + 32))?,
-        );
-        let local = field(u32_at(p + 42))?;
-        let name = String::from_utf8_lossy(
-            bytes
-                .get(p + 46..p + 46 + nlen)
-                .ok_or_else(|| bad("truncated name".into()))?,
-        )
-        .into_owned();
-        p += 46 + nlen + xlen + clen;
-        if name.ends_with('/') {
+    let mut archive =
+        ZipArchive::new(Cursor::new(bytes)).map_err(|e| io_err("not a readable ZIP archive", e))?;
+    let mut out = Vec::with_capacity(archive.len());
+    for i in 0..archive.len() {
+        let f = archive
+            .by_index_raw(i)
+            .map_err(|e| io_err(&format!("ZIP entry {i}"), e))?;
+        let name = f
+            .name()
+            .map_err(|e| io_err(&format!("ZIP entry {i}"), e))?
+            .into_owned();
+        if f.is_dir() {
             continue;
         }
-        if method != 0 {
-            return Err(bad(format!(
-                "{name}: compressed entries (method {method}) are not supported; repack with `zip -0`"
-            )));
+        let method = f.compression();
+        if !matches!(
+            method,
+            CompressionMethod::Stored | CompressionMethod::Deflated
+        ) {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!(
+                    "{name}: compression method {method} is not supported (stored, method 0, and deflate, method 8, are)"
+                ),
+            ));
         }
-        let lstart = local + 30 + field(u16_at(local + 26))? + field(u16_at(local + 28))?;
-        let data = bytes
-            .get(lstart..lstart + csize)
-            .ok_or_else(|| bad(format!("{name}: truncated data")))?
-            .to_vec();
-        if crc32(&data) != crc {
-            return Err(bad(format!("{name}: CRC mismatch")));
+        if f.enclosed_name().is_none() {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!("{name}: the entry's path leaves the folder it is unpacked into"),
+            ));
         }
+        drop(f);
+        let mut f = archive.by_index(i).map_err(|e| io_err(&name, e))?;
+        let mut data = Vec::with_capacity(f.size() as usize);
+        f.read_to_end(&mut data)
+            .map_err(|e| io::Error::new(e.kind(), format!("{name}: {e}")))?;
         out.push((name, data));
     }
     Ok(out)
@@ -164,22 +98,105 @@ pub fn read(bytes: &[u8]) -> io::Result<Vec<(String, Vec<u8>)>> {
 mod tests {
     use super::*;
 
-    #[test]
-    fn crc_matches_the_standard_check_value() {
-        // The CRC-32 check value of "123456789" (ISO 3309 / ITU-T V.42).
-        assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
+    fn entries() -> Vec<(String, Vec<u8>)> {
+        // Compressible text and incompressible bytes (a 64-bit LCG, 4 KiB).
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let noise: Vec<u8> = (0..4096)
+            .map(|_| {
+                x = x
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (x >> 56) as u8
+            })
+            .collect();
+        vec![
+            ("modelDescription.xml".into(), b"<fmi/>\n".repeat(500)),
+            ("binaries/linux64/m.so".into(), noise),
+            ("documentation/empty.txt".into(), Vec::new()),
+        ]
     }
 
     #[test]
-    fn round_trip_and_corruption_detected() {
-        let entries = vec![
-            ("a/b.txt".to_string(), b"hello".to_vec()),
-            ("c.so".to_string(), vec![0u8, 1, 2, 255]),
-        ];
-        let z = write(&entries).unwrap();
-        assert_eq!(read(&z).unwrap(), entries);
+    fn both_methods_round_trip() {
+        let e = entries();
+        for c in [Compression::Stored, Compression::Deflated] {
+            assert_eq!(read(&write(&e, c).unwrap()).unwrap(), e, "{c:?}");
+        }
+        // Deflate shrinks the repeated text: 3500 bytes stored, far fewer deflated.
+        let stored = write(&e, Compression::Stored).unwrap().len();
+        let deflated = write(&e, Compression::Deflated).unwrap().len();
+        assert!(deflated + 3000 < stored, "{deflated} vs {stored}");
+    }
+
+    #[test]
+    fn archives_are_reproducible_with_fixed_timestamps_and_modes() {
+        for c in [Compression::Stored, Compression::Deflated] {
+            let a = write(&entries(), c).unwrap();
+            assert_eq!(a, write(&entries(), c).unwrap(), "{c:?}");
+            let mut z = ZipArchive::new(Cursor::new(&a)).unwrap();
+            for i in 0..z.len() {
+                let f = z.by_index(i).unwrap();
+                let t = f.last_modified().unwrap();
+                assert_eq!(
+                    (
+                        t.year(),
+                        t.month(),
+                        t.day(),
+                        t.hour(),
+                        t.minute(),
+                        t.second()
+                    ),
+                    (1980, 1, 1, 0, 0, 0)
+                );
+                let want = if f.name().unwrap().ends_with(".so") {
+                    0o100755
+                } else {
+                    0o100644
+                };
+                assert_eq!(f.unix_mode(), Some(want));
+            }
+        }
+    }
+
+    #[test]
+    fn corruption_and_escaping_paths_are_refused_by_name() {
+        let e = vec![("a/b.txt".to_string(), b"hello".to_vec())];
+        let z = write(&e, Compression::Stored).unwrap();
+        // Local header (30 bytes) and the 7-byte name, then "hello".
+        assert_eq!(&z[37..42], b"hello");
         let mut bad = z.clone();
-        bad[30 + 7] ^= 1; // first byte of "hello"
-        assert!(read(&bad).unwrap_err().to_string().contains("CRC"));
+        bad[37] ^= 1;
+        let msg = read(&bad).unwrap_err().to_string();
+        assert!(
+            msg.starts_with("a/b.txt:") && msg.contains("checksum"),
+            "{msg}"
+        );
+
+        let up = write(
+            &[("../evil.so".to_string(), vec![1])],
+            Compression::Deflated,
+        )
+        .unwrap();
+        let msg = read(&up).unwrap_err().to_string();
+        assert!(
+            msg.starts_with("../evil.so: the entry's path leaves"),
+            "{msg}"
+        );
+
+        // Method 12 (bzip2) in the local and central headers: named, with what is supported.
+        let mut bz = z.clone();
+        bz[8] = 12;
+        let cd = (0..bz.len() - 4)
+            .find(|&p| bz[p..p + 4] == [0x50, 0x4b, 0x01, 0x02])
+            .unwrap();
+        bz[cd + 10] = 12;
+        let msg = read(&bz).unwrap_err().to_string();
+        assert!(
+            msg.starts_with("a/b.txt: compression method") && msg.contains("deflate, method 8"),
+            "{msg}"
+        );
+
+        let msg = read(b"not a zip").unwrap_err().to_string();
+        assert!(msg.starts_with("not a readable ZIP archive"), "{msg}");
     }
 }

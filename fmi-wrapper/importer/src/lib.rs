@@ -134,13 +134,19 @@ pub struct Fmu2 {
 }
 
 impl Fmu2 {
-    /// Unpacks `fmu` into a fresh folder under the system temp dir and loads its Linux binary.
+    /// Unpacks `fmu` (stored or deflated entries) into a fresh folder under the system temp dir
+    /// and loads its Linux binary.
     pub fn open(fmu: &Path) -> Result<Self, String> {
         let bytes = std::fs::read(fmu).map_err(|e| format!("{}: {e}", fmu.display()))?;
         let entries = rins_fmi::zip::read(&bytes).map_err(|e| format!("{}: {e}", fmu.display()))?;
-        let stamp = rins_fmi::zip::crc32(&bytes);
+        let stamp = {
+            use std::hash::{Hash, Hasher};
+            let mut h = std::collections::hash_map::DefaultHasher::new();
+            bytes.hash(&mut h);
+            h.finish()
+        };
         let dir = std::env::temp_dir().join(format!(
-            "rins-fmu-{}-{stamp:08x}-{:p}",
+            "rins-fmu-{}-{stamp:016x}-{:p}",
             std::process::id(),
             &bytes
         ));
