@@ -223,10 +223,16 @@ impl PlantConfig {
             let e = "false for the static carrier (nothing to isolate: kind = \"ship\" or \"trajectory\")";
             c.fail("carrier.azimuth_isolation", e, "true".into());
         }
-        for (i, l) in k.ship.legs.iter().enumerate() {
-            if !(l.duration_s > 0.0) {
-                let p = format!("carrier.ship.legs[{i}].duration_s");
-                c.fail(&p, "a duration in (0, 1e8]", format!("{}", l.duration_s));
+        // Leg durations: the range check of `params::RANGES` alone (one message, one range).
+        crate::carrier::spec::validate_sea(&k.ship.sea, &mut |p, e, g| c.fail(p, e, g));
+        let legs_ok = k.ship.legs.iter().all(|l| {
+            l.duration_s > 0.0 && l.duration_s <= 1e8 && (l.heading_deg + l.speed_kn).is_finite()
+        }) && k.ship.lat_deg.abs() <= 90.0
+            && k.ship.height_m.is_finite();
+        if k.kind == CarrierKind::Ship && legs_ok {
+            let total_s = k.ship.legs.iter().map(|l| l.duration_s).sum();
+            if let Some((path, e, g)) = crate::carrier::spec::polar_problem(&k.ship, total_s) {
+                c.fail(&path, &e, g);
             }
         }
     }

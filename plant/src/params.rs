@@ -328,8 +328,9 @@ fn walk(prefix: &str, v: &Value, out: &mut Vec<Param>) {
         // when the model is built (like `scheme.steps`); its switch and coefficients are
         // parameters.
         Value::Text(_) if prefix.contains(".custom[") => {}
-        // A file name is no parameter an FMU or a sweep can set (the trajectory is data).
-        Value::Text(_) if prefix == "carrier.trajectory.file" => {}
+        // A file name (and what to do after its end) is no parameter an FMU or a sweep can set
+        // (the trajectory is data).
+        Value::Text(_) if prefix.starts_with("carrier.trajectory.") => {}
         Value::Text(s) => out.push(Param {
             path: prefix.into(),
             value: ParamValue::Enum(s.clone()),

@@ -17,7 +17,7 @@ const KN: f64 = 1852.0 / 3600.0;
 #[test]
 fn meridian_leg_position_transport_rate_and_coriolis() {
     let u = 12.0 * KN;
-    let cfg = ship_config(&[(0.0, 12.0, 1e6)]);
+    let cfg = ship_config(&[(0.0, 12.0, 1e5)]); // 617 km north: well inside ±89°
     let mut p = Plant::new(&cfg).unwrap();
     let lat0 = cfg.carrier.ship.lat_deg.to_radians();
     let m0 = meridian_arc_m(lat0);
@@ -261,4 +261,244 @@ fn ship_state_save_restore_is_bit_identical() {
             assert_eq!(a.truth(), b.truth(), "restored at sample {at}");
         }
     }
+}
+
+/// Meridian arc from `lat0` to `lat`, m: composite Gauss–Legendre quadrature of R_M (a second
+/// method beside the plant's tick-by-tick integration; defined past the pole as well).
+fn arc_m(lat0: f64, lat: f64) -> f64 {
+    quad(
+        |l| Vector3::new(radii_of_curvature(l).0, 0.0, 0.0),
+        lat0,
+        lat,
+        200,
+    )
+    .x
+}
+
+/// The latitude `d` metres of meridian arc from `lat0` (Newton steps on [`arc_m`]).
+fn lat_after_arc(lat0: f64, d: f64) -> f64 {
+    let mut lat = lat0 + d / 6.36e6;
+    for _ in 0..8 {
+        lat -= (arc_m(lat0, lat) - d) / radii_of_curvature(lat).0;
+    }
+    lat
+}
+
+/// Isometric latitude on the ellipsoid, ψ(L) = atanh(sin L) − e·atanh(e·sin L): a rhumb line of
+/// course χ has Δλ = tan χ·Δψ.
+fn isometric(lat: f64) -> f64 {
+    let e = (rins_plant::earth::WGS84_E2).sqrt();
+    lat.sin().atanh() - e * (e * lat.sin()).atanh()
+}
+
+/// Issue 29, legs: a ship on one rhumb line (constant course) against the closed form, for
+/// tracks that cross the antimeridian (either way) and pass within a degree of a pole. The
+/// latitude is the meridian arc's (u·cos χ·t of arc), the longitude λ₀ + tan χ·(ψ(L) − ψ(L₀)) (on
+/// a parallel, λ₀ + u·t/(R_N·cos L)), wrapped into [−180°, 180°]. Bound: the rounding of the
+/// N additions to latitude and longitude, N·½ulp(π)·R (the integration error of the two-point
+/// rule at the mid-tick radii is below 1e-10 rad here).
+#[test]
+fn rhumb_lines_across_the_antimeridian_and_near_the_poles_follow_the_closed_form() {
+    use rins_plant::carrier::{Carrier, track::Track};
+    // (name, start lat °, start lon °, course °, speed kn, duration s)
+    let cases = [
+        (
+            "NE from 80 N to 88.6 N across 180",
+            80.0,
+            120.0,
+            45.0,
+            60.0,
+            44_000.0,
+        ),
+        (
+            "SW from 80 S to 88.6 S across -180",
+            -80.0,
+            -150.0,
+            225.0,
+            60.0,
+            44_000.0,
+        ),
+        (
+            "east along the equator across 180",
+            0.0,
+            179.0,
+            90.0,
+            30.0,
+            20_000.0,
+        ),
+        (
+            "east along 80 N across 180",
+            80.0,
+            150.0,
+            90.0,
+            60.0,
+            40_000.0,
+        ),
+        (
+            "west along 70 S across -180",
+            -70.0,
+            -175.0,
+            270.0,
+            40.0,
+            20_000.0,
+        ),
+        ("NW from 75 N, 20 kn", 75.0, -170.0, 300.0, 20.0, 30_000.0),
+    ];
+    let tick = 0.1;
+    for (name, lat0_deg, lon0_deg, course_deg, kn, dur) in cases {
+        let cfg = ship_config(&[(course_deg, kn, dur)]);
+        let mut spec = cfg.carrier.clone();
+        spec.ship.lat_deg = lat0_deg;
+        spec.ship.lon_deg = lon0_deg;
+        let (lat0, lon0, chi, u) = (
+            lat0_deg.to_radians(),
+            lon0_deg.to_radians(),
+            course_deg.to_radians(),
+            kn * KN,
+        );
+        let track = Track::new(&spec.ship);
+        assert!(
+            track.polar_excursion(lat0, 0.0, dur).is_none(),
+            "{name}: refused"
+        );
+        let mut c = Carrier::new(&spec, 1, tick).unwrap().unwrap();
+        let mut nodes = [c.state_now(); 2];
+        let n = (dur / tick) as u64;
+        let (mut worst_n, mut worst_e, mut lat_max) = (0.0f64, 0.0f64, 0.0f64);
+        for k in 1..=n {
+            let s = c.advance(&mut nodes).truth();
+            if k % 1000 != 0 && k != n {
+                continue;
+            }
+            let t = k as f64 * tick;
+            let lat = lat_after_arc(lat0, u * chi.cos() * t);
+            let dlon = if chi.cos().abs() < 1e-12 {
+                let (_, rn) = radii_of_curvature(lat0);
+                u * chi.sin() * t / (rn * lat0.cos())
+            } else {
+                chi.tan() * (isometric(lat) - isometric(lat0))
+            };
+            let lon = lon0 + dlon;
+            assert!(
+                s.lon_rad.abs() <= std::f64::consts::PI,
+                "{name}: {}",
+                s.lon_rad
+            );
+            let (rm, rn) = radii_of_curvature(lat);
+            let d_lon = (s.lon_rad - lon + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+                - std::f64::consts::PI;
+            worst_n = worst_n.max(((s.lat_rad - lat) * rm).abs());
+            worst_e = worst_e.max((d_lon * rn * lat.cos()).abs());
+            lat_max = lat_max.max(s.lat_rad.abs().to_degrees());
+        }
+        let bound = n as f64 * 0.5 * f64::EPSILON * std::f64::consts::PI * 6.4e6;
+        println!(
+            "{name}: furthest latitude {lat_max:.3} deg; error north {worst_n:.2e} m, east {worst_e:.2e} m (bound {bound:.1e} m)"
+        );
+        assert!(
+            worst_n < bound && worst_e < bound,
+            "{name}: {worst_n:e} {worst_e:e} m"
+        );
+        assert!(lat_max < 89.0, "{name}: {lat_max}");
+    }
+}
+
+/// Issue 29, legs: a leg that would take the ship beyond ±89° is refused, naming the leg and
+/// the latitude it would reach (the closed-form meridian arc: 80° N due north at 60 kn for
+/// 40 000 s would end at 91.05°, past the pole); legs that stay inside are accepted.
+#[test]
+fn legs_beyond_89_degrees_are_refused_naming_the_leg_and_latitude() {
+    use rins_plant::carrier::spec::polar_problem;
+    use rins_plant::carrier::track::Track;
+    let u = 60.0 * KN;
+    let lat80 = 80f64.to_radians();
+    // Durations due north at 60 kn from 80° N to 88.99° and 89.01°.
+    let to = |lat_deg: f64| arc_m(lat80, lat_deg.to_radians()) / u;
+    // (name, start lat, legs, run length, refused leg and the latitude it would reach)
+    type Case = (
+        &'static str,
+        f64,
+        Vec<(f64, f64, f64)>,
+        Option<(usize, f64)>,
+    );
+    let cases: Vec<Case> = vec![
+        (
+            "north past the pole",
+            80.0,
+            vec![(0.0, 60.0, 40_000.0)],
+            Some((0, lat_after_arc(lat80, u * 40_000.0))),
+        ),
+        (
+            "south past the pole",
+            -80.0,
+            vec![(180.0, 60.0, 40_000.0)],
+            Some((0, -lat_after_arc(lat80, u * 40_000.0))),
+        ),
+        ("north to 88.99", 80.0, vec![(0.0, 60.0, to(88.99))], None),
+        (
+            "north to 89.01",
+            80.0,
+            vec![(0.0, 60.0, to(89.01))],
+            Some((0, 89.01f64.to_radians())),
+        ),
+        (
+            "east, then north on the second leg",
+            80.0,
+            vec![(90.0, 20.0, 3600.0), (0.0, 60.0, 40_000.0)],
+            Some((1, f64::NAN)),
+        ),
+        (
+            "east along 80 N for a day",
+            80.0,
+            vec![(90.0, 60.0, 86_400.0)],
+            None,
+        ),
+    ];
+    for (name, lat0, legs, want) in cases {
+        let mut cfg = ship_config(&legs);
+        cfg.carrier.ship.lat_deg = lat0;
+        let errs = cfg.validate().err().unwrap_or_default();
+        let x = Track::new(&cfg.carrier.ship).polar_excursion(
+            lat0.to_radians(),
+            0.0,
+            legs.iter().map(|l| l.2).sum(),
+        );
+        match want {
+            None => {
+                assert!(errs.is_empty() && x.is_none(), "{name}: {errs:?}");
+            }
+            Some((leg, lat)) => {
+                let x = x.unwrap_or_else(|| panic!("{name}: accepted"));
+                assert_eq!(x.leg, leg, "{name}");
+                if lat.is_finite() {
+                    assert!(
+                        (x.lat_deg - lat.to_degrees()).abs() < 1e-6,
+                        "{name}: {} vs closed form {}",
+                        x.lat_deg,
+                        lat.to_degrees()
+                    );
+                }
+                assert_eq!(errs.len(), 1, "{name}: {errs:?}");
+                let e = errs[0].to_string();
+                println!("{name}: {e}");
+                assert!(e.starts_with(&format!("carrier.ship.legs[{leg}]:")), "{e}");
+                assert!(
+                    e.contains(&format!("would reach latitude {:.3}", x.lat_deg)),
+                    "{e}"
+                );
+            }
+        }
+    }
+    // The last leg continues to the end of the run: 10 kn north from 80° N is inside for its
+    // 100 s, past 89° if the run lasts 2e5 s.
+    let cfg = ship_config(&[(0.0, 10.0, 100.0)]);
+    let mut ship = cfg.carrier.ship.clone();
+    ship.lat_deg = 80.0;
+    assert!(polar_problem(&ship, 100.0).is_none());
+    let (path, _, got) = polar_problem(&ship, 2e5).expect("refused over the run");
+    assert_eq!(path, "carrier.ship.legs[0]");
+    assert!(
+        got.contains("continued to the end of the run at 200000 s"),
+        "{got}"
+    );
 }

@@ -132,3 +132,141 @@ fn a_non_unit_quaternion_is_refused_with_row_and_column() {
     assert_eq!((r, c.as_str()), (2, "q_cn_w"), "{m}");
     assert!(m.contains("norm"), "{m}");
 }
+
+/// A file moving along the parallel of `lat_deg` at `v_e` m/s with rows every `dt` s, its
+/// longitudes written as `write(lon_deg, row)` (wrapped, or aliased by ±360°), with the closed
+/// form lon(t) = lon₀ + v·t/(R_N·cos L) (unwrapped, degrees).
+fn along_parallel(
+    lat_deg: f64,
+    lon0_deg: f64,
+    v_e: f64,
+    dt: f64,
+    rows: usize,
+    write: impl Fn(f64, usize) -> f64,
+) -> (String, impl Fn(f64) -> f64) {
+    let (_, rn) = rins_plant::earth::radii_of_curvature(lat_deg.to_radians());
+    let rate_dps = (v_e / (rn * lat_deg.to_radians().cos())).to_degrees();
+    let lon = move |t: f64| lon0_deg + rate_dps * t;
+    let mut text = String::from(HEADER);
+    for k in 0..rows {
+        let t = k as f64 * dt;
+        text += &format!("{t},{lat_deg},{:?},0,{v_e},0,0,1,0,0,0\n", write(lon(t), k));
+    }
+    (text, lon)
+}
+
+/// Wraps degrees into [−180, 180).
+fn wrap_deg(x: f64) -> f64 {
+    (x + 180.0).rem_euclid(360.0) - 180.0
+}
+
+/// Issue 29: files whose longitude wraps (179.99 → −179.99), or writes a longitude as ±360°
+/// off, are accepted (the difference between rows taken the shortest way), and between the
+/// rows the carrier follows the closed-form parallel, its truth longitude wrapped.
+#[test]
+fn files_that_wrap_the_longitude_follow_the_closed_form_across_the_antimeridian() {
+    type Writer = fn(f64, usize) -> f64;
+    let cases: [(&str, f64, f64, f64, Writer); 5] = [
+        ("east across 180", 60.0, 179.99, 8.0, |l, _| wrap_deg(l)),
+        ("west across -180", -45.0, -179.995, -8.0, |l, _| {
+            wrap_deg(l)
+        }),
+        ("aliased -360 on odd rows", 10.0, 0.0, 5.0, |l, k| {
+            if k % 2 == 1 { l - 360.0 } else { l }
+        }),
+        ("aliased +360 near 180", 0.0, 179.999, 3.0, |l, k| {
+            wrap_deg(l) + if k % 3 == 0 { 360.0 } else { 0.0 }
+        }),
+        ("high latitude, fast east", 88.5, 178.0, 15.0, |l, _| {
+            wrap_deg(l)
+        }),
+    ];
+    for (name, lat, lon0, v_e, write) in cases {
+        let (text, lon) = along_parallel(lat, lon0, v_e, 1.0, 61, write);
+        let traj = Trajectory::parse(&text, name).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let mut worst = 0.0f64;
+        for k in 0..600 {
+            let t = k as f64 * 0.1 + 0.037;
+            let s = traj.state_at(t).truth();
+            let want = wrap_deg(lon(t));
+            let got = s.lon_rad.to_degrees();
+            assert!((-180.0..=180.0).contains(&got), "{name}: {got}");
+            let d = wrap_deg(got - want).abs();
+            worst = worst.max(d);
+            // Longitudes written in degrees near ±180° resolve 2.8e-14°, near ±360° 5.7e-14°
+            // (6e-9 m at the equator): over a 1 s row that is up to 1e-8 m/s of velocity.
+            assert!((s.v_n.x - v_e).abs() < 5e-8, "{name}: v_e {}", s.v_n.x);
+            assert!((s.lat_rad.to_degrees() - lat).abs() < 1e-12, "{name}");
+        }
+        println!("{name}: largest longitude error {worst:.2e} deg");
+        assert!(worst < 1e-9, "{name}: {worst:e} deg");
+    }
+}
+
+/// Issue 29: an external carrier input that writes the longitude as −360° (the same place as
+/// 0°) is accepted and moves the carrier the short way.
+#[test]
+fn an_external_carrier_input_at_minus_360_is_the_same_place_as_0() {
+    use rins_plant::external_carrier::{CarrierSample, segment};
+    let (_, rn) = rins_plant::earth::radii_of_curvature(0.0);
+    let step_deg = (2.0 * 0.01 / rn).to_degrees(); // 2 m/s east over 10 ms
+    let s = |lon_deg: f64| CarrierSample {
+        lat_deg: 0.0,
+        lon_deg,
+        height_m: 0.0,
+        v_enu_mps: [2.0, 0.0, 0.0],
+        q_cn: [1.0, 0.0, 0.0, 0.0],
+    };
+    for (a, b) in [
+        (0.0, -360.0 + step_deg),
+        (-360.0, step_deg),
+        (180.0 - step_deg / 2.0, -180.0 + step_deg / 2.0),
+    ] {
+        let mut c = segment(&s(a), &s(b), 2, 0.005).unwrap_or_else(|e| panic!("{a} → {b}: {e}"));
+        let mut nodes = [c.state_now(); 2];
+        let mid = c.advance(&mut nodes).truth();
+        let want = wrap_deg(a + step_deg / 2.0);
+        assert!(
+            wrap_deg(mid.lon_rad.to_degrees() - want).abs() < 1e-12,
+            "{a} → {b}: {} vs {want}",
+            mid.lon_rad.to_degrees()
+        );
+        assert!((mid.v_n.x - 2.0).abs() < 1e-6, "{a} → {b}: {:?}", mid.v_n);
+    }
+}
+
+/// Latitudes beyond ±89° are refused in a file (as for ships: the local-level frame is
+/// singular at the pole).
+#[test]
+fn a_latitude_beyond_89_is_refused() {
+    let (r, c, m) = refused(&file_with(2, |f| f[1] = "89.5".into()));
+    assert_eq!((r, c.as_str()), (2, "lat_deg"), "{m}");
+    assert!(m.contains("[-89, 89]"), "{m}");
+}
+
+/// Past the last row the carrier stops there: the last row's position and attitude at rest
+/// (what `after_end = "hold"` asks for; a scenario refuses a short file otherwise).
+#[test]
+fn past_the_last_row_the_carrier_stops_at_it() {
+    // 5 m/s north for 10 s at 1 Hz rows.
+    let (rm, _) = rins_plant::earth::radii_of_curvature(36.6f64.to_radians());
+    let mut text = String::from(HEADER);
+    for k in 0..=10 {
+        let lat = 36.6 + (5.0 * k as f64 / rm).to_degrees();
+        text += &format!("{k},{lat:?},123.6,0,0,5,0,1,0,0,0\n");
+    }
+    let traj = Trajectory::parse(&text, "short.csv").unwrap();
+    assert_eq!(traj.end_s(), 10.0);
+    let at_end = traj.state_at(10.0);
+    assert_eq!(at_end.v_n.y, 5.0);
+    for t in [10.01, 30.0, 70.0] {
+        let s = traj.state_at(t);
+        assert_eq!(
+            s.v_n.norm() + s.a_n.norm() + s.omega_nc_c.norm(),
+            0.0,
+            "t = {t}"
+        );
+        let moved = (s.lat_rad - at_end.lat_rad).abs() + (s.lon_rad - at_end.lon_rad).abs();
+        assert!(moved < 1e-15, "t = {t}: moved {moved:e} rad");
+    }
+}

@@ -28,7 +28,8 @@ const HEADER: &str =
 pub struct CarrierSample {
     /// Geodetic latitude of the reference point, degrees, in [-89, 89].
     pub lat_deg: f64,
-    /// Longitude, degrees.
+    /// Longitude, degrees, any finite value: the step from the previous sample is taken the
+    /// shortest way (179.99 → −179.99 crosses the antimeridian; −360 is 0).
     pub lon_deg: f64,
     /// Ellipsoidal height, m.
     pub height_m: f64,

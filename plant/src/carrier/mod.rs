@@ -20,8 +20,8 @@ pub mod trajectory;
 pub mod waves;
 
 pub use spec::{
-    CarrierKind, CarrierSpec, LegSpec, RaoSpec, SeaSpec, ShipRaoSpec, ShipSpec, SpectrumKind,
-    TrajectorySpec,
+    AfterEnd, CarrierKind, CarrierSpec, LegSpec, RaoSpec, SeaSpec, ShipRaoSpec, ShipSpec,
+    SpectrumKind, TrajectorySpec,
 };
 pub use state::{CarrierState, CarrierTruth};
 pub use trajectory::{Trajectory, TrajectoryError};

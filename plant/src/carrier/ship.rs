@@ -98,6 +98,11 @@ impl Ship {
         &self.track
     }
 
+    /// Tick length, s.
+    pub fn tick_s(&self) -> f64 {
+        self.tick_s
+    }
+
     /// The sea state, if any.
     pub fn waves(&self) -> Option<&Waves> {
         self.waves.as_ref()
@@ -407,7 +412,10 @@ pub(super) fn compose_with(
     let (ae2, an2) = hmap(sd, -yd);
     let height = h0_m + jet.x[dof::HEAVE];
     let lat = pos.lat_rad + dn / (e_track.rm_m + height);
-    let lon = pos.lon_rad + de / ((e_track.rn_m + height) * earth.sin_cos(lat).1);
+    // Wrapped across the antimeridian (the same bits within ±π).
+    let lon = super::track::wrap_lon_rad(
+        pos.lon_rad + de / ((e_track.rn_m + height) * earth.sin_cos(lat).1),
+    );
     // Mean track: v = u·[sin ψ, cos ψ], v̇ = u̇·[sin ψ, cos ψ] + u·ψ̇·[cos ψ, −sin ψ].
     let v_track = Vector3::new(u * sp, u * cp, 0.0);
     let a_track = Vector3::new(ud * sp + u * w * cp, ud * cp - u * w * sp, 0.0);

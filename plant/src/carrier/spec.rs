@@ -51,7 +51,8 @@ pub struct LegSpec {
     pub heading_deg: f64,
     /// Speed over ground, knots, in [0, 60].
     pub speed_kn: f64,
-    /// Length of the leg, s, in (0, 1e8]; the last leg continues past its end.
+    /// Length of the leg, s, in [0.001, 1e8]; the last leg continues past its end. A leg that
+    /// would take the ship beyond ±89° latitude is refused (see [`super::track::MAX_LAT_DEG`]).
     pub duration_s: f64,
 }
 
@@ -152,7 +153,8 @@ pub struct SeaSpec {
     pub heading_to_waves_deg: f64,
     /// Number of wave components, in [1, 256].
     pub components: u32,
-    /// Shortest and longest component frequency as multiples of the peak frequency.
+    /// Shortest and longest component frequency as multiples of the peak frequency, each in
+    /// [0.1, 10], shortest first (band₀ < band₁: an empty band has no waves).
     pub band: [f64; 2],
     /// Vessel responses.
     pub rao: ShipRaoSpec,
@@ -174,7 +176,23 @@ impl Default for SeaSpec {
     }
 }
 
+/// Largest significant steepness H_s/λ_p accepted (λ_p = g·T_p²/(2π), the deep-water length of
+/// the peak wave): 1/7, the Stokes–Miche limit beyond which a regular wave breaks (H/λ ≈ 0.142).
+/// A sea whose significant wave height exceeds it would be made of waves steeper than any that
+/// exist; real open-ocean seas stay below about 1/15 (DNV-RP-C205 §3.5.5.4), so this refuses
+/// only the impossible.
+pub const MAX_STEEPNESS: f64 = 1.0 / 7.0;
+
+/// Standard gravity of the deep-water dispersion relation, m/s².
+pub const G_WAVE_MPS2: f64 = 9.806_65;
+
 impl SeaSpec {
+    /// Significant steepness H_s/λ_p of the sea ([`MAX_STEEPNESS`]) after the preset.
+    pub fn steepness(&self) -> f64 {
+        let (hs, tp) = self.hs_tp();
+        hs / (G_WAVE_MPS2 * tp * tp / (2.0 * std::f64::consts::PI))
+    }
+
     /// (H_s m, T_p s) after the sea-state preset.
     pub fn hs_tp(&self) -> (f64, f64) {
         match self.sea_state {
@@ -195,7 +213,8 @@ impl SeaSpec {
 pub struct ShipSpec {
     /// Start latitude, degrees, in [-80, 80].
     pub lat_deg: f64,
-    /// Start longitude, degrees, in [-180, 360).
+    /// Start longitude, degrees, in [-180, 360] (the truth reports longitudes wrapped into
+    /// [-180, 180]; 360 is 0).
     pub lon_deg: f64,
     /// Mean height of the reference point, m, in [-1000, 1000].
     pub height_m: f64,
@@ -234,4 +253,223 @@ impl Default for ShipSpec {
 pub struct TrajectorySpec {
     /// Path of the CSV file (read when the plant is built).
     pub file: String,
+    /// What the carrier does after the file's last row: by default a file shorter than the
+    /// run is an error.
+    pub after_end: AfterEnd,
+}
+
+/// What a trajectory carrier does after the file's last row.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AfterEnd {
+    /// A file that ends before the run does is refused (naming the file, its last time and
+    /// the run's duration).
+    #[default]
+    Error,
+    /// The carrier stops at the last row: its position and attitude, with zero velocity,
+    /// acceleration and rates (a file that still moves at its last row then stops in one
+    /// tick: end it at rest).
+    Hold,
+}
+
+/// Checks the sea state against physics, calling `fail(path, expected, got)` for each problem:
+/// the band shortest frequency first and not empty, and a significant steepness below
+/// [`MAX_STEEPNESS`] (when a spectrum is on).
+pub fn validate_sea(sea: &SeaSpec, fail: &mut dyn FnMut(&str, &str, String)) {
+    let [lo, hi] = sea.band;
+    if lo >= hi {
+        fail(
+            "carrier.ship.sea.band",
+            "the shortest then the longest frequency, band[0] < band[1], each in [0.1, 10] \
+             (multiples of the peak frequency; an empty band has no waves)",
+            format!("[{lo}, {hi}]"),
+        );
+    }
+    let (hs, tp) = sea.hs_tp();
+    if sea.spectrum != SpectrumKind::None && sea.steepness() >= MAX_STEEPNESS {
+        let lambda = G_WAVE_MPS2 * tp * tp / (2.0 * std::f64::consts::PI);
+        let tp_min = (hs / MAX_STEEPNESS * 2.0 * std::f64::consts::PI / G_WAVE_MPS2).sqrt();
+        fail(
+            "carrier.ship.sea.hs_m",
+            &format!(
+                "a significant wave height below λp/7 = {:.3} m for tp_s = {tp} s (significant \
+                 steepness Hs/λp < 1/7, λp = g·Tp²/(2π) = {lambda:.3} m: steeper waves break), \
+                 or tp_s above {tp_min:.3} s for this height",
+                lambda * MAX_STEEPNESS
+            ),
+            format!("hs_m = {hs} (steepness {:.3})", sea.steepness()),
+        );
+    }
+}
+
+/// A ship leg that would go beyond ±[`super::track::MAX_LAT_DEG`] before `until_s` (the last
+/// leg continuing), as (path, expected, got) for an error message; `None` when the track
+/// stays inside.
+pub fn polar_problem(ship: &ShipSpec, until_s: f64) -> Option<(String, String, String)> {
+    let track = super::track::Track::new(ship);
+    let x = track.polar_excursion(ship.lat_deg.to_radians(), ship.height_m, until_s)?;
+    let l = ship.legs.get(x.leg)?;
+    let last = x.leg + 1 == ship.legs.len();
+    let span = if last && until_s > track_end_s(ship) {
+        format!("continued to the end of the run at {until_s} s")
+    } else {
+        format!("{} s long", l.duration_s)
+    };
+    Some((
+        format!("carrier.ship.legs[{}]", x.leg),
+        format!(
+            "legs that keep the ship within ±{} ° latitude (a rhumb line spirals into a pole \
+             and never passes it, and the local-level frame is singular there): change the \
+             leg's heading or shorten it",
+            super::track::MAX_LAT_DEG
+        ),
+        format!(
+            "leg {} (heading {} °, {} kn, {span}) would reach latitude {:.3} ° at t = {:.0} s",
+            x.leg, l.heading_deg, l.speed_kn, x.lat_deg, x.t_s
+        ),
+    ))
+}
+
+/// The end of the last leg, s.
+fn track_end_s(ship: &ShipSpec) -> f64 {
+    ship.legs.iter().map(|l| l.duration_s).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::PlantConfig;
+
+    /// A ship at sea state 0 with the given JONSWAP sea (H_s, T_p, band).
+    fn ship_with(f: impl Fn(&mut ShipSpec)) -> PlantConfig {
+        let mut cfg = PlantConfig::default();
+        cfg.carrier.kind = CarrierKind::Ship;
+        cfg.carrier.ship.sea.spectrum = SpectrumKind::Jonswap;
+        f(&mut cfg.carrier.ship);
+        cfg
+    }
+
+    /// The validation errors as "path: expected …, got …" lines.
+    fn errors(cfg: &PlantConfig) -> Vec<String> {
+        cfg.validate()
+            .err()
+            .unwrap_or_default()
+            .iter()
+            .map(|e| e.to_string())
+            .collect()
+    }
+
+    /// Issue 29, sea state: every input family's case, with the field the error must name
+    /// (`None`: accepted). The steepness limit is checked against λ_p = g·T_p²/(2π) computed
+    /// here: just below 1/7 is accepted, just above refused.
+    #[test]
+    fn sea_states_are_validated_against_physics() {
+        let lambda = |tp: f64| 9.806_65 * tp * tp / (2.0 * std::f64::consts::PI);
+        type Case = (
+            &'static str,
+            Box<dyn Fn(&mut ShipSpec)>,
+            Option<&'static str>,
+        );
+        let cases: Vec<Case> = vec![
+            ("defaults", Box::new(|_| {}), None),
+            (
+                "band reversed",
+                Box::new(|s| s.sea.band = [3.0, 0.6]),
+                Some("carrier.ship.sea.band"),
+            ),
+            (
+                "band empty",
+                Box::new(|s| s.sea.band = [1.0, 1.0]),
+                Some("carrier.ship.sea.band"),
+            ),
+            (
+                "band narrow but ordered",
+                Box::new(|s| s.sea.band = [1.0, 1.01]),
+                None,
+            ),
+            (
+                "Hs 20 m at Tp 2 s (steepness 3.2)",
+                Box::new(|s| (s.sea.hs_m, s.sea.tp_s) = (20.0, 2.0)),
+                Some("carrier.ship.sea.hs_m"),
+            ),
+            (
+                "just below 1/7 at Tp 2 s",
+                Box::new(move |s| (s.sea.hs_m, s.sea.tp_s) = (0.999 * lambda(2.0) / 7.0, 2.0)),
+                None,
+            ),
+            (
+                "just above 1/7 at Tp 2 s",
+                Box::new(move |s| (s.sea.hs_m, s.sea.tp_s) = (1.001 * lambda(2.0) / 7.0, 2.0)),
+                Some("carrier.ship.sea.hs_m"),
+            ),
+            (
+                "Hs 20 m at Tp 9.5 s (just below: Tp > 9.47 s)",
+                Box::new(|s| (s.sea.hs_m, s.sea.tp_s) = (20.0, 9.5)),
+                None,
+            ),
+            (
+                "steep numbers without a spectrum",
+                Box::new(|s| {
+                    s.sea.spectrum = SpectrumKind::None;
+                    (s.sea.hs_m, s.sea.tp_s) = (20.0, 2.0)
+                }),
+                None,
+            ),
+            ("preset 6", Box::new(|s| s.sea.sea_state = 6), None),
+            ("preset 1", Box::new(|s| s.sea.sea_state = 1), None),
+        ];
+        for (name, f, want) in cases {
+            let e = errors(&ship_with(f));
+            match want {
+                None => assert!(e.is_empty(), "{name}: {e:?}"),
+                Some(path) => {
+                    assert_eq!(e.len(), 1, "{name}: {e:?}");
+                    assert!(e[0].starts_with(path), "{name}: {e:?}");
+                }
+            }
+        }
+        // The messages give the allowed range.
+        let e = errors(&ship_with(|s| s.sea.band = [3.0, 0.6]));
+        assert!(
+            e[0].contains("band[0] < band[1]") && e[0].contains("[3, 0.6]"),
+            "{e:?}"
+        );
+        let e = errors(&ship_with(|s| (s.sea.hs_m, s.sea.tp_s) = (20.0, 2.0)));
+        assert!(
+            e[0].contains("below λp/7 = 0.892 m") && e[0].contains("9.47"),
+            "{e:?}"
+        );
+        // Every preset is far inside the limit (the steepest, sea state 1, at 0.005).
+        for n in 1..=6 {
+            let s = SeaSpec {
+                sea_state: n,
+                ..SeaSpec::default()
+            };
+            assert!(s.steepness() < 0.04, "preset {n}: {}", s.steepness());
+        }
+    }
+
+    /// Issue 29, legs and start: one message with one range for a zero duration, and the
+    /// start longitude's range as documented ([-180, 360]).
+    #[test]
+    fn leg_and_start_fields_quote_one_range() {
+        let e = errors(&ship_with(|s| s.legs[0].duration_s = 0.0));
+        assert_eq!(e.len(), 1, "{e:?}");
+        assert!(
+            e[0].starts_with(
+                "carrier.ship.legs[0].duration_s: expected a number in [0.001, 100000000]"
+            ),
+            "{e:?}"
+        );
+        for (lon, ok) in [
+            (-180.0, true),
+            (359.9, true),
+            (360.0, true),
+            (360.5, false),
+            (-180.5, false),
+        ] {
+            let e = errors(&ship_with(|s| s.lon_deg = lon));
+            assert_eq!(e.is_empty(), ok, "{lon}: {e:?}");
+        }
+    }
 }

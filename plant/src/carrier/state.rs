@@ -38,20 +38,37 @@ impl CarrierState {
         }
     }
 
-    /// What the truth records of it.
+    /// What the truth records of it: the longitude wrapped into [−180°, 180°]
+    /// ([`super::track::wrap_lon_rad`]) and the attitude as a unit quaternion
+    /// ([`CarrierState::q_cn`]).
     pub fn truth(&self) -> CarrierTruth {
         CarrierTruth {
             lat_rad: self.lat_rad,
-            lon_rad: self.lon_rad,
+            lon_rad: super::track::wrap_lon_rad(self.lon_rad),
             height_m: self.height_m,
             v_n: self.v_n,
-            q_cn: UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(
-                self.c_cn,
-            )),
+            q_cn: self.q_cn(),
             omega_nc_c: self.omega_nc_c,
         }
     }
+
+    /// The attitude q_c^n, of unit norm. The quaternion of C_c^n (Shepperd's method) is kept
+    /// as it is, bit for bit, while its norm is 1 within [`Q_NORM_KEEP`] (C_c^n orthonormal to
+    /// rounding, as every exact or interpolated attitude of ordinary motion is); beyond that (an
+    /// interpolated attitude that left orthonormality) it is normalised.
+    pub fn q_cn(&self) -> UnitQuaternion<f64> {
+        let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(self.c_cn));
+        if (q.as_ref().norm() - 1.0).abs() <= Q_NORM_KEEP {
+            q
+        } else {
+            UnitQuaternion::new_normalize(q.into_inner())
+        }
+    }
 }
+
+/// How far the norm of C_c^n's quaternion may be from 1 before [`CarrierState::q_cn`]
+/// normalises it (a few hundred ulps: rounding never gets there).
+pub const Q_NORM_KEEP: f64 = 1e-13;
 
 /// The carrier in the plant's truth, at the end of the last interval.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -255,6 +255,129 @@ impl TrackPosition {
         let dlon = d_east_m / ((mid.rn_m + h_m) * mid.cos_lat);
         self.lat_rad += dlat;
         self.lon_rad += dlon;
+        // Across the antimeridian the longitude wraps (a no-op, bit for bit, within ±π).
+        self.lon_rad = wrap_lon_rad(self.lon_rad);
         (dlat, dlon, mid)
+    }
+}
+
+/// The furthest from the equator a ship may sail, degrees (as trajectory files and external
+/// carrier inputs). The mean track is a sequence of rhumb lines (constant course), which
+/// spiral into a pole without passing it, and the local-level (ENU) frame is singular there
+/// (the transport rate holds tan L): a leg that would go beyond is refused
+/// ([`Track::polar_excursion`]).
+pub const MAX_LAT_DEG: f64 = 89.0;
+
+/// A leg that would take the ship beyond ±[`MAX_LAT_DEG`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PolarExcursion {
+    /// Index of the leg (0-based).
+    pub leg: usize,
+    /// When the leg reaches its furthest latitude, s from the start.
+    pub t_s: f64,
+    /// That latitude, degrees, from the leg's northing along the meridian arc (beyond ±90 when
+    /// the northing would carry the ship past the pole).
+    pub lat_deg: f64,
+}
+
+/// Meridian arc from the equator to latitude `lat` at height `h_m` above the ellipsoid,
+/// m: Helmert's series to e⁶ plus h·L (dM = (R_M + h)·dL, the mean track's own rule). Defined
+/// for any `lat` (past a pole it keeps growing), so a northing that overshoots a pole maps to a
+/// latitude beyond ±90°.
+fn meridian_arc_m(lat: f64, h_m: f64) -> f64 {
+    let a = crate::earth::WGS84_A_M;
+    let e2 = crate::earth::WGS84_E2;
+    let (e4, e6) = (e2 * e2, e2 * e2 * e2);
+    let a0 = 1.0 + 0.75 * e2 + 45.0 / 64.0 * e4 + 175.0 / 256.0 * e6;
+    let a2 = 0.75 * e2 + 15.0 / 16.0 * e4 + 525.0 / 512.0 * e6;
+    let a4 = 15.0 / 64.0 * e4 + 105.0 / 256.0 * e6;
+    let a6 = 35.0 / 512.0 * e6;
+    a * (1.0 - e2)
+        * (a0 * lat - a2 / 2.0 * (2.0 * lat).sin() + a4 / 4.0 * (4.0 * lat).sin()
+            - a6 / 6.0 * (6.0 * lat).sin())
+        + h_m * lat
+}
+
+/// The latitude whose meridian arc (at height `h_m`) is `m`: Newton steps from a sphere.
+fn latitude_of_arc(m: f64, h_m: f64) -> f64 {
+    let mut lat = m / 6_367_449.0;
+    for _ in 0..8 {
+        let (rm, _) = crate::earth::radii_of_curvature(lat);
+        lat -= (meridian_arc_m(lat, h_m) - m) / (rm + h_m);
+    }
+    lat
+}
+
+/// Wraps a longitude into [−π, π]: `lon` itself (the same bits) when it is inside, else its
+/// equivalent in [−π, π). Also the shortest way between two longitudes, applied to their
+/// difference.
+#[inline]
+pub fn wrap_lon_rad(lon: f64) -> f64 {
+    use std::f64::consts::PI;
+    if (-PI..=PI).contains(&lon) {
+        lon
+    } else {
+        (lon + PI).rem_euclid(2.0 * PI) - PI
+    }
+}
+
+impl Track {
+    /// The first leg whose mean track, from latitude `lat0_rad` at height `h_m`, goes beyond
+    /// ±[`MAX_LAT_DEG`] before `until_s` (the last leg continues to `until_s`), with the
+    /// furthest latitude that leg would reach and when; `None` when the track stays inside.
+    ///
+    /// The latitude is a function of the northing N(t) = ∫ u·cos ψ dt alone (the meridian arc,
+    /// Helmert's series, inverted): during a leg's course and speed changes N is integrated by
+    /// Gauss–Legendre in steps of at most 10 s; afterwards u·cos ψ is constant, so N is linear
+    /// and its extremes are at the ends.
+    pub fn polar_excursion(&self, lat0_rad: f64, h_m: f64, until_s: f64) -> Option<PolarExcursion> {
+        let limit = MAX_LAT_DEG.to_radians();
+        let m0 = meridian_arc_m(lat0_rad, h_m);
+        let north = |tp: TrackPoint| tp.speed_mps * tp.psi_rad.cos();
+        let g = 0.5 / 3f64.sqrt();
+        let mut n = 0.0;
+        for (i, leg) in self.legs.iter().enumerate() {
+            let end = self
+                .legs
+                .get(i + 1)
+                .map_or(until_s, |l| l.t0_s)
+                .min(until_s);
+            if leg.t0_s >= end {
+                break;
+            }
+            // (northing, time) of the leg's furthest point from the equator so far.
+            let lat_at = |n: f64| latitude_of_arc(m0 + n, h_m);
+            let mut worst = (lat_at(n), leg.t0_s);
+            let note = |n: f64, t: f64, worst: &mut (f64, f64)| {
+                let lat = lat_at(n);
+                if lat.abs() > worst.0.abs() {
+                    *worst = (lat, t);
+                }
+            };
+            let change_end = (leg.t0_s + leg.turn_s.max(leg.acc_s)).min(end);
+            let steps = ((change_end - leg.t0_s) / 10.0).ceil().max(0.0) as usize;
+            let dt = if steps > 0 {
+                (change_end - leg.t0_s) / steps as f64
+            } else {
+                0.0
+            };
+            for k in 0..steps {
+                let t = leg.t0_s + k as f64 * dt;
+                n += 0.5
+                    * dt
+                    * (north(leg.eval(t + (0.5 - g) * dt)) + north(leg.eval(t + (0.5 + g) * dt)));
+                note(n, t + dt, &mut worst);
+            }
+            n += north(leg.eval(end)) * (end - change_end);
+            note(n, end, &mut worst);
+            if worst.0.abs() > limit {
+                return Some(PolarExcursion {
+                    leg: i,
+                    t_s: worst.1,
+                    lat_deg: worst.0.to_degrees(),
+                });
+            }
+        }
+        None
     }
 }

@@ -10,11 +10,17 @@
 //!   so ω_nc^c = φ_k/Δt; the angular acceleration (used only by the lever-arm term) is the
 //!   linear interpolant of the row values (φ_k − φ_{k−1})/Δt².
 //!
-//! Plant time 0 is the first row; past the last row the carrier holds the last row's state.
+//! Plant time 0 is the first row; past the last row the carrier stops there (the last row's
+//! position and attitude, at rest). A scenario refuses a file shorter than its run unless
+//! `after_end = "hold"` ([`super::spec::AfterEnd`]).
+//!
+//! Longitude differences between rows are taken the shortest way (a file may wrap from 179.99°
+//! to −179.99°, or write a longitude as −360° or 360°), so a track may cross the antimeridian.
 
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 use super::state::CarrierState;
+use super::track::wrap_lon_rad;
 use crate::earth::radii_of_curvature;
 use crate::units::DEG;
 
@@ -127,11 +133,12 @@ impl Trajectory {
                     return Err(err(row, COLUMNS[c], format!("{x} is not a finite number")));
                 }
             }
-            if !(-89.0..=89.0).contains(&v[1]) {
+            let lat_max = super::track::MAX_LAT_DEG;
+            if !(-lat_max..=lat_max).contains(&v[1]) {
                 return Err(err(
                     row,
                     "lat_deg",
-                    format!("expected [-89, 89], got {}", v[1]),
+                    format!("expected [-{lat_max}, {lat_max}], got {}", v[1]),
                 ));
             }
             let q = Quaternion::new(v[7], v[8], v[9], v[10]);
@@ -182,7 +189,7 @@ impl Trajectory {
             let (a, b) = (&rows[k - 1], &rows[k]);
             let (mn, me) = metres_per_rad(a.lat_rad, a.height_m);
             let moved = [
-                ((b.lon_rad - a.lon_rad) * me, "lon_deg", 0),
+                (wrap_lon_rad(b.lon_rad - a.lon_rad) * me, "lon_deg", 0),
                 ((b.lat_rad - a.lat_rad) * mn, "lat_deg", 1),
                 (b.height_m - a.height_m, "height_m", 2),
             ];
@@ -252,6 +259,16 @@ impl Trajectory {
     pub fn state_at(&self, t_s: f64) -> CarrierState {
         let n = self.rows.len();
         let x = (t_s / self.dt_s).max(0.0);
+        // Past the last row (beyond rounding of the time): stopped there.
+        if x > (n - 1) as f64 + 1e-6 {
+            let r = &self.rows[n - 1];
+            return CarrierState::at_rest(
+                r.lat_rad,
+                r.lon_rad,
+                r.height_m,
+                r.q.to_rotation_matrix().into_inner(),
+            );
+        }
         let (k, tau) = if x >= (n - 1) as f64 {
             (n - 2, 1.0)
         } else {
@@ -262,7 +279,7 @@ impl Trajectory {
         let h = self.dt_s;
         let (mn, me) = metres_per_rad(a.lat_rad, a.height_m);
         let p1 = Vector3::new(
-            (b.lon_rad - a.lon_rad) * me,
+            wrap_lon_rad(b.lon_rad - a.lon_rad) * me,
             (b.lat_rad - a.lat_rad) * mn,
             b.height_m - a.height_m,
         );

@@ -27,8 +27,8 @@ pub const SEA_STATE_STREAM: u64 = 0x5EA5_7A7E;
 /// Phasors are recomputed exactly at every multiple of this tick count.
 pub const RESYNC_TICKS: u64 = 4096;
 
-/// Standard gravity used for the deep-water dispersion k = ω²/g, m/s².
-const G_WAVE_MPS2: f64 = 9.806_65;
+// Standard gravity of the deep-water dispersion k = ω²/g, m/s².
+use super::spec::G_WAVE_MPS2;
 
 /// Degrees of freedom, in the order of [`SeaJet`]'s arrays.
 pub mod dof {

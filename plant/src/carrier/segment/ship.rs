@@ -229,7 +229,8 @@ impl Ship {
             y[3..6].copy_from_slice(f.as_slice());
             y[6..9].copy_from_slice(up.as_slice());
             y[9] = s.lat_rad - pos0.lat_rad;
-            y[10] = s.lon_rad - pos0.lon_rad;
+            // The shortest way: a node across the antimeridian is wrapped (a no-op otherwise).
+            y[10] = super::super::track::wrap_lon_rad(s.lon_rad - pos0.lon_rad);
             y[11] = s.height_m;
             y[12..15].copy_from_slice(s.v_n.as_slice());
             y[15..18].copy_from_slice(s.a_n.as_slice());
