@@ -55,19 +55,23 @@ impl CarrierState {
     /// The attitude q_c^n, of unit norm. The quaternion of C_c^n (Shepperd's method) is kept
     /// as it is, bit for bit, while its norm is 1 within [`Q_NORM_KEEP`] (C_c^n orthonormal to
     /// rounding, as every exact or interpolated attitude of ordinary motion is); beyond that (an
-    /// interpolated attitude that left orthonormality) it is normalised.
+    /// interpolated attitude that left orthonormality) it is the rotation nearest C_c^n.
     pub fn q_cn(&self) -> UnitQuaternion<f64> {
         let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(self.c_cn));
         if (q.as_ref().norm() - 1.0).abs() <= Q_NORM_KEEP {
             q
         } else {
-            UnitQuaternion::new_normalize(q.into_inner())
+            // The rotation nearest C_c^n (Müller's iteration from the normalised conversion):
+            // Shepperd's formulas are not scale-invariant, so normalising alone would turn
+            // the attitude.
+            let guess = UnitQuaternion::new_normalize(q.into_inner());
+            UnitQuaternion::from_matrix_eps(&self.c_cn, f64::EPSILON, 100, guess)
         }
     }
 }
 
 /// How far the norm of C_c^n's quaternion may be from 1 before [`CarrierState::q_cn`]
-/// normalises it (a few hundred ulps: rounding never gets there).
+/// replaces it by the nearest rotation (a few hundred ulps: rounding never gets there).
 pub const Q_NORM_KEEP: f64 = 1e-13;
 
 /// The carrier in the plant's truth, at the end of the last interval.
@@ -123,6 +127,26 @@ pub fn quintic_basis(t: f64) -> [[f64; 6]; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// An orthonormal C_c^n keeps its quaternion's bits; one that left orthonormality (scaled
+    /// by 1 + 1.6e-3, the figure) gives a unit quaternion of the same attitude.
+    #[test]
+    fn the_truth_quaternion_has_unit_norm() {
+        let r = Rotation3::from_euler_angles(0.3, -0.2, 2.5).into_inner();
+        let at = |c: Matrix3<f64>| CarrierState::at_rest(0.1, 0.2, 0.0, c);
+        let plain = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r));
+        assert_eq!(at(r).q_cn(), plain);
+        let raw = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(
+            r * (1.0 + 1.6e-3),
+        ));
+        assert!(
+            (raw.as_ref().norm() - 1.0).abs() > 1e-4,
+            "the raw conversion is off"
+        );
+        let q = at(r * (1.0 + 1.6e-3)).q_cn();
+        assert!((q.as_ref().norm() - 1.0).abs() < 1e-15);
+        assert!(q.angle_to(&plain) < 1e-12, "{}", q.angle_to(&plain));
+    }
 
     #[test]
     fn quintic_reproduces_a_fifth_degree_polynomial() {
