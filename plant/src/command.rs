@@ -132,7 +132,7 @@ impl Plant {
         if self.cfg.carrier.is_static() {
             // An external carrier (attached after building) keeps no isolation state in the
             // plant's saved state, so it cannot run the loop.
-            return Err("azimuth isolation needs a moving carrier of the scenario ([carrier] kind = \"ship\" or \"trajectory\"), not an external one".into());
+            return Err("azimuth isolation refused: the scenario's carrier is static ([carrier] kind = \"static\"; an external carrier attached to it, such as the carrier FMU, counts as static here), so the plant runs no isolation loop; isolation is allowed only with a moving carrier of the scenario itself: [carrier] kind = \"ship\" or \"trajectory\"".into());
         }
         let c_bn = self.attitude_c_bn();
         let (angles, tick) = (self.gimbal_now.angles, self.tick);

@@ -3,8 +3,8 @@ iceoryx2 package, checks the layout and sequence numbers, and prints the mean z 
 dwell position (A/B/C/D of Eq. 5) as JSON.
 
 Usage: python imu_subscriber.py SESSION [--truth FILE]
-With --truth it also writes the truth block (layout version 2: the carrier and the true IMU
-attitude of every record, for error measures only) to FILE as CSV, numbers in repr form
+With --truth it also writes the truth block (layout version 2 and later: the carrier and the
+true IMU attitude of every record, for error measures only) to FILE as CSV, numbers in repr form
 (reading them back gives the same bits).
 The plant: rins serve builtin:paper-16pos-week --session SESSION --mode free --duration-s 4320
 (before or after this client: it opens or creates the service with the documented settings,
@@ -20,8 +20,10 @@ import time
 
 import iceoryx2 as iox2
 
-LAYOUT_VERSION = 2
+LAYOUT_VERSION = 3
 FLAG_END = 1
+FLAG_REFUSED = 4
+REASON_BYTES = 1024
 
 
 class ImuRecord(ctypes.Structure):
@@ -70,8 +72,29 @@ def truth_row(tick, t):
     return ",".join([str(tick)] + [repr(v) for v in values])
 
 
+class StartRecord(ctypes.Structure):
+    """rins::StartRecord, 96 bytes (layout version 3): the navigation state at the start of the
+    batch's first record, where a navigator that begins with this batch starts (a real one gets
+    it from GNSS and its initial alignment; docs/transport.md, "Start state")."""
+
+    _fields_ = [
+        ("tick", ctypes.c_uint64),
+        ("t_s", ctypes.c_double),
+        ("lat_rad", ctypes.c_double),
+        ("lon_rad", ctypes.c_double),
+        ("height_m", ctypes.c_double),
+        ("v_enu_mps", ctypes.c_double * 3),
+        ("q_bn", ctypes.c_double * 4),
+    ]
+
+    @staticmethod
+    def type_name() -> str:
+        return "rins::StartRecord"
+
+
 class ImuBatch(ctypes.Structure):
-    """rins::ImuBatch: 24-byte header, 64 records, then the truth block (64 truth records)."""
+    """rins::ImuBatch: 24-byte header, 64 records, the truth block (64 truth records), the start
+    state and the plant's reason when it refused a command (flag 4; UTF-8, NUL-padded)."""
 
     _fields_ = [
         ("layout_version", ctypes.c_uint32),
@@ -81,6 +104,8 @@ class ImuBatch(ctypes.Structure):
         ("flags", ctypes.c_uint32),
         ("records", ImuRecord * 64),
         ("truth", TruthRecord * 64),
+        ("start", StartRecord),
+        ("reason", ctypes.c_char * REASON_BYTES),
     ]
 
     @staticmethod
@@ -184,6 +209,8 @@ def main(session: str, truth_path=None) -> None:
             if truth_file:
                 truth_file.write(truth_row(r.tick, b.truth[k]) + "\n")
             samples += 1
+        if b.flags & FLAG_REFUSED:
+            raise SystemExit("the plant ended the run: " + b.reason.decode("utf-8", "replace"))
         if b.flags & FLAG_END:
             break
     if truth_file:

@@ -1,7 +1,7 @@
 """The Python subscriber against a served stream: it starts before the plant (creating the
 services with the documented settings), sees no gap, and its per-position mean rates equal the
 in-process plant's (from `rins run`) to rounding. On a ship, the truth block it receives (layout
-version 2) equals the in-process plant's carrier truth (`rins run`'s carrier columns) bit for bit.
+version 2 and later) equals the in-process plant's carrier truth (`rins run`'s carrier columns) bit for bit.
 
 Usage: python test_transport.py RINS_BINARY WORK_DIR
 """
@@ -17,7 +17,7 @@ import sys
 RINS, WORK = sys.argv[1:3]
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from imu_subscriber import DwellMeans, ImuBatch, TruthRecord  # noqa: E402
+from imu_subscriber import DwellMeans, ImuBatch, StartRecord, TruthRecord  # noqa: E402
 
 DURATION = "4320"  # one 16-position cycle at 100 Hz: 432,000 samples
 
@@ -70,7 +70,9 @@ RUST_DEG_PER_RAD = float("57.2957795130823208767981548141051703")
 
 def ship_truth():
     """The truth block on a ship equals the in-process plant's carrier truth bit for bit."""
-    assert ctypes.sizeof(TruthRecord) == 112 and ctypes.sizeof(ImuBatch) == 24 + 64 * (128 + 112)
+    assert ctypes.sizeof(TruthRecord) == 112 and ctypes.sizeof(StartRecord) == 96
+    assert ctypes.sizeof(ImuBatch) == 24 + 64 * (128 + 112) + 96 + 1024 == 16504
+    assert ImuBatch.start.offset == 15384 and ImuBatch.reason.offset == 15480
     scen = os.path.join(WORK, "ship.toml")
     with open(scen, "w") as f:
         f.write(SHIP)

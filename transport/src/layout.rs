@@ -5,6 +5,12 @@
 //! Version 2 adds a truth block to each batch ([`TruthRecord`], one per record): what really
 //! happened, for error measures only. It sits beside the records, not in them, so the records
 //! stay the unit's measured outputs; the navigator side never reads it.
+//!
+//! Version 3 adds, after the truth block, the state a navigator starts from ([`StartRecord`]:
+//! position, velocity and attitude at the start of the batch's first record, what the
+//! in-process run is initialised with; a real navigator gets it from GNSS and its initial
+//! alignment) and the plant's reason when it ends the run refusing a command
+//! ([`FLAG_REFUSED`]).
 
 // The ZeroCopySend derive emits `unsafe impl`: the types are plain old data, self-contained and
 // position-independent, which is what the trait requires.
@@ -12,8 +18,9 @@
 
 use iceoryx2::prelude::*;
 
-/// Version of the layout below; bump on any change (2: the truth block of [`ImuBatch`]).
-pub const LAYOUT_VERSION: u32 = 2;
+/// Version of the layout below; bump on any change (2: the truth block of [`ImuBatch`]; 3: its
+/// start state and refusal reason).
+pub const LAYOUT_VERSION: u32 = 3;
 /// Records per [`ImuBatch`] message (batching is what reaches millions of samples per second).
 pub const BATCH_CAPACITY: usize = 64;
 
@@ -97,10 +104,86 @@ impl TruthRecord {
     }
 }
 
+/// The navigation state at the start of a batch's first record (96 bytes): what a navigator
+/// that begins with this batch starts from. The plant fills it in every batch with the state
+/// the in-process navigation run is initialised with (`rins_experiments::Tracker::at_truth`):
+/// the table's true attitude, and the site at rest (static carrier) or the carrier's reference
+/// point with its ground velocity (moving carrier). It stands for what a real navigation
+/// computer gets at start-up from outside the IMU: a GNSS fix and velocity, and an initial
+/// attitude from its alignment (gyrocompassing at rest, or in-motion / transfer alignment at
+/// sea); docs/transport.md, "Start state".
+#[derive(Clone, Copy, Debug, Default, PartialEq, ZeroCopySend)]
+#[type_name("rins::StartRecord")]
+#[repr(C)]
+pub struct StartRecord {
+    /// Samples before the batch: the tick of `records[0]` (the state is at the start of its
+    /// interval).
+    pub tick: u64,
+    /// Time of the state, s (the start of `records[0]`'s interval).
+    pub t_s: f64,
+    /// Latitude (WGS-84), rad.
+    pub lat_rad: f64,
+    /// Longitude, rad.
+    pub lon_rad: f64,
+    /// Ellipsoidal height, m (the vertical channel is held there).
+    pub height_m: f64,
+    /// Velocity, ENU, m/s.
+    pub v_enu_mps: [f64; 3],
+    /// IMU attitude q_b^n (w, x, y, z).
+    pub q_bn: [f64; 4],
+}
+
+impl StartRecord {
+    /// The state `plant` is in now (before its next step), as the in-process navigation run
+    /// starts from it (`rins_experiments::session`'s initial state, bit for bit): the true IMU
+    /// attitude, and the site at rest on the static carrier or the carrier's reference point
+    /// and ground velocity on a moving one.
+    pub fn from_plant(plant: &rins_plant::Plant) -> Self {
+        let q = plant.attitude_q_bn();
+        let q = q.quaternion();
+        let (lat_rad, lon_rad, height_m, v) = if plant.moving_carrier() {
+            let c = plant.carrier_truth();
+            (c.lat_rad, c.lon_rad, c.height_m, c.v_n.into())
+        } else {
+            let s = plant.site();
+            (s.lat_rad, s.lon_rad, s.height_m, [0.0; 3])
+        };
+        Self {
+            tick: plant.samples_done(),
+            t_s: plant.time_s(),
+            lat_rad,
+            lon_rad,
+            height_m,
+            v_enu_mps: v,
+            q_bn: [q.w, q.i, q.j, q.k],
+        }
+    }
+
+    /// The navigation state it describes (the quaternion taken as sent, bit for bit).
+    pub fn nav_state(&self) -> rins_nav::strapdown::NavState {
+        let [w, i, j, k] = self.q_bn;
+        rins_nav::strapdown::NavState {
+            q_bn: nalgebra::UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(w, i, j, k)),
+            v_n: self.v_enu_mps.into(),
+            lat_rad: self.lat_rad,
+            lon_rad: self.lon_rad,
+            height_m: self.height_m,
+        }
+    }
+}
+
 /// Flag: the last message of a run.
 pub const FLAG_END: u32 = 1;
 /// Flag: the run ended early (SIGINT/SIGTERM on the plant side).
 pub const FLAG_INTERRUPTED: u32 = 2;
+/// Flag (with [`FLAG_END`]): the plant refused the navigator's last command and ends the run;
+/// [`ImuBatch::reason`] says why.
+pub const FLAG_REFUSED: u32 = 4;
+/// Flag: the truth block is filled (rins serve always fills it; a peer publishing batches of
+/// its own may not): error measures may use it.
+pub const FLAG_TRUTH: u32 = 8;
+/// Bytes of [`ImuBatch::reason`].
+pub const REASON_BYTES: usize = 1024;
 
 /// A batch of consecutive records, the unit of the IMU service.
 #[derive(Clone, Copy, Debug, ZeroCopySend)]
@@ -115,13 +198,40 @@ pub struct ImuBatch {
     pub seq: u64,
     /// Valid records.
     pub count: u32,
-    /// [`FLAG_END`], [`FLAG_INTERRUPTED`].
+    /// [`FLAG_END`], [`FLAG_INTERRUPTED`], [`FLAG_REFUSED`], [`FLAG_TRUTH`].
     pub flags: u32,
     /// The records; the first `count` are valid.
     pub records: [ImuRecord; BATCH_CAPACITY],
     /// The truth over each record (`truth[k]` goes with `records[k]`): for error measures
     /// only, never for navigation.
     pub truth: [TruthRecord; BATCH_CAPACITY],
+    /// The navigation state at the start of `records[0]`: where a navigator that begins with
+    /// this batch starts (filled in every batch).
+    pub start: StartRecord,
+    /// With [`FLAG_REFUSED`]: the plant's reason, UTF-8, padded with NUL bytes.
+    pub reason: [u8; REASON_BYTES],
+}
+
+impl ImuBatch {
+    /// Writes `text` into [`ImuBatch::reason`], cut at a character boundary to fit.
+    pub fn set_reason(&mut self, text: &str) {
+        let mut end = text.len().min(REASON_BYTES);
+        while !text.is_char_boundary(end) {
+            end -= 1;
+        }
+        self.reason = [0; REASON_BYTES];
+        self.reason[..end].copy_from_slice(&text.as_bytes()[..end]);
+    }
+
+    /// [`ImuBatch::reason`] as text (up to the first NUL byte; invalid UTF-8 replaced).
+    pub fn reason_text(&self) -> String {
+        let end = self
+            .reason
+            .iter()
+            .position(|&b| b == 0)
+            .unwrap_or(REASON_BYTES);
+        String::from_utf8_lossy(&self.reason[..end]).into_owned()
+    }
 }
 
 impl Default for ImuBatch {
@@ -134,6 +244,8 @@ impl Default for ImuBatch {
             flags: 0,
             records: [ImuRecord::default(); BATCH_CAPACITY],
             truth: [TruthRecord::default(); BATCH_CAPACITY],
+            start: StartRecord::default(),
+            reason: [0; REASON_BYTES],
         }
     }
 }
@@ -207,11 +319,17 @@ mod tests {
         // docs/transport.md gives these offsets and sizes to C and Python peers.
         assert_eq!(std::mem::size_of::<ImuRecord>(), 128);
         assert_eq!(std::mem::size_of::<TruthRecord>(), 112);
+        assert_eq!(std::mem::size_of::<StartRecord>(), 96);
         assert_eq!(
             std::mem::size_of::<ImuBatch>(),
-            24 + (128 + 112) * BATCH_CAPACITY
+            24 + (128 + 112) * BATCH_CAPACITY + 96 + REASON_BYTES
         );
+        assert_eq!(std::mem::size_of::<ImuBatch>(), 16504);
         assert_eq!(std::mem::offset_of!(ImuBatch, truth), 24 + 128 * 64);
+        assert_eq!(std::mem::offset_of!(ImuBatch, start), 15384);
+        assert_eq!(std::mem::offset_of!(ImuBatch, reason), 15480);
+        assert_eq!(std::mem::offset_of!(StartRecord, v_enu_mps), 40);
+        assert_eq!(std::mem::offset_of!(StartRecord, q_bn), 64);
         assert_eq!(std::mem::offset_of!(TruthRecord, q_cn), 48);
         assert_eq!(std::mem::offset_of!(TruthRecord, q_bn), 80);
         assert_eq!(std::mem::align_of::<ImuBatch>(), 8);
@@ -219,5 +337,18 @@ mod tests {
         assert_eq!(std::mem::size_of::<NavSolution>(), 96);
         assert_eq!(std::mem::offset_of!(ImuBatch, records), 24);
         assert_eq!(std::mem::offset_of!(ImuRecord, temps_c), 80);
+    }
+
+    #[test]
+    fn a_reason_is_cut_at_a_character_boundary_and_read_back() {
+        let mut b = ImuBatch::default();
+        b.set_reason("refused: ü");
+        assert_eq!(b.reason_text(), "refused: ü");
+        // All but one byte ASCII, then a 2-byte character: it does not fit and is left out.
+        let long = format!("{}ü", "x".repeat(REASON_BYTES - 1));
+        b.set_reason(&long);
+        assert_eq!(b.reason_text(), "x".repeat(REASON_BYTES - 1));
+        b.set_reason("");
+        assert_eq!(b.reason_text(), "");
     }
 }

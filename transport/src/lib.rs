@@ -21,14 +21,16 @@ pub mod signals;
 
 pub use action::NavAction;
 pub use nav_side::{
-    NavOptions, NavProcessor, NavSummary, ScheduledCommand, navigate, navigate_probed,
+    FinalError, NavOptions, NavProcessor, NavSummary, ScheduledCommand, fold_digest, navigate,
+    navigate_probed,
 };
 pub use plant_side::{Mode, ServeOptions, ServeSummary, serve, serve_observed, serve_probed};
 pub use probe::Stage;
 pub use session::{Session, TransportError};
 
 /// The in-process reference: the same plant and navigator without the transport, with the same
-/// commands applied at the same ticks (the first tick of the batch after `after_seq`).
+/// commands applied at the same ticks (the first tick of the batch after `after_seq`), the
+/// navigator started from the plant's state before its first step ([`layout::StartRecord`]).
 pub fn reference(
     cfg: &rins_plant::PlantConfig,
     samples: u64,
@@ -37,6 +39,7 @@ pub fn reference(
 ) -> NavProcessor {
     let mut plant = rins_plant::Plant::new(cfg).expect("valid configuration");
     let mut nav = NavProcessor::new(cfg);
+    nav.begin(&layout::StartRecord::from_plant(&plant));
     let batch = batch.clamp(1, layout::BATCH_CAPACITY) as u64;
     let mut done = 0;
     let mut seq = 0;

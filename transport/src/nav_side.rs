@@ -4,24 +4,26 @@
 
 use std::time::{Duration, Instant};
 
-use nalgebra::{UnitQuaternion, Vector3};
+use nalgebra::Vector3;
 use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
 use rins_plant::PlantConfig;
-use rins_plant::table::{GimbalAngles, body_to_nav};
 
 use crate::action::NavAction;
 use crate::layout::{
-    FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, LAYOUT_VERSION, NavCommand, NavSolution, kind,
+    FLAG_END, FLAG_INTERRUPTED, FLAG_REFUSED, FLAG_TRUTH, ImuBatch, ImuRecord, LAYOUT_VERSION,
+    NavCommand, NavSolution, StartRecord, TruthRecord, kind,
 };
 use crate::probe::Stage;
 use crate::session::{Session, TransportError, ipc};
 use iceoryx2::service::port_factory::PortFactory as _;
 
-/// Static navigation over the stream, with a digest of every state it passes through.
+/// The reference navigation over the stream, with a digest of every state it passes through.
 #[derive(Debug)]
 pub struct NavProcessor {
     strapdown: Option<Strapdown>,
-    cfg: PlantConfig,
+    dt_s: f64,
+    /// The state it started from (the first batch's [`StartRecord`]).
+    pub start: Option<StartRecord>,
     /// Samples consumed.
     pub samples: u64,
     /// First tick consumed.
@@ -32,68 +34,72 @@ pub struct NavProcessor {
     pub digest: u64,
 }
 
+/// The FNV-1a offset basis [`NavProcessor::digest`] starts from.
+pub const DIGEST_START: u64 = 0xcbf2_9ce4_8422_2325;
+
+/// Folds the bits of `s` (latitude, longitude, height, velocity, attitude quaternion) into the
+/// FNV-1a `digest` ([`NavProcessor::digest`]; a test folds another navigator's states alike).
+pub fn fold_digest(digest: u64, s: &NavState) -> u64 {
+    let q = s.q_bn.quaternion();
+    let mut d = digest;
+    for x in [
+        s.lat_rad, s.lon_rad, s.height_m, s.v_n.x, s.v_n.y, s.v_n.z, q.w, q.i, q.j, q.k,
+    ] {
+        for b in x.to_bits().to_le_bytes() {
+            d = (d ^ b as u64).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    d
+}
+
 impl NavProcessor {
-    /// A navigator for the plant of `cfg`: starts at the site, at rest, with the table's attitude
-    /// at the first sample's start (t = 0), or at the end of the first record received after
-    /// a restart.
+    /// A navigator at the output rate of `cfg` (`run.rate_hz`), not started yet: it starts from
+    /// the [`StartRecord`] of the first batch it receives ([`NavProcessor::begin`]).
     pub fn new(cfg: &PlantConfig) -> Self {
         Self {
             strapdown: None,
-            cfg: cfg.clone(),
+            dt_s: 1.0 / cfg.rate_hz,
+            start: None,
             samples: 0,
             first_tick: None,
             last_tick: 0,
-            digest: 0xcbf2_9ce4_8422_2325,
+            digest: DIGEST_START,
         }
     }
 
-    fn start(&self, r: &ImuRecord) -> Strapdown {
-        let c_bn = if r.tick == 0 {
-            rins_plant::Plant::new(&self.cfg)
-                .map(|p| p.attitude_c_bn())
-                .unwrap_or_else(|_| {
-                    body_to_nav(&self.cfg.vehicle.c_vn(), GimbalAngles::new(0.0, 0.0))
-                })
-        } else {
-            body_to_nav(
-                &self.cfg.vehicle.c_vn(),
-                GimbalAngles::new(r.outer_rad, r.inner_rad),
-            )
-        };
-        let s = &self.cfg.site;
-        let state = NavState {
-            q_bn: UnitQuaternion::from_matrix(&c_bn),
-            v_n: Vector3::zeros(),
-            lat_rad: s.lat_deg.to_radians(),
-            lon_rad: s.lon_deg.to_radians(),
-            height_m: s.height_m,
-        };
-        Strapdown::new(
+    /// Starts the navigation at `start`, as the in-process run started in that state does
+    /// (`rins_experiments::Tracker::at_truth`): that position, velocity and attitude, the
+    /// vertical channel held at its height. Ignored once started.
+    pub fn begin(&mut self, start: &StartRecord) {
+        if self.strapdown.is_some() {
+            return;
+        }
+        let state = start.nav_state();
+        self.strapdown = Some(Strapdown::new(
             state,
-            1.0 / self.cfg.rate_hz,
+            self.dt_s,
             VerticalChannel::Hold {
-                ref_height_m: s.height_m,
+                ref_height_m: state.height_m,
             },
-        )
+        ));
+        self.start = Some(*start);
     }
 
-    /// Consumes one record.
+    /// Whether [`NavProcessor::begin`] has been called.
+    pub fn started(&self) -> bool {
+        self.strapdown.is_some()
+    }
+
+    /// Consumes one record. Panics before [`NavProcessor::begin`] (a navigator has no state to
+    /// integrate from).
     pub fn push(&mut self, r: &ImuRecord) {
-        if self.strapdown.is_none() {
-            self.strapdown = Some(self.start(r));
-            self.first_tick = Some(r.tick);
-        }
-        let sd = self.strapdown.as_mut().expect("started");
+        let sd = self
+            .strapdown
+            .as_mut()
+            .expect("NavProcessor::push before begin: start from the batch's StartRecord first");
         sd.update(&Vector3::from(r.dtheta_rad), &Vector3::from(r.dv_mps));
-        let s = sd.state();
-        let q = s.q_bn.quaternion();
-        for x in [
-            s.lat_rad, s.lon_rad, s.height_m, s.v_n.x, s.v_n.y, s.v_n.z, q.w, q.i, q.j, q.k,
-        ] {
-            for b in x.to_bits().to_le_bytes() {
-                self.digest = (self.digest ^ b as u64).wrapping_mul(0x0100_0000_01b3);
-            }
-        }
+        self.digest = fold_digest(self.digest, sd.state());
+        self.first_tick.get_or_insert(r.tick);
         self.samples += 1;
         self.last_tick = r.tick;
     }
@@ -154,6 +160,44 @@ pub struct NavSummary {
     pub duplicates: u64,
     /// The plant ended the run early.
     pub interrupted: bool,
+    /// The plant's truth at the last sample consumed, when the plant published it
+    /// ([`crate::layout::FLAG_TRUTH`]): for error measures only, never read by the navigation.
+    pub truth: Option<TruthRecord>,
+}
+
+/// The final solution's error against the plant's truth at the last sample consumed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FinalError {
+    /// North position error, m.
+    pub north_m: f64,
+    /// East position error, m (the longitude difference wrapped to ±180°).
+    pub east_m: f64,
+    /// Horizontal position error, m.
+    pub horizontal_m: f64,
+    /// Horizontal velocity error, m/s.
+    pub velocity_mps: f64,
+}
+
+impl NavSummary {
+    /// The final solution's error against the truth the plant published with the last sample
+    /// (`None` when it published none, or nothing was navigated). An error measure only.
+    pub fn final_error(&self) -> Option<FinalError> {
+        let (s, t) = (self.nav.state()?, self.truth?);
+        let pi = std::f64::consts::PI;
+        let dlon = (s.lon_rad - t.lon_rad + pi).rem_euclid(2.0 * pi) - pi;
+        let at_truth_lon = NavState {
+            lon_rad: t.lon_rad + dlon,
+            ..*s
+        };
+        let (north_m, east_m) =
+            rins_nav::errors::position_error_m(&at_truth_lon, t.lat_rad, t.lon_rad, t.height_m);
+        Some(FinalError {
+            north_m,
+            east_m,
+            horizontal_m: north_m.hypot(east_m),
+            velocity_mps: (s.v_n.x - t.v_enu_mps[0]).hypot(s.v_n.y - t.v_enu_mps[1]),
+        })
+    }
 }
 
 /// Runs the navigator of session `name` for the plant `cfg` until the plant ends the run.
@@ -205,6 +249,7 @@ pub fn navigate_probed(
     .map_err(|e| ipc("sending hello")(&e))?;
     probe(Stage::NavJoined);
     let mut nav = NavProcessor::new(cfg);
+    let mut truth = None;
     let mut duplicates = 0u64;
     let mut expected: Option<u64> = None;
     let mut batches = 0;
@@ -298,9 +343,16 @@ pub fn navigate_probed(
                 });
             }
         }
+        // The first batch received gives the state to start from: the run's start, or the
+        // state at the batch a replacement navigator joins at.
+        nav.begin(&b.start);
         for r in records {
             nav.push(r);
         }
+        if b.flags & FLAG_TRUTH != 0 && !records.is_empty() {
+            truth = Some(b.truth[records.len() - 1]);
+        }
+        let reason = (b.flags & FLAG_REFUSED != 0).then(|| b.reason_text());
         let (seq, flags) = (b.seq, b.flags);
         drop(sample);
         probe(if flags & FLAG_END != 0 {
@@ -324,11 +376,15 @@ pub fn navigate_probed(
         }
         if flags & FLAG_END != 0 {
             linger_until_plant_left(&session, opts.peer_timeout);
+            if let Some(reason) = reason {
+                return Err(TransportError::PlantEnded { reason });
+            }
             return Ok(NavSummary {
                 nav,
                 batches,
                 duplicates,
                 interrupted: flags & FLAG_INTERRUPTED != 0,
+                truth,
             });
         }
     }

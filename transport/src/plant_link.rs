@@ -12,7 +12,7 @@ use iceoryx2::port::{BackpressureAction, BackpressureInfo};
 use iceoryx2::prelude::*;
 use rins_plant::Plant;
 
-use crate::layout::{FLAG_END, ImuBatch, NavCommand, kind};
+use crate::layout::{FLAG_END, FLAG_REFUSED, ImuBatch, NavCommand, StartRecord, kind};
 use crate::plant_side::{Mode, ServeOptions, ServeSummary, apply, check_command};
 use crate::probe::Stage;
 use crate::session::{Session, TransportError, cleanup_dead_nodes, ipc};
@@ -314,6 +314,54 @@ impl<'a> Link<'a> {
                 });
             }
         }
+    }
+
+    /// Ends the run after `sent` (the last batch sent) because of `e`: when `e` is a refusal of
+    /// what a live navigator sent ([`TransportError::is_refusal`]) and the run had not ended
+    /// yet, sends the navigator an empty end-of-run batch flagged [`FLAG_REFUSED`] with the
+    /// reason, and waits (up to the peer timeout) for its acknowledgement or its departure, so
+    /// that the navigator's output says why the run ended. Returns `e`.
+    pub fn refuse(&mut self, plant: &Plant, sent: &ImuBatch, e: TransportError) -> TransportError {
+        if !e.is_refusal() || sent.flags & FLAG_END != 0 {
+            return e;
+        }
+        let mut end = ImuBatch {
+            seq: sent.seq + 1,
+            count: 0,
+            flags: FLAG_END | FLAG_REFUSED,
+            start: StartRecord::from_plant(plant),
+            ..ImuBatch::default()
+        };
+        end.set_reason(&e.to_string());
+        if self.publisher.send_copy(end).unwrap_or(0) == 0 {
+            return e;
+        }
+        let start = Instant::now();
+        let mut last_check = Instant::now();
+        while start.elapsed() < self.opts.peer_timeout && !self.session.interrupted() {
+            match self.commands.receive() {
+                Ok(Some(c)) => {
+                    let c = *c.payload();
+                    if c.ack_seq == end.seq || c.kind == kind::STOP {
+                        break;
+                    }
+                }
+                Ok(None) => {
+                    if self.session.imu_subscribers() == 0 {
+                        break;
+                    }
+                    if last_check.elapsed() > CHECK {
+                        last_check = Instant::now();
+                        if self.session.peer_died() {
+                            break;
+                        }
+                    }
+                    std::thread::sleep(Duration::from_micros(200));
+                }
+                Err(_) => break,
+            }
+        }
+        e
     }
 
     /// Free-running: applies the commands that arrived (acknowledgements are optional there).

@@ -8,8 +8,8 @@ use rins_plant::{ImuSample, Plant, Truth};
 use crate::action::NavAction;
 
 use crate::layout::{
-    BATCH_CAPACITY, FLAG_END, FLAG_INTERRUPTED, ImuBatch, ImuRecord, LAYOUT_VERSION, NavCommand,
-    TruthRecord, kind,
+    BATCH_CAPACITY, FLAG_END, FLAG_INTERRUPTED, FLAG_TRUTH, ImuBatch, ImuRecord, LAYOUT_VERSION,
+    NavCommand, StartRecord, TruthRecord, kind,
 };
 use crate::pace::Pacer;
 use crate::plant_link::Link;
@@ -72,12 +72,10 @@ pub(crate) fn check_command(c: &NavCommand) -> Result<(), TransportError> {
         });
     }
     if c.kind > kind::AZIMUTH_ISOLATION_OFF {
-        return Err(TransportError::Ipc {
-            what: "navigator command".into(),
-            detail: format!(
-                "kind {} is unknown (0 acknowledge, 1 move-to, 2 stop, 3 hello, 4 azimuth isolation on, 5 azimuth isolation off)",
-                c.kind
-            ),
+        return Err(TransportError::CommandRefused {
+            kind: c.kind,
+            seq: c.ack_seq,
+            reason: "this kind is unknown (0 acknowledge, 1 move-to, 2 stop, 3 hello, 4 azimuth isolation on, 5 azimuth isolation off)".into(),
         });
     }
     Ok(())
@@ -89,10 +87,13 @@ pub(crate) fn apply(
     summary: &mut ServeSummary,
 ) -> Result<(), TransportError> {
     if let Some(action) = NavAction::from_command(c) {
-        action.apply(plant).map_err(|e| TransportError::Ipc {
-            what: format!("navigator command (kind {})", c.kind),
-            detail: e,
-        })?;
+        action
+            .apply(plant)
+            .map_err(|reason| TransportError::CommandRefused {
+                kind: c.kind,
+                seq: c.ack_seq,
+                reason,
+            })?;
         summary.commands.push((plant.samples_done(), *c));
     }
     Ok(())
@@ -150,7 +151,10 @@ pub fn serve_probed(
         let interrupted = session.interrupted();
         // Fill the next batch, or an empty end marker after a stop request or a signal.
         batch.seq = seq;
-        batch.flags = 0;
+        batch.flags = FLAG_TRUTH;
+        // Where a navigator that begins with this batch starts: the state now, before its
+        // first record.
+        batch.start = StartRecord::from_plant(plant);
         let n = if stop || interrupted {
             0
         } else {
@@ -171,7 +175,11 @@ pub fn serve_probed(
             batch.flags |= FLAG_INTERRUPTED;
             summary.interrupted = true;
         }
-        let paused = link.deliver(&batch, plant, &mut summary, opts.mode)?;
+        // A command the plant refuses ends the run; the navigator is told why first.
+        let paused = match link.deliver(&batch, plant, &mut summary, opts.mode) {
+            Ok(p) => p,
+            Err(e) => return Err(link.refuse(plant, &batch, e)),
+        };
         stop |= link.stop_requested;
         if paused {
             pacer.rebase(plant.time_s());
@@ -179,7 +187,9 @@ pub fn serve_probed(
         summary.batches += 1;
         summary.samples += n as u64;
         if opts.mode == Mode::FreeRunning {
-            link.drain_commands(plant, &mut summary)?;
+            if let Err(e) = link.drain_commands(plant, &mut summary) {
+                return Err(link.refuse(plant, &batch, e));
+            }
             stop |= link.stop_requested;
         }
         seq += 1;

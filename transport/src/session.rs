@@ -149,6 +149,80 @@ pub enum TransportError {
     /// SIGINT or SIGTERM.
     #[error("interrupted by a signal")]
     Interrupted,
+    /// A session name against the rule ([`check_name`]).
+    #[error(
+        "session name {name:?} {problem}: a session name is 1 to {MAX_NAME} characters, each an ASCII letter (A-Z, a-z), a digit (0-9), '-' or '_' (docs/transport.md, Services)"
+    )]
+    SessionName {
+        /// The name given.
+        name: String,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// The plant refused a command of the navigator (a move out of range, isolation on a
+    /// static carrier, an unknown kind); it ends the run.
+    #[error(
+        "the plant refused the navigator's command (kind {kind}) acknowledging batch {seq}: {reason}"
+    )]
+    CommandRefused {
+        /// The command's kind.
+        kind: u32,
+        /// Its `ack_seq`.
+        seq: u64,
+        /// The plant's reason.
+        reason: String,
+    },
+    /// The plant ended the run refusing this navigator's command; its reason came with the
+    /// end-of-run batch ([`crate::layout::FLAG_REFUSED`]).
+    #[error("the plant ended the run: {reason}")]
+    PlantEnded {
+        /// The plant's reason, as it sent it.
+        reason: String,
+    },
+}
+
+impl TransportError {
+    /// Whether the plant ends the run because of what a live navigator sent (a refused or
+    /// malformed command, a wrong acknowledgement): the navigator is then told why.
+    pub fn is_refusal(&self) -> bool {
+        matches!(
+            self,
+            Self::CommandRefused { .. } | Self::CommandVersion { .. } | Self::WrongAck { .. }
+        )
+    }
+}
+
+/// Longest session name, characters.
+pub const MAX_NAME: usize = 64;
+
+/// Checks a session name against the rule of docs/transport.md: 1 to [`MAX_NAME`] characters,
+/// each an ASCII letter, digit, `-` or `_` (the name becomes part of file names and of the
+/// iceoryx2 service names `rins/<session>/…`).
+pub fn check_name(name: &str) -> Result<(), TransportError> {
+    let bad = |problem: String| {
+        Err(TransportError::SessionName {
+            name: name.into(),
+            problem,
+        })
+    };
+    if name.is_empty() {
+        return bad("is empty".into());
+    }
+    if let Some((i, c)) = name
+        .chars()
+        .enumerate()
+        .find(|(_, c)| !(c.is_ascii_alphanumeric() || *c == '-' || *c == '_'))
+    {
+        return bad(format!(
+            "has {c:?} at character {}, which is not allowed",
+            i + 1
+        ));
+    }
+    let n = name.chars().count();
+    if n > MAX_NAME {
+        return bad(format!("is {n} characters long"));
+    }
+    Ok(())
 }
 
 pub(crate) fn ipc(what: &str) -> impl Fn(&dyn std::fmt::Debug) -> TransportError + '_ {
@@ -176,13 +250,15 @@ pub struct Session {
 /// Messages each subscriber can hold before the publisher waits (no loss: backpressure).
 pub const BUFFER: usize = 16;
 
-/// The iceoryx2 configuration of session `name`: its own prefix for every resource.
+/// The iceoryx2 configuration of session `name`: its own prefix for every resource. The name
+/// is checked first ([`check_name`]).
 pub fn config(name: &str) -> Result<Config, TransportError> {
+    check_name(name)?;
     let mut config = Config::default();
     let prefix = format!("rins_{name}_");
     config.global.prefix = FileName::new(prefix.as_bytes()).map_err(|e| TransportError::Ipc {
         what: format!("session name {name:?}"),
-        detail: format!("{e:?} (letters, digits, '-' and '_' only)"),
+        detail: format!("{e:?}"),
     })?;
     Ok(config)
 }
@@ -297,5 +373,58 @@ impl Session {
     /// The session's iceoryx2 configuration.
     pub fn config(&self) -> &Config {
         &self.config
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn session_names_follow_the_documented_rule() {
+        let long = "x".repeat(MAX_NAME);
+        let too_long = "x".repeat(MAX_NAME + 1);
+        // (name, accepted, what the refusal must say)
+        let cases: &[(&str, bool, &str)] = &[
+            ("default", true, ""),
+            ("A-z_09", true, ""),
+            ("-", true, ""),
+            (&long, true, ""),
+            ("", false, "is empty"),
+            ("a b", false, "' ' at character 2"),
+            ("..", false, "'.' at character 1"),
+            ("a.b", false, "'.' at character 2"),
+            ("ü", false, "'ü' at character 1"),
+            ("a/b", false, "'/' at character 2"),
+            ("tab\t", false, "'\\t' at character 4"),
+            (&too_long, false, "is 65 characters long"),
+        ];
+        for (name, ok, says) in cases {
+            match check_name(name) {
+                Ok(()) => assert!(ok, "{name:?} accepted against the rule"),
+                Err(e) => {
+                    assert!(!ok, "{name:?} refused: {e}");
+                    let text = e.to_string();
+                    assert!(text.contains(says), "{name:?}: {text}");
+                    assert!(
+                        text.contains("1 to 64 characters")
+                            && text.contains("ASCII letter")
+                            && text.contains("'-' or '_'"),
+                        "the message says what is allowed: {text}"
+                    );
+                    assert!(!text.contains("ExceedsMaximumLength"), "{text}");
+                    // Session::open refuses it the same way, before touching iceoryx2.
+                    assert!(matches!(
+                        config(name),
+                        Err(TransportError::SessionName { .. })
+                    ));
+                }
+            }
+        }
+        // The longest allowed name works with iceoryx2 (prefix, node, service names).
+        let pid = std::process::id().to_string();
+        let longest = format!("{pid}{}", "y".repeat(MAX_NAME - pid.len()));
+        let s = Session::open(&longest, "plant").expect("a 64-character name opens");
+        assert_eq!(s.name.len(), MAX_NAME);
     }
 }

@@ -1,7 +1,7 @@
 //! Azimuth isolation commanded by the navigator over shared memory (`kind` 4 and 5): applied
 //! from the first tick of the next batch, giving the in-process run with the same commands bit
 //! for bit; it changes the run (the table counter-rotates the ship's yaw); a static carrier
-//! refuses it and the plant ends the run naming the reason.
+//! refuses it and the plant ends the run naming the reason, which reaches the navigator.
 
 use std::time::Duration;
 
@@ -120,7 +120,7 @@ fn a_static_carrier_refuses_isolation_and_the_plant_says_why() {
         action: NavAction::AzimuthIsolation(true),
     }];
     let cfg = rins_plant::presets::paper_16pos_config();
-    let (served, _nav) = run("static", &cfg, 2_000, &commands);
+    let (served, nav) = run("static", &cfg, 2_000, &commands);
     let err = served
         .expect_err("isolation on a static carrier is refused")
         .to_string();
@@ -128,4 +128,19 @@ fn a_static_carrier_refuses_isolation_and_the_plant_says_why() {
         err.contains("kind 4") && err.contains("moving carrier"),
         "{err}"
     );
+    // What is wrong and what is allowed.
+    assert!(
+        err.contains("carrier is static")
+            && err.contains("kind = \"ship\" or \"trajectory\"")
+            && !err.contains("not an external one"),
+        "{err}"
+    );
+    // The navigator learns why the run ended: the plant's reason came with its end-of-run
+    // batch (not "the plant exited normally").
+    let nav_err = nav.expect_err("the run ended refused").to_string();
+    assert!(
+        nav_err.starts_with("the plant ended the run: ") && nav_err.ends_with(&err),
+        "navigator: {nav_err}\nplant: {err}"
+    );
+    assert!(!nav_err.contains("exited normally"), "{nav_err}");
 }
