@@ -75,6 +75,23 @@ pub enum Mode {
     Error,
 }
 
+impl Mode {
+    /// How messages name the mode.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Instantiated => "Instantiated mode",
+            Mode::Initialization => "Initialization mode",
+            Mode::Step => "Step mode",
+            Mode::Terminated => "Terminated mode",
+            Mode::Error => "the error state",
+        }
+    }
+}
+
+/// What the standards allow in [`Mode::Error`], said in every call refused there.
+pub const ALLOWED_IN_ERROR: &str = "only reset, free, reading values and getting, setting or \
+serializing the FMU state are allowed until reset or a state restore";
+
 /// One FMU instance.
 #[derive(Clone, Debug)]
 pub struct Instance<M: Model> {
@@ -85,6 +102,11 @@ pub struct Instance<M: Model> {
     rate_hz: f64,
     /// Internal steps done since initialisation: the FMU's time is `start + steps / rate`.
     steps_done: u64,
+    /// The first call setting a value before the end of initialisation that was refused, and
+    /// why. FMI 2 masters may carry on after the error status (ecos does): leaving
+    /// initialization mode is then refused with this reason ([`Instance::note_refused_set`]),
+    /// so the model never runs with a start value in place of the one the master asked for.
+    refused_set: Option<String>,
 }
 
 /// Tolerance, relative to the step, for "whole number of internal steps" and "at the current time".
@@ -105,6 +127,7 @@ impl<M: Model> Instance<M> {
             start_time_s: 0.0,
             rate_hz: 1.0,
             steps_done: 0,
+            refused_set: None,
         }
     }
 
@@ -131,12 +154,35 @@ impl<M: Model> Instance<M> {
     fn expect(&self, allowed: &[Mode], what: &str) -> Result<(), FmiError> {
         if allowed.contains(&self.mode) {
             Ok(())
-        } else {
+        } else if self.mode == Mode::Error {
             Err(FmiError::error(format!(
-                "{what} is not allowed in {:?} mode (allowed: {allowed:?})",
-                self.mode
+                "{what} is refused: the instance is in the error state after an earlier call failed (its reason was logged then); {ALLOWED_IN_ERROR}"
+            )))
+        } else {
+            let names: Vec<&str> = allowed.iter().map(|m| m.name()).collect();
+            Err(FmiError::error(format!(
+                "{what} is not allowed in {} (allowed in {})",
+                self.mode.name(),
+                names.join(", ")
             )))
         }
+    }
+
+    /// Records that a call setting a value was refused before the end of initialisation
+    /// (`what`: the function and its reason); the first such refusal is kept and makes
+    /// [`Instance::exit_initialization`] fail. Later modes keep nothing: a refused input in
+    /// step mode leaves the previous input, as the status says.
+    pub fn note_refused_set(&mut self, what: String) {
+        if matches!(self.mode, Mode::Instantiated | Mode::Initialization)
+            && self.refused_set.is_none()
+        {
+            self.refused_set = Some(what);
+        }
+    }
+
+    /// The refused set [`Instance::note_refused_set`] kept, if any.
+    pub fn refused_set(&self) -> Option<&str> {
+        self.refused_set.as_deref()
     }
 
     /// Records the start time (FMI 2 setupExperiment / FMI 3 enterInitializationMode). Only
@@ -152,6 +198,14 @@ impl<M: Model> Instance<M> {
         Ok(())
     }
 
+    /// Records the start time and enters initialization mode (FMI 3 enterInitializationMode,
+    /// whose refusals name that call, not the start time).
+    pub fn enter_initialization_at(&mut self, start_time_s: f64) -> Result<(), FmiError> {
+        self.expect(&[Mode::Instantiated], "entering initialization mode")?;
+        self.setup(start_time_s)?;
+        self.enter_initialization()
+    }
+
     /// Enters initialization mode.
     pub fn enter_initialization(&mut self) -> Result<(), FmiError> {
         self.expect(&[Mode::Instantiated], "entering initialization mode")?;
@@ -162,6 +216,13 @@ impl<M: Model> Instance<M> {
     /// Leaves initialization mode: the model is built from its parameters.
     pub fn exit_initialization(&mut self) -> Result<(), FmiError> {
         self.expect(&[Mode::Initialization], "exiting initialization mode")?;
+        if let Some(why) = &self.refused_set {
+            let e = FmiError::error(format!(
+                "cannot leave initialization mode: an earlier call setting a value was refused ({why}), so the model would run with a value the master did not ask for; reset the instance and set valid values"
+            ));
+            self.mode = Mode::Error;
+            return Err(e);
+        }
         match self.model.initialize() {
             Ok(()) => {
                 self.mode = Mode::Step;
@@ -281,7 +342,19 @@ impl<M: Model> Instance<M> {
     ///
     /// This runs once per communication step, so the accepted path is kept to a few compares;
     /// the refusals are built out of line.
+    ///
+    /// A refused step (after initialisation) tells the model ([`Model::step_refused`]), so
+    /// that outputs summed over a communication step read NaN instead of the last step's
+    /// values a master ignoring the status would take again.
     pub fn do_step(&mut self, t_s: f64, h_s: f64) -> Result<(), FmiError> {
+        let r = self.try_step(t_s, h_s);
+        if r.is_err() && matches!(self.mode, Mode::Step | Mode::Error | Mode::Terminated) {
+            self.model.step_refused();
+        }
+        r
+    }
+
+    fn try_step(&mut self, t_s: f64, h_s: f64) -> Result<(), FmiError> {
         if self.mode != Mode::Step {
             return Err(self.do_step_refused_mode());
         }
@@ -390,6 +463,7 @@ impl<M: Model> Instance<M> {
             start_time_s,
             rate_hz,
             steps_done,
+            refused_set: None,
         })
     }
 }

@@ -52,6 +52,12 @@ pub trait Model: Clone + Send + 'static {
     /// Advances `n` internal steps (inputs as last set).
     fn advance(&mut self, n: u64) -> Result<(), String>;
 
+    /// A doStep after initialisation was refused (or [`Model::advance`] failed): outputs that
+    /// are sums over the last communication step (increments) should read NaN until the next
+    /// step is taken, so a master that ignores the status does not take the last step's
+    /// increments twice. Outputs that are states at the FMU's time stay valid. Default: none.
+    fn step_refused(&mut self) {}
+
     /// Writes everything needed to resume, by value.
     fn save(&self, w: &mut StateWriter);
 

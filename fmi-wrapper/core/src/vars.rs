@@ -10,6 +10,8 @@
 
 use std::ops::Range;
 
+use crate::xml::FmiVersion;
+
 /// Type of a scalar.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Kind {
@@ -26,6 +28,56 @@ pub enum Kind {
         /// Item names, value i+1 for item i.
         items: &'static [&'static str],
     },
+}
+
+impl Kind {
+    /// The type's name in the C API of `version`: what its getter and setter are called after
+    /// (`fmi2GetReal`, `fmi3GetFloat64`; FMI 3 Enumerations travel as Int64).
+    pub fn accessor(self, version: FmiVersion) -> &'static str {
+        match (self, version) {
+            (Kind::Real, FmiVersion::V2) => "Real",
+            (Kind::Real, FmiVersion::V3) => "Float64",
+            (Kind::Integer | Kind::Enumeration { .. }, FmiVersion::V2) => "Integer",
+            (Kind::Integer, FmiVersion::V3) => "UInt64",
+            (Kind::Enumeration { .. }, FmiVersion::V3) => "Int64",
+            (Kind::Boolean, _) => "Boolean",
+        }
+    }
+
+    /// The type as the modelDescription of `version` declares it, with its article
+    /// ("a Float64", "an Enumeration (WaveSpectrum)"): for messages.
+    pub fn described(self, version: FmiVersion) -> String {
+        match self {
+            Kind::Enumeration { type_name, .. } => format!("an Enumeration ({type_name})"),
+            k => with_article(k.accessor(version)),
+        }
+    }
+}
+
+/// `word` with "a" or "an" before it, by its first sound ("an Int32", "a Float64",
+/// "a UInt64": U is said "you").
+pub fn with_article(word: &str) -> String {
+    let an = word.chars().next().is_some_and(|c| "AEIOaeio".contains(c));
+    format!("{} {word}", if an { "an" } else { "a" })
+}
+
+/// The FMI 3 variable the structured name `name` belongs to: `a.b[2]` and `a.b[1,2]` are
+/// elements of the array `a.b`; any other name, `a.b[0].c` (an index inside the name)
+/// included, is a scalar variable of its own name, so an array's name is always its
+/// elements' names without their trailing index.
+pub fn array_name(name: &str) -> &str {
+    match name
+        .strip_suffix(']')
+        .and_then(|n| n.rfind('[').map(|i| (n, i)))
+    {
+        Some((n, i))
+            if !n[i + 1..].is_empty()
+                && n[i + 1..].chars().all(|c| c.is_ascii_digit() || c == ',') =>
+        {
+            &name[..i]
+        }
+        _ => name,
+    }
 }
 
 /// Role of a scalar.
@@ -119,9 +171,19 @@ pub struct VariableTable {
 impl VariableTable {
     /// Builds the table and its FMI 3 grouping: consecutive scalars sharing an array name form
     /// one array variable.
+    ///
+    /// Panics if a scalar's array name is not its name without a trailing index
+    /// ([`array_name`]): an FMI 3 array must be named as its elements are.
     pub fn new(scalars: Vec<ScalarVar>) -> Self {
         let mut arrays: Vec<ArrayVar> = Vec::new();
         for (i, s) in scalars.iter().enumerate() {
+            assert!(
+                s.array == s.name || s.array == array_name(&s.name),
+                "{}: array name {:?} is not the name without its trailing index ({:?})",
+                s.name,
+                s.array,
+                array_name(&s.name)
+            );
             match arrays.last_mut() {
                 Some(a) if a.name == s.array && a.slots.end == i && a.is_array => {
                     a.slots.end = i + 1
@@ -254,10 +316,13 @@ impl VariableTable {
             (Kind::Integer, Value::Integer(u)) => range(u as f64),
             (Kind::Boolean, Value::Boolean(_)) => Ok(()),
             (Kind::Enumeration { items, type_name }, Value::Enumeration(i)) if i >= items.len() => {
+                // FMI values below 1 arrive as `usize::MAX` (no item): no overflow here.
+                let value = i
+                    .checked_add(1)
+                    .map_or("a value below 1".to_string(), |n| n.to_string());
                 Err(format!(
-                    "{} = {} is not an item of {type_name} (1…{}: {})",
+                    "{} = {value} is not an item of {type_name} (1…{}: {})",
                     s.name,
-                    i + 1,
                     items.len(),
                     items.join(", ")
                 ))
@@ -374,7 +439,61 @@ mod tests {
                 .contains("NaN")
         );
         assert!(t.check(2, Value::Boolean(true)).is_err());
+        let e = VariableTable::new(vec![ScalarVar {
+            kind: Kind::Enumeration {
+                type_name: "T",
+                items: &["a", "b"],
+            },
+            start: Value::Enumeration(0),
+            range: None,
+            ..real("e", "e")
+        }]);
+        assert_eq!(
+            e.check(0, Value::Enumeration(usize::MAX)).unwrap_err(),
+            "e = a value below 1 is not an item of T (1…2: a, b)"
+        );
+        assert!(
+            e.check(0, Value::Enumeration(2))
+                .unwrap_err()
+                .contains("e = 3 is not")
+        );
         assert!(t.check(2, Value::Real(-1.0)).is_ok());
+    }
+
+    #[test]
+    fn array_names_are_element_names_without_the_trailing_index() {
+        for (name, array) in [
+            ("a.b[2]", "a.b"),
+            ("m[1,2]", "m"),
+            ("a.legs[0].heading_deg", "a.legs[0].heading_deg"),
+            ("a.legs[0].v[1]", "a.legs[0].v"),
+            ("a.b", "a.b"),
+            ("a.b[]", "a.b[]"),
+            ("a.b[x]", "a.b[x]"),
+        ] {
+            assert_eq!(array_name(name), array, "{name}");
+        }
+        // An element whose array is named otherwise is a table bug, refused on construction.
+        let r = std::panic::catch_unwind(|| {
+            VariableTable::new(vec![real("s.legs[0].heading_deg", "s.legs.heading_deg")])
+        });
+        let msg = *r.unwrap_err().downcast::<String>().unwrap();
+        assert!(msg.contains("s.legs[0].heading_deg: array name"), "{msg}");
+    }
+
+    #[test]
+    fn type_names_follow_the_fmi_version() {
+        let e = Kind::Enumeration {
+            type_name: "WaveSpectrum",
+            items: &["a"],
+        };
+        assert_eq!(Kind::Real.described(FmiVersion::V3), "a Float64");
+        assert_eq!(Kind::Integer.described(FmiVersion::V3), "a UInt64");
+        assert_eq!(Kind::Integer.described(FmiVersion::V2), "an Integer");
+        assert_eq!(e.described(FmiVersion::V3), "an Enumeration (WaveSpectrum)");
+        assert_eq!(e.accessor(FmiVersion::V3), "Int64");
+        assert_eq!(e.accessor(FmiVersion::V2), "Integer");
+        assert_eq!(with_article("Int32"), "an Int32");
     }
 
     #[test]

@@ -135,6 +135,20 @@ fn a_second_model_runs_through_the_generic_fmi2_functions() {
             0
         );
         assert_eq!(lifecycle::enter_initialization_mode::<Counter>(c), 0);
+        // The refused set blocks the end of initialisation (a master that carried on would
+        // run with the start value), and the error state blocks steps, until reset.
+        assert_eq!(lifecycle::exit_initialization_mode::<Counter>(c), 3);
+        assert_eq!(lifecycle::do_step::<Counter>(c, 0.0, 0.3, 1), 3);
+        assert_eq!(lifecycle::reset::<Counter>(c), 0);
+        assert_eq!(
+            values::set_real::<Counter>(c, [0].as_ptr(), 1, [2.5].as_ptr()),
+            0
+        );
+        assert_eq!(
+            lifecycle::setup_experiment::<Counter>(c, 0, 0.0, 0.0, 0, 0.0),
+            0
+        );
+        assert_eq!(lifecycle::enter_initialization_mode::<Counter>(c), 0);
         assert_eq!(lifecycle::exit_initialization_mode::<Counter>(c), 0);
         assert_eq!(lifecycle::do_step::<Counter>(c, 0.0, 0.3, 1), 0);
         let mut s: *mut c_void = std::ptr::null_mut();

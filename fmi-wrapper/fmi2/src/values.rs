@@ -5,6 +5,7 @@ use rins_fmi::ffi::{slice, slice_mut};
 use rins_fmi::instance::{FmiError, Mode};
 use rins_fmi::model::Model;
 use rins_fmi::vars::{Kind, Value};
+use rins_fmi::xml::FmiVersion;
 
 use crate::*;
 
@@ -18,11 +19,17 @@ fn kind_of<M: Model>(comp: &Fmi2<M>, vr: u32) -> Result<Kind, FmiError> {
     })
 }
 
-fn type_error<M: Model>(comp: &Fmi2<M>, vr: u32, wanted: &str) -> FmiError {
+/// A call of the wrong type: what the variable is, what the call takes (`wanted`, with its
+/// article) and the call that reads or sets it.
+fn type_error<M: Model>(comp: &Fmi2<M>, vr: u32, wanted: &str, set: bool) -> FmiError {
     let s = &comp.inst.table().scalars[vr as usize];
     FmiError::error(format!(
-        "value reference {vr} ({}) is {:?}, not {wanted}",
-        s.name, s.kind
+        "value reference {vr} ({}) is {} variable, not {wanted}: {} it with fmi2{}{}",
+        s.name,
+        s.kind.described(FmiVersion::V2),
+        if set { "set" } else { "read" },
+        if set { "Set" } else { "Get" },
+        s.kind.accessor(FmiVersion::V2)
     ))
 }
 
@@ -64,8 +71,15 @@ fn set_values<M: Model, T: Copy>(
         let (vrs, vals) = unsafe { (slice(vr, n)?, slice(vals, n)?) };
         // All converted and checked before any is set (two passes, no allocation on the
         // per-step input path): a refused call changes nothing.
-        for (v, x) in vrs.iter().zip(vals) {
-            comp.inst.check_vr(*v, conv(comp, *v, *x)?)?;
+        let checked = vrs
+            .iter()
+            .zip(vals)
+            .try_for_each(|(v, x)| comp.inst.check_vr(*v, conv(comp, *v, *x)?));
+        if let Err(e) = checked {
+            // Before the end of initialisation, exiting initialization mode will be refused
+            // for it (a master that carries on would run with the start value).
+            comp.inst.note_refused_set(format!("{what}: {}", e.message));
+            return Err(e);
         }
         for (v, x) in vrs.iter().zip(vals) {
             let value = conv(comp, *v, *x)?;
@@ -84,7 +98,7 @@ pub unsafe fn get_real<M: Model>(
 ) -> fmi2Status {
     get_values::<M, _>(c, "fmi2GetReal", vr, n, value, |comp, r, v| match v {
         Value::Real(x) => Ok(x),
-        _ => Err(type_error(comp, r, "a Real")),
+        _ => Err(type_error(comp, r, "a Real", false)),
     })
 }
 
@@ -102,7 +116,7 @@ pub unsafe fn get_integer<M: Model>(
             ))
         }),
         Value::Enumeration(i) => Ok(i as i32 + 1),
-        _ => Err(type_error(comp, r, "an Integer or Enumeration")),
+        _ => Err(type_error(comp, r, "an Integer or Enumeration", false)),
     })
 }
 
@@ -115,7 +129,7 @@ pub unsafe fn get_boolean<M: Model>(
 ) -> fmi2Status {
     get_values::<M, _>(c, "fmi2GetBoolean", vr, n, value, |comp, r, v| match v {
         Value::Boolean(b) => Ok(b as fmi2Boolean),
-        _ => Err(type_error(comp, r, "a Boolean")),
+        _ => Err(type_error(comp, r, "a Boolean", false)),
     })
 }
 
@@ -127,7 +141,7 @@ pub unsafe fn get_string<M: Model>(
     value: *mut fmi2String,
 ) -> fmi2Status {
     get_values::<M, _>(c, "fmi2GetString", vr, n, value, |comp, r, _| {
-        Err(type_error(comp, r, "a String (this FMU has none)"))
+        Err(type_error(comp, r, "a String (this FMU has none)", false))
     })
 }
 
@@ -146,7 +160,7 @@ pub unsafe fn set_real<M: Model>(
         value,
         |comp, r, x| match kind_of(comp, r)? {
             Kind::Real => Ok(Value::Real(x)),
-            _ => Err(type_error(comp, r, "a Real")),
+            _ => Err(type_error(comp, r, "a Real", true)),
         },
     )
 }
@@ -168,7 +182,7 @@ pub unsafe fn set_integer<M: Model>(
             Kind::Enumeration { .. } if x >= 1 => Ok(Value::Enumeration(x as usize - 1)),
             // Out of the items: the table check names the valid items.
             Kind::Enumeration { .. } => Ok(Value::Enumeration(usize::MAX)),
-            _ => Err(type_error(comp, r, "an Integer or Enumeration")),
+            _ => Err(type_error(comp, r, "an Integer or Enumeration", true)),
         }
     })
 }
@@ -188,7 +202,7 @@ pub unsafe fn set_boolean<M: Model>(
         value,
         |comp, r, x| match kind_of(comp, r)? {
             Kind::Boolean => Ok(Value::Boolean(x != 0)),
-            _ => Err(type_error(comp, r, "a Boolean")),
+            _ => Err(type_error(comp, r, "a Boolean", true)),
         },
     )
 }
@@ -201,6 +215,6 @@ pub unsafe fn set_string<M: Model>(
     value: *const fmi2String,
 ) -> fmi2Status {
     set_values::<M, _>(c, "fmi2SetString", vr, n, value, |comp, r, _| {
-        Err(type_error(comp, r, "a String (this FMU has none)"))
+        Err(type_error(comp, r, "a String (this FMU has none)", true))
     })
 }

@@ -153,8 +153,7 @@ pub unsafe fn enter_initialization_mode<M: Model>(
                 "stop time {stop} is before start time {start}"
             )));
         }
-        comp.inst.setup(start)?;
-        comp.inst.enter_initialization()?;
+        comp.inst.enter_initialization_at(start)?;
         comp.log(Status::Ok, "logEvents", "initialization mode");
         Ok(())
     })

@@ -4,7 +4,8 @@
 use rins_fmi::ffi::{slice, slice_mut};
 use rins_fmi::instance::{FmiError, Mode};
 use rins_fmi::model::Model;
-use rins_fmi::vars::{Kind, Value};
+use rins_fmi::vars::{Kind, Value, with_article};
+use rins_fmi::xml::FmiVersion;
 
 use crate::*;
 
@@ -27,12 +28,19 @@ fn slots<M: Model>(comp: &Fmi3<M>, vr: u32) -> Result<std::ops::Range<usize>, Fm
     }
 }
 
-fn type_error<M: Model>(comp: &Fmi3<M>, vr: u32, wanted: &str) -> FmiError {
+/// A call of the wrong type: what the variable is, what the call takes (`wanted`: the FMI 3
+/// type, with a remark when this FMU has no variable of it) and the call that reads or sets it.
+fn type_error<M: Model>(comp: &Fmi3<M>, vr: u32, wanted: &str, set: bool) -> FmiError {
     let a = &comp.inst.table().arrays[vr as usize - 1];
+    let kind = comp.inst.table().scalars[a.slots.start].kind;
     FmiError::error(format!(
-        "value reference {vr} ({}) is {:?}, not {wanted}",
+        "value reference {vr} ({}) is {} variable, not {}: {} it with fmi3{}{}",
         a.name,
-        comp.inst.table().scalars[a.slots.start].kind
+        kind.described(FmiVersion::V3),
+        with_article(wanted),
+        if set { "set" } else { "read" },
+        if set { "Set" } else { "Get" },
+        kind.accessor(FmiVersion::V3)
     ))
 }
 
@@ -67,7 +75,7 @@ fn get_typed<M: Model, T: Copy>(
             }
             let s = slots(comp, r)?;
             if conv(comp.inst.get_slot(s.start)).is_none() {
-                return Err(type_error(comp, r, wanted));
+                return Err(type_error(comp, r, wanted, false));
             }
             k += s.len();
         }
@@ -86,8 +94,8 @@ fn get_typed<M: Model, T: Copy>(
                 continue;
             }
             for slot in slots(comp, r)? {
-                out[k] =
-                    conv(comp.inst.get_slot(slot)).ok_or_else(|| type_error(comp, r, wanted))?;
+                out[k] = conv(comp.inst.get_slot(slot))
+                    .ok_or_else(|| type_error(comp, r, wanted, false))?;
                 k += 1;
             }
         }
@@ -126,7 +134,7 @@ fn set_typed<M: Model, T: Copy>(
             for &r in vrs {
                 for slot in slots(comp, r)? {
                     let kind = comp.inst.table().scalars[slot].kind;
-                    let v = conv(kind, vals[k]).ok_or_else(|| type_error(comp, r, wanted))?;
+                    let v = conv(kind, vals[k]).ok_or_else(|| type_error(comp, r, wanted, true))?;
                     if pass == 0 {
                         comp.inst.check_set(slot, v)?;
                     } else {
@@ -257,7 +265,7 @@ pub unsafe fn get_int64<M: Model>(
                 None
             }
         },
-        "an Enumeration (Int64)",
+        "Int64 (this FMU's Int64 variables are its Enumerations)",
     )
 }
 
@@ -283,7 +291,7 @@ pub unsafe fn set_int64<M: Model>(
                 usize::MAX
             }))
         },
-        "an Enumeration (Int64)",
+        "Int64 (this FMU's Int64 variables are its Enumerations)",
     )
 }
 
@@ -355,7 +363,7 @@ macro_rules! absent_type {
                 n_values,
                 None,
                 |_| None,
-                concat!("a ", $name, " (this FMU has none)"),
+                concat!($name, " (this FMU has no ", $name, " variables)"),
             )
         }
         #[doc = concat!($cset, ": no variables of this type.")]
@@ -374,7 +382,7 @@ macro_rules! absent_type {
                 values,
                 n_values,
                 |_, _| None,
-                concat!("a ", $name, " (this FMU has none)"),
+                concat!($name, " (this FMU has no ", $name, " variables)"),
             )
         }
     };
@@ -456,7 +464,7 @@ pub unsafe fn get_binary<M: Model>(
         n_values,
         None,
         |_| None,
-        "a Binary (this FMU has none)",
+        "Binary (this FMU has no Binary variables)",
     )
 }
 
@@ -477,6 +485,6 @@ pub unsafe fn set_binary<M: Model>(
         values,
         n_values,
         |_, _| None,
-        "a Binary (this FMU has none)",
+        "Binary (this FMU has no Binary variables)",
     )
 }

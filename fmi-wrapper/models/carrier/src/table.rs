@@ -125,9 +125,12 @@ fn param_var(p: &params::Param) -> ScalarVar {
             )
         }
     };
+    // The FMI 3 variable is the name without its trailing index: an element of an array is
+    // `a[i]`, and `carrier.ship.legs[0].heading_deg` is a scalar of its own name.
+    let name = p.path.replace("][", ",");
     ScalarVar {
-        name: p.path.replace("][", ","),
-        array: params::key_of(&p.path),
+        array: rins_fmi::vars::array_name(&name).to_string(),
+        name,
         kind,
         causality: Causality::Parameter,
         unit: (p.unit != "1").then_some(p.unit),

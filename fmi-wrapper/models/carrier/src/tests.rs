@@ -168,3 +168,52 @@ fn reference_results_have_every_output_and_point() {
     assert_eq!(lines[0].split(',').count(), 1 + 3 + 3 + 4 + 3 + 3);
     assert!(lines[2001].starts_with("20.0,"));
 }
+
+/// Issue 29: FMI 3 array names are their elements' names without the trailing index, so an
+/// element view `a[i]` always belongs to the array `a`; a leg field, whose index sits inside
+/// the name, is a scalar variable of its FMI 2 name (it was a scalar `legs.heading_deg`
+/// described as the array of `legs[0].heading_deg`).
+#[test]
+fn fmi3_array_names_are_their_elements_names_without_the_index() {
+    let t = &table().vars;
+    let mut views = Vec::new();
+    for v in &t.arrays {
+        if let Some(i) = v.element_of {
+            let a = &t.arrays[i];
+            let k = v.slots.start - a.slots.start;
+            assert_eq!(v.name, format!("{}[{k}]", a.name), "{v:?}");
+            views.push(v.name.as_str());
+        }
+    }
+    // The element views are exactly the scalars whose names end in an index `[k]`, in slot
+    // order (the output vectors, `carrier.ship.sea.band[0..2]`), and no leg field.
+    let indexed: Vec<&str> = t
+        .scalars
+        .iter()
+        .map(|s| s.name.as_str())
+        .filter(|n| {
+            n.strip_suffix(']')
+                .and_then(|m| m.rsplit_once('['))
+                .is_some_and(|(_, k)| k.parse::<usize>().is_ok())
+        })
+        .collect();
+    assert_eq!(views, indexed);
+    assert!(
+        views.contains(&"carrier.q_cn[3]") && views.len() >= 13,
+        "{views:?}"
+    );
+    for field in ["heading_deg", "speed_kn", "duration_s"] {
+        let name = format!("carrier.ship.legs[0].{field}");
+        let v = t.arrays.iter().find(|a| a.name == name).unwrap();
+        assert!(
+            !v.is_array && v.element_of.is_none() && v.dims.is_empty(),
+            "{v:?}"
+        );
+        let old = format!("carrier.ship.legs.{field}");
+        assert!(t.arrays.iter().all(|a| a.name != old), "{old} is gone");
+    }
+    let xml = &rins_fmi::fmu::description::<RinsCarrier>(FmiVersion::V3).0;
+    assert!(xml.contains("name=\"carrier.ship.legs[0].heading_deg\""));
+    // (The description still names the scenario key `carrier.ship.legs.heading_deg`.)
+    assert!(!xml.contains("name=\"carrier.ship.legs.heading_deg\""));
+}

@@ -14,6 +14,7 @@ use rins_fmi::model::{Model, ModelInfo};
 use rins_fmi::state::{StateReader, StateWriter};
 use rins_fmi::vars::{Value, VariableTable};
 use rins_fmi::xml::FmiVersion;
+use rins_plant::carrier::CarrierKind;
 use rins_plant::external_carrier::CarrierSample;
 use rins_plant::{GimbalCommand, ImuSample, Plant, PlantConfig};
 
@@ -80,6 +81,9 @@ pub struct RinsImu {
     /// With `carrier.external_inputs`: the carrier sample the plant is at (the inputs at the
     /// end of the last step, or of initialisation), the start of the next step's segment.
     carrier_at: Option<CarrierSample>,
+    /// The last doStep was refused: the increments (outputs marked
+    /// [`outputs::Output::per_step`]) read NaN until a step is taken.
+    step_refused: bool,
 }
 
 impl RinsImu {
@@ -110,6 +114,9 @@ impl RinsImu {
     }
 
     fn build_plant(cfg: &PlantConfig, carrier: Option<&CarrierSample>) -> Result<Plant, String> {
+        if carrier.is_some() {
+            check_external_carrier(cfg)?;
+        }
         let mut p = Plant::new(cfg).map_err(|errs| {
             errs.iter()
                 .map(|e| e.to_string())
@@ -212,6 +219,25 @@ impl RinsImu {
     }
 }
 
+/// With `carrier.external_inputs` the carrier inputs are the whole carrier: a carrier of the
+/// FMU's own (`carrier.kind` ship or trajectory) cannot be honoured beside them, so it is an
+/// error naming both parameters rather than a ship silently replaced by the inputs.
+fn check_external_carrier(cfg: &PlantConfig) -> Result<(), String> {
+    let kind = match cfg.carrier.kind {
+        CarrierKind::Static => return Ok(()),
+        CarrierKind::Ship => "ship",
+        CarrierKind::Trajectory => "trajectory",
+    };
+    let code = rins_plant::params::enum_choices("carrier.kind")
+        .and_then(|items| items.iter().position(|x| *x == kind))
+        .map_or(0, |i| i + 1);
+    Err(format!(
+        "carrier.kind = {kind} (carrier.kind_code = {code}) with {} = true: the carrier inputs are the whole carrier, so the FMU cannot also run a {kind} of its own; set carrier.kind = static (carrier.kind_code = 1) to drive the carrier from the inputs, or {} = false to run the {kind}",
+        carrier_inputs::SWITCH,
+        carrier_inputs::SWITCH
+    ))
+}
+
 impl Model for RinsImu {
     const INFO: ModelInfo = ModelInfo {
         fmi2_id: "RinsImu",
@@ -250,6 +276,7 @@ impl Model for RinsImu {
             start_chamber_c: None,
             preview: OnceLock::new(),
             carrier_at: None,
+            step_refused: false,
         }
     }
 
@@ -264,6 +291,9 @@ impl Model for RinsImu {
 
     fn get(&self, slot: usize) -> Value {
         match (&table().roles[slot], &self.plant) {
+            (Role::Output(k, _), Some(_)) if self.step_refused && outputs()[*k].per_step => {
+                Value::Real(f64::NAN)
+            }
             (Role::Output(k, i), Some(p)) => (outputs()[*k].read)(&self.view(p), *i),
             (Role::Output(k, i), None) => {
                 // Initialization mode: the initial values of the plant the parameters and
@@ -330,7 +360,12 @@ impl Model for RinsImu {
             (self.dtheta_true_rad, self.dv_true_mps) = (dth_true, dv_true);
         }
         self.sample = Some(s);
+        self.step_refused = false;
         Ok(())
+    }
+
+    fn step_refused(&mut self) {
+        self.step_refused = true;
     }
 
     fn save(&self, w: &mut StateWriter) {
@@ -374,6 +409,7 @@ impl Model for RinsImu {
         {
             w.f64(*x);
         }
+        w.u64(self.step_refused as u64);
         // The plant in its own codec (it checks the configuration fingerprint on restore).
         w.bytes(
             &self
@@ -428,6 +464,7 @@ impl Model for RinsImu {
             *v = r.f64()?;
         }
         self.carrier_at = has_carrier.then(|| carrier_inputs::sample(&x.map(Value::Real)));
+        self.step_refused = r.u64()? != 0;
         let plant = r.bytes()?;
         if plant.is_empty() {
             (self.plant, self.sample) = (None, None);

@@ -95,6 +95,15 @@ pub struct Output {
     pub store: Store,
     /// The sample field it is, if it is one.
     pub sample_field: Option<SampleField>,
+    /// A sum over the last communication step (an increment): reads NaN after a refused
+    /// doStep until the next step is taken ([`increment`]).
+    pub per_step: bool,
+}
+
+/// `o` marked as an increment over the last step ([`Output::per_step`]).
+pub fn increment(mut o: Output) -> Output {
+    o.per_step = true;
+    o
 }
 
 fn real(x: Value) -> f64 {
@@ -131,6 +140,7 @@ pub fn plant_real(
         read: Box::new(move |v, i| Value::Real(read(v, i))),
         store: Some(Box::new(move |r, i, x| store(r, i, real(x)))),
         sample_field: None,
+        per_step: false,
     }
 }
 
@@ -153,27 +163,28 @@ pub fn sample_real(
         read: Box::new(move |v, i| Value::Real(v.sample.map_or(0.0, |s| read(s, i)))),
         store: Some(Box::new(move |r, i, x| store(&mut r.sample, i, real(x)))),
         sample_field: Some(field),
+        per_step: false,
     }
 }
 
 fn build() -> Vec<Output> {
     let mut rows = vec![
-        sample_real(
+        increment(sample_real(
             "imu.dtheta_rad",
             Some(3),
             "rad",
             "angular increment over the last communication step (body x, y, z)",
             |s, i| s.dtheta_rad[i],
             |s, i, x| s.dtheta_rad[i] = x,
-        ),
-        sample_real(
+        )),
+        increment(sample_real(
             "imu.dv_mps",
             Some(3),
             "m/s",
             "velocity increment over the last communication step (body x, y, z)",
             |s, i| s.dv_mps[i],
             |s, i, x| s.dv_mps[i] = x,
-        ),
+        )),
         Output {
             decl: decl(
                 "imu.sample_count",
@@ -190,6 +201,7 @@ fn build() -> Vec<Output> {
                 }
             })),
             sample_field: None,
+            per_step: false,
         },
         plant_real(
             "imu.time_s",
@@ -244,6 +256,7 @@ fn build() -> Vec<Output> {
                 r.truth.gimbal.moving = x == Value::Boolean(true)
             })),
             sample_field: None,
+            per_step: false,
         },
         Output {
             decl: OutputDecl {
@@ -263,6 +276,7 @@ fn build() -> Vec<Output> {
             // The sinks derive the attitude from the gimbal angles themselves.
             store: None,
             sample_field: None,
+            per_step: false,
         },
     ];
     // What the unit reports beside the increments: encoder angles and temperature-sensor
@@ -315,42 +329,42 @@ fn build() -> Vec<Output> {
             |v, _| v.truth.temps.chamber_c,
             |r, _, x| r.truth.temps.chamber_c = x,
         ),
-        plant_real(
+        increment(plant_real(
             "truth.dtheta_rad",
             Some(3),
             "rad",
             "error-free angular increment over the last communication step",
             |v, i| v.dtheta_true_rad()[i],
             |r, i, x| r.truth.dtheta_true_rad[i] = x,
-        ),
-        plant_real(
+        )),
+        increment(plant_real(
             "truth.dv_mps",
             Some(3),
             "m/s",
             "error-free velocity increment over the last communication step",
             |v, i| v.dv_true_mps()[i],
             |r, i, x| r.truth.dv_true_mps[i] = x,
-        ),
+        )),
     ]);
     for (t, term) in GyroTerm::ALL.iter().enumerate() {
-        rows.push(plant_real(
+        rows.push(increment(plant_real(
             &format!("effect.gyro.{}_rad", term.key()),
             Some(3),
             "rad",
             "this gyro term's angular increment error over the last IMU sample",
             move |v, i| v.truth.gyro_terms_rad[t][i],
             move |r, i, x| r.truth.gyro_terms_rad[t][i] = x,
-        ));
+        )));
     }
     for (t, term) in AccelTerm::ALL.iter().enumerate() {
-        rows.push(plant_real(
+        rows.push(increment(plant_real(
             &format!("effect.accel.{}_mps", term.key()),
             Some(3),
             "m/s",
             "this accelerometer term's velocity increment error over the last IMU sample",
             move |v, i| v.truth.accel_terms_mps[t][i],
             move |r, i, x| r.truth.accel_terms_mps[t][i] = x,
-        ));
+        )));
     }
     rows.push(plant_real(
         "effect.position_weight",

@@ -69,7 +69,10 @@ fn describe(path: &str) -> String {
 }
 
 fn param_var(p: &params::Param) -> ScalarVar {
-    let array = params::key_of(&p.path);
+    // FMI structured names write matrix elements as `a[i,j]`; the FMI 3 variable is the name
+    // without its trailing index (`carrier.ship.legs[0].heading_deg` is a scalar of its own).
+    let name = p.path.replace("][", ",");
+    let array = rins_fmi::vars::array_name(&name).to_string();
     let unit = (p.unit != "1").then_some(p.unit);
     let (kind, start, range) = match &p.value {
         ParamValue::Real(x) => (Kind::Real, Value::Real(*x), p.range),
@@ -104,9 +107,8 @@ fn param_var(p: &params::Param) -> ScalarVar {
             )
         }
     };
-    // FMI structured names write matrix elements as `a[i,j]`.
     ScalarVar {
-        name: p.path.replace("][", ","),
+        name,
         array,
         kind,
         causality: Causality::Parameter,

@@ -190,13 +190,22 @@ fn bad_calls_return_errors_with_a_logged_reason_and_no_crash() {
     // Type mismatch.
     refused(
         inst.set_real(&[fmu.vr("run.seed").unwrap()], &[1.0]),
-        "is Integer, not a Real",
+        "(run.seed) is an Integer variable, not a Real: set it with fmi2SetInteger",
     );
     // Enumeration out of its items.
     refused(
         inst.set_integer(&[fmu.vr("scheme.kind").unwrap()], &[99]),
         "not an item of SchemeKind",
     );
+    inst.setup_experiment(0.0, None).unwrap();
+    inst.enter_initialization_mode().unwrap();
+    // A master carrying on after those refused sets cannot leave initialization mode: the
+    // first refusal is named (issue 29). After a reset it can.
+    refused(
+        inst.exit_initialization_mode(),
+        "cannot leave initialization mode: an earlier call setting a value was refused (fmi2SetReal: unknown value reference 999999",
+    );
+    inst.reset().unwrap();
     inst.setup_experiment(0.0, None).unwrap();
     inst.enter_initialization_mode().unwrap();
     inst.exit_initialization_mode().unwrap();
@@ -420,7 +429,7 @@ fn get_string_with_valid_arrays_reports_the_type() {
     assert!(
         e.log
             .iter()
-            .any(|l| l.contains("(imu.time_s) is Real, not a String")),
+            .any(|l| l.contains("(imu.time_s) is a Real variable, not a String (this FMU has none): read it with fmi2GetReal")),
         "{:?}",
         e.log
     );

@@ -184,3 +184,38 @@ fn a_saved_state_with_carrier_inputs_continues_bit_for_bit() {
         }
     }
 }
+
+/// Issue 29: a carrier of the FMU's own (`carrier.kind` ship, code 2) beside
+/// `carrier.external_inputs = true` cannot be honoured: leaving initialization mode is refused
+/// naming both parameters (the ship was silently replaced by the inputs). Static with the
+/// inputs, and the ship without them, start.
+#[test]
+fn a_carrier_kind_the_inputs_replace_is_refused_naming_the_parameters() {
+    let c = carrier();
+    for (code, external, refused) in [(1, true, false), (2, true, true), (2, false, false)] {
+        let mut imu = Instance::<RinsImu>::new();
+        imu.setup(0.0).unwrap();
+        imu.set_slot(slot::<RinsImu>("carrier.kind_code"), Value::Integer(code))
+            .unwrap();
+        imu.set_slot(slot::<RinsImu>(SWITCH), Value::Boolean(external))
+            .unwrap();
+        connect(&c, &mut imu).unwrap();
+        imu.enter_initialization().unwrap();
+        let r = imu.exit_initialization();
+        let ctx = format!("kind_code {code}, external {external}");
+        if !refused {
+            r.expect(&ctx);
+            imu.do_step(0.0, STEP).expect(&ctx);
+            continue;
+        }
+        let e = r.expect_err(&ctx).message;
+        assert!(
+            e.contains(
+                "carrier.kind = ship (carrier.kind_code = 2) with carrier.external_inputs = true"
+            ) && e.contains("set carrier.kind = static (carrier.kind_code = 1)")
+                && e.contains("or carrier.external_inputs = false"),
+            "{e}"
+        );
+        assert!(imu.do_step(0.0, STEP).is_err(), "no step after the refusal");
+    }
+}

@@ -3,6 +3,8 @@
 //! initialisation, doStep with random sizes, get/set/serialise/deserialise state, terminate,
 //! reset, free) checked against the FMI 2 co-simulation state machine:
 //! - a call the state machine forbids is refused;
+//! - after a set refused before the end of initialisation, leaving initialization mode is
+//!   refused and the instance is in the error state until reset (issue 29);
 //! - no call crashes, and every non-OK status comes with a logged reason (never fatal);
 //! - after every successful doStep all Real outputs are finite and the FMU's time is the time
 //!   the test tracks;
@@ -49,6 +51,8 @@ enum Mode {
     Initialization,
     Step,
     Terminated,
+    /// After a refused exit from initialization mode: reset or free only.
+    Error,
 }
 
 /// A refused call: never fatal, never without a logged reason.
@@ -144,6 +148,8 @@ fn sequence(m: &mut Model<'_>, rng: &mut ChaCha8Rng, seq: usize) -> [usize; 3] {
     let fmu = m.fmu;
     let inst = fmu.instantiate("prop", rng.random_bool(0.5)).unwrap();
     let mut mode = Mode::Instantiated;
+    // A set refused since instantiation or the last reset, before step mode.
+    let mut refused_set = false;
     let mut ticks = 0u64;
     let mut saved: Vec<(StateHandle, u64)> = Vec::new();
     // Calls accepted, refused, and state round trips checked.
@@ -163,6 +169,7 @@ fn sequence(m: &mut Model<'_>, rng: &mut ChaCha8Rng, seq: usize) -> [usize; 3] {
             }
         }
         let ctx = format!("seed {SEED:#x}, sequence {seq}, call {call} (op {op}, {mode:?})");
+        let before_step = matches!(mode, Mode::Instantiated | Mode::Initialization);
         let r: Result<(), CallError> = match op {
             0 => {
                 let r = inst.setup_experiment(0.0, None);
@@ -176,20 +183,26 @@ fn sequence(m: &mut Model<'_>, rng: &mut ChaCha8Rng, seq: usize) -> [usize; 3] {
                 let n = rng.random_range(0..4);
                 let vrs: Vec<u32> = (0..n).map(|_| m.vr(rng, "Real")).collect();
                 let vals: Vec<f64> = (0..n).map(|_| real_value(rng)).collect();
-                inst.set_real(&vrs, &vals)
+                let r = inst.set_real(&vrs, &vals);
+                refused_set |= before_step && r.is_err();
+                r
             }
             3 => {
                 let kind = ["Integer", "Enumeration"][rng.random_range(0..2)];
                 let n = rng.random_range(0..3);
                 let vrs: Vec<u32> = (0..n).map(|_| m.vr(rng, kind)).collect();
                 let vals: Vec<i32> = (0..n).map(|_| int_value(rng)).collect();
-                inst.set_integer(&vrs, &vals)
+                let r = inst.set_integer(&vrs, &vals);
+                refused_set |= before_step && r.is_err();
+                r
             }
             4 => {
                 let n = rng.random_range(0..3);
                 let vrs: Vec<u32> = (0..n).map(|_| m.vr(rng, "Boolean")).collect();
                 let vals: Vec<bool> = (0..n).map(|_| rng.random()).collect();
-                inst.set_boolean(&vrs, &vals)
+                let r = inst.set_boolean(&vrs, &vals);
+                refused_set |= before_step && r.is_err();
+                r
             }
             5 => {
                 let r = inst.enter_initialization_mode();
@@ -205,6 +218,19 @@ fn sequence(m: &mut Model<'_>, rng: &mut ChaCha8Rng, seq: usize) -> [usize; 3] {
                     must_refuse(r, &ctx);
                     continue;
                 }
+                if refused_set {
+                    let e = r.expect_err(&format!("{ctx}: exit after a refused set"));
+                    check_refusal(&e, &ctx);
+                    assert!(
+                        e.log
+                            .iter()
+                            .any(|l| l.contains("an earlier call setting a value was refused")),
+                        "{ctx}: {e}"
+                    );
+                    mode = Mode::Error;
+                    tally[1] += 1;
+                    continue;
+                }
                 r.map(|_| {
                     mode = Mode::Step;
                     ticks = 0;
@@ -214,6 +240,8 @@ fn sequence(m: &mut Model<'_>, rng: &mut ChaCha8Rng, seq: usize) -> [usize; 3] {
                     m.rate_hz = hz[0] as u32;
                     assert_eq!(m.rate_hz as f64, hz[0], "{ctx}: rate is whole Hz");
                 })
+                // A configuration the model refuses also leaves the error state.
+                .inspect_err(|_| mode = Mode::Error)
             }
             7..=9 => {
                 // Mostly whole numbers of samples; sometimes a fraction, a wrong start time,
@@ -318,6 +346,7 @@ fn sequence(m: &mut Model<'_>, rng: &mut ChaCha8Rng, seq: usize) -> [usize; 3] {
                 let r = inst.reset();
                 r.map(|_| {
                     mode = Mode::Instantiated;
+                    refused_set = false;
                     ticks = 0;
                 })
             }

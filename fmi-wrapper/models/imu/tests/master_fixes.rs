@@ -1,7 +1,9 @@
-//! What connecting the FMUs in libcosim and ecos exposed (issue 17), tested on the built
-//! binaries: initial outputs in initialization mode, chamber inputs reaching the initial
+//! What connecting the FMUs in libcosim and ecos exposed (issues 17 and 29), tested on the
+//! built binaries: initial outputs in initialization mode, chamber inputs reaching the initial
 //! state and later steps, Integer codes of the enumerations, FMI 3 `nValues` validated before
-//! anything is written and no step after an error, and the logEvents messages.
+//! anything is written and no step after an error, the logEvents messages, and a table of
+//! fault sequences run through both FMI versions (a refused set blocks the end of
+//! initialisation, a refused step leaves NaN increments, and what each refusal says).
 //!
 //! Needs the cdylibs: `cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3`.
 
@@ -406,7 +408,7 @@ fn fmi3_refuses_a_short_value_count_before_writing_and_steps_after_an_error() {
             "{msgs}"
         );
         assert!(
-            msgs.contains("doStep is not allowed in Error mode"),
+            msgs.contains("doStep is refused: the instance is in the error state"),
             "{msgs}"
         );
         // Reset: usable again.
@@ -418,4 +420,315 @@ fn fmi3_refuses_a_short_value_count_before_writing_and_steps_after_an_error() {
         assert!(out.iter().all(|x| x.abs() < 1e-3), "{out:?}");
         (f.free)(c);
     }
+}
+
+/// One call of a fault sequence and the status it must return (0 OK, 3 error).
+#[derive(Clone, Copy, Debug)]
+enum Op {
+    /// Set a Real / Float64 variable.
+    Set(&'static str, f64, i32),
+    /// Enter initialization mode (FMI 2: setupExperiment at 0 s first).
+    Enter(i32),
+    /// Exit initialization mode.
+    Exit(i32),
+    /// doStep from `t` by 0.01 s.
+    Step(f64, i32),
+    /// Read Real / Float64 variables (one value each): all NaN (`true`) or all finite.
+    Nan(&'static [&'static str], bool),
+    /// Read a Real variable with an integer getter (fmi2GetInteger / fmi3GetInt32).
+    IntOfReal(&'static str, i32),
+    /// Read an Integer / UInt64 variable with the Real getter (fmi2GetReal / fmi3GetFloat64).
+    RealOfInt(&'static str, i32),
+}
+
+/// A fault sequence: FMI version, calls, and what the log must say (`{vr:NAME}` stands for
+/// NAME's value reference in that version).
+struct Fault {
+    name: &'static str,
+    version: FmiVersion,
+    ops: &'static [Op],
+    log: &'static [&'static str],
+}
+
+const INCREMENTS: &[&str] = &[
+    "imu.dtheta_rad[0]",
+    "imu.dtheta_rad[2]",
+    "imu.dv_mps[1]",
+    "truth.dtheta_rad[0]",
+    "truth.dv_mps[2]",
+    "effect.gyro.angle_random_walk_rad[0]",
+];
+/// States at the FMU's time: still valid after a refused step.
+const STATES: &[&str] = &["imu.time_s", "thermal.board_c", "truth.q_bn[0]"];
+const BAD_BIAS: Op = Op::Set("sensor.gyro.bias.dph[0]", 1e6, 3);
+
+const FAULTS: &[Fault] = &[
+    Fault {
+        name: "refused parameter set, master carries on",
+        version: FmiVersion::V2,
+        ops: &[BAD_BIAS, Op::Enter(0), Op::Exit(3), Op::Step(0.0, 3)],
+        log: &[
+            "fmi2SetReal: sensor.gyro.bias.dph[0] = 1000000 is outside its range",
+            "fmi2ExitInitializationMode: cannot leave initialization mode: an earlier call setting a value was refused (fmi2SetReal: sensor.gyro.bias.dph[0] = 1000000 is outside its range",
+            "reset the instance and set valid values",
+            "fmi2DoStep: doStep is refused: the instance is in the error state",
+        ],
+    },
+    Fault {
+        name: "refused parameter set, master carries on",
+        version: FmiVersion::V3,
+        ops: &[BAD_BIAS, Op::Enter(3), Op::Exit(3), Op::Step(0.0, 3)],
+        log: &[
+            "fmi3SetFloat64: sensor.gyro.bias.dph[0] = 1000000 is outside its range",
+            "fmi3EnterInitializationMode: entering initialization mode is refused: the instance is in the error state after an earlier call failed",
+            "only reset, free, reading values and getting, setting or serializing the FMU state are allowed",
+            "fmi3ExitInitializationMode: exiting initialization mode is refused: the instance is in the error state",
+        ],
+    },
+    Fault {
+        name: "refused step (wrong time): increments NaN, states kept; FMI 2 steps on",
+        version: FmiVersion::V2,
+        ops: &[
+            Op::Enter(0),
+            Op::Exit(0),
+            Op::Step(0.0, 0),
+            Op::Nan(INCREMENTS, false),
+            Op::Step(0.5, 3),
+            Op::Nan(INCREMENTS, true),
+            Op::Nan(STATES, false),
+            Op::Step(0.01, 0),
+            Op::Nan(INCREMENTS, false),
+        ],
+        log: &["fmi2DoStep: doStep from t = 0.5 s, but the FMU is at t = 0.01 s"],
+    },
+    Fault {
+        name: "refused step (wrong time): increments NaN, states kept; FMI 3 stays refused",
+        version: FmiVersion::V3,
+        ops: &[
+            Op::Enter(0),
+            Op::Exit(0),
+            Op::Step(0.0, 0),
+            Op::Nan(INCREMENTS, false),
+            Op::Step(0.5, 3),
+            Op::Nan(INCREMENTS, true),
+            Op::Nan(STATES, false),
+            Op::Step(0.01, 3),
+            Op::Nan(INCREMENTS, true),
+        ],
+        log: &[
+            "fmi3DoStep: doStep from t = 0.5 s, but the FMU is at t = 0.01 s",
+            "fmi3DoStep: doStep is refused: the instance is in the error state",
+        ],
+    },
+    Fault {
+        name: "wrong getter types name the variable, its type and the right call",
+        version: FmiVersion::V2,
+        ops: &[
+            Op::Enter(0),
+            Op::IntOfReal("imu.time_s", 3),
+            Op::RealOfInt("run.seed", 3),
+        ],
+        log: &[
+            "fmi2GetInteger: value reference {vr:imu.time_s} (imu.time_s) is a Real variable, not an Integer or Enumeration: read it with fmi2GetReal",
+            "fmi2GetReal: value reference {vr:run.seed} (run.seed) is an Integer variable, not a Real: read it with fmi2GetInteger",
+        ],
+    },
+    Fault {
+        name: "wrong getter types name the variable, its type and the right call",
+        version: FmiVersion::V3,
+        ops: &[Op::Enter(0), Op::IntOfReal("imu.time_s", 3), Op::Exit(3)],
+        log: &[
+            "fmi3GetInt32: value reference {vr:imu.time_s} (imu.time_s) is a Float64 variable, not an Int32 (this FMU has no Int32 variables): read it with fmi3GetFloat64",
+        ],
+    },
+    Fault {
+        name: "GetFloat64 of a UInt64",
+        version: FmiVersion::V3,
+        ops: &[Op::Enter(0), Op::RealOfInt("run.seed", 3)],
+        log: &[
+            "fmi3GetFloat64: value reference {vr:run.seed} (run.seed) is a UInt64 variable, not a Float64: read it with fmi3GetUInt64",
+        ],
+    },
+];
+
+/// The FMI 2 binary through the importer, or the FMI 3 binary through C pointers: each call
+/// returns its status; the log collects every message.
+trait Driver {
+    fn vr(&self, name: &str) -> u32;
+    fn run(&mut self, op: Op) -> Result<(), String>;
+    fn log(&self) -> String;
+}
+
+fn expect_status(op: Op, want: i32, got: i32) -> Result<(), String> {
+    if want == got {
+        Ok(())
+    } else {
+        Err(format!("{op:?}: status {got}, expected {want}"))
+    }
+}
+
+fn check_values(op: Op, names: &[&str], values: &[f64], nan: bool) -> Result<(), String> {
+    for (n, v) in names.iter().zip(values) {
+        if v.is_nan() != nan || (!nan && !v.is_finite()) {
+            return Err(format!("{op:?}: {n} = {v}"));
+        }
+    }
+    Ok(())
+}
+
+struct Drive2<'a> {
+    fmu: &'a Fmu2,
+    inst: Instance2<'a>,
+    log: Vec<String>,
+}
+
+impl Driver for Drive2<'_> {
+    fn vr(&self, name: &str) -> u32 {
+        self.fmu.vr(name).unwrap()
+    }
+
+    fn run(&mut self, op: Op) -> Result<(), String> {
+        let status = |r: Result<(), rins_fmi_import::CallError>, log: &mut Vec<String>| match r {
+            Ok(()) => 0,
+            Err(e) => {
+                log.extend(e.log);
+                e.status
+            }
+        };
+        let inst = &self.inst;
+        let (want, got) = match op {
+            Op::Set(n, x, want) => (
+                want,
+                status(inst.set_real(&[self.vr(n)], &[x]), &mut self.log),
+            ),
+            Op::Enter(want) => {
+                let r = inst
+                    .setup_experiment(0.0, None)
+                    .and_then(|_| inst.enter_initialization_mode());
+                (want, status(r, &mut self.log))
+            }
+            Op::Exit(want) => (want, status(inst.exit_initialization_mode(), &mut self.log)),
+            Op::Step(t, want) => (want, status(inst.do_step(t, 0.01), &mut self.log)),
+            Op::Nan(names, nan) => {
+                let vrs: Vec<u32> = names.iter().map(|n| self.vr(n)).collect();
+                let mut v = vec![0.0; vrs.len()];
+                inst.get_real(&vrs, &mut v)
+                    .map_err(|e| format!("{op:?}: {e}"))?;
+                return check_values(op, names, &v, nan);
+            }
+            Op::IntOfReal(n, want) => (
+                want,
+                status(inst.get_integer(&[self.vr(n)], &mut [0]), &mut self.log),
+            ),
+            Op::RealOfInt(n, want) => (
+                want,
+                status(inst.get_real(&[self.vr(n)], &mut [0.0]), &mut self.log),
+            ),
+        };
+        expect_status(op, want, got)
+    }
+
+    fn log(&self) -> String {
+        self.log.join("\n")
+    }
+}
+
+struct Drive3<'a> {
+    f: &'a Fmi3,
+    c: Inst,
+    log: &'a Mutex<Vec<String>>,
+    xml: &'static str,
+}
+
+impl Driver for Drive3<'_> {
+    fn vr(&self, name: &str) -> u32 {
+        attr(self.xml, name, "valueReference").parse().unwrap()
+    }
+
+    fn run(&mut self, op: Op) -> Result<(), String> {
+        let (f, c) = (self.f, self.c);
+        // SAFETY: fmi3Functions.h signatures on a live instance, arrays of the lengths passed.
+        let (want, got) = unsafe {
+            match op {
+                Op::Set(n, x, want) => (want, (f.set_f64)(c, &self.vr(n), 1, &x, 1)),
+                Op::Enter(want) => (want, (f.enter_init)(c, false, 0.0, 0.0, false, 0.0)),
+                Op::Exit(want) => (want, (f.exit_init)(c)),
+                Op::Step(t, want) => (want, step3(f, c, t)),
+                Op::Nan(names, nan) => {
+                    let vrs: Vec<u32> = names.iter().map(|n| self.vr(n)).collect();
+                    let mut v = vec![0.0; vrs.len()];
+                    let s = (f.get_f64)(c, vrs.as_ptr(), vrs.len(), v.as_mut_ptr(), v.len());
+                    expect_status(op, 0, s)?;
+                    return check_values(op, names, &v, nan);
+                }
+                Op::IntOfReal(n, want) => (want, (f.get_i32)(c, &self.vr(n), 1, &mut 0, 1)),
+                Op::RealOfInt(n, want) => (want, (f.get_f64)(c, &self.vr(n), 1, &mut 0.0, 1)),
+            }
+        };
+        expect_status(op, want, got)
+    }
+
+    fn log(&self) -> String {
+        self.log.lock().unwrap().join("\n")
+    }
+}
+
+/// Runs `fault` on `d`: every call's status, then every expected log line.
+fn run_fault(fault: &Fault, d: &mut dyn Driver) -> Result<(), String> {
+    for op in fault.ops {
+        d.run(*op)?;
+    }
+    let log = d.log();
+    for want in fault.log {
+        let mut want = want.to_string();
+        while let Some(i) = want.find("{vr:") {
+            let j = i + want[i..].find('}').unwrap();
+            want = format!("{}{}{}", &want[..i], d.vr(&want[i + 4..j]), &want[j + 1..]);
+        }
+        if !log.contains(&want) {
+            return Err(format!("log lacks {want:?}; it has:\n{log}"));
+        }
+    }
+    Ok(())
+}
+
+/// Issue 29: each fault sequence of [`FAULTS`] on a fresh instance of the built FMI 2 or FMI 3
+/// binary; every failure is reported, then the test fails if any.
+#[test]
+fn fault_sequences_are_refused_the_same_way_in_both_fmi_versions() {
+    let fmu2 = library();
+    let f3 = Fmi3::load();
+    let xml3: &'static str = &fmu::description::<RinsImu>(FmiVersion::V3).0;
+    let mut failures = Vec::new();
+    for fault in FAULTS {
+        let r = match fault.version {
+            FmiVersion::V2 => {
+                let inst = fmu2.instantiate("fault", false).unwrap();
+                let mut d = Drive2 {
+                    fmu: &fmu2,
+                    inst,
+                    log: Vec::new(),
+                };
+                run_fault(fault, &mut d)
+            }
+            FmiVersion::V3 => {
+                let log = Mutex::new(Vec::new());
+                let c = fmi3_instance(&f3, &log, false);
+                let mut d = Drive3 {
+                    f: &f3,
+                    c,
+                    log: &log,
+                    xml: xml3,
+                };
+                let r = run_fault(fault, &mut d);
+                // SAFETY: the live instance, freed once.
+                unsafe { (f3.free)(c) };
+                r
+            }
+        };
+        if let Err(e) = r {
+            failures.push(format!("{} ({:?}): {e}", fault.name, fault.version));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
