@@ -4,6 +4,7 @@
 use std::ops::Range;
 
 use rins_plant::PlantConfig;
+use rins_plant::carrier::CarrierKind;
 
 use crate::reader::{Measurement, MeasurementError};
 
@@ -170,7 +171,27 @@ pub fn to_history(mut m: Measurement, source: &str) -> Result<History, Measureme
     })
 }
 
-/// The model with the site the data give (lat/lon/height columns), if any; returns a note.
+/// Whether the replay can represent `model`, or why not. The replay puts the table on a static
+/// carrier: fixed at the site, with the `[vehicle]` mount, turning only with the Earth. A
+/// moving carrier (`[carrier] kind = "ship"` or `"trajectory"`; an external vessel model drives
+/// the plant through a trajectory too) adds its rotation, transport rate and lever-arm
+/// accelerations to every row, which the replay would leave in the residuals (a ship's 0.1–1
+/// °/s of roll shows as a residual of thousands of °/h). The commands call this before
+/// replaying and refuse the model with the message.
+pub fn check_model(model: &PlantConfig) -> Result<(), String> {
+    let what = match model.carrier.kind {
+        CarrierKind::Static => return Ok(()),
+        CarrierKind::Ship => "a ship ([carrier] kind = \"ship\")",
+        CarrierKind::Trajectory => "a trajectory file ([carrier] kind = \"trajectory\")",
+    };
+    Err(format!(
+        "the model's carrier moves: {what}. The replay represents a static carrier only (the table fixed at the site with the [vehicle] mount), so the carrier's rotation, transport rate and lever-arm accelerations would stay in every residual and the comparison would mean nothing. Compare data recorded at rest with the model on a static carrier (remove [carrier] or set kind = \"static\", with the test's [site] and [vehicle] mount); a run on a moving carrier is checked by simulating it (`rins run`), not by replay"
+    ))
+}
+
+/// The model with the site the data give (lat/lon/height columns, first row), if any; returns
+/// a note. The reader has checked the columns against the model's `[site]` ranges
+/// ([`crate::reader::ranges`]), so the site is one the model accepts.
 pub fn with_data_site(model: &PlantConfig, m: &Measurement) -> (PlantConfig, Option<String>) {
     let mut cfg = model.clone();
     let get = |c: &str| m.col(c).and_then(|v| v.first().copied());

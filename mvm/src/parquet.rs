@@ -1,21 +1,24 @@
 //! Measurement files in Parquet: the same columns, names and rules as the CSV format
 //! (docs/measurement-format.md), read column by column on both cores with the `parquet` crate's
-//! low-level reader (no Arrow). Numbers may be stored as DOUBLE, FLOAT, INT32 or INT64; labels
-//! as UTF-8 strings (or integers). A null is an error like an empty CSV field. The column map
-//! applies as for CSV. [`write`] writes a measurement (what `rins measure --format parquet`
-//! uses).
+//! low-level reader (no Arrow). Numbers may be stored as DOUBLE, FLOAT, INT32 or INT64 (signed,
+//! unsigned or DECIMAL); `t_s` also as a time (TIMESTAMP or TIME in ms, µs or ns, or INT96),
+//! which becomes seconds since the file's first row. Labels are UTF-8 strings (or integers). A
+//! null is an error like an empty CSV field. Pages may be uncompressed or compressed with
+//! Snappy, gzip, zstd, LZ4 or LZ4_RAW; page checksums (CRC32) are verified when the writer
+//! stored them. The column map applies as for CSV. [`write`] writes a measurement (what `rins
+//! measure --format parquet` uses).
 
 use std::fs::File;
 use std::path::Path;
 use std::sync::Arc;
 
-use parquet::basic::Compression;
+use parquet::basic::{Compression, ConvertedType, LogicalType, TimeUnit, Type as Physical};
 use parquet::column::reader::ColumnReader;
-use parquet::data_type::{ByteArray, ByteArrayType, DoubleType};
+use parquet::data_type::{ByteArray, ByteArrayType, DoubleType, Int96};
 use parquet::file::properties::WriterProperties;
 use parquet::file::reader::{FileReader, SerializedFileReader};
 use parquet::file::writer::SerializedFileWriter;
-use parquet::schema::types::Type;
+use parquet::schema::types::{ColumnDescriptor, Type};
 use rayon::prelude::*;
 
 use crate::colmap::ColumnMap;
@@ -40,11 +43,164 @@ fn error(source: &str, row: usize, column: &str, message: String) -> Measurement
     }
 }
 
-/// One column read: numbers or labels.
+/// Codecs this reader decompresses (the `parquet` crate's features in the workspace manifest).
+const CODECS: &str = "uncompressed, SNAPPY, GZIP, ZSTD, LZ4 or LZ4_RAW";
+
+/// Whether pages compressed with `c` can be read.
+fn codec_supported(c: Compression) -> bool {
+    !matches!(c, Compression::LZO | Compression::BROTLI(_))
+}
+
+/// The codec's name as the Parquet specification writes it.
+fn codec_name(c: Compression) -> &'static str {
+    match c {
+        Compression::UNCOMPRESSED => "UNCOMPRESSED",
+        Compression::SNAPPY => "SNAPPY",
+        Compression::GZIP(_) => "GZIP",
+        Compression::LZO => "LZO",
+        Compression::BROTLI(_) => "BROTLI",
+        Compression::LZ4 => "LZ4",
+        Compression::ZSTD(_) => "ZSTD",
+        Compression::LZ4_RAW => "LZ4_RAW",
+    }
+}
+
+/// How a numeric column's stored values become numbers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Decode {
+    /// As stored (DOUBLE, FLOAT, signed integers).
+    Plain,
+    /// Unsigned integers (INT32 or INT64 with an unsigned integer type).
+    Unsigned,
+    /// DECIMAL: the stored integer × 10^-scale.
+    Decimal(i32),
+    /// A time (TIMESTAMP or TIME, or INT96): integer ticks, `per_s` a second; becomes seconds
+    /// since the first row.
+    Time {
+        /// Ticks per second.
+        per_s: i64,
+        /// The stored type, for messages.
+        what: &'static str,
+    },
+}
+
+fn per_s(unit: &TimeUnit) -> (i64, &'static str) {
+    match unit {
+        TimeUnit::MILLIS => (1_000, "ms"),
+        TimeUnit::MICROS => (1_000_000, "µs"),
+        TimeUnit::NANOS => (1_000_000_000, "ns"),
+    }
+}
+
+/// How the numbers of column `c` are decoded, or why they cannot be.
+fn decode_of(c: &ColumnDescriptor) -> Result<Decode, String> {
+    let physical = c.physical_type();
+    let int = matches!(physical, Physical::INT32 | Physical::INT64);
+    let refuse = |what: String| {
+        Err(format!(
+            "stored as {what}; expected a number (DOUBLE, FLOAT, INT32 or INT64, signed, unsigned or DECIMAL; t_s also a TIMESTAMP, TIME or INT96)"
+        ))
+    };
+    if physical == Physical::INT96 {
+        return Ok(Decode::Time {
+            per_s: 1_000_000_000,
+            what: "INT96 timestamp (ns)",
+        });
+    }
+    match (c.logical_type_ref(), c.converted_type()) {
+        (Some(LogicalType::Timestamp { unit, .. }), _) if int => {
+            let (p, u) = per_s(unit);
+            Ok(Decode::Time {
+                per_s: p,
+                what: match u {
+                    "ms" => "TIMESTAMP (ms)",
+                    "µs" => "TIMESTAMP (µs)",
+                    _ => "TIMESTAMP (ns)",
+                },
+            })
+        }
+        (Some(LogicalType::Time { unit, .. }), _) if int => {
+            let (p, u) = per_s(unit);
+            Ok(Decode::Time {
+                per_s: p,
+                what: match u {
+                    "ms" => "TIME (ms)",
+                    "µs" => "TIME (µs)",
+                    _ => "TIME (ns)",
+                },
+            })
+        }
+        (None, ConvertedType::TIMESTAMP_MILLIS) if int => Ok(Decode::Time {
+            per_s: 1_000,
+            what: "TIMESTAMP_MILLIS",
+        }),
+        (None, ConvertedType::TIMESTAMP_MICROS) if int => Ok(Decode::Time {
+            per_s: 1_000_000,
+            what: "TIMESTAMP_MICROS",
+        }),
+        (None, ConvertedType::TIME_MILLIS) if int => Ok(Decode::Time {
+            per_s: 1_000,
+            what: "TIME_MILLIS",
+        }),
+        (None, ConvertedType::TIME_MICROS) if int => Ok(Decode::Time {
+            per_s: 1_000_000,
+            what: "TIME_MICROS",
+        }),
+        (Some(LogicalType::Decimal { scale, .. }), _) if int => Ok(Decode::Decimal(*scale)),
+        (None, ConvertedType::DECIMAL) if int => Ok(Decode::Decimal(c.type_scale())),
+        (Some(LogicalType::Integer { is_signed, .. }), _) if int => Ok(if *is_signed {
+            Decode::Plain
+        } else {
+            Decode::Unsigned
+        }),
+        (
+            None,
+            ConvertedType::UINT_8
+            | ConvertedType::UINT_16
+            | ConvertedType::UINT_32
+            | ConvertedType::UINT_64,
+        ) if int => Ok(Decode::Unsigned),
+        (None, ConvertedType::NONE | ConvertedType::INT_8 | ConvertedType::INT_16)
+        | (None, ConvertedType::INT_32 | ConvertedType::INT_64)
+            if int || matches!(physical, Physical::FLOAT | Physical::DOUBLE) =>
+        {
+            Ok(Decode::Plain)
+        }
+        (Some(l), _) => refuse(format!("{physical} with logical type {l:?}")),
+        (None, ConvertedType::NONE) => refuse(format!("{physical}")),
+        (None, t) => refuse(format!("{physical} with converted type {t}")),
+    }
+}
+
+/// One column read: numbers (with the first row's time in ns for a time type) or labels.
 enum Col {
-    Num(Vec<f64>),
+    Num(Vec<f64>, Option<i64>),
     Label(LabelColumn),
     Skip,
+}
+
+/// A reader error on column `name` in row group `g` (rows `a`..=`b`, 1-based): a checksum that
+/// does not match, or a page that does not decode.
+fn page_error(
+    source: &str,
+    name: &str,
+    g: usize,
+    a: usize,
+    b: usize,
+    e: parquet::errors::ParquetError,
+) -> MeasurementError {
+    let text = e.to_string();
+    let what = if text.contains("CRC checksum mismatch") {
+        "a page checksum (CRC32) does not match its data: the file is corrupt".to_string()
+    } else {
+        format!("Parquet: {text}")
+    };
+    error(
+        source,
+        a,
+        name,
+        format!("{what} (row group {g}, rows {a} to {b})"),
+    )
 }
 
 /// Reads column `i` (all row groups); rows are numbered from 1 across row groups.
@@ -62,14 +218,22 @@ fn read_column(
     let file = File::open(path).map_err(|e| error(source, 0, "", format!("cannot read: {e}")))?;
     let reader = SerializedFileReader::new(file).map_err(pq)?;
     let md = reader.metadata();
+    let descr = md.file_metadata().schema_descr().column(i);
+    let decode = if kind == Kind::Num {
+        decode_of(&descr).map_err(|m| error(source, 0, name, m))?
+    } else {
+        Decode::Plain
+    };
     let total = md.file_metadata().num_rows().max(0) as usize;
     let mut nums: Vec<f64> = Vec::with_capacity(if kind == Kind::Num { total } else { 0 });
+    let mut ticks: Vec<i64> = Vec::new();
     let mut labs = LabelColumn::default();
     let mut row0 = 0usize;
     let mut defs: Vec<i16> = Vec::new();
     for g in 0..md.num_row_groups() {
-        let rg = reader.get_row_group(g).map_err(pq)?;
-        let n = rg.metadata().num_rows().max(0) as usize;
+        let n = md.row_group(g).num_rows().max(0) as usize;
+        let pe = |e| page_error(source, name, g, row0 + 1, row0 + n, e);
+        let rg = reader.get_row_group(g).map_err(pe)?;
         defs.clear();
         // A null (definition level below the maximum) is an empty field.
         let null_at = |defs: &[i16], values: usize| {
@@ -81,65 +245,93 @@ fn read_column(
                 "null: not a number or label".into(),
             )
         };
-        macro_rules! numbers {
-            ($r:expr, $conv:expr) => {{
-                let mut v = Vec::with_capacity(n);
+        macro_rules! read_all {
+            ($r:expr, $t:ty) => {{
+                let mut v: Vec<$t> = Vec::with_capacity(n);
                 let (recs, vals, _) = $r
                     .read_records(n, Some(&mut defs), None, &mut v)
-                    .map_err(pq)?;
+                    .map_err(pe)?;
                 if vals < recs {
                     return Err(null_at(&defs, vals));
                 }
-                v.into_iter().map($conv).collect::<Vec<f64>>()
+                v
             }};
         }
-        let col = rg.get_column_reader(i).map_err(pq)?;
-        let values: Vec<f64> = match (kind, col) {
-            (Kind::Label, ColumnReader::ByteArrayColumnReader(mut r)) => {
-                let mut v: Vec<ByteArray> = Vec::with_capacity(n);
-                let (recs, vals, _) = r
-                    .read_records(n, Some(&mut defs), None, &mut v)
-                    .map_err(pq)?;
-                if vals < recs {
-                    return Err(null_at(&defs, vals));
-                }
+        macro_rules! numbers {
+            ($r:expr, $t:ty, $conv:expr) => {{
+                read_all!($r, $t)
+                    .into_iter()
+                    .map($conv)
+                    .collect::<Vec<f64>>()
+            }};
+        }
+        let col = rg.get_column_reader(i).map_err(pe)?;
+        let scale = match decode {
+            Decode::Decimal(s) => 10f64.powi(s),
+            _ => 1.0,
+        };
+        let values: Vec<f64> = match (kind, decode, col) {
+            (Kind::Label, _, ColumnReader::ByteArrayColumnReader(mut r)) => {
+                let v = read_all!(r, ByteArray);
                 for (k, b) in v.iter().enumerate() {
                     let s = b.as_utf8().map_err(|_| {
                         error(source, row0 + k + 1, name, "label is not UTF-8".into())
                     })?;
                     labs.push(s);
                 }
-                row0 += recs;
+                row0 += v.len();
                 continue;
             }
-            (Kind::Label, ColumnReader::Int32ColumnReader(mut r)) => {
-                numbers!(r, |x: i32| x as f64)
+            (Kind::Label, _, ColumnReader::Int32ColumnReader(mut r)) => {
+                numbers!(r, i32, |x: i32| x as f64)
             }
-            (Kind::Label, ColumnReader::Int64ColumnReader(mut r)) => {
-                numbers!(r, |x: i64| x as f64)
+            (Kind::Label, _, ColumnReader::Int64ColumnReader(mut r)) => {
+                numbers!(r, i64, |x: i64| x as f64)
             }
-            (Kind::Num, ColumnReader::DoubleColumnReader(mut r)) => numbers!(r, |x: f64| x),
-            (Kind::Num, ColumnReader::FloatColumnReader(mut r)) => {
-                numbers!(r, |x: f32| x as f64)
+            (Kind::Num, Decode::Time { .. }, ColumnReader::Int32ColumnReader(mut r)) => {
+                ticks.extend(read_all!(r, i32).into_iter().map(i64::from));
+                row0 += n;
+                continue;
             }
-            (Kind::Num, ColumnReader::Int32ColumnReader(mut r)) => {
-                numbers!(r, |x: i32| x as f64)
+            (Kind::Num, Decode::Time { .. }, ColumnReader::Int64ColumnReader(mut r)) => {
+                ticks.extend(read_all!(r, i64));
+                row0 += n;
+                continue;
             }
-            (Kind::Num, ColumnReader::Int64ColumnReader(mut r)) => {
-                numbers!(r, |x: i64| x as f64)
+            (Kind::Num, Decode::Time { .. }, ColumnReader::Int96ColumnReader(mut r)) => {
+                ticks.extend(read_all!(r, Int96).iter().map(Int96::to_nanos));
+                row0 += n;
+                continue;
             }
-            (k, _) => {
+            (Kind::Num, _, ColumnReader::DoubleColumnReader(mut r)) => {
+                numbers!(r, f64, |x: f64| x)
+            }
+            (Kind::Num, _, ColumnReader::FloatColumnReader(mut r)) => {
+                numbers!(r, f32, |x: f32| x as f64)
+            }
+            (Kind::Num, Decode::Unsigned, ColumnReader::Int32ColumnReader(mut r)) => {
+                numbers!(r, i32, |x: i32| x as u32 as f64)
+            }
+            (Kind::Num, Decode::Unsigned, ColumnReader::Int64ColumnReader(mut r)) => {
+                numbers!(r, i64, |x: i64| x as u64 as f64)
+            }
+            (Kind::Num, _, ColumnReader::Int32ColumnReader(mut r)) => {
+                numbers!(r, i32, |x: i32| x as f64 / scale)
+            }
+            (Kind::Num, _, ColumnReader::Int64ColumnReader(mut r)) => {
+                numbers!(r, i64, |x: i64| x as f64 / scale)
+            }
+            (k, _, _) => {
                 let want = if k == Kind::Num {
                     "a number (DOUBLE, FLOAT, INT32 or INT64)"
                 } else {
                     "a label (UTF-8 string or integer)"
                 };
-                let have = reader.metadata().file_metadata().schema_descr().column(i);
                 return Err(error(
                     source,
                     0,
                     name,
-                    format!("stored as {:?}; expected {want}", have.physical_type()),
+                    format!("stored as {}; expected {want}", descr.physical_type()),
                 ));
             }
         };
@@ -160,11 +352,77 @@ fn read_column(
         }
         row0 += n;
     }
-    Ok(if kind == Kind::Num {
-        Col::Num(nums)
-    } else {
-        Col::Label(labs)
+    if let Decode::Time { per_s, .. } = decode {
+        // Seconds since the first row, from exact integer differences.
+        let t0 = ticks.first().copied().unwrap_or(0);
+        let nums = ticks
+            .iter()
+            .map(|&t| (i128::from(t) - i128::from(t0)) as f64 / per_s as f64)
+            .collect();
+        return Ok(Col::Num(
+            nums,
+            Some(t0.saturating_mul(1_000_000_000 / per_s)),
+        ));
+    }
+    Ok(match kind {
+        Kind::Num => Col::Num(nums, None),
+        _ => Col::Label(labs),
     })
+}
+
+/// Checks what can be checked before reading any page: each read column's codec, and that a
+/// time type is `t_s` read without a unit conversion.
+fn check_columns(
+    reader: &SerializedFileReader<File>,
+    layout: &Layout,
+) -> Result<(), MeasurementError> {
+    let md = reader.metadata();
+    let schema = md.file_metadata().schema_descr();
+    for i in 0..layout.raw.len() {
+        if layout.kind[i] == Kind::Skip {
+            continue;
+        }
+        let name = &layout.raw[i];
+        for g in 0..md.num_row_groups() {
+            let c = md.row_group(g).column(i).compression();
+            if !codec_supported(c) {
+                return Err(layout.err(
+                    0,
+                    name,
+                    format!(
+                        "compressed with {}, which this reader does not decompress (it reads {CODECS}): write the file with one of them (pandas: to_parquet(..., compression=\"zstd\"))",
+                        codec_name(c)
+                    ),
+                ));
+            }
+        }
+        if layout.kind[i] != Kind::Num {
+            continue;
+        }
+        let d = decode_of(&schema.column(i)).map_err(|m| layout.err(0, name, m))?;
+        if let Decode::Time { what, .. } = d {
+            if layout.header[i] != "t_s" {
+                return Err(layout.err(
+                    0,
+                    name,
+                    format!(
+                        "stored as a {what}: only t_s may be a time (the reader converts it to seconds since the first row)"
+                    ),
+                ));
+            }
+            let (f, o) = layout.conv[i];
+            if (f, o) != (1.0, 0.0) {
+                return Err(layout.err(
+                    0,
+                    name,
+                    format!(
+                        "stored as a {what}, which the reader converts to seconds itself, but the column map converts it (x {f} + {o}): map it by name only ({{ to = \"t_s\" }})"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Reads a Parquet measurement file; `map` names and converts its columns as for CSV.
@@ -187,21 +445,60 @@ pub fn read(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, Measure
         names.push(c.name().to_string());
     }
     let layout = Layout::from_names(names, &source, map)?;
+    check_columns(&reader, &layout)?;
     let rows = reader.metadata().file_metadata().num_rows().max(0) as usize;
-    let cols: Vec<Col> = (0..layout.raw.len())
+    let results: Vec<Result<Col, MeasurementError>> = (0..layout.raw.len())
         .into_par_iter()
         .map(|i| read_column(path, &source, i, &layout.raw[i], layout.kind[i]))
-        .collect::<Result<_, _>>()?;
+        .collect();
+    // The earliest row wins, then the column first in the file (not whichever thread
+    // finished first).
+    if let Some(e) = results
+        .iter()
+        .enumerate()
+        .filter_map(|(i, r)| r.as_ref().err().map(|e| (e.row, i, e)))
+        .min_by_key(|(row, i, _)| (*row, *i))
+    {
+        return Err(e.2.clone());
+    }
     let mut acc = Acc::new(&layout);
     acc.rows = rows;
-    for (i, c) in cols.into_iter().enumerate() {
-        match c {
-            Col::Num(v) => acc.nums[i] = v,
-            Col::Label(l) => acc.labs[i] = l,
+    let mut t0_ns = None;
+    for (i, c) in results.into_iter().enumerate() {
+        match c? {
+            Col::Num(v, t0) => {
+                if v.len() != rows {
+                    return Err(error(
+                        &source,
+                        0,
+                        &layout.raw[i],
+                        format!(
+                            "{} values, the file says {rows} rows: the file is corrupt",
+                            v.len()
+                        ),
+                    ));
+                }
+                acc.nums[i] = v;
+                t0_ns = t0_ns.or(t0);
+            }
+            Col::Label(l) => {
+                if l.index.len() != rows {
+                    return Err(error(
+                        &source,
+                        0,
+                        &layout.raw[i],
+                        format!(
+                            "{} labels, the file says {rows} rows: the file is corrupt",
+                            l.index.len()
+                        ),
+                    ));
+                }
+                acc.labs[i] = l
+            }
             Col::Skip => {}
         }
     }
-    finish(layout, acc)
+    finish(layout, acc, t0_ns)
 }
 
 /// Rows per row group written.
@@ -210,6 +507,15 @@ const ROW_GROUP: usize = 1 << 20;
 /// Writes `m` as Parquet: labels as UTF-8 strings (dictionary encoded), numbers as DOUBLE,
 /// row groups of 2^20 rows, Snappy compression.
 pub fn write(path: &Path, m: &Measurement) -> Result<(), String> {
+    let props = WriterProperties::builder()
+        .set_compression(Compression::SNAPPY)
+        .build();
+    write_with(path, m, props)
+}
+
+/// Writes `m` as [`write`] does, with the writer properties `props` (another codec, page size,
+/// encoding).
+pub fn write_with(path: &Path, m: &Measurement, props: WriterProperties) -> Result<(), String> {
     let fail = |e: parquet::errors::ParquetError| format!("{}: Parquet: {e}", path.display());
     let mut fields = Vec::new();
     for name in m.labels.keys() {
@@ -223,9 +529,6 @@ pub fn write(path: &Path, m: &Measurement) -> Result<(), String> {
         fields.join(" ")
     ))
     .map_err(fail)?;
-    let props = WriterProperties::builder()
-        .set_compression(Compression::SNAPPY)
-        .build();
     let file = File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
     let mut w = SerializedFileWriter::new(file, Arc::new(schema), Arc::new(props)).map_err(fail)?;
     let mut start = 0;

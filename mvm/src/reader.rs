@@ -1,12 +1,51 @@
 //! The measurement format (docs/measurement-format.md): CSV that another tool can write, with
 //! units in the column names. The reader is strict: every problem is an error naming the row and
-//! column, and nothing is silently dropped.
+//! column, and nothing is silently dropped. Every value must lie in its column's physical range
+//! ([`ranges`]), and a line may be at most [`MAX_LINE`] bytes long.
 
 use std::collections::BTreeMap;
+use std::io::Read;
 use std::path::Path;
 
 use crate::colmap::ColumnMap;
 use crate::header::{Kind, Layout};
+
+#[path = "ranges.rs"]
+pub mod ranges;
+
+/// Longest line accepted, bytes (a header of a few hundred columns is a few kB; a longer line is
+/// not a measurement row and is reported by its length and start, never echoed).
+pub const MAX_LINE: usize = 64 << 10;
+
+/// Characters of a field or line quoted in an error.
+const QUOTE_CHARS: usize = 80;
+
+/// The first [`QUOTE_CHARS`] characters of `s`, escaped (NUL and control bytes shown as
+/// escapes), with `…` when cut.
+pub(crate) fn quote(s: &str) -> String {
+    let mut out: String = s
+        .chars()
+        .take(QUOTE_CHARS)
+        .flat_map(char::escape_debug)
+        .collect();
+    if s.chars().nth(QUOTE_CHARS).is_some() {
+        out.push('…');
+    }
+    format!("\"{out}\"")
+}
+
+/// The message for a line of `len` bytes (longer than [`MAX_LINE`]) that starts with `start`.
+fn long_line(len: &str, start: &str) -> String {
+    format!(
+        "line of {len} bytes, longer than the limit of {MAX_LINE} bytes (not a measurement row: a file without line breaks, or binary data); it starts {}",
+        quote(start)
+    )
+}
+
+/// The first bytes of `bytes` as text, for [`long_line`] (invalid UTF-8 shown as U+FFFD).
+fn start_of(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(&bytes[..bytes.len().min(4 * QUOTE_CHARS)]).into_owned()
+}
 
 /// Columns every file needs (plus attitude and at least one temperature).
 pub const REQUIRED: [&str; 7] = [
@@ -53,6 +92,10 @@ pub struct Measurement {
     pub segments: Vec<(String, String, usize, usize)>,
     /// Source columns a column map said to ignore.
     pub ignored: Vec<String>,
+    /// When `t_s` was read from a Parquet time type (TIMESTAMP, TIME or INT96): the first row's
+    /// time in ns since the Unix epoch (TIMESTAMP, INT96) or since midnight (TIME); `t_s`
+    /// counts seconds from it.
+    pub t0_ns: Option<i64>,
 }
 
 /// A label column: the distinct labels and, per row, the index of its label (labels repeat
@@ -205,6 +248,9 @@ fn parse_rows(
             continue;
         }
         row += 1;
+        if line.len() > MAX_LINE {
+            return Err(err(row, "", long_line(&line.len().to_string(), line)));
+        }
         let mut count = 0;
         // Fields by byte scan (',' is ASCII, so every slice is on a char boundary).
         let bytes = line.as_bytes();
@@ -224,7 +270,7 @@ fn parse_rows(
                 if kind[i] == Kind::Num {
                     let v: f64 = f
                         .parse()
-                        .map_err(|_| err(row, &header[i], format!("not a number: {f:?}")))?;
+                        .map_err(|_| err(row, &header[i], format!("not a number: {}", quote(f))))?;
                     if !v.is_finite() {
                         return Err(err(row, &header[i], format!("{v} is not a finite number")));
                     }
@@ -304,6 +350,14 @@ pub fn parse_with(
     let mut offset = 0;
     let mut header_line = None;
     for line in text.split_inclusive('\n') {
+        if line.len() > MAX_LINE {
+            return Err(MeasurementError {
+                source_name: source_name.into(),
+                row: 0,
+                column: String::new(),
+                message: long_line(&line.len().to_string(), line),
+            });
+        }
         offset += line.len();
         if is_data(line) {
             header_line = Some(line);
@@ -319,14 +373,20 @@ pub fn parse_with(
     let layout = Layout::new(header_line, source_name, map)?;
     let mut acc = Acc::new(&layout);
     acc.add(&layout, &text[offset..])?;
-    finish(layout, acc)
+    finish(layout, acc, None)
 }
 
-/// Builds the measurement from the parsed columns and checks segments and time.
-pub(crate) fn finish(layout: Layout, acc: Acc) -> Result<Measurement, MeasurementError> {
+/// Builds the measurement from the parsed columns and checks segments, time and the physical
+/// ranges ([`ranges`]); `t0_ns` is the origin of a `t_s` read from a Parquet time type.
+pub(crate) fn finish(
+    layout: Layout,
+    acc: Acc,
+    t0_ns: Option<i64>,
+) -> Result<Measurement, MeasurementError> {
     let err = |row: usize, column: &str, message: String| layout.err(row, column, message);
     let mut m = Measurement {
         rows: acc.rows,
+        t0_ns,
         ..Measurement::default()
     };
     for (i, (n, l)) in acc.nums.into_iter().zip(acc.labs).enumerate() {
@@ -357,6 +417,9 @@ pub(crate) fn finish(layout: Layout, acc: Acc) -> Result<Measurement, Measuremen
             }
         }
     }
+    // Values out of their physical range, before time is looked at (a t_s of 1e30 is a unit
+    // mistake, not a gap).
+    ranges::check_values(&m, &layout)?;
     if m.rows < 2 {
         return Err(err(m.rows, "t_s", "need at least two data rows".into()));
     }
@@ -380,7 +443,11 @@ pub(crate) fn finish(layout: Layout, acc: Acc) -> Result<Measurement, Measuremen
     }
     m.segments = segments;
     // Time strictly increasing within a segment, and evenly spaced (a gap means lost samples).
-    let t = m.columns["t_s"].clone();
+    let t_col = ranges::source_of(&layout, "t_s").0;
+    let t = &m.columns["t_s"];
+    // Each row's interval; a segment's first row takes the segment's median interval (a
+    // one-row segment the longest interval accepted).
+    let mut dt_s = vec![ranges::ROW_INTERVAL_S[1]; m.rows];
     for &(_, _, a, b) in &m.segments {
         if b - a < 2 {
             continue;
@@ -390,27 +457,36 @@ pub(crate) fn finish(layout: Layout, acc: Acc) -> Result<Measurement, Measuremen
             if *dt <= 0.0 {
                 return Err(err(
                     a + k + 2,
-                    "t_s",
-                    format!("time not increasing: {} after {}", t[a + k + 1], t[a + k]),
+                    &t_col,
+                    format!(
+                        "time not increasing: {} after {}",
+                        ranges::show(t[a + k + 1]),
+                        ranges::show(t[a + k])
+                    ),
                 ));
             }
         }
+        dt_s[a + 1..b].copy_from_slice(&d);
         d.sort_by(f64::total_cmp);
         let median = d[d.len() / 2];
+        dt_s[a] = median;
         for k in a + 1..b {
             let dt = t[k] - t[k - 1];
             // The last row of a decimated file may be shorter; a longer step is a gap.
             if dt > median * 1.01 + 1e-9 {
                 return Err(err(
                     k + 1,
-                    "t_s",
+                    &t_col,
                     format!(
-                        "gap: {dt} s since the previous row, the segment's interval is {median} s (start a new segment or run after a gap)"
+                        "gap: {} s since the previous row, the segment's interval is {} s (start a new segment or run after a gap)",
+                        ranges::show(dt),
+                        ranges::show(median)
                     ),
                 ));
             }
         }
     }
+    ranges::check_rows(&m, &layout, &dt_s)?;
     Ok(m)
 }
 
@@ -426,27 +502,46 @@ pub fn read_with(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, Me
     if crate::parquet::is_parquet(path) {
         return crate::parquet::read(path, map);
     }
-    use std::io::Read;
     let source = path.display().to_string();
-    let io_err = |e: std::io::Error| MeasurementError {
+    let f = std::fs::File::open(path).map_err(|e| MeasurementError {
         source_name: source.clone(),
         row: 0,
         column: String::new(),
         message: format!("cannot read: {e}"),
+    })?;
+    read_from(f, &source, map)
+}
+
+/// Bytes read and parsed at a time by [`read_from`].
+const PIECE: usize = 64 << 20;
+
+/// Reads measurement CSV from a stream (a file, a pipe, `/dev/zero`), 64 MB at a time: memory
+/// stays below two pieces whatever the input, and a line longer than [`MAX_LINE`] stops the read
+/// at once. `source_name` appears in every error.
+pub fn read_from(
+    mut input: impl Read,
+    source_name: &str,
+    map: Option<&ColumnMap>,
+) -> Result<Measurement, MeasurementError> {
+    let source = source_name.to_string();
+    let error = |row: usize, message: String| MeasurementError {
+        source_name: source.clone(),
+        row,
+        column: String::new(),
+        message,
     };
-    let mut f = std::fs::File::open(path).map_err(io_err)?;
-    const PIECE: usize = 64 << 20;
-    let mut buf: Vec<u8> = Vec::with_capacity(PIECE + (1 << 16));
+    let mut buf: Vec<u8> = Vec::with_capacity(PIECE + MAX_LINE + 1);
     let mut layout: Option<Layout> = None;
     let mut acc: Option<Acc> = None;
     // Bytes of the file before `buf`, for error positions.
     let mut consumed: u64 = 0;
     loop {
-        let have = buf.len();
-        buf.resize(have + PIECE, 0);
-        let n = f.read(&mut buf[have..]).map_err(io_err)?;
-        buf.truncate(have + n);
-        let eof = n == 0;
+        // Fill the buffer to a whole piece (a pipe gives a few kB per read).
+        let n = (&mut input)
+            .take(PIECE as u64)
+            .read_to_end(&mut buf)
+            .map_err(|e| error(0, format!("cannot read: {e}")))?;
+        let eof = n < PIECE;
         // Parse every complete line; keep the partial last line for the next piece.
         let end = if eof {
             buf.len()
@@ -467,6 +562,9 @@ pub fn read_with(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, Me
             if layout.is_none() {
                 let mut offset = 0;
                 for line in text.split_inclusive('\n') {
+                    if line.len() > MAX_LINE {
+                        return Err(error(0, long_line(&line.len().to_string(), line)));
+                    }
                     offset += line.len();
                     if is_data(line) {
                         let l = Layout::new(line, &source, map)?;
@@ -483,18 +581,23 @@ pub fn read_with(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, Me
             buf.drain(..end);
             consumed += end as u64;
         }
+        // What is left is a partial line, which may only grow to MAX_LINE.
+        if buf.len() > MAX_LINE {
+            return Err(error(
+                acc.as_ref().map_or(0, |a| a.rows + 1),
+                format!(
+                    "{} (at byte {consumed} of the file)",
+                    long_line(&format!("more than {}", buf.len()), &start_of(&buf))
+                ),
+            ));
+        }
         if eof {
             break;
         }
     }
-    let layout = layout.ok_or_else(|| MeasurementError {
-        source_name: source.clone(),
-        row: 0,
-        column: String::new(),
-        message: "empty file: expected a header row".into(),
-    })?;
+    let layout = layout.ok_or_else(|| error(0, "empty file: expected a header row".into()))?;
     let acc = acc.expect("created with the layout");
-    finish(layout, acc)
+    finish(layout, acc, None)
 }
 
 /// The error for a piece that is not UTF-8: the file byte offset of the bad byte (`piece`

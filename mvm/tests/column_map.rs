@@ -212,3 +212,510 @@ fn parse_raw(text: &str) -> Measurement {
     }
     m
 }
+
+fn temp_dir(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rins-pq-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn parquet_with_every_codec_reads_bit_for_bit_as_the_csv() {
+    use parquet::basic::{Compression, GzipLevel, ZstdLevel};
+    use parquet::file::properties::WriterProperties;
+    let doc = read(&example()).unwrap();
+    let dir = temp_dir("codecs");
+    let mut sizes = Vec::new();
+    for (name, c) in [
+        ("uncompressed", Compression::UNCOMPRESSED),
+        ("snappy", Compression::SNAPPY),
+        ("gzip", Compression::GZIP(GzipLevel::default())),
+        ("zstd", Compression::ZSTD(ZstdLevel::default())),
+        ("lz4", Compression::LZ4),
+        ("lz4_raw", Compression::LZ4_RAW),
+    ] {
+        let path = dir.join(format!("{name}.parquet"));
+        let props = WriterProperties::builder().set_compression(c).build();
+        rins_mvm::parquet::write_with(&path, &doc, props).unwrap();
+        // The file really is compressed with the codec.
+        let f = std::fs::File::open(&path).unwrap();
+        let r = parquet::file::reader::SerializedFileReader::new(f).unwrap();
+        use parquet::file::reader::FileReader;
+        assert_eq!(r.metadata().row_group(0).column(0).compression(), c);
+        sizes.push((name, std::fs::metadata(&path).unwrap().len()));
+        let m = read(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(m.rows, doc.rows, "{name}");
+        assert_eq!(m.columns, doc.columns, "{name}: bit-identical numbers");
+        assert_eq!(m.labels, doc.labels, "{name}");
+        assert_eq!(m.segments, doc.segments, "{name}");
+    }
+    // Compression did something (the codecs are not silently off).
+    let plain = sizes[0].1;
+    for (name, size) in &sizes[1..] {
+        assert!(
+            *size < plain,
+            "{name}: {size} bytes vs {plain} uncompressed"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Writes columns of the example with `t_s` stored as `t_type` (a Parquet schema type and
+/// name) from integer ticks, `per_s` ticks a second, starting at `base` ticks.
+fn write_time_file(
+    path: &std::path::Path,
+    doc: &Measurement,
+    t_decl: &str,
+    ticks: &[i64],
+    int96: bool,
+) {
+    use parquet::data_type::{ByteArray, ByteArrayType, DoubleType, Int64Type, Int96, Int96Type};
+    use parquet::file::properties::WriterProperties;
+    use parquet::file::writer::SerializedFileWriter;
+    use std::sync::Arc;
+    let numeric: Vec<&String> = doc.columns.keys().filter(|k| *k != "t_s").collect();
+    let mut fields = vec![t_decl.to_string()];
+    for name in doc.labels.keys() {
+        fields.push(format!("REQUIRED BYTE_ARRAY {name} (UTF8);"));
+    }
+    for name in &numeric {
+        fields.push(format!("REQUIRED DOUBLE {name};"));
+    }
+    let schema = parquet::schema::parser::parse_message_type(&format!(
+        "message m {{ {} }}",
+        fields.join(" ")
+    ))
+    .unwrap();
+    let props = Arc::new(WriterProperties::builder().build());
+    let file = std::fs::File::create(path).unwrap();
+    let mut w = SerializedFileWriter::new(file, Arc::new(schema), props).unwrap();
+    let mut rg = w.next_row_group().unwrap();
+    let mut c = rg.next_column().unwrap().unwrap();
+    if int96 {
+        // Julian day and nanoseconds of the day.
+        let v: Vec<Int96> = ticks
+            .iter()
+            .map(|ns| {
+                let day = ns.div_euclid(86_400_000_000_000) + 2_440_588;
+                let nanos = ns.rem_euclid(86_400_000_000_000) as u64;
+                let mut x = Int96::new();
+                x.set_data(nanos as u32, (nanos >> 32) as u32, day as u32);
+                x
+            })
+            .collect();
+        c.typed::<Int96Type>().write_batch(&v, None, None).unwrap();
+    } else {
+        c.typed::<Int64Type>()
+            .write_batch(ticks, None, None)
+            .unwrap();
+    }
+    c.close().unwrap();
+    for l in doc.labels.values() {
+        let mut c = rg.next_column().unwrap().unwrap();
+        let v: Vec<ByteArray> = (0..doc.rows).map(|k| ByteArray::from(l.get(k))).collect();
+        c.typed::<ByteArrayType>()
+            .write_batch(&v, None, None)
+            .unwrap();
+        c.close().unwrap();
+    }
+    for name in &numeric {
+        let mut c = rg.next_column().unwrap().unwrap();
+        c.typed::<DoubleType>()
+            .write_batch(&doc.columns[*name], None, None)
+            .unwrap();
+        c.close().unwrap();
+    }
+    rg.close().unwrap();
+    w.close().unwrap();
+}
+
+#[test]
+fn parquet_timestamps_become_seconds_since_the_first_row() {
+    let doc = read(&example()).unwrap();
+    let dir = temp_dir("time");
+    let path = dir.join("t.parquet");
+    // 2023-11-14 22:13:20 UTC plus the example's times.
+    let epoch_s: i64 = 1_700_000_000;
+    let t = doc.col("t_s").unwrap();
+    for (decl, per_s, int96) in [
+        (
+            "REQUIRED INT64 t_s (TIMESTAMP(MILLIS,true));",
+            1_000i64,
+            false,
+        ),
+        (
+            "REQUIRED INT64 t_s (TIMESTAMP(MICROS,true));",
+            1_000_000,
+            false,
+        ),
+        (
+            "REQUIRED INT64 t_s (TIMESTAMP(NANOS,false));",
+            1_000_000_000,
+            false,
+        ),
+        ("REQUIRED INT64 t_s (TIMESTAMP_MILLIS);", 1_000, false),
+        ("REQUIRED INT64 t_s (TIME(MICROS,true));", 1_000_000, false),
+        ("REQUIRED INT96 t_s;", 1_000_000_000, true),
+    ] {
+        let base = if decl.contains("TIME(") {
+            3600 * per_s
+        } else {
+            epoch_s * per_s
+        };
+        let ticks: Vec<i64> = t
+            .iter()
+            .map(|s| base + (s * per_s as f64).round() as i64)
+            .collect();
+        write_time_file(&path, &doc, decl, &ticks, int96);
+        let m = read(&path).unwrap_or_else(|e| panic!("{decl}: {e}"));
+        // The reference: the CSV with t_s written as the tick differences in seconds.
+        let mut csv_doc = doc.clone();
+        let want: Vec<f64> = ticks
+            .iter()
+            .map(|k| (k - ticks[0]) as f64 / per_s as f64)
+            .collect();
+        assert!(
+            (want[1] - (t[1] - t[0])).abs() < 1e-9,
+            "{decl}: {}",
+            want[1]
+        );
+        csv_doc.columns.insert("t_s".into(), want);
+        let csv = to_csv(&csv_doc);
+        let via_csv = parse(&csv, "t.csv").unwrap();
+        assert_eq!(m.columns, via_csv.columns, "{decl}: bit for bit");
+        assert_eq!(m.segments, via_csv.segments, "{decl}");
+        assert_eq!(m.t0_ns, Some(ticks[0] * (1_000_000_000 / per_s)), "{decl}");
+    }
+    // A unit conversion on top of the time type is refused.
+    let ticks: Vec<i64> = t.iter().map(|s| (s * 1e3).round() as i64).collect();
+    write_time_file(
+        &path,
+        &doc,
+        "REQUIRED INT64 stamp (TIMESTAMP(MILLIS,true));",
+        &ticks,
+        false,
+    );
+    let e = read_with(
+        &path,
+        Some(&map("[columns]\nstamp = { to = \"t_s\", unit = \"ms\" }\n")),
+    )
+    .expect_err("double conversion");
+    assert_eq!((e.row, e.column.as_str()), (0, "stamp"), "{e}");
+    assert!(e.message.contains("by name only"), "{e}");
+    let ok = read_with(&path, Some(&map("[columns]\nstamp = { to = \"t_s\" }\n"))).unwrap();
+    assert_eq!(
+        ok.col("t_s").unwrap()[1],
+        (ticks[1] - ticks[0]) as f64 / 1e3
+    );
+    // Read as a plain INT64 (the defect this replaces) the raw count of ns is refused by the
+    // range of t_s, not taken for seconds.
+    let ns: Vec<i64> = t
+        .iter()
+        .map(|s| epoch_s * 1_000_000_000 + (s * 1e9).round() as i64)
+        .collect();
+    write_time_file(&path, &doc, "REQUIRED INT64 t_s;", &ns, false);
+    let e = read(&path).expect_err("raw ns");
+    assert_eq!((e.row, e.column.as_str()), (1, "t_s"), "{e}");
+    assert!(e.message.contains("[-1e10, 1e10]"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The measurement as documented CSV (labels first, then numbers, `{}` of each f64, which
+/// reads back to the same bits).
+fn to_csv(m: &Measurement) -> String {
+    let mut names: Vec<&String> = m.labels.keys().collect();
+    names.extend(m.columns.keys());
+    let mut out = names
+        .iter()
+        .map(|s| s.as_str())
+        .collect::<Vec<_>>()
+        .join(",")
+        + "\n";
+    for k in 0..m.rows {
+        let mut f: Vec<String> = m.labels.values().map(|l| l.get(k).to_string()).collect();
+        f.extend(m.columns.values().map(|v| format!("{}", v[k])));
+        out += &f.join(",");
+        out += "\n";
+    }
+    out
+}
+
+/// CRC-32 (IEEE, reflected, as gzip and the Parquet page checksum), bit by bit.
+fn crc32(data: &[u8]) -> u32 {
+    let mut c = 0xFFFF_FFFFu32;
+    for &b in data {
+        c ^= b as u32;
+        for _ in 0..8 {
+            c = if c & 1 != 0 {
+                (c >> 1) ^ 0xEDB8_8320
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
+
+/// Thrift compact protocol: an unsigned varint at `b[*p..]`.
+fn varint(b: &[u8], p: &mut usize) -> u64 {
+    let mut v = 0u64;
+    for shift in (0..).step_by(7) {
+        let x = b[*p];
+        *p += 1;
+        v |= ((x & 0x7f) as u64) << shift;
+        if x & 0x80 == 0 {
+            break;
+        }
+    }
+    v
+}
+
+/// Skips a compact-protocol value of type `t`.
+fn skip(b: &[u8], p: &mut usize, t: u8) {
+    match t {
+        1 | 2 => {}
+        3 => *p += 1,
+        4..=6 => {
+            varint(b, p);
+        }
+        7 => *p += 8,
+        8 => {
+            let n = varint(b, p) as usize;
+            *p += n;
+        }
+        9 | 10 => {
+            let h = b[*p];
+            *p += 1;
+            let n = if h >> 4 == 15 {
+                varint(b, p)
+            } else {
+                (h >> 4) as u64
+            };
+            for _ in 0..n {
+                if h & 15 <= 2 {
+                    *p += 1;
+                } else {
+                    skip(b, p, h & 15);
+                }
+            }
+        }
+        11 => {
+            let n = varint(b, p);
+            if n > 0 {
+                let kv = b[*p];
+                *p += 1;
+                for _ in 0..n {
+                    skip(b, p, kv >> 4);
+                    skip(b, p, kv & 15);
+                }
+            }
+        }
+        12 => loop {
+            let h = b[*p];
+            *p += 1;
+            if h == 0 {
+                break;
+            }
+            if h >> 4 == 0 {
+                varint(b, p);
+            }
+            skip(b, p, h & 15);
+        },
+        _ => panic!("thrift type {t}"),
+    }
+}
+
+/// The page header at `b[start..]`: its length, the page's compressed size, and the position
+/// right after the value of field 3 (compressed_page_size), where field 4 (crc) belongs.
+fn page_header(b: &[u8], start: usize) -> (usize, usize, usize) {
+    let (mut p, mut id, mut size, mut after3) = (start, 0u8, 0usize, 0usize);
+    loop {
+        let h = b[p];
+        p += 1;
+        if h == 0 {
+            break;
+        }
+        assert!(h >> 4 > 0, "short-form field headers only");
+        id += h >> 4;
+        if id == 3 {
+            let z = varint(b, &mut p);
+            size = ((z >> 1) as i64 ^ -((z & 1) as i64)) as usize;
+            after3 = p;
+        } else {
+            skip(b, &mut p, h & 15);
+        }
+    }
+    (p - start, size, after3)
+}
+
+/// Rewrites the Parquet file `src`: with a CRC32 in every page header when `crc` (what a
+/// writer with page checksums stores; this crate's writer stores none), and the codec named
+/// in the footer of column `codec.0` replaced by `codec.1`. Returns the file and, per column,
+/// the byte range of the data of its first page.
+fn rewrite(
+    src: &std::path::Path,
+    crc: bool,
+    codec: Option<(&str, parquet::basic::Compression)>,
+) -> (
+    Vec<u8>,
+    std::collections::BTreeMap<String, std::ops::Range<usize>>,
+) {
+    use parquet::file::metadata::ParquetMetaDataWriter;
+    use parquet::file::reader::{FileReader, SerializedFileReader};
+    let bytes = std::fs::read(src).unwrap();
+    let bytes = bytes.as_slice();
+    let md = SerializedFileReader::new(std::fs::File::open(src).unwrap())
+        .unwrap()
+        .metadata()
+        .clone();
+    let mut out = b"PAR1".to_vec();
+    let mut first_page = std::collections::BTreeMap::new();
+    let mut groups = Vec::new();
+    for rg in md.row_groups() {
+        let mut cols = Vec::new();
+        let rg_start = out.len();
+        for col in rg.columns() {
+            let (start, len) = col.byte_range();
+            let (start, end) = (start as usize, (start + len) as usize);
+            let mut moved = std::collections::BTreeMap::new();
+            let new_start = out.len();
+            let mut p = start;
+            while p < end {
+                let (hlen, size, after3) = page_header(bytes, p);
+                moved.insert(p as i64, out.len() as i64);
+                let data = &bytes[p + hlen..p + hlen + size];
+                if crc {
+                    out.extend_from_slice(&bytes[p..after3]);
+                    out.push(0x15); // field 4 (delta 1), i32
+                    let c = crc32(data) as i32;
+                    let mut z = ((c << 1) ^ (c >> 31)) as u32;
+                    while z >= 0x80 {
+                        out.push((z as u8 & 0x7f) | 0x80);
+                        z >>= 7;
+                    }
+                    out.push(z as u8);
+                    let next = bytes[after3];
+                    assert!(next >> 4 >= 2, "the field after 3 is 5 or later");
+                    out.push(next - 0x10);
+                    out.extend_from_slice(&bytes[after3 + 1..p + hlen]);
+                } else {
+                    out.extend_from_slice(&bytes[p..p + hlen]);
+                }
+                first_page
+                    .entry(col.column_descr().name().to_string())
+                    .or_insert(out.len()..out.len() + size);
+                out.extend_from_slice(data);
+                p += hlen + size;
+            }
+            let mut b = col
+                .clone()
+                .into_builder()
+                .set_data_page_offset(moved[&col.data_page_offset()])
+                .set_dictionary_page_offset(col.dictionary_page_offset().map(|d| moved[&d]))
+                .set_total_compressed_size((out.len() - new_start) as i64);
+            if let Some((name, c)) = codec {
+                if col.column_descr().name() == name {
+                    b = b.set_compression(c);
+                }
+            }
+            cols.push(b.build().unwrap());
+        }
+        groups.push(
+            rg.clone()
+                .into_builder()
+                .set_column_metadata(cols)
+                .set_file_offset(rg_start as i64)
+                .build()
+                .unwrap(),
+        );
+    }
+    let md = md.into_builder().set_row_groups(groups).build();
+    ParquetMetaDataWriter::new(&mut out, &md).finish().unwrap();
+    (out, first_page)
+}
+
+#[test]
+fn parquet_page_checksums_are_verified_and_a_flipped_byte_names_its_column() {
+    use parquet::basic::Compression;
+    use parquet::file::properties::{EnabledStatistics, WriterProperties};
+    // The reference CRC: CRC-32 of "123456789" is 0xCBF43926.
+    assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
+    let doc = read(&example()).unwrap();
+    let dir = temp_dir("crc");
+    let plain = dir.join("plain.parquet");
+    // Uncompressed pages: a flipped byte still decodes, so only the checksum can tell.
+    let props = WriterProperties::builder()
+        .set_compression(Compression::UNCOMPRESSED)
+        .set_statistics_enabled(EnabledStatistics::Chunk)
+        .set_offset_index_disabled(true)
+        .build();
+    rins_mvm::parquet::write_with(&plain, &doc, props).unwrap();
+    let (with_crc, pages) = rewrite(&plain, true, None);
+    assert_eq!(pages.len(), doc.columns.len() + doc.labels.len());
+    let good = dir.join("crc.parquet");
+    std::fs::write(&good, &with_crc).unwrap();
+    // The checksums are right: the file reads as the CSV.
+    let m = read(&good).unwrap();
+    assert_eq!(m.columns, doc.columns);
+    assert_eq!(m.labels, doc.labels);
+    // One flipped bit in the first data page of dv_y_mps: refused, naming the file, the
+    // column and the rows of its row group.
+    let mut bad = with_crc.clone();
+    let r = pages["dv_y_mps"].clone();
+    bad[r.start + (r.end - r.start) / 2] ^= 0x04;
+    let bad_path = dir.join("flipped.parquet");
+    std::fs::write(&bad_path, &bad).unwrap();
+    let e = read(&bad_path).expect_err("checksum");
+    assert_eq!(e.source_name, bad_path.display().to_string());
+    assert_eq!((e.row, e.column.as_str()), (1, "dv_y_mps"), "{e}");
+    assert!(e.message.contains("checksum (CRC32) does not match"), "{e}");
+    assert!(
+        e.message.contains(&format!("rows 1 to {}", doc.rows)),
+        "{e}"
+    );
+    // The same flip without checksums decodes to another number: only the range checks stand
+    // between it and the comparison.
+    let (no_crc, pages) = rewrite(&plain, false, None);
+    let mut flipped = no_crc.clone();
+    let r = pages["dv_y_mps"].clone();
+    flipped[r.start + (r.end - r.start) / 2] ^= 0x04;
+    std::fs::write(&bad_path, &flipped).unwrap();
+    match read(&bad_path) {
+        Ok(m) => assert_ne!(m.columns["dv_y_mps"], doc.columns["dv_y_mps"]),
+        Err(e) => assert_eq!(e.column, "dv_y_mps", "{e}"),
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_codec_the_reader_lacks_is_named_with_its_own_column() {
+    use parquet::basic::{BrotliLevel, Compression};
+    let doc = read(&example()).unwrap();
+    let dir = temp_dir("brotli");
+    let plain = dir.join("plain.parquet");
+    rins_mvm::parquet::write(&plain, &doc).unwrap();
+    // The footer says one column (not the first) is Brotli.
+    let (b, _) = rewrite(
+        &plain,
+        false,
+        Some((
+            "temp_housing_c",
+            Compression::BROTLI(BrotliLevel::default()),
+        )),
+    );
+    let path = dir.join("brotli.parquet");
+    std::fs::write(&path, &b).unwrap();
+    let e = read(&path).expect_err("brotli");
+    assert_eq!((e.row, e.column.as_str()), (0, "temp_housing_c"), "{e}");
+    assert!(
+        e.message.contains("BROTLI")
+            && e.message.contains("ZSTD")
+            && !e.message.contains("Disabled"),
+        "{e}"
+    );
+    // Unchanged, the rewritten file reads as the original (the rewrite itself is sound).
+    let (same, _) = rewrite(&plain, false, None);
+    std::fs::write(&path, &same).unwrap();
+    assert_eq!(read(&path).unwrap().columns, doc.columns);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -72,3 +72,98 @@ fn a_bad_byte_after_the_first_64_mb_names_its_row_and_file_offset() {
     let offset = check("large", 1_700_000, 1_650_000);
     assert!(offset > 64 << 20, "{offset}");
 }
+
+/// A reader that counts the bytes taken from `inner` and gives at most `chunk` per read (as a
+/// pipe does).
+struct Counted<R> {
+    inner: R,
+    taken: u64,
+    chunk: usize,
+}
+
+impl<R: std::io::Read> std::io::Read for Counted<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = buf.len().min(self.chunk);
+        let got = self.inner.read(&mut buf[..n])?;
+        self.taken += got as u64;
+        Ok(got)
+    }
+}
+
+#[test]
+fn an_endless_stream_without_line_breaks_stops_at_once_with_bounded_reading() {
+    use std::io::Read;
+    // 1 TB of NUL bytes, as /dev/zero: the reader takes one 64 MB piece and stops.
+    let mut zeros = Counted {
+        inner: std::io::repeat(0).take(1 << 40),
+        taken: 0,
+        chunk: usize::MAX,
+    };
+    let start = std::time::Instant::now();
+    let e = rins_mvm::reader::read_from(&mut zeros, "zeros", None).expect_err("no lines");
+    assert_eq!(e.row, 0, "{e}");
+    assert!(
+        e.message.contains("more than 67108864 bytes") && e.message.contains("65536"),
+        "{e}"
+    );
+    // The start is quoted escaped and cut at 80 characters.
+    assert!(
+        e.message.contains(&format!("\"{}…\"", "\\0".repeat(80))),
+        "{e}"
+    );
+    assert!(e.to_string().len() < 700, "{} bytes", e.to_string().len());
+    assert!(
+        zeros.taken <= (64 << 20) + (64 << 10),
+        "{} bytes read",
+        zeros.taken
+    );
+    assert!(start.elapsed().as_secs() < 30, "{:?}", start.elapsed());
+    // A 300 MB line after the header and a row: row 2, its byte offset, never echoed.
+    let head = format!("{HEADER}{}", row(0));
+    let mut long = Counted {
+        inner: head.as_bytes().chain(std::io::repeat(b'7').take(300 << 20)),
+        taken: 0,
+        chunk: usize::MAX,
+    };
+    let e = rins_mvm::reader::read_from(&mut long, "long.csv", None).expect_err("long line");
+    assert_eq!(e.row, 2, "{e}");
+    assert!(
+        e.message
+            .contains(&format!("at byte {} of the file", head.len())),
+        "{e}"
+    );
+    assert!(e.to_string().len() < 500, "{} bytes", e.to_string().len());
+    assert!(
+        long.taken <= (64 << 20) + (64 << 10),
+        "{} bytes read",
+        long.taken
+    );
+    // The device itself, through `read` (Linux).
+    let dev = std::path::Path::new("/dev/zero");
+    if dev.exists() {
+        let e = read(dev).expect_err("/dev/zero");
+        assert!(e.to_string().starts_with("/dev/zero: row 0"), "{e}");
+        assert!(e.message.contains("more than"), "{e}");
+    }
+}
+
+#[test]
+fn a_file_read_from_a_pipe_in_small_pieces_is_the_file() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../docs/examples/measurement-example.csv"
+    );
+    let whole = read(std::path::Path::new(path)).unwrap();
+    let text = std::fs::read(path).unwrap();
+    for chunk in [1, 7, 4096] {
+        let piped = Counted {
+            inner: text.as_slice(),
+            taken: 0,
+            chunk,
+        };
+        let m = rins_mvm::reader::read_from(piped, "pipe", None).unwrap();
+        assert_eq!(m.columns, whole.columns, "chunk {chunk}");
+        assert_eq!(m.labels, whole.labels, "chunk {chunk}");
+        assert_eq!(m.segments, whole.segments, "chunk {chunk}");
+    }
+}

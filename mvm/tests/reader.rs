@@ -100,3 +100,199 @@ fn the_shipped_example_parses() {
         m.segments.len()
     );
 }
+
+/// `good()` with the field of `column` in data row `row` (1-based) replaced by `value`.
+fn with_field(text: &str, row: usize, column: &str, value: &str) -> String {
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let i = lines[0].split(',').position(|c| c == column).unwrap();
+    let mut f: Vec<String> = lines[row].split(',').map(str::to_string).collect();
+    f[i] = value.to_string();
+    lines[row] = f.join(",");
+    lines.join("\n") + "\n"
+}
+
+/// `good()` with extra columns (site, sample counter) appended with the same value on every row.
+fn with_columns(extra: &[(&str, &str)]) -> String {
+    let mut out = String::new();
+    for (k, line) in good().lines().enumerate() {
+        out += line;
+        for (name, v) in extra {
+            out += ",";
+            out += if k == 0 { name } else { v };
+        }
+        out += "\n";
+    }
+    out
+}
+
+#[test]
+fn values_out_of_their_physical_range_are_refused_with_value_and_range() {
+    // Rows are 0.1 s apart: 2000 deg/s x 0.1 s = 3.4907 rad, 100 g x 0.1 s = 98.0665 m/s.
+    let rate_bound = 2000f64.to_radians() * 0.1;
+    let accel_bound: f64 = 100.0 * 9.806_65 * 0.1;
+    assert!((rate_bound - 3.490_658_5).abs() < 1e-6 && (accel_bound - 98.0665).abs() < 1e-9);
+    let g = good();
+    // (row, column, value, accepted, text the refusal must contain)
+    let cases: &[(usize, &str, &str, bool, &str)] = &[
+        (2, "temp_gyro_x_c", "-400", false, "[-100, 200]"),
+        (2, "temp_gyro_x_c", "200.5", false, "[-100, 200]"),
+        (2, "temp_gyro_x_c", "-99.5", true, ""),
+        (2, "temp_gyro_x_c", "199.9", true, ""),
+        (3, "dtheta_y_rad", "3.49", true, ""),
+        (3, "dtheta_y_rad", "-3.5", false, "2000 °/s"),
+        (3, "dtheta_y_rad", "1e300", false, "1e300"),
+        // The first row of a segment is bounded with the segment's median interval.
+        (4, "dtheta_z_rad", "3.6", false, "over a row of 0.09999"),
+        (2, "dv_z_mps", "98.06", true, ""),
+        (2, "dv_z_mps", "98.07", false, "100 g"),
+        (5, "dv_x_mps", "-1e300", false, "-1e300"),
+        (2, "outer_deg", "1e30", false, "[-1e8, 1e8]"),
+        (2, "inner_deg", "-7200", true, ""),
+        (1, "t_s", "-1e30", false, "[-1e10, 1e10]"),
+        (2, "t_s", "0.1000001", false, "outside [1e-6, 86400] s"),
+    ];
+    for &(row, col, value, ok, want) in cases {
+        let text = with_field(&g, row, col, value);
+        match parse(&text, "m.csv") {
+            Ok(_) => assert!(ok, "{col} = {value} accepted"),
+            Err(e) => {
+                assert!(!ok, "{col} = {value} refused: {e}");
+                let col_want = if col == "t_s" && want.starts_with("outside [1e-6") {
+                    // The interval 1e-7 s is row 2's (t_s of row 2 minus row 1's).
+                    (2, "t_s")
+                } else {
+                    (row, col)
+                };
+                assert_eq!((e.row, e.column.as_str()), col_want, "{e}");
+                assert!(e.message.contains(want), "{col} = {value}: {e}");
+                assert!(e.message.contains(value) || value.len() > 6, "{e}");
+                // A 1e300 is shown as 1e300, not as 301 digits.
+                assert!(e.to_string().len() < 400, "{e}");
+            }
+        }
+    }
+    // The site and the sample counter (the site is the model's [site] range).
+    let site: &[(&str, &str, bool, &str)] = &[
+        ("lat_deg", "1000", false, "[-89, 89]"),
+        ("lat_deg", "89", true, ""),
+        ("lat_deg", "-89.5", false, "[-89, 89]"),
+        ("lon_deg", "360", false, "[-180, 360)"),
+        ("lon_deg", "-180", true, ""),
+        ("lon_deg", "359.9", true, ""),
+        ("height_m", "1e30", false, "[-1000, 20000]"),
+        ("height_m", "20000", true, ""),
+        ("height_m", "-1000.5", false, "[-1000, 20000]"),
+        ("sample", "1.5", false, "whole number"),
+        ("sample", "-1", false, "whole number"),
+        ("sample", "12", true, ""),
+    ];
+    for &(col, value, ok, want) in site {
+        let mut extra = vec![
+            ("lat_deg", "36.6"),
+            ("lon_deg", "123.6"),
+            ("height_m", "10"),
+        ];
+        extra.push(("sample", "3"));
+        let text = with_field(&with_columns(&extra), 3, col, value);
+        match parse(&text, "m.csv") {
+            Ok(_) => assert!(ok, "{col} = {value} accepted"),
+            Err(e) => {
+                assert!(!ok, "{col} = {value} refused: {e}");
+                assert_eq!((e.row, e.column.as_str()), (3, col), "{e}");
+                assert!(e.message.contains(want), "{e}");
+            }
+        }
+    }
+}
+
+#[test]
+fn an_attitude_quaternion_must_have_unit_norm() {
+    let header = "t_s,dtheta_x_rad,dtheta_y_rad,dtheta_z_rad,dv_x_mps,dv_y_mps,dv_z_mps,q_bn_w,q_bn_x,q_bn_y,q_bn_z,temp_c_c";
+    let file = |w: f64| {
+        let mut s = format!("{header}\n");
+        for k in 1..=4 {
+            let q = if k == 3 { w } else { 1.0 };
+            s += &format!("{},0,0,0,0,0,0.98,{q},0,0,0,25\n", k as f64 * 0.1);
+        }
+        s
+    };
+    assert!(parse(&file(1.0009), "q.csv").is_ok());
+    assert!(parse(&file(0.9991), "q.csv").is_ok());
+    for w in [0.998, 0.5, 0.0] {
+        let e = parse(&file(w), "q.csv").expect_err("not a unit quaternion");
+        assert_eq!((e.row, e.column.as_str()), (3, "q_bn_w"), "{e}");
+        assert!(
+            e.message.contains("norm") && e.message.contains("0.001 of 1"),
+            "{e}"
+        );
+    }
+    // A component beyond 1 + 1e-3 is out of range by itself.
+    let e = parse(&file(1.5), "q.csv").expect_err("component");
+    assert_eq!((e.row, e.column.as_str()), (3, "q_bn_w"), "{e}");
+    assert!(e.message.contains("[-1.001, 1.001]"), "{e}");
+}
+
+#[test]
+fn an_over_long_line_is_reported_by_length_and_start_not_echoed() {
+    let g = good();
+    // A data row of 100 000 bytes: its length and first 80 characters, not the line.
+    let long = format!("0.15,{}", "7".repeat(100_000 - 5));
+    let text = g.replacen("0.2,", &format!("{long}\n0.2,"), 1);
+    let e = parse(&text, "m.csv").expect_err("over-long line");
+    assert_eq!(e.row, 2, "{e}");
+    assert!(e.message.contains("line of 100000 bytes"), "{e}");
+    assert!(e.message.contains("65536"), "{e}");
+    assert!(
+        e.message.contains(&format!("\"0.15,{}…\"", "7".repeat(75))),
+        "{e}"
+    );
+    assert!(e.to_string().len() < 400, "{} bytes", e.to_string().len());
+    // A line of exactly the limit is not refused for its length (its first field is not a
+    // number); one byte more is.
+    for (len, long) in [(65_536, false), (65_537, true)] {
+        let line = format!("{}\n", "x".repeat(len));
+        let text = g.replacen("0.2,", &format!("{line}0.2,"), 1);
+        let e = parse(&text, "m.csv").expect_err("not a row");
+        assert_eq!(e.row, 2, "{e}");
+        assert_eq!(
+            e.message.contains("longer than the limit"),
+            long,
+            "{len}: {e}"
+        );
+        assert_eq!(e.message.contains("not a number"), !long, "{len}: {e}");
+    }
+    // An over-long header.
+    let e = parse(&format!("{}\n", "a,".repeat(40_000)), "m.csv").expect_err("header");
+    assert!(
+        e.row == 0 && e.message.contains("line of 80001 bytes"),
+        "{e}"
+    );
+    // A field that is not a number is quoted to 80 characters.
+    let text = with_field(&g, 2, "dv_x_mps", &"x".repeat(10_000));
+    let e = parse(&text, "m.csv").expect_err("not a number");
+    assert_eq!((e.row, e.column.as_str()), (2, "dv_x_mps"), "{e}");
+    assert!(
+        e.message.contains(&format!("\"{}…\"", "x".repeat(80))),
+        "{e}"
+    );
+    assert!(e.to_string().len() < 200, "{e}");
+}
+
+#[test]
+fn a_model_on_a_moving_carrier_is_refused_with_the_reason() {
+    use rins_mvm::history::check_model;
+    use rins_plant::PlantConfig;
+    use rins_plant::carrier::CarrierKind;
+    assert_eq!(check_model(&PlantConfig::default()), Ok(()));
+    for (kind, name) in [
+        (CarrierKind::Ship, "\"ship\""),
+        (CarrierKind::Trajectory, "\"trajectory\""),
+    ] {
+        let mut model = PlantConfig::default();
+        model.carrier.kind = kind;
+        let e = check_model(&model).expect_err("moving carrier");
+        assert!(e.contains(name), "{e}");
+        assert!(e.contains("static carrier only"), "{e}");
+        assert!(e.contains("kind = \"static\""), "{e}");
+    }
+}
