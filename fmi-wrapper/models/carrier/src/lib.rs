@@ -15,6 +15,7 @@ use rins_fmi::state::{StateReader, StateWriter};
 use rins_fmi::vars::{Value, VariableTable};
 use rins_fmi::xml::FmiVersion;
 use rins_plant::PlantConfig;
+use rins_plant::carrier::track::MAX_LAT_DEG;
 use rins_plant::carrier::{Carrier, CarrierState};
 use rins_plant::params;
 
@@ -154,8 +155,14 @@ impl Model for RinsCarrier {
             .as_mut()
             .ok_or("the carrier is not initialised")?;
         let mut nodes = [r.now; 2];
+        let limit = MAX_LAT_DEG.to_radians();
         for _ in 0..n {
             r.now = r.carrier.advance(&mut nodes);
+            // The last leg continues past its end (validation checked the legs' own
+            // durations): a ship that reaches the polar limit stops the run.
+            if r.now.lat_rad.abs() > limit {
+                return Err(polar_stop(&r.carrier, r.now.lat_rad));
+            }
         }
         Ok(())
     }
@@ -222,5 +229,23 @@ impl Model for RinsCarrier {
     }
 }
 
+/// Why the ship stopped at the polar limit: the leg, the time and the latitude.
+fn polar_stop(carrier: &Carrier, lat_rad: f64) -> String {
+    let Carrier::Ship(s) = carrier else {
+        return format!("the carrier reached latitude {:.4} °", lat_rad.to_degrees());
+    };
+    let (tick, _) = s.position();
+    let t_s = tick as f64 * s.tick_s();
+    let leg = s.track().leg_at(t_s, 0);
+    format!(
+        "the ship reached latitude {:.4} ° at t = {t_s} s on leg {leg} (continued past its end): \
+         ships stay within ±{MAX_LAT_DEG} ° (a rhumb line cannot pass a pole); change the \
+         leg's heading or stop the run earlier",
+        lat_rad.to_degrees()
+    )
+}
+
+#[cfg(test)]
+mod limits_tests;
 #[cfg(test)]
 mod tests;
