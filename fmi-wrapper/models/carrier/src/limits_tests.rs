@@ -33,12 +33,19 @@ fn start(set: &[(&str, Value)]) -> Result<Instance<RinsCarrier>, String> {
     Ok(inst)
 }
 
+/// A named set of parameters and the field its refusal must name (`None`: accepted).
+type Case = (
+    &'static str,
+    Vec<(&'static str, Value)>,
+    Option<&'static str>,
+);
+
 /// Sea states the plant's validation refuses are refused at initialisation naming the field
 /// (they gave NaN increments with status OK before); the steepest accepted one runs.
 #[test]
 fn sea_states_beyond_physics_are_refused_at_initialisation() {
     let r = Value::Real;
-    let cases: [(&str, Vec<(&str, Value)>, Option<&str>); 4] = [
+    let cases: [Case; 4] = [
         (
             "band reversed",
             vec![
