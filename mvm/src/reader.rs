@@ -150,9 +150,10 @@ impl Measurement {
     }
 }
 
-/// An error in a measurement file; `row` counts data rows from 1 (the header is row 0).
+/// An error in a measurement file; `row` counts data rows from 1 (the header is row 0). The
+/// message quotes the column to its first 80 characters.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{source_name}: row {row}, column {column:?}: {message}")]
+#[error("{source_name}: row {row}, column {}: {message}", quote(.column))]
 pub struct MeasurementError {
     /// File.
     pub source_name: String,

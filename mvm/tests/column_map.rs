@@ -613,10 +613,10 @@ fn rewrite(
                 .set_data_page_offset(moved[&col.data_page_offset()])
                 .set_dictionary_page_offset(col.dictionary_page_offset().map(|d| moved[&d]))
                 .set_total_compressed_size((out.len() - new_start) as i64);
-            if let Some((name, c)) = codec {
-                if col.column_descr().name() == name {
-                    b = b.set_compression(c);
-                }
+            if let Some((name, c)) = codec
+                && col.column_descr().name() == name
+            {
+                b = b.set_compression(c);
             }
             cols.push(b.build().unwrap());
         }
@@ -717,5 +717,44 @@ fn a_codec_the_reader_lacks_is_named_with_its_own_column() {
     let (same, _) = rewrite(&plain, false, None);
     std::fs::write(&path, &same).unwrap();
     assert_eq!(read(&path).unwrap().columns, doc.columns);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_page_that_does_not_decompress_is_blamed_on_its_own_column() {
+    use parquet::basic::{Compression, GzipLevel, ZstdLevel};
+    use parquet::file::properties::{EnabledStatistics, WriterProperties};
+    let doc = read(&example()).unwrap();
+    let dir = temp_dir("codec-error");
+    for (name, c, magic) in [
+        (
+            "zstd",
+            Compression::ZSTD(ZstdLevel::default()),
+            0xFD2F_B528u32,
+        ),
+        ("gzip", Compression::GZIP(GzipLevel::default()), 0x0008_8B1F),
+    ] {
+        let path = dir.join(format!("{name}.parquet"));
+        let props = WriterProperties::builder()
+            .set_compression(c)
+            .set_statistics_enabled(EnabledStatistics::Chunk)
+            .set_offset_index_disabled(true)
+            .build();
+        rins_mvm::parquet::write_with(&path, &doc, props).unwrap();
+        let (mut b, pages) = rewrite(&path, false, None);
+        // The page starts with the codec's frame magic; break it in one column (not the first).
+        let r = pages["dv_x_mps"].clone();
+        let head = u32::from_le_bytes(b[r.start..r.start + 4].try_into().unwrap());
+        assert_eq!(
+            head & if name == "gzip" { 0x00FF_FFFF } else { !0 },
+            magic,
+            "{name}"
+        );
+        b[r.start] ^= 0xFF;
+        std::fs::write(&path, &b).unwrap();
+        let e = read(&path).expect_err("not decodable");
+        assert_eq!((e.row, e.column.as_str()), (1, "dv_x_mps"), "{name}: {e}");
+        assert!(e.message.contains("row group 0"), "{name}: {e}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

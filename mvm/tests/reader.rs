@@ -296,3 +296,19 @@ fn a_model_on_a_moving_carrier_is_refused_with_the_reason() {
         assert!(e.contains("kind = \"static\""), "{e}");
     }
 }
+
+#[test]
+fn a_long_column_name_is_quoted_to_80_characters() {
+    let name = format!("temp_{}_c", "y".repeat(5000));
+    let text = good()
+        .replace("temp_gyro_x_c", &name)
+        .replace(",30.2,r1,zup", ",-400,r1,zup");
+    let e = parse(&text, "m.csv").expect_err("temperature");
+    assert_eq!((e.row, e.column.as_str()), (3, name.as_str()), "{e}");
+    let shown = e.to_string();
+    assert!(
+        shown.contains(&format!("column \"temp_{}…\"", "y".repeat(75))),
+        "{shown}"
+    );
+    assert!(shown.len() < 400, "{} bytes", shown.len());
+}
