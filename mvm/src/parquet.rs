@@ -425,9 +425,46 @@ fn check_columns(
     Ok(())
 }
 
+/// What a panic carried, as text.
+fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
+    p.downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| p.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "no message".into())
+}
+
+/// The `parquet` crate panics on some corrupt files (an assertion in its bit reader) instead of
+/// returning an error: a panic inside `f` becomes an error naming the file and `column`.
+fn no_panic<T>(
+    source: &str,
+    column: &str,
+    f: impl FnOnce() -> Result<T, MeasurementError>,
+) -> Result<T, MeasurementError> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).unwrap_or_else(|p| {
+        Err(error(
+            source,
+            0,
+            column,
+            format!(
+                "the Parquet decoder failed on corrupt data ({}): the file is damaged",
+                panic_text(p.as_ref())
+            ),
+        ))
+    })
+}
+
 /// Reads a Parquet measurement file; `map` names and converts its columns as for CSV.
 pub fn read(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, MeasurementError> {
     let source = path.display().to_string();
+    no_panic(&source, "", || read_checked(path, &source, map))
+}
+
+fn read_checked(
+    path: &Path,
+    source: &str,
+    map: Option<&ColumnMap>,
+) -> Result<Measurement, MeasurementError> {
+    let source = source.to_string();
     let file = File::open(path).map_err(|e| error(&source, 0, "", format!("cannot read: {e}")))?;
     let reader = SerializedFileReader::new(file)
         .map_err(|e| error(&source, 0, "", format!("not a readable Parquet file: {e}")))?;
@@ -449,7 +486,11 @@ pub fn read(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, Measure
     let rows = reader.metadata().file_metadata().num_rows().max(0) as usize;
     let results: Vec<Result<Col, MeasurementError>> = (0..layout.raw.len())
         .into_par_iter()
-        .map(|i| read_column(path, &source, i, &layout.raw[i], layout.kind[i]))
+        .map(|i| {
+            no_panic(&source, &layout.raw[i], || {
+                read_column(path, &source, i, &layout.raw[i], layout.kind[i])
+            })
+        })
         .collect();
     // The earliest row wins, then the column first in the file (not whichever thread
     // finished first).
