@@ -172,6 +172,10 @@ fn decode_of(c: &ColumnDescriptor) -> Result<Decode, String> {
     }
 }
 
+/// Rows allocated before reading: the footer's row counts are only claims (a damaged footer
+/// may say 2^45), so vectors start at most this long and grow with the rows actually decoded.
+const PREALLOC_ROWS: usize = 1 << 22;
+
 /// One column read: numbers (with the first row's time in ns for a time type) or labels.
 enum Col {
     Num(Vec<f64>, Option<i64>),
@@ -225,7 +229,11 @@ fn read_column(
         Decode::Plain
     };
     let total = md.file_metadata().num_rows().max(0) as usize;
-    let mut nums: Vec<f64> = Vec::with_capacity(if kind == Kind::Num { total } else { 0 });
+    let mut nums: Vec<f64> = Vec::with_capacity(if kind == Kind::Num {
+        total.min(PREALLOC_ROWS)
+    } else {
+        0
+    });
     let mut ticks: Vec<i64> = Vec::new();
     let mut labs = LabelColumn::default();
     let mut row0 = 0usize;
@@ -247,7 +255,7 @@ fn read_column(
         };
         macro_rules! read_all {
             ($r:expr, $t:ty) => {{
-                let mut v: Vec<$t> = Vec::with_capacity(n);
+                let mut v: Vec<$t> = Vec::with_capacity(n.min(PREALLOC_ROWS));
                 let (recs, vals, _) = $r
                     .read_records(n, Some(&mut defs), None, &mut v)
                     .map_err(pe)?;

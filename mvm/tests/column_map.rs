@@ -550,12 +550,14 @@ fn page_header(b: &[u8], start: usize) -> (usize, usize, usize) {
 
 /// Rewrites the Parquet file `src`: with a CRC32 in every page header when `crc` (what a
 /// writer with page checksums stores; this crate's writer stores none), and the codec named
-/// in the footer of column `codec.0` replaced by `codec.1`. Returns the file and, per column,
+/// in the footer of column `codec.0` replaced by `codec.1`, and the row count of every row
+/// group replaced by `rows`. Returns the file and, per column,
 /// the byte range of the data of its first page.
 fn rewrite(
     src: &std::path::Path,
     crc: bool,
     codec: Option<(&str, parquet::basic::Compression)>,
+    rows: Option<i64>,
 ) -> (
     Vec<u8>,
     std::collections::BTreeMap<String, std::ops::Range<usize>>,
@@ -625,6 +627,7 @@ fn rewrite(
                 .into_builder()
                 .set_column_metadata(cols)
                 .set_file_offset(rg_start as i64)
+                .set_num_rows(rows.unwrap_or(rg.num_rows()))
                 .build()
                 .unwrap(),
         );
@@ -650,7 +653,7 @@ fn parquet_page_checksums_are_verified_and_a_flipped_byte_names_its_column() {
         .set_offset_index_disabled(true)
         .build();
     rins_mvm::parquet::write_with(&plain, &doc, props).unwrap();
-    let (with_crc, pages) = rewrite(&plain, true, None);
+    let (with_crc, pages) = rewrite(&plain, true, None, None);
     assert_eq!(pages.len(), doc.columns.len() + doc.labels.len());
     let good = dir.join("crc.parquet");
     std::fs::write(&good, &with_crc).unwrap();
@@ -675,7 +678,7 @@ fn parquet_page_checksums_are_verified_and_a_flipped_byte_names_its_column() {
     );
     // The same flip without checksums decodes to another number: only the range checks stand
     // between it and the comparison.
-    let (no_crc, pages) = rewrite(&plain, false, None);
+    let (no_crc, pages) = rewrite(&plain, false, None, None);
     let mut flipped = no_crc.clone();
     let r = pages["dv_y_mps"].clone();
     flipped[r.start + (r.end - r.start) / 2] ^= 0x04;
@@ -702,6 +705,7 @@ fn a_codec_the_reader_lacks_is_named_with_its_own_column() {
             "temp_housing_c",
             Compression::BROTLI(BrotliLevel::default()),
         )),
+        None,
     );
     let path = dir.join("brotli.parquet");
     std::fs::write(&path, &b).unwrap();
@@ -714,7 +718,7 @@ fn a_codec_the_reader_lacks_is_named_with_its_own_column() {
         "{e}"
     );
     // Unchanged, the rewritten file reads as the original (the rewrite itself is sound).
-    let (same, _) = rewrite(&plain, false, None);
+    let (same, _) = rewrite(&plain, false, None, None);
     std::fs::write(&path, &same).unwrap();
     assert_eq!(read(&path).unwrap().columns, doc.columns);
     let _ = std::fs::remove_dir_all(&dir);
@@ -741,7 +745,7 @@ fn a_page_that_does_not_decompress_is_blamed_on_its_own_column() {
             .set_offset_index_disabled(true)
             .build();
         rins_mvm::parquet::write_with(&path, &doc, props).unwrap();
-        let (mut b, pages) = rewrite(&path, false, None);
+        let (mut b, pages) = rewrite(&path, false, None, None);
         // The page starts with the codec's frame magic; break it in one column (not the first).
         let r = pages["dv_x_mps"].clone();
         let head = u32::from_le_bytes(b[r.start..r.start + 4].try_into().unwrap());
@@ -755,6 +759,24 @@ fn a_page_that_does_not_decompress_is_blamed_on_its_own_column() {
         let e = read(&path).expect_err("not decodable");
         assert_eq!((e.row, e.column.as_str()), (1, "dv_x_mps"), "{name}: {e}");
         assert!(e.message.contains("row group 0"), "{name}: {e}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_footer_that_claims_more_rows_than_the_pages_hold_is_refused_without_allocating_them() {
+    let doc = read(&example()).unwrap();
+    let dir = temp_dir("rows");
+    let plain = dir.join("plain.parquet");
+    rins_mvm::parquet::write(&plain, &doc).unwrap();
+    // 2^45 rows (a 256 TiB column if allocated up front), then one row more than the pages hold.
+    for rows in [1i64 << 45, doc.rows as i64 + 1] {
+        let (b, _) = rewrite(&plain, false, None, Some(rows));
+        let path = dir.join("rows.parquet");
+        std::fs::write(&path, &b).unwrap();
+        let e = read(&path).expect_err("rows missing");
+        assert_eq!(e.source_name, path.display().to_string(), "{e}");
+        assert!(e.message.contains(&format!("{rows} rows")), "{rows}: {e}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
