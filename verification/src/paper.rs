@@ -69,7 +69,8 @@ pub struct EndFigures {
 }
 
 impl EndFigures {
-    fn from_run(r: &rins_experiments::NavRun) -> Self {
+    /// The end figures of a finished navigation run.
+    pub fn from_run(r: &rins_experiments::NavRun) -> Self {
         let e = r.end();
         let nm = rins_nav::errors::nmi;
         Self {
@@ -203,7 +204,9 @@ pub struct Table4Options {
     pub compensation: Option<rins_plant::effects::gyro::PositionBiasSpec>,
 }
 
-fn one_run(
+/// One navigation run of the study: the plant of `plant_cfg` (already validated) navigated for
+/// `opt.duration_s`, uncompensated or with `opt`'s compensation; `progress` receives its samples.
+pub fn one_run(
     plant_cfg: &PlantConfig,
     opt: &Table4Options,
     compensated: bool,
