@@ -30,6 +30,11 @@ pytmp=$(mktemp -d)
 "$venv/bin/python" tests/python/test_masters.py "$pytmp/fmu" "$bin/rins" "$pytmp"
 "$venv/bin/python" tests/python/test_transport.py "$bin/rins" "$pytmp"
 "$venv/bin/python" tests/python/test_rerun.py "$bin/rins" "$pytmp"
+# The rins Python package (python/, PyO3 + maturin): the wheel built by cargo, installed, tested.
+"$venv/bin/pip" install -q --disable-pip-version-check maturin==1.16.0
+"$venv/bin/pip" install -q --disable-pip-version-check --no-build-isolation ./python
+"$venv/bin/python" -c "import rins"
+"$venv/bin/python" tests/python/test_package.py "$bin/rins" "$pytmp"
 rm -rf "$pytmp"
 
 echo "== rins command line =="

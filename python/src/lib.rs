@@ -1,0 +1,38 @@
+//! # rins-python
+//!
+//! The compiled part (`rins._rins`) of the `rins` Python package: scenarios loaded from files,
+//! built-ins or dicts ([`scenario`]), the plant run to numpy arrays in chunks ([`simulation`]),
+//! the reference navigator ([`navigation`]) and Monte Carlo seeds with the figures of
+//! `rins paper table4` ([`montecarlo`]). Rust runs with the GIL released; errors arrive as
+//! Python exceptions ([`errors`]). The Dask helpers are Python (python/rins/montecarlo.py).
+//! Docs: docs/python.md.
+
+pub mod errors;
+pub mod montecarlo;
+pub mod navigation;
+pub mod scenario;
+pub mod simulation;
+
+use pyo3::prelude::*;
+
+/// The extension module `rins._rins` (re-exported by the `rins` package).
+#[pymodule]
+fn _rins(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("ScenarioError", py.get_type::<errors::ScenarioError>())?;
+    m.add("NavigationError", py.get_type::<errors::NavigationError>())?;
+    m.add("POSITION_LABELS", simulation::POSITION_LABELS.to_vec())?;
+    m.add("FIGURES", montecarlo::FIGURES.to_vec())?;
+    m.add("TEMP_NODES", rins_plant::thermal::node::NAMES.to_vec())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<scenario::PyScenario>()?;
+    m.add_class::<simulation::Simulation>()?;
+    m.add_function(wrap_pyfunction!(scenario::builtins, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario::builtin_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario::to_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(simulation::run, m)?)?;
+    m.add_function(wrap_pyfunction!(navigation::navigate, m)?)?;
+    m.add_function(wrap_pyfunction!(montecarlo::end_figures, m)?)?;
+    m.add_function(wrap_pyfunction!(montecarlo::table4_json, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,144 @@
+//! Monte Carlo over seeds: the end figures `rins paper table4` reports per seed (uncompensated
+//! and δβ-compensated navigation, common random numbers), for any list of seeds, and the whole
+//! Table 4 study. Both reuse rins-verify's runner (`paper::one_run`, `EndFigures::from_run`,
+//! `paper::table4`); the seeds run on every core with the GIL released.
+
+use pyo3::prelude::*;
+use rayon::prelude::*;
+use rins_experiments::{Alignment, NavRunConfig};
+use rins_verify::paper::{EndFigures, Table4Options, one_run};
+
+use crate::navigation::parse_alignment;
+use crate::scenario::PyScenario;
+use crate::simulation::samples_of;
+
+/// The per-seed figures, in the order `end_figures` returns them.
+pub const FIGURES: [&str; 5] = [
+    "lat_nm",
+    "lon_nm",
+    "horizontal_nm",
+    "trms_nm",
+    "up_att_mean_deg",
+];
+
+fn figures(e: &EndFigures) -> [f64; 5] {
+    [
+        e.lat_nm,
+        e.lon_nm,
+        e.horizontal_nm,
+        e.trms_nm,
+        e.up_att_mean_deg,
+    ]
+}
+
+/// The study options of `rins paper table4` for this scenario: self-alignment prepends its
+/// time to the table's first dwell, as `--align self` does.
+fn options(
+    sc: &PyScenario,
+    runs: usize,
+    duration_s: f64,
+    alignment: Alignment,
+) -> PyResult<Table4Options> {
+    samples_of(duration_s, sc.inner.plant.rate_hz)?;
+    let mut plant = sc.inner.plant.clone();
+    if let Alignment::SelfAlign { coarse_s, fine_s } = alignment {
+        plant.scheme.lead_dwell_s += coarse_s + fine_s;
+    }
+    Ok(Table4Options {
+        plant,
+        runs,
+        duration_s,
+        compensation: None,
+        nav: NavRunConfig {
+            alignment,
+            ..NavRunConfig::default()
+        },
+    })
+}
+
+/// Per seed: `(seed, uncompensated, compensated)`, each a tuple of the figures named in
+/// `rins.FIGURES` (signed latitude and longitude error, horizontal error and tRMS at the end in
+/// nmi, mean |φ_U| in degrees), the numbers `rins paper table4 --json` lists under `per_seed`.
+/// `duration_s` defaults to the scenario's; `alignment` is `"truth"` (default) or `"self"`.
+#[pyfunction]
+#[pyo3(signature = (scenario, seeds, duration_s = None, alignment = None))]
+#[allow(clippy::type_complexity)]
+pub fn end_figures(
+    py: Python<'_>,
+    scenario: &Bound<'_, PyAny>,
+    seeds: Vec<u64>,
+    duration_s: Option<f64>,
+    alignment: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Vec<(u64, [f64; 5], [f64; 5])>> {
+    let sc = PyScenario::resolve(scenario)?;
+    let align = match alignment {
+        Some(a) => parse_alignment(a)?,
+        None => Alignment::Truth,
+    };
+    let opt = options(
+        &sc,
+        seeds.len(),
+        duration_s.unwrap_or(sc.inner.meta.duration_s),
+        align,
+    )?;
+    rins_scenarios::runner::new_plant(&opt.plant, &sc.inner.source)
+        .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
+    let out = py.detach(|| {
+        let tasks: Vec<(u64, bool)> = seeds
+            .iter()
+            .flat_map(|&s| [(s, false), (s, true)])
+            .collect();
+        let runs: Vec<EndFigures> = tasks
+            .into_par_iter()
+            .map(|(seed, comp)| {
+                let mut cfg = opt.plant.clone();
+                cfg.seed = seed;
+                EndFigures::from_run(&one_run(&cfg, &opt, comp, &|_| {}))
+            })
+            .collect();
+        seeds
+            .iter()
+            .zip(runs.chunks(2))
+            .map(|(&s, r)| (s, figures(&r[0]), figures(&r[1])))
+            .collect()
+    });
+    Ok(out)
+}
+
+/// The whole `rins paper table4` study in-process: `runs` seeds from the scenario's seed,
+/// uncompensated and compensated, plus the noise-free pair, over `days`; returns the JSON text
+/// `rins paper table4 --json` prints (medians, 5-95 % bands, improvements, per-seed figures).
+#[pyfunction]
+#[pyo3(signature = (scenario = None, runs = 2, days = 7.0, alignment = None))]
+pub fn table4_json(
+    py: Python<'_>,
+    scenario: Option<&Bound<'_, PyAny>>,
+    runs: usize,
+    days: f64,
+    alignment: Option<&Bound<'_, PyAny>>,
+) -> PyResult<String> {
+    let sc = match scenario {
+        Some(s) => PyScenario::resolve(s)?,
+        None => PyScenario::from_path("builtin:paper-16pos-week")?,
+    };
+    if runs == 0 {
+        return Err(pyo3::exceptions::PyValueError::new_err(
+            "runs: expected at least 1 seed, got 0",
+        ));
+    }
+    if !(days > 0.0 && days <= 60.0) {
+        return Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "days: expected a number in (0, 60], got {days}"
+        )));
+    }
+    let align = match alignment {
+        Some(a) => parse_alignment(a)?,
+        None => Alignment::Truth,
+    };
+    let opt = options(&sc, runs, days * 86_400.0, align)?;
+    rins_scenarios::runner::new_plant(&opt.plant, &sc.inner.source)
+        .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
+    let report = py.detach(|| rins_verify::paper::table4(&opt, &|_| {}));
+    serde_json::to_string_pretty(&report)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))
+}

@@ -1,0 +1,350 @@
+//! `rins.Simulation` and `rins.run`: the plant stepped through a scenario, its samples handed
+//! back as numpy arrays, chunk by chunk. Every value is the one `rins run` writes to imu.csv
+//! (decimation 1) computed the same way, so the arrays equal the CSV bit for bit.
+
+use std::sync::Mutex;
+
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1};
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rins_plant::effects::{AccelTerm, GyroTerm};
+use rins_plant::thermal::node;
+use rins_plant::units::{DPH, UG};
+use rins_plant::{ImuSample, Plant, Truth};
+
+use crate::scenario::PyScenario;
+
+/// Gimbal position labels, indexed by the `position` code of a chunk (the CSV's `position`
+/// column: the four 16-position stations, a z-up/z-down dwell elsewhere, or moving).
+pub const POSITION_LABELS: [&str; 7] = ["A", "B", "C", "D", "z-up", "z-down", "moving"];
+
+/// Samples gathered while the GIL is released, one column per quantity.
+#[derive(Default)]
+struct Columns {
+    n: usize,
+    sample: Vec<u64>,
+    t_s: Vec<f64>,
+    dtheta_rad: Vec<f64>,
+    dv_mps: Vec<f64>,
+    outer_deg: Vec<f64>,
+    inner_deg: Vec<f64>,
+    position: Vec<u8>,
+    temps_c: Vec<f64>,
+    temp_chamber_c: Vec<f64>,
+    dtheta_true_rad: Vec<f64>,
+    dv_true_mps: Vec<f64>,
+    q_bn: Vec<f64>,
+    gimbal_outer_rad: Vec<f64>,
+    gimbal_inner_rad: Vec<f64>,
+    gyro_dph: Vec<Vec<f64>>,
+    accel_ug: Vec<Vec<f64>>,
+    carrier: Vec<f64>,
+}
+
+/// What the plant produces besides the samples, fixed for a run.
+struct Layout {
+    gyro_terms: Vec<GyroTerm>,
+    accel_terms: Vec<AccelTerm>,
+    /// `[vehicle]`: C_v^n of the static carrier, or the mount C_v^c on a moving one.
+    c_vn: Matrix3<f64>,
+    moving_carrier: bool,
+    dt_s: f64,
+    /// Gather the truth columns too (the attitude quaternion costs most of a sample's time).
+    truth: bool,
+}
+
+impl Layout {
+    fn of(cfg: &rins_plant::PlantConfig, truth: bool) -> Self {
+        Self {
+            gyro_terms: cfg.sensor.gyro.enabled_terms(),
+            accel_terms: cfg.sensor.accel.enabled_terms(),
+            c_vn: cfg.vehicle.c_vn(),
+            moving_carrier: !cfg.carrier.is_static(),
+            dt_s: 1.0 / cfg.rate_hz,
+            truth,
+        }
+    }
+}
+
+fn push3(v: &mut Vec<f64>, x: &Vector3<f64>) {
+    v.extend_from_slice(&[x.x, x.y, x.z]);
+}
+
+impl Columns {
+    fn with_capacity(n: usize, l: &Layout) -> Self {
+        let v = |k: usize| Vec::with_capacity(n * k);
+        Self {
+            n: 0,
+            sample: Vec::with_capacity(n),
+            t_s: v(1),
+            dtheta_rad: v(3),
+            dv_mps: v(3),
+            outer_deg: v(1),
+            inner_deg: v(1),
+            position: Vec::with_capacity(n),
+            temps_c: v(node::COUNT),
+            temp_chamber_c: v(1),
+            dtheta_true_rad: v(3),
+            dv_true_mps: v(3),
+            q_bn: v(4),
+            gimbal_outer_rad: v(1),
+            gimbal_inner_rad: v(1),
+            gyro_dph: l.gyro_terms.iter().map(|_| v(3)).collect(),
+            accel_ug: l.accel_terms.iter().map(|_| v(3)).collect(),
+            carrier: if l.moving_carrier { v(10) } else { Vec::new() },
+        }
+    }
+
+    /// One sample, computed as the CSV sink computes a row of one sample.
+    fn push(&mut self, s: &ImuSample, tr: &Truth, l: &Layout) {
+        self.n += 1;
+        self.sample.push(s.index);
+        self.t_s.push(s.t_s);
+        push3(&mut self.dtheta_rad, &s.dtheta_rad);
+        push3(&mut self.dv_mps, &s.dv_mps);
+        self.outer_deg.push(s.encoder.outer_rad.to_degrees());
+        self.inner_deg.push(s.encoder.inner_rad.to_degrees());
+        let g = &tr.gimbal;
+        let label =
+            rins_plant::table::position_label(g.angles.outer_rad, g.angles.inner_rad, g.moving);
+        let code = POSITION_LABELS
+            .iter()
+            .position(|p| *p == label)
+            .unwrap_or(POSITION_LABELS.len() - 1);
+        self.position.push(code as u8);
+        self.temps_c.extend_from_slice(&s.temps_c);
+        self.temp_chamber_c.push(tr.temps.chamber_c);
+        if !l.truth {
+            return;
+        }
+        push3(&mut self.dtheta_true_rad, &tr.dtheta_true_rad);
+        push3(&mut self.dv_true_mps, &tr.dv_true_mps);
+        // On a moving carrier the table's outer axis is fixed to the carrier:
+        // C_b^n = C_c^n·C_v^c·R_z·R_x (docs/carrier.md, Frames).
+        let c_vn = if l.moving_carrier {
+            tr.carrier.q_cn.to_rotation_matrix().into_inner() * l.c_vn
+        } else {
+            l.c_vn
+        };
+        let q = UnitQuaternion::from_matrix(&rins_plant::table::body_to_nav(&c_vn, g.angles));
+        self.q_bn.extend_from_slice(&[q.w, q.i, q.j, q.k]);
+        self.gimbal_outer_rad.push(g.angles.outer_rad);
+        self.gimbal_inner_rad.push(g.angles.inner_rad);
+        // The CSV's mean rate over a row of one sample: increment / (1·Δt), in °/h and µg.
+        let span_s = l.dt_s;
+        for (col, t) in self.gyro_dph.iter_mut().zip(&l.gyro_terms) {
+            push3(col, &(tr.gyro_terms_rad[*t as usize] / (span_s * DPH)));
+        }
+        for (col, t) in self.accel_ug.iter_mut().zip(&l.accel_terms) {
+            push3(col, &(tr.accel_terms_mps[*t as usize] / (span_s * UG)));
+        }
+        if l.moving_carrier {
+            let c = &tr.carrier;
+            let q = c.q_cn.quaternion();
+            self.carrier.extend_from_slice(&[
+                c.lat_rad.to_degrees(),
+                c.lon_rad.to_degrees(),
+                c.height_m,
+                c.v_n.x,
+                c.v_n.y,
+                c.v_n.z,
+                q.w,
+                q.i,
+                q.j,
+                q.k,
+            ]);
+        }
+    }
+
+    /// The columns as a dict of numpy arrays (moved, not copied).
+    fn into_dict<'py>(self, py: Python<'py>, l: &Layout) -> PyResult<Bound<'py, PyDict>> {
+        let n = self.n;
+        let d = PyDict::new(py);
+        let mat = |v: Vec<f64>, k: usize| -> PyResult<Bound<'py, PyAny>> {
+            let a = Array2::from_shape_vec((n, k), v)
+                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+            Ok(a.into_pyarray(py).into_any())
+        };
+        let vec = |v: Vec<f64>| PyArray1::from_vec(py, v).into_any();
+        d.set_item("sample", PyArray1::from_vec(py, self.sample))?;
+        d.set_item("t_s", vec(self.t_s))?;
+        d.set_item("dtheta_rad", mat(self.dtheta_rad, 3)?)?;
+        d.set_item("dv_mps", mat(self.dv_mps, 3)?)?;
+        d.set_item("outer_deg", vec(self.outer_deg))?;
+        d.set_item("inner_deg", vec(self.inner_deg))?;
+        d.set_item("position", PyArray1::from_vec(py, self.position))?;
+        d.set_item("temps_c", mat(self.temps_c, node::COUNT)?)?;
+        d.set_item("temp_chamber_c", vec(self.temp_chamber_c))?;
+        if !l.truth {
+            return Ok(d);
+        }
+        d.set_item("dtheta_true_rad", mat(self.dtheta_true_rad, 3)?)?;
+        d.set_item("dv_true_mps", mat(self.dv_true_mps, 3)?)?;
+        d.set_item("q_bn", mat(self.q_bn, 4)?)?;
+        d.set_item("gimbal_outer_rad", vec(self.gimbal_outer_rad))?;
+        d.set_item("gimbal_inner_rad", vec(self.gimbal_inner_rad))?;
+        let gyro = PyDict::new(py);
+        for (col, t) in self.gyro_dph.into_iter().zip(&l.gyro_terms) {
+            gyro.set_item(t.key(), mat(col, 3)?)?;
+        }
+        d.set_item("gyro_effects_dph", gyro)?;
+        let accel = PyDict::new(py);
+        for (col, t) in self.accel_ug.into_iter().zip(&l.accel_terms) {
+            accel.set_item(t.key(), mat(col, 3)?)?;
+        }
+        d.set_item("accel_effects_ug", accel)?;
+        if l.moving_carrier {
+            d.set_item("carrier", mat(self.carrier, 10)?)?;
+        }
+        Ok(d)
+    }
+}
+
+/// Output samples in `duration_s` at `rate_hz`, as the runner counts them; a clear error for a
+/// duration that is not a positive, finite number of seconds.
+pub fn samples_of(duration_s: f64, rate_hz: f64) -> PyResult<u64> {
+    if !(duration_s > 0.0 && duration_s.is_finite() && duration_s <= 1e7) {
+        return Err(PyValueError::new_err(format!(
+            "duration_s: expected a number in (0, 1e7], got {duration_s}"
+        )));
+    }
+    Ok((duration_s * rate_hz).round() as u64)
+}
+
+/// The plant of a scenario, stepped on demand: `Simulation(scenario, duration_s=None,
+/// chunk=100000, seed=None, truth=True)`. Iterating yields dicts of numpy arrays of at most `chunk`
+/// samples until `duration_s` (default: the scenario's) is covered; `step(n)` takes `n` more.
+/// `truth=False` leaves out the truth columns (the measured outputs only). The GIL is released
+/// while the plant runs.
+#[pyclass(module = "rins", name = "Simulation")]
+pub struct Simulation {
+    plant: Mutex<Plant>,
+    layout: Layout,
+    total: u64,
+    done: u64,
+    chunk: u64,
+}
+
+impl Simulation {
+    /// A plant built from `sc` with an optional seed override.
+    pub fn new(
+        sc: &PyScenario,
+        duration_s: Option<f64>,
+        chunk: u64,
+        seed: Option<u64>,
+        truth: bool,
+    ) -> PyResult<Self> {
+        let mut cfg = sc.inner.plant.clone();
+        if let Some(s) = seed {
+            cfg.seed = s;
+        }
+        let total = samples_of(duration_s.unwrap_or(sc.inner.meta.duration_s), cfg.rate_hz)?;
+        if chunk == 0 {
+            return Err(PyValueError::new_err(
+                "chunk: expected at least 1 sample, got 0",
+            ));
+        }
+        let plant = rins_scenarios::runner::new_plant(&cfg, &sc.inner.source)
+            .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
+        Ok(Self {
+            layout: Layout::of(&cfg, truth),
+            plant: Mutex::new(plant),
+            total,
+            done: 0,
+            chunk,
+        })
+    }
+
+    /// Steps `n` samples with the GIL released and returns them as a dict of arrays.
+    fn take<'py>(&mut self, py: Python<'py>, n: u64) -> PyResult<Bound<'py, PyDict>> {
+        let (plant, layout) = (&self.plant, &self.layout);
+        let cols = py.detach(|| {
+            let mut plant = plant.lock().unwrap_or_else(|e| e.into_inner());
+            let mut c = Columns::with_capacity(n as usize, layout);
+            for _ in 0..n {
+                let s = plant.step();
+                c.push(&s, &plant.truth(), layout);
+            }
+            c
+        });
+        self.done += n;
+        cols.into_dict(py, &self.layout)
+    }
+}
+
+#[pymethods]
+impl Simulation {
+    #[new]
+    #[pyo3(signature = (scenario, duration_s = None, chunk = 100_000, seed = None, truth = true))]
+    fn py_new(
+        scenario: &Bound<'_, PyAny>,
+        duration_s: Option<f64>,
+        chunk: u64,
+        seed: Option<u64>,
+        truth: bool,
+    ) -> PyResult<Self> {
+        Self::new(
+            &PyScenario::resolve(scenario)?,
+            duration_s,
+            chunk,
+            seed,
+            truth,
+        )
+    }
+
+    /// The next `n` samples (beyond `duration_s` too), as a dict of numpy arrays.
+    fn step<'py>(&mut self, py: Python<'py>, n: u64) -> PyResult<Bound<'py, PyDict>> {
+        self.take(py, n)
+    }
+
+    /// Samples stepped so far.
+    #[getter]
+    fn samples_done(&self) -> u64 {
+        self.done
+    }
+
+    /// Samples in `duration_s`.
+    #[getter]
+    fn samples_total(&self) -> u64 {
+        self.total
+    }
+
+    /// Output sample interval, s.
+    #[getter]
+    fn dt_s(&self) -> f64 {
+        self.layout.dt_s
+    }
+
+    fn __iter__(slf: PyRef<'_, Self>) -> PyRef<'_, Self> {
+        slf
+    }
+
+    fn __next__<'py>(&mut self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let n = self.total.saturating_sub(self.done).min(self.chunk);
+        if n == 0 {
+            return Ok(None);
+        }
+        self.take(py, n).map(Some)
+    }
+}
+
+/// Runs `scenario` for `duration_s` (default: the scenario's) in one call and returns every
+/// sample as a dict of numpy arrays (keys: docs/python.md); `truth=False` leaves out the truth
+/// columns. The GIL is released while it runs.
+#[pyfunction]
+#[pyo3(signature = (scenario, duration_s = None, seed = None, truth = true))]
+pub fn run<'py>(
+    py: Python<'py>,
+    scenario: &Bound<'py, PyAny>,
+    duration_s: Option<f64>,
+    seed: Option<u64>,
+    truth: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let sc = PyScenario::resolve(scenario)?;
+    let mut sim = Simulation::new(&sc, duration_s, u64::MAX, seed, truth)?;
+    let n = sim.total;
+    sim.take(py, n)
+}

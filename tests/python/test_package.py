@@ -1,0 +1,264 @@
+"""The `rins` Python package (python/, PyO3 + maturin) against the `rins` command line.
+
+- One simulated hour of builtin:paper-16pos-short run to numpy equals `rins run`'s imu.csv bit
+  for bit (the CSV prints shortest round-trip floats; increments are summed from zero there, so
+  they are compared after adding 0.0, which only turns -0.0 into 0.0), column by column; the
+  same hour in chunks equals the one-call run; the hour's wall time is printed beside FMPy's.
+- The GIL is released while Rust runs (a Python thread keeps running during a call).
+- Bad scenarios raise rins.ScenarioError naming the file, line and field.
+- Monte Carlo end figures equal `rins paper table4 --json`'s per-seed figures bit for bit, and
+  `rins.navigate` agrees with them; `rins.table4` equals the CLI's study.
+- Dask: a sweep of 2 parameter points x 8 seeds on a LocalCluster(n_workers=2, processes=True)
+  equals the in-process run bit for bit.
+
+Usage: python test_package.py RINS_BINARY WORK_DIR
+"""
+
+import json
+import math
+import os
+import subprocess
+import sys
+import threading
+import time
+import tomllib
+
+import numpy as np
+
+import rins
+
+RINS, WORK = sys.argv[1:3]
+HOUR_S = 3600.0
+FMPY_FMI2_HOUR_S = 3.0  # docs/fmu.md, Performance: FMPy, 1 hour at 100 Hz, FMI 2
+SHORT = "builtin:paper-16pos-short"
+WEEK = "builtin:paper-16pos-week"
+DAYS = 0.05
+
+
+def bits(a):
+    return np.ascontiguousarray(a, dtype=np.float64).view(np.uint64)
+
+
+def same_bits(a, b, what):
+    a, b = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
+    assert a.shape == b.shape, f"{what}: shapes {a.shape} vs {b.shape}"
+    diff = np.flatnonzero(bits(a).ravel() != bits(b).ravel())
+    assert diff.size == 0, f"{what}: {diff.size} values differ, first at {diff[0]}: {a.ravel()[diff[0]]!r} vs {b.ravel()[diff[0]]!r}"
+
+
+def read_csv(path):
+    """imu.csv as {column: array}; floats parsed by numpy and spot-checked against float()."""
+    with open(path) as f:
+        header = f.readline().strip().split(",")
+        pos_col = header.index("position")
+        lines = f.read().splitlines()
+    positions = np.array([ln.split(",")[pos_col] for ln in lines])
+    cols = [i for i in range(len(header)) if i != pos_col]
+    data = np.loadtxt(lines, delimiter=",", usecols=cols, dtype=np.float64, ndmin=2)
+    # numpy's parser against Python's correctly rounded float() on a spread of rows.
+    for r in range(0, len(lines), max(1, len(lines) // 500)):
+        cells = lines[r].split(",")
+        ref = [float(cells[i]) for i in cols]
+        same_bits(data[r], ref, f"CSV row {r} parsed by numpy vs float()")
+    out = {h: data[:, k] for k, h in enumerate(header[i] for i in cols)}
+    out["position"] = positions
+    return out
+
+
+def test_hour_equals_csv():
+    out = os.path.join(WORK, "hour")
+    subprocess.run([RINS, "run", SHORT, "--out", out, "--duration-s", str(int(HOUR_S))],
+                   check=True, capture_output=True)
+    d = rins.run(SHORT, duration_s=HOUR_S)
+    n = int(HOUR_S * 100)
+    assert d["t_s"].shape == (n,), d["t_s"].shape
+    csv = read_csv(os.path.join(out, "imu.csv"))
+    assert len(csv["t_s"]) == n
+    ax = "xyz"
+    np.testing.assert_array_equal(csv["sample"].astype(np.uint64), d["sample"])
+    same_bits(csv["t_s"], d["t_s"], "t_s")
+    summed = {"dtheta_{}_rad": "dtheta_rad", "dv_{}_mps": "dv_mps",
+              "dtheta_true_{}_rad": "dtheta_true_rad", "dv_true_{}_mps": "dv_true_mps"}
+    compared = 2
+    for pat, key in summed.items():
+        for i, a in enumerate(ax):
+            same_bits(csv[pat.format(a)], d[key][:, i] + 0.0, pat.format(a))
+            compared += 1
+    for key in ("outer_deg", "inner_deg", "temp_chamber_c"):
+        same_bits(csv[key], d[key], key)
+        compared += 1
+    for i, node in enumerate(rins.TEMP_NODES):
+        same_bits(csv[f"temp_{node}_c"], d["temps_c"][:, i], f"temp_{node}_c")
+        compared += 1
+    for i, c in enumerate("wxyz"):
+        same_bits(csv[f"q_bn_{c}"], d["q_bn"][:, i], f"q_bn_{c}")
+        compared += 1
+    for group, unit in (("gyro", "dph"), ("accel", "ug")):
+        terms = d[f"{group}_effects_{unit}"]
+        assert terms, f"no {group} effects in the scenario"
+        for key, arr in terms.items():
+            for i, a in enumerate(ax):
+                col = f"{group}_{key}_{a}_{unit}"
+                same_bits(csv[col], arr[:, i] + 0.0, col)
+                compared += 1
+    labels = np.array(rins.POSITION_LABELS)[d["position"]]
+    assert (labels == csv["position"]).all(), "position labels differ"
+    compared += 1
+    csv_cols = len(csv)
+    assert compared == csv_cols, f"compared {compared} of the CSV's {csv_cols} columns"
+    print(f"one simulated hour ({n} samples, {compared} columns) equals rins run's CSV bit for bit")
+    # The hour's cost beside FMPy's (which reads the 6 increments only): the measured outputs
+    # alone, and every column (the CSV's attitude quaternion dominates that one). CPU time is
+    # compared: this machine may be shared, FMPy's figure is from a quiet one.
+    for truth in (False, True):
+        t0, c0 = time.perf_counter(), time.process_time()
+        r = rins.run(SHORT, duration_s=HOUR_S, truth=truth)
+        wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+        same_bits(r["dtheta_rad"], d["dtheta_rad"], f"dtheta_rad with truth={truth}")
+        what = "every column" if truth else "measured outputs"
+        print(f"one simulated hour to numpy ({what}, {len(r)} keys): wall {wall:.3f} s, CPU {cpu:.3f} s "
+              f"({cpu * 1e9 / n:.0f} ns/sample) vs FMPy (FMI 2, 6 outputs) {FMPY_FMI2_HOUR_S} s: "
+              f"{FMPY_FMI2_HOUR_S / cpu:.1f}x")
+        if not truth:
+            assert cpu < FMPY_FMI2_HOUR_S, f"rins.run took {cpu:.2f} s CPU, FMPy takes {FMPY_FMI2_HOUR_S} s"
+
+    # The same hour in chunks (a non-divisor chunk size) equals the one-call run.
+    sim = rins.Simulation(SHORT, duration_s=HOUR_S, chunk=70_001)
+    chunks = list(sim)
+    assert [len(c["t_s"]) for c in chunks] == [70_001] * 5 + [n - 5 * 70_001]
+    for key in ("t_s", "dtheta_rad", "dv_mps", "temps_c", "q_bn", "dtheta_true_rad"):
+        same_bits(np.concatenate([c[key] for c in chunks]), d[key], f"chunked {key}")
+    assert sim.samples_done == n
+    print(f"the hour in {len(chunks)} chunks equals the one-call run")
+
+
+def test_gil_released():
+    """A Python thread keeps running while another thread is inside rins.run."""
+    done = threading.Event()
+    call = {}
+
+    def work():
+        t0 = time.perf_counter()
+        rins.run(SHORT, duration_s=2 * HOUR_S, truth=False)
+        call["wall"] = time.perf_counter() - t0
+        done.set()
+
+    th = threading.Thread(target=work)
+    stamps = []
+    th.start()
+    while not done.is_set():
+        stamps.append(time.perf_counter())
+    th.join()
+    gaps = np.diff(stamps)
+    gap = gaps.max() if gaps.size else float("inf")
+    print(f"GIL: the main thread's longest pause during a {call['wall']:.3f} s rins.run call: {gap * 1e3:.1f} ms")
+    assert gap < 0.5 * call["wall"], "the main thread stalled: the GIL was held while Rust ran"
+
+
+def test_errors():
+    bad = tomllib.loads(rins.builtin_toml(SHORT))
+    bad["run"]["rate_hz"] = -5.0
+    try:
+        rins.Scenario(bad)
+        raise AssertionError("a negative rate was accepted")
+    except rins.ScenarioError as e:
+        msg = str(e)
+        assert "run.rate_hz" in msg and "got -5" in msg and "line" in msg, msg
+    path = os.path.join(WORK, "bad.toml")
+    with open(path, "w") as f:
+        f.write('[scenario]\nname = "bad"\nduration_s = 60.0\n\n[site]\nlat_deg = 123.0\n')
+    try:
+        rins.run(path)
+        raise AssertionError("latitude 123 was accepted")
+    except rins.ScenarioError as e:
+        msg = str(e)
+        assert path in msg and "line 6" in msg and "site.lat_deg" in msg, msg
+        print(f"bad file -> rins.ScenarioError: {msg.strip().splitlines()[-1].strip()}")
+    with open(path, "w") as f:
+        f.write('[scenario]\nname = "bad"\nduration_s = 60.0\n\n[site]\nlat_dgs = 12.0\n')
+    try:
+        rins.Scenario(path)
+        raise AssertionError("an unknown key was accepted")
+    except rins.ScenarioError as e:
+        assert "lat_dgs" in str(e) and "line 6" in str(e), str(e)
+    for call, exc in ((lambda: rins.run(SHORT, duration_s=-1.0), ValueError),
+                      (lambda: rins.Scenario("builtin:nope"), rins.ScenarioError),
+                      (lambda: rins.navigate(SHORT, duration_s=60.0, alignment="sideways"), ValueError)):
+        try:
+            call()
+            raise AssertionError("accepted")
+        except exc:
+            pass
+    # Self-alignment while the table turns: the session's error as rins.NavigationError.
+    try:
+        rins.navigate(SHORT, duration_s=60.0, alignment=("self", 300.0, 600.0))
+        raise AssertionError("self-alignment on a turning table was accepted")
+    except rins.NavigationError as e:
+        assert "during self-alignment" in str(e), str(e)
+
+
+def test_montecarlo_equals_cli():
+    out = os.path.join(WORK, "t4")
+    cli = json.loads(subprocess.run(
+        [RINS, "paper", "table4", "--runs", "2", "--days", str(DAYS), "--json", "--out", out],
+        check=True, capture_output=True, text=True).stdout)
+    seeds = [s for s, _, _ in cli["per_seed"]]
+    mc = rins.montecarlo(WEEK, seeds, duration_s=DAYS * 86400.0)
+    np.testing.assert_array_equal(mc["seed"], np.array(seeds, dtype=np.uint64))
+    for k, case in enumerate(("uncompensated", "compensated")):
+        for name in rins.FIGURES:
+            same_bits(mc[case][name], [row[1 + k][name] for row in cli["per_seed"]], f"{case} {name}")
+    print(f"montecarlo: seeds {seeds}, {len(rins.FIGURES)} figures x 2 cases equal `rins paper table4 --json` bit for bit")
+    # The navigator on its own agrees with the Monte Carlo's figures of the same seed.
+    nav = rins.navigate(WEEK, duration_s=DAYS * 86400.0, seed=seeds[1], compensated=True)
+    same_bits(nav["horizontal_m"][-1] / 1852.0, mc["compensated"]["horizontal_nm"][1], "navigate horizontal")
+    same_bits(nav["up_att_mean_abs_rad"] * (180.0 / math.pi), mc["compensated"]["up_att_mean_deg"][1],
+              "navigate mean |phi_U|")
+    assert nav["t_s"][-1] == DAYS * 86400.0, nav["t_s"][-1]
+    # The whole study in-process equals the CLI's (wall time aside).
+    t4 = rins.table4(WEEK, runs=2, days=DAYS)
+    for key in ("uncompensated", "compensated", "improvement_pct", "noise_free", "per_seed", "runs", "days"):
+        assert t4[key] == cli[key], key
+    print("rins.table4 equals `rins paper table4 --json` (statistics, improvements, noise-free pair)")
+
+
+def test_dask_sweep():
+    from dask.distributed import Client, LocalCluster
+
+    base = tomllib.loads(rins.builtin_toml(WEEK))
+    points = []
+    for lat in (36.6, 52.0):
+        d = json.loads(json.dumps(base))
+        d["site"]["lat_deg"] = lat
+        points.append(d)
+    seeds = list(range(100, 108))
+    t0 = time.perf_counter()
+    local = rins.sweep(points, seeds, duration_s=DAYS * 86400.0)
+    t_local = time.perf_counter() - t0
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            Client(cluster) as client:
+        t0 = time.perf_counter()
+        remote = rins.sweep(points, seeds, duration_s=DAYS * 86400.0, client=client, seeds_per_task=2)
+        t_remote = time.perf_counter() - t0
+        workers = len(client.scheduler_info()["workers"])
+    assert workers == 2, workers
+    for p, (a, b) in enumerate(zip(local, remote)):
+        np.testing.assert_array_equal(a["seed"], b["seed"])
+        for case in ("uncompensated", "compensated"):
+            for name in rins.FIGURES:
+                same_bits(a[case][name], b[case][name], f"point {p} {case} {name}")
+                # A real sweep: the seeds and the parameter points give different figures.
+                assert len(set(a[case][name].tolist())) == len(seeds), f"point {p} {case} {name}: repeated values"
+    assert not np.array_equal(local[0]["uncompensated"]["lat_nm"], local[1]["uncompensated"]["lat_nm"])
+    print(f"dask: 2 points x {len(seeds)} seeds on LocalCluster(n_workers=2, processes=True) equal the "
+          f"in-process sweep bit for bit ({t_remote:.1f} s vs {t_local:.1f} s in-process)")
+
+
+if __name__ == "__main__":
+    os.makedirs(WORK, exist_ok=True)
+    test_hour_equals_csv()
+    test_gil_released()
+    test_errors()
+    test_montecarlo_equals_cli()
+    test_dask_sweep()
+    print("test_package.py: all passed")
