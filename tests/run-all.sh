@@ -32,7 +32,8 @@ pytmp=$(mktemp -d)
 "$venv/bin/python" tests/python/test_rerun.py "$bin/rins" "$pytmp"
 # The rins Python package (python/, PyO3 + maturin): the wheel built by cargo, installed, tested.
 "$venv/bin/pip" install -q --disable-pip-version-check maturin==1.16.0
-"$venv/bin/pip" install -q --disable-pip-version-check --no-build-isolation ./python
+# maturin's build backend calls the `maturin` executable: the venv's bin goes first on PATH.
+PATH="$venv/bin:$PATH" "$venv/bin/pip" install -q --disable-pip-version-check --no-build-isolation ./python
 "$venv/bin/python" -c "import rins"
 "$venv/bin/python" tests/python/test_package.py "$bin/rins" "$pytmp"
 rm -rf "$pytmp"
