@@ -282,3 +282,107 @@ pub fn run(
         interrupted: false,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sinks::CsvSink;
+
+    const SCENARIO: &str = r#"
+[scenario]
+name = "deflate-check"
+duration_s = 3.0
+[run]
+rate_hz = 100.0
+seed = 11
+[sensor]
+preset = "paper-table3"
+gyro.bias_instability.enabled = true
+[thermal.chamber]
+temp_c = 25.0
+profile = [[0.0, 25.0], [2.0, 35.0]]
+[outputs]
+decimation = 1
+truth = true
+"#;
+
+    /// imu.csv of `scenario` through the FMU at `fmu` (`None`: in process, `rins run`).
+    fn imu_csv(scenario: &Scenario, fmu: Option<&Path>, out: &Path) -> Vec<u8> {
+        std::fs::create_dir_all(out).unwrap();
+        let path = out.join("imu.csv");
+        let mut csv = CsvSink::create(&path, scenario.outputs, &scenario.plant).unwrap();
+        match fmu {
+            Some(f) => run(f, scenario, scenario.samples(), &mut [&mut csv]).unwrap(),
+            None => crate::runner::run(scenario, scenario.samples(), &mut [&mut csv]).unwrap(),
+        };
+        drop(csv);
+        std::fs::read(&path).unwrap()
+    }
+
+    /// Issue 27: the IMU FMU packaged the usual way (deflated entries, as `zip`, 7-Zip and FMI
+    /// tools write it) runs in `rins fmu run` and gives the imu.csv of the same FMU with stored
+    /// entries, byte for byte, which is also the in-process plant's. `rins fmu build` packages
+    /// deflated archives with fixed timestamps: two builds are byte-identical.
+    ///
+    /// Needs the FMI 2 library beside the test binary's folder (`cargo build -p rins-imu-fmi2`).
+    #[test]
+    fn a_deflated_fmu_runs_bit_identical_to_a_stored_one_and_to_the_plant() {
+        let lib_dir = std::env::current_exe()
+            .unwrap()
+            .parent()
+            .and_then(Path::parent)
+            .unwrap()
+            .to_path_buf();
+        let lib = lib_dir.join(library_file(FmiVersion::V2));
+        assert!(
+            lib.exists(),
+            "{} missing: run `cargo build -p rins-imu-fmi2` first",
+            lib.display()
+        );
+        let dir = std::env::temp_dir().join(format!("rins-deflate-{}", std::process::id()));
+        let deflated = package::build_fmu::<RinsImu>(FmiVersion::V2, &lib, &dir.join("a")).unwrap();
+        let again = package::build_fmu::<RinsImu>(FmiVersion::V2, &lib, &dir.join("b")).unwrap();
+        let bytes = std::fs::read(&deflated).unwrap();
+        assert_eq!(bytes, std::fs::read(&again).unwrap(), "two builds differ");
+        // Every local header says method 8 (deflate).
+        let mut methods = Vec::new();
+        let mut p = 0;
+        while p + 30 <= bytes.len() && bytes[p..p + 4] == [0x50, 0x4b, 0x03, 0x04] {
+            methods.push(u16::from_le_bytes([bytes[p + 8], bytes[p + 9]]));
+            let csize = u32::from_le_bytes(bytes[p + 18..p + 22].try_into().unwrap()) as usize;
+            let (n, x) = (
+                u16::from_le_bytes([bytes[p + 26], bytes[p + 27]]) as usize,
+                u16::from_le_bytes([bytes[p + 28], bytes[p + 29]]) as usize,
+            );
+            p += 30 + n + x + csize;
+        }
+        assert_eq!(methods, [8, 8, 8, 8], "four deflated entries");
+        // The same entries stored (method 0): the archive the old writer made.
+        let entries = rins_fmi::zip::read(&bytes).unwrap();
+        let stored = dir.join("RinsImu-stored.fmu");
+        std::fs::write(
+            &stored,
+            rins_fmi::zip::write(&entries, rins_fmi::zip::Compression::Stored).unwrap(),
+        )
+        .unwrap();
+        let stored_len = std::fs::metadata(&stored).unwrap().len() as usize;
+        assert!(
+            bytes.len() * 2 < stored_len,
+            "deflated {} bytes, stored {stored_len}",
+            bytes.len()
+        );
+
+        let sc = Scenario::from_toml(SCENARIO, "deflate-check").unwrap();
+        assert_eq!(sc.samples(), 300);
+        let from_deflated = imu_csv(&sc, Some(&deflated), &dir.join("run-deflated"));
+        let from_stored = imu_csv(&sc, Some(&stored), &dir.join("run-stored"));
+        let in_process = imu_csv(&sc, None, &dir.join("run-plant"));
+        assert!(from_stored.len() > 300 * 100, "{} bytes", from_stored.len());
+        assert!(
+            from_deflated == from_stored,
+            "deflated and stored FMUs differ"
+        );
+        assert!(from_stored == in_process, "the FMU differs from the plant");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
