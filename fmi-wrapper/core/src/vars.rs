@@ -328,7 +328,20 @@ impl VariableTable {
                 ))
             }
             (Kind::Enumeration { .. }, Value::Enumeration(_)) => Ok(()),
-            (k, v) => Err(format!("{} is {k:?}, got {v:?}", s.name)),
+            (k, v) => {
+                let got = match v {
+                    Value::Real(x) => format!("the Real {x}"),
+                    Value::Integer(u) => format!("the Integer {u}"),
+                    Value::Boolean(b) => format!("the Boolean {b}"),
+                    Value::Enumeration(i) => format!("enumeration item {}", i.wrapping_add(1)),
+                };
+                Err(format!(
+                    "{} is {} variable (FMI 3: {}), got {got}",
+                    s.name,
+                    k.described(FmiVersion::V2),
+                    k.accessor(FmiVersion::V3)
+                ))
+            }
         }
     }
 }
@@ -438,7 +451,10 @@ mod tests {
                 .unwrap_err()
                 .contains("NaN")
         );
-        assert!(t.check(2, Value::Boolean(true)).is_err());
+        assert_eq!(
+            t.check(2, Value::Integer(0)).unwrap_err(),
+            "b is a Real variable (FMI 3: Float64), got the Integer 0"
+        );
         let e = VariableTable::new(vec![ScalarVar {
             kind: Kind::Enumeration {
                 type_name: "T",
