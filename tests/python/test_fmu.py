@@ -154,6 +154,80 @@ def test_reference_results_are_reproduced_by_fmpy():
         assert ref["thermal.housing_c"][0] > 26.0, "initial outputs are the initial state"
 
 
+def test_fault_sequences_through_fmpy():
+    """Issue 29 with FMPy's API as a master that carries on after an error (as ecos does): a
+    refused parameter set makes leaving initialization mode fail in FMI 2 as in FMI 3, and
+    after a refused step the increments read NaN in both while the time stays readable; the
+    log says why, naming the variable."""
+    import math
+    import shutil
+    from fmpy import extract, read_model_description
+    from fmpy.fmi1 import FMICallException
+    from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                           fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
+    from fmpy.fmi3 import FMU3Slave
+    from fmpy import calloc, free
+
+    def status(call, *args):
+        try:
+            call(*args)
+            return 0
+        except FMICallException as e:
+            return e.status
+
+    for path in (FMU2, FMU3):
+        md = read_model_description(path)
+        vr = {v.name: v.valueReference for v in md.modelVariables}
+        d = extract(path)
+        fmi3 = md.fmiVersion.startswith("3")
+        log = []
+        if fmi3:
+            def on_log(env, st, cat, msg):
+                log.append(msg.decode())
+            cls = FMU3Slave
+        else:
+            def on_log(env, name, st, cat, msg):
+                log.append(msg.decode())
+            cb = fmi2CallbackFunctions()
+            cb.logger = fmi2CallbackLoggerTYPE(on_log)
+            cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+            cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+            cls = FMU2Slave
+        f = cls(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
+                instanceName="faults")
+        if fmi3:
+            f.instantiate(logMessage=on_log)
+            get, set_ = f.getFloat64, f.setFloat64
+            enter = lambda: f.enterInitializationMode(startTime=0.0)
+        else:
+            f.instantiate(callbacks=cb)
+            get, set_ = f.getReal, f.setReal
+            enter = lambda: (f.setupExperiment(startTime=0.0), f.enterInitializationMode())
+        bias = vr["sensor.gyro.bias.dph[0]"]
+        # A refused set, then the master goes on: no initialization, no step.
+        assert status(set_, [bias], [1e6]) == 3, path
+        assert status(enter) == (3 if fmi3 else 0), (path, log)
+        assert status(f.exitInitializationMode) == 3, (path, log)
+        assert status(f.doStep, 0.0, 0.01) == 3, (path, log)
+        text = "\n".join(log)
+        assert "sensor.gyro.bias.dph[0] = 1000000 is outside its range" in text, text
+        assert ("an earlier call setting a value was refused" in text) != fmi3, text
+        assert "the instance is in the error state" in text, text
+        # After a reset: a good step, then a refused one (wrong time) leaves NaN increments.
+        f.reset()
+        enter()
+        f.exitInitializationMode()
+        f.doStep(0.0, 0.01)
+        inc = [vr["imu.dtheta_rad[0]"], vr["imu.dv_mps[2]"], vr["truth.dtheta_rad[1]"]]
+        assert all(math.isfinite(x) for x in get(inc)), path
+        assert status(f.doStep, 0.5, 0.01) == 3, path
+        assert all(math.isnan(x) for x in get(inc)), (path, get(inc))
+        assert get([vr["imu.time_s"]]) == [0.01], path
+        f.terminate() if not fmi3 else None
+        f.freeInstance()
+        shutil.rmtree(d, ignore_errors=True)
+
+
 if __name__ == "__main__":
     failed = 0
     tests = [(k, v) for k, v in sorted(globals().items()) if k.startswith("test_")]
