@@ -541,3 +541,41 @@ fn the_steepest_accepted_sea_keeps_a_unit_quaternion_at_any_rate() {
         assert!(diff < 1e-9, "Tp {tp}: {diff:e} rad");
     }
 }
+
+/// Issue 29: a ship crossing the antimeridian at sea state 5 on the segment rule (nodes on
+/// both sides of 180° in one segment) against the exact path: the same increments and the
+/// same wrapped truth longitude.
+#[test]
+fn the_segment_rule_crosses_the_antimeridian_like_the_exact_path() {
+    let mut cfg = with_sea_state(ship_config(&[(90.0, 30.0, 3600.0)]), 5);
+    (cfg.carrier.ship.lat_deg, cfg.carrier.ship.lon_deg) = (0.0, 179.99);
+    let mut seg = Plant::new(&cfg).unwrap();
+    let mut exact = Plant::new(&cfg).unwrap();
+    assert!(seg.set_carrier_segments(true).unwrap().is_some());
+    exact.set_carrier_segments(false).unwrap();
+    let (mut th, mut dv, mut lon) = (0.0f64, 0.0f64, 0.0f64);
+    let mut crossed = false;
+    for _ in 0..15_000 {
+        let (a, b) = (seg.step(), exact.step());
+        th = th.max((a.dtheta_rad - b.dtheta_rad).amax());
+        dv = dv.max((a.dv_mps - b.dv_mps).amax());
+        let (la, lb) = (seg.truth().carrier.lon_rad, exact.truth().carrier.lon_rad);
+        assert!(la.abs() <= std::f64::consts::PI && lb.abs() <= std::f64::consts::PI);
+        let d = (la - lb + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+            - std::f64::consts::PI;
+        lon = lon.max(d.abs());
+        crossed |= la < 0.0;
+    }
+    println!(
+        "across 180 on segments vs exact: {th:.1e} rad, {dv:.1e} m/s, longitude {lon:.1e} rad"
+    );
+    assert!(crossed, "the ship crossed 180°");
+    assert!(th < 1e-12 && dv < 1e-11, "{th:e} {dv:e}");
+    // The exact path adds a longitude step every tick, each rounding by up to ½ulp(π) near
+    // 180°; the segment rule adds once per segment (as in `carrier_segment.rs`).
+    let rounding = 15_000.0 * 0.5 * f64::EPSILON * std::f64::consts::PI;
+    assert!(
+        lon < rounding,
+        "{lon:e} rad (rounding bound {rounding:.1e})"
+    );
+}
