@@ -1,13 +1,71 @@
 //! The figure rules (`figures::rules`) on real results, checked on the geometry the plotting
-//! code placed (not by eye): `bias_by_position` has a categorical position axis and no legend
-//! box covers a plotted mark; the week-long paper figures shrink at least 5× as envelopes, and
-//! each envelope's extremes are the series' extremes.
+//! code placed and on the SVG text it wrote (not by eye): `bias_by_position` has a categorical
+//! position axis and no legend box covers a plotted mark; the week-long paper figures shrink at
+//! least 5× as envelopes, and each envelope's extremes are the series' extremes; print size:
+//! every text of `bias_by_position`, `residual_vs_temperature`, Figure 2 and `sea_end_error` is
+//! at least 8 pt when the figure is printed 3.5 in (one journal column) wide, every mark keeps
+//! `HEADROOM_PX` from the frame, units are typeset ("µg", "°C") and the PNG font has their
+//! glyphs.
 
 use std::path::{Path, PathBuf};
 
 use rins_scenarios::commands::measure::{MeasureArgs, run as measure};
 use rins_scenarios::figures::paper::paired_figures;
-use rins_scenarios::figures::plot::{Kind, PanelGeometry};
+use rins_scenarios::figures::plot::{BAR_DOT_PX, Kind, PanelGeometry};
+use rins_scenarios::figures::rules::{HEADROOM_PX, MIN_TEXT_PT, Rect, text_pt};
+
+/// Every `font-size` of an SVG's text, in pt when the figure is printed at
+/// `rules::PRINT_WIDTH_IN` (the SVG's width attribute is its pixel width), with the text.
+fn text_sizes_pt(svg: &str) -> Vec<(f64, String)> {
+    let num = |t: &str, name: &str| -> Option<f64> {
+        let i = t.find(&format!(" {name}=\""))? + name.len() + 3;
+        t[i..i + t[i..].find('"')?].parse::<f64>().ok()
+    };
+    let width = num(svg, "width").expect("svg width") as u32;
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|t| {
+            let head = &t[..t.find('>')?];
+            let body = &t[t.find('>')? + 1..];
+            let text = body[..body.find("</text>")?].trim().to_string();
+            Some((text_pt(num(head, "font-size")?, width), text))
+        })
+        .collect()
+}
+
+/// No text of `svg` (figure `name`) is smaller than 8 pt at one column width; some text is
+/// there to check.
+fn text_at_least_8_pt(name: &str, svg: &str) {
+    let sizes = text_sizes_pt(svg);
+    assert!(sizes.len() > 5, "{name}: {} texts", sizes.len());
+    for (pt, text) in sizes {
+        assert!(
+            pt >= MIN_TEXT_PT - 1e-9,
+            "{name}: \"{text}\" is {pt:.2} pt at 3.5 in wide (minimum {MIN_TEXT_PT})"
+        );
+    }
+}
+
+/// Every panel's marks, with their reach (dot radius, half stroke), lie `HEADROOM_PX` inside
+/// the plot frame vertically, and horizontally too when `x_also` (scatter and bar panels).
+fn marks_keep_headroom(name: &str, g: &[PanelGeometry], x_also: bool) {
+    for (k, p) in g.iter().enumerate() {
+        let e: Rect = p.extent.expect("marks");
+        let h = HEADROOM_PX - 1; // rounding of the pixel mapping
+        assert!(
+            e.y0 >= p.plot.y0 + h && e.y1 <= p.plot.y1 - h,
+            "{name} panel {k}: marks {e:?} within {HEADROOM_PX} px of the frame {:?} (top/bottom)",
+            p.plot
+        );
+        if x_also {
+            assert!(
+                e.x0 >= p.plot.x0 + h && e.x1 <= p.plot.x1 - h,
+                "{name} panel {k}: marks {e:?} within {HEADROOM_PX} px of the frame {:?} (left/right)",
+                p.plot
+            );
+        }
+    }
+}
 
 fn docs(p: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -51,8 +109,32 @@ fn bias_by_position_is_categorical_and_its_legends_cover_no_point() {
     let an = rins_mvm::analyse(&model.plant, &h, &opts);
     assert!(an.after().is_some(), "the hidden effect is fitted");
     let (svg, g) = rins_scenarios::diagnose::render_bias_by_position(&an).unwrap();
+    // The report's other figure drawn from the same analysis, as written.
+    rins_scenarios::diagnose::write_report(&dir, &an).unwrap();
+    let rvt = std::fs::read_to_string(dir.join("residual_vs_temperature.svg")).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     assert_eq!(g.len(), 6, "one panel per channel");
+    // Print size, headroom for every bar (the accel_y/z bars touched the top frame), units.
+    text_at_least_8_pt("bias_by_position", &svg);
+    text_at_least_8_pt("residual_vs_temperature", &rvt);
+    marks_keep_headroom("bias_by_position", &g, true);
+    for (name, svg) in [
+        ("bias_by_position", &svg),
+        ("residual_vs_temperature", &rvt),
+    ] {
+        let texts: Vec<String> = text_sizes_pt(svg).into_iter().map(|t| t.1).collect();
+        assert!(
+            texts.iter().any(|t| t.contains("(µg)")),
+            "{name}: accelerometer axes in µg"
+        );
+        assert!(
+            !texts
+                .iter()
+                .any(|t| t.contains("(ug)") || t.contains("deg C") || t.contains("(deg/h)")),
+            "{name}: an untypeset unit in {texts:?}"
+        );
+    }
+    assert!(rvt.contains("sensor temperature (°C)"), "°C on the x axis");
     for (k, p) in g.iter().enumerate() {
         // Categorical: the four positions at increasing pixel x, inside the plot, in order.
         let names: Vec<&str> = p.categories.iter().map(|c| c.0.as_str()).collect();
@@ -148,6 +230,27 @@ fn week_long_figures_shrink_fivefold_as_envelopes_with_the_same_extremes() {
         );
         assert!(ratio >= 5.0, "{}: only {ratio:.2}x smaller", e.stem);
         no_mark_under_legend(&g);
+        text_at_least_8_pt(&e.stem, &svg_e);
+        marks_keep_headroom(&e.stem, &g, false);
+        // The compensated case is drawn after the uncompensated one, its mean line 1 px wide
+        // inside the other's 3 px, so where the two coincide (Figure 2's east and north axes)
+        // both show: every panel has both.
+        let lines = |rgb: &str, w: &str| {
+            svg_e
+                .split("<polyline")
+                .skip(1)
+                .map(|t| &t[..t.find("/>").unwrap_or(t.len())])
+                .filter(|t| t.contains(rgb) && t.contains(&format!("stroke-width=\"{w}\"")))
+                .count()
+        };
+        let n = e.panels.len();
+        assert!(
+            lines("#C82828", "3") >= n && lines("#1E5AC8", "1") >= n,
+            "{}: wide uncompensated {}, narrow compensated {} mean lines for {n} panels",
+            e.stem,
+            lines("#C82828", "3"),
+            lines("#1E5AC8", "1")
+        );
         for (panel, geo) in e.panels.iter().zip(&g) {
             let enveloped: Vec<_> = panel
                 .lines
@@ -195,7 +298,7 @@ fn interval_dots_sit_at_the_estimate_not_the_band_centre() {
     let bars: Vec<_> = marks.iter().filter(|(a, b)| a.0 == b.0).collect();
     let dots: Vec<_> = marks
         .iter()
-        .filter(|(a, b)| a.1 == b.1 && b.0 - a.0 == 6)
+        .filter(|(a, b)| a.1 == b.1 && b.0 - a.0 == 2 * BAR_DOT_PX)
         .collect();
     assert_eq!((bars.len(), dots.len()), (3, 3), "{marks:?}");
     for ((bar, dot), &(lo, est, hi)) in bars.iter().zip(&dots).zip(&bands) {
@@ -209,4 +312,129 @@ fn interval_dots_sit_at_the_estimate_not_the_band_centre() {
             "dot at {frac_px:.3} of the bar, estimate at {frac:.3}"
         );
     }
+}
+
+/// `sea_end_error` as `rins paper sea` draws it, on made-up bands and noise-free values (the
+/// drawing, not the study, is under test): text at least 8 pt at one column width, every bar
+/// end and dot `HEADROOM_PX` inside the frame, the noise-free dots large and opaque.
+#[test]
+fn sea_end_error_is_print_sized_with_headroom_and_visible_dots() {
+    use rins_scenarios::commands::sea::{
+        END_ERROR_TITLE, END_ERROR_X, EndErrorData, end_error_panels,
+    };
+    use rins_verify::paper::Band;
+    let band = |p05, median, p95| Band { median, p05, p95 };
+    let data = vec![
+        EndErrorData {
+            case: "static reference",
+            uncompensated_nm: band(7.58, 9.89, 14.19),
+            compensated_nm: band(1.82, 4.07, 4.84),
+            noise_free_nm: [9.32, 1.73],
+        },
+        EndErrorData {
+            case: "ship",
+            uncompensated_nm: band(1.98, 9.31, 12.83),
+            compensated_nm: band(2.55, 4.27, 10.48),
+            noise_free_nm: [8.06, 3.12],
+        },
+        EndErrorData {
+            case: "ship + isolation",
+            uncompensated_nm: band(4.56, 7.30, 10.39),
+            compensated_nm: band(3.73, 5.86, 7.26),
+            noise_free_nm: [7.50, 3.67],
+        },
+    ];
+    let panels = end_error_panels(&data, 8);
+    let (svg, g) =
+        rins_scenarios::figures::plot::render_svg(END_ERROR_TITLE, END_ERROR_X, &panels).unwrap();
+    text_at_least_8_pt("sea_end_error", &svg);
+    marks_keep_headroom("sea_end_error", &g, true);
+    no_mark_under_legend(&g);
+    // The noise-free dots: opaque, radius at least 8 px (1 mm at 3.5 in); the old ones were
+    // 2 px at 45 % opacity.
+    let circles: Vec<&str> = svg.split("<circle").skip(1).collect();
+    let big = circles
+        .iter()
+        .filter(|c| {
+            let r = c
+                .find(" r=\"")
+                .map(|i| &c[i + 4..])
+                .and_then(|t| t[..t.find('"')?].parse::<f64>().ok());
+            r.is_some_and(|r| r >= 8.0)
+                && !c[..c.find("/>").unwrap_or(c.len())].contains("opacity=\"0.")
+        })
+        .count();
+    assert!(big >= 6, "{big} large opaque dots (6 noise-free values)");
+    let texts: Vec<String> = text_sizes_pt(&svg).into_iter().map(|t| t.1).collect();
+    assert!(
+        texts
+            .iter()
+            .any(|t| t.contains("every stochastic term off")),
+        "the noise-free pair's name: {texts:?}"
+    );
+    assert!(!texts.iter().any(|t| t.contains("alone")), "{texts:?}");
+}
+
+/// A scatter (residual vs temperature: clusters at the two chamber temperatures) keeps its
+/// outermost dots `HEADROOM_PX` off the left and right frame as well as top and bottom.
+#[test]
+fn scatter_clusters_keep_off_the_frame() {
+    use rins_scenarios::figures::plot::{Line, Panel, render_svg};
+    // Two clusters at 23 and 63 °C, 60 points each (a dense scatter), plus a fitted curve.
+    let pts: Vec<(f64, f64)> = (0..120)
+        .map(|i| {
+            let t = if i < 60 { 23.0 } else { 63.0 };
+            (t + 0.01 * (i % 7) as f64, ((i * 37) % 11) as f64 - 5.0)
+        })
+        .collect();
+    let fit = vec![(23.0, -1.0), (63.0, 1.0)];
+    let panel = Panel::new(
+        "gyro_x: residual",
+        "residual (deg/h)",
+        vec![
+            Line::new("residual", pts, plotters::style::BLUE, Kind::Dots),
+            Line::new("fit", fit, plotters::style::RED, Kind::Dashed),
+        ],
+    );
+    let (svg, g) = render_svg("Residual vs temperature", "temperature (deg C)", &[panel]).unwrap();
+    marks_keep_headroom("scatter", &g, true);
+    text_at_least_8_pt("scatter", &svg);
+    assert!(svg.contains("temperature (°C)") && svg.contains("residual (°/h)"));
+}
+
+/// DejaVu Sans, which the PNG text is drawn with, has "µ" and "°": each draws differently from
+/// a character the font lacks (drawn as the missing-glyph box) and from nothing.
+#[test]
+fn the_png_font_has_the_unit_glyphs() {
+    use plotters::prelude::*;
+    // The figures register the font on first use.
+    let one = rins_scenarios::figures::plot::Panel::new(
+        "p",
+        "y",
+        vec![rins_scenarios::figures::plot::Line::new(
+            "",
+            vec![(0.0, 0.0), (1.0, 1.0)],
+            BLACK,
+            Kind::Solid,
+        )],
+    );
+    rins_scenarios::figures::plot::render_svg("t", "x", &[one]).unwrap();
+    let draw = |s: &str| {
+        let mut buf = vec![0u8; 60 * 60 * 3];
+        {
+            let root = BitMapBackend::with_buffer(&mut buf, (60, 60)).into_drawing_area();
+            root.fill(&WHITE).unwrap();
+            root.draw(&Text::new(s.to_string(), (10, 10), ("sans-serif", 40)))
+                .unwrap();
+            root.present().unwrap();
+        }
+        buf
+    };
+    let (missing, blank) = (draw("\u{E000}"), draw(" "));
+    for c in ["µ", "°", "g", "C"] {
+        let b = draw(c);
+        assert_ne!(b, blank, "{c} draws nothing");
+        assert_ne!(b, missing, "{c} is the missing-glyph box");
+    }
+    assert_ne!(draw("µ"), draw("°"));
 }

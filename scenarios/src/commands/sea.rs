@@ -61,8 +61,9 @@ pub struct EndErrorData {
     pub uncompensated_nm: Band,
     /// The same, compensated.
     pub compensated_nm: Band,
-    /// The noise-free pair's horizontal error at the end (δβ alone), uncompensated and
-    /// compensated, nmi.
+    /// The noise-free pair's horizontal error at the end (every stochastic term off; the other
+    /// deterministic errors stay, so only the pair's difference is δβ's own effect),
+    /// uncompensated and compensated, nmi.
     pub noise_free_nm: [f64; 2],
 }
 
@@ -101,7 +102,7 @@ pub fn run(a: &SeaArgs) -> Result<()> {
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
-        print!("{}", r.to_text());
+        print!("{}", crate::report::RenderText::render_text(&r));
         println!("  figures and sea.json in {}", a.out.display());
     }
     if let Some(dir) = &a.report {
@@ -133,7 +134,7 @@ fn hours(recs: &[NavRecord], f: &dyn Fn(&NavRecord) -> f64) -> Vec<(f64, f64)> {
 }
 
 /// Writes `sea_horizontal_error.svg` (first seed, envelopes per case), `sea_end_error.svg`
-/// (categorical: median and 5-95 % band per case, side by side, and the noise-free δβ pair)
+/// (categorical: median and 5-95 % band per case, side by side, and the noise-free pair)
 /// and `sea_end_error.json` (the plotted numbers).
 pub fn write_figures(r: &SeaReport, out: &Path) -> Result<()> {
     let nm = rins_nav::errors::nmi;
@@ -173,6 +174,23 @@ pub fn write_figures(r: &SeaReport, out: &Path) -> Result<()> {
         out.join("sea_end_error.json"),
         serde_json::to_string_pretty(&data)?,
     )?;
+    write_svg(
+        &out.join("sea_end_error.svg"),
+        END_ERROR_TITLE,
+        END_ERROR_X,
+        &end_error_panels(&data, r.runs),
+    )
+}
+
+/// Title of `sea_end_error`.
+pub const END_ERROR_TITLE: &str = "At sea: end-of-run horizontal error per case";
+/// x label of `sea_end_error`.
+pub const END_ERROR_X: &str = "case";
+
+/// The panels of `sea_end_error` for `data` over `runs` seeds: per case the median (dot) and
+/// 5-95 % band, uncompensated left and compensated right of the category; below, the
+/// noise-free pair's end errors.
+pub fn end_error_panels(data: &[EndErrorData], runs: usize) -> Vec<Panel<'static>> {
     // Side by side at each category: uncompensated left, compensated right; the dot is the
     // median (the 5-95 % band is not symmetric about it).
     let bands = |dx: f64, f: &dyn Fn(&EndErrorData) -> Band| {
@@ -191,10 +209,7 @@ pub fn write_figures(r: &SeaReport, out: &Path) -> Result<()> {
             .collect::<Vec<_>>()
     };
     let end = Panel::new(
-        format!(
-            "Horizontal error at the end: median (dot) and 5-95 % over {} seeds",
-            r.runs
-        ),
+        format!("Horizontal error at the end: median (dot) and 5-95 % over {runs} seeds"),
         "error (nmi)",
         vec![
             Line::new(
@@ -213,7 +228,7 @@ pub fn write_figures(r: &SeaReport, out: &Path) -> Result<()> {
     )
     .categorical(&CASES);
     let nf = Panel::new(
-        "Noise-free pair (δβ alone): horizontal error at the end",
+        "Noise-free pair (every stochastic term off): horizontal error at the end",
         "error (nmi)",
         vec![
             Line::new(
@@ -231,12 +246,7 @@ pub fn write_figures(r: &SeaReport, out: &Path) -> Result<()> {
         ],
     )
     .categorical(&CASES);
-    write_svg(
-        &out.join("sea_end_error.svg"),
-        "At sea: end-of-run horizontal error per case",
-        "case",
-        &[end, nf],
-    )
+    vec![end, nf]
 }
 
 /// The HTML page: summary table (numbers from sea.json) and the figures in `fig_dir`.

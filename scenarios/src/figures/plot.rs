@@ -1,6 +1,7 @@
 //! Static figures with plotters, each written as SVG and PNG, drawn by the rules of
-//! [`super::rules`]: envelopes for long series, legends in a free corner (or outside),
-//! categorical x axes, no "-0.0" ticks. The PNG rasteriser needs a font: DejaVu Sans ships in
+//! [`super::rules`]: print size (text at least 8 pt at one column width, titles wrapped),
+//! headroom for every mark, envelopes for long series, legends in a free corner (or above the
+//! plot), categorical x axes, no "-0.0" ticks, typeset units. The PNG rasteriser needs a font: DejaVu Sans ships in
 //! `assets/fonts/` (licence beside it) and is built into the binary, so a machine without fonts
 //! draws the same text.
 
@@ -11,6 +12,7 @@ use anyhow::{Result, anyhow};
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::rules::{self, Column, LEGEND_PAD_PX, LegendPlace, Rect};
 
@@ -28,12 +30,21 @@ pub const PALETTE: [RGBColor; 10] = [
     RGBColor(23, 190, 207),
 ];
 
-/// Figure width, px.
+/// Figure width, px: printed at [`rules::PRINT_WIDTH_IN`] (3.5 in, one journal column) that is
+/// 257 px/in.
 pub const WIDTH_PX: u32 = 900;
 /// Height of one panel, px.
-pub const PANEL_PX: u32 = 260;
+pub const PANEL_PX: u32 = 440;
 /// Pixels per envelope column: a long series gets one min/max/mean column per this many.
 pub const COLUMN_PX: i32 = 2;
+/// Size of tick labels, axis labels, legend and category names at print width, pt.
+pub const TEXT_PT: f64 = rules::MIN_TEXT_PT;
+/// Size of a panel's title at print width, pt.
+pub const CAPTION_PT: f64 = 9.0;
+/// Size of the figure's title at print width, pt.
+pub const TITLE_PT: f64 = 10.0;
+/// Radius of the dot at a bar's estimate, px.
+pub const BAR_DOT_PX: i32 = 6;
 
 /// How a line is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,7 +60,8 @@ pub enum Kind {
     /// Bars of an asymmetric band with its estimate: `points` holds (x, low), (x, estimate),
     /// (x, high) triples (e.g. 5 %, median, 95 %), each drawn with a dot at the estimate.
     Interval,
-    /// Translucent dots, one per point (scatter).
+    /// Dots, one per point (scatter): large and opaque when sparse, smaller and translucent
+    /// when dense ([`rules::dot_style`]).
     Dots,
     /// A long series: per pixel column the min–max band (translucent) and the mean line
     /// ([`rules::envelope`]); drawn as a solid line when it has fewer points than columns.
@@ -123,6 +135,9 @@ pub struct PanelGeometry {
     pub categories: Vec<(String, i32)>,
     /// The envelope columns drawn, per enveloped line.
     pub envelopes: Vec<Vec<Column>>,
+    /// The bounding box of every mark with its drawn reach (a dot's radius in x and y), the
+    /// box the headroom rule keeps [`rules::HEADROOM_PX`] inside the plot (`None`: no marks).
+    pub extent: Option<Rect>,
 }
 
 /// DejaVu Sans, registered as the `sans-serif` family for both backends.
@@ -137,12 +152,72 @@ fn register_font() {
     });
 }
 
-fn size(panels: &[Panel]) -> (u32, u32) {
-    (WIDTH_PX, 40 + PANEL_PX * panels.len() as u32)
+/// The em of text of `pt` points at print width, px.
+fn em_px(pt: f64) -> f64 {
+    pt * rules::px_per_pt(WIDTH_PX)
 }
 
-/// Writes panels stacked vertically, sharing an x axis labelled `x_label`, to `path` (SVG) and
-/// to the same name with `.png`. Returns both paths.
+/// The font for text of `pt` points at print width. plotters writes an SVG `font-size` of its
+/// size / 1.24, so the size is the em × 1.24; the PNG rasteriser draws DejaVu Sans a little
+/// larger (its ascent + descent is 1.16 em), never smaller.
+fn font(pt: f64) -> FontDesc<'static> {
+    ("sans-serif", em_px(pt) * 1.24).into_font()
+}
+
+/// Height of one line of text of `pt` points, px.
+fn line_px(pt: f64) -> i32 {
+    (1.3 * em_px(pt)).ceil() as i32
+}
+
+/// Width of `text` in `f`, px (the rasteriser's layout; a rough estimate if it fails).
+fn text_w(f: &FontDesc, text: &str) -> i32 {
+    f.box_size(text).map_or_else(
+        |_| (0.6 * f.get_size() / 1.24 * text.chars().count() as f64) as i32,
+        |b| b.0 as i32,
+    )
+}
+
+/// `text` broken at spaces into lines at most `max_w` px wide in `f` (a single word longer
+/// than that keeps its own line).
+fn wrap(text: &str, f: &FontDesc, max_w: i32) -> Vec<String> {
+    let mut lines = Vec::new();
+    let mut cur = String::new();
+    for word in text.split_whitespace() {
+        let trial = if cur.is_empty() {
+            word.to_string()
+        } else {
+            format!("{cur} {word}")
+        };
+        if !cur.is_empty() && text_w(f, &trial) > max_w {
+            lines.push(std::mem::replace(&mut cur, word.to_string()));
+        } else {
+            cur = trial;
+        }
+    }
+    if !cur.is_empty() || lines.is_empty() {
+        lines.push(cur);
+    }
+    lines
+}
+
+/// The figure title's lines and the height they take, px.
+fn title_block(title: &str) -> (Vec<String>, i32) {
+    let lines = wrap(
+        &rules::typeset(title),
+        &font(TITLE_PT),
+        WIDTH_PX as i32 - 24,
+    );
+    let h = 10 + line_px(TITLE_PT) * lines.len() as i32;
+    (lines, h)
+}
+
+fn size(title: &str, panels: &[Panel]) -> (u32, u32) {
+    let (_, h) = title_block(title);
+    (WIDTH_PX, h as u32 + PANEL_PX * panels.len() as u32)
+}
+
+/// Writes panels stacked vertically, sharing an x axis labelled `x_label` (under the last
+/// panel), to `path` (SVG) and to the same name with `.png`. Returns both paths.
 pub fn write_figure(
     path: &Path,
     title: &str,
@@ -154,7 +229,7 @@ pub fn write_figure(
     let (text, _) = render_svg(title, x_label, panels)?;
     std::fs::write(&svg, text).map_err(|e| anyhow!("{}: {e}", svg.display()))?;
     draw(
-        BitMapBackend::new(&png, size(panels)).into_drawing_area(),
+        BitMapBackend::new(&png, size(title, panels)).into_drawing_area(),
         &png,
         title,
         x_label,
@@ -176,7 +251,7 @@ pub fn render_svg(
 ) -> Result<(String, Vec<PanelGeometry>)> {
     let mut text = String::new();
     let geometry = draw(
-        SVGBackend::with_string(&mut text, size(panels)).into_drawing_area(),
+        SVGBackend::with_string(&mut text, size(title, panels)).into_drawing_area(),
         Path::new(title),
         title,
         x_label,
@@ -190,12 +265,14 @@ enum Drawn {
     Path(Vec<(f64, f64)>, bool),
     /// Low end, dot, high end.
     Bars(Vec<[(f64, f64); 3]>),
-    Dots(Vec<(f64, f64)>),
-    Env(Vec<Column>),
+    /// Dots with their radius (px) and opacity.
+    Dots(Vec<(f64, f64)>, i32, f64),
+    /// Envelope columns; `true`: the mean line narrow (an envelope after the panel's first).
+    Env(Vec<Column>, bool),
 }
 
 impl Drawn {
-    fn of(l: &Line, x0: f64, x1: f64, columns: usize) -> Self {
+    fn of(l: &Line, x0: f64, x1: f64, columns: usize, later_envelope: bool) -> Self {
         let finite = |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite();
         match l.kind {
             Kind::Solid => Drawn::Path(l.points.clone(), false),
@@ -223,18 +300,31 @@ impl Drawn {
                     .map(|c| [c[0], c[1], c[2]])
                     .collect(),
             ),
-            Kind::Dots => Drawn::Dots(l.points.iter().filter(finite).copied().collect()),
+            Kind::Dots => {
+                let pts: Vec<_> = l.points.iter().filter(finite).copied().collect();
+                let (r, alpha) = rules::dot_style(pts.len());
+                Drawn::Dots(pts, r, alpha)
+            }
             Kind::Envelope if l.points.len() > 2 * columns => {
-                Drawn::Env(rules::envelope(&l.points, x0, x1, columns))
+                Drawn::Env(rules::envelope(&l.points, x0, x1, columns), later_envelope)
             }
             Kind::Envelope => Drawn::Path(l.points.clone(), false),
         }
     }
 
-    /// Pixel segments of the marks, through `map` (data → pixel).
+    /// How far a mark reaches beyond its centre line, px (a dot's radius, half a stroke).
+    fn reach_px(&self) -> i32 {
+        match self {
+            Drawn::Bars(_) => BAR_DOT_PX,
+            Drawn::Dots(_, r, _) => *r,
+            _ => 2,
+        }
+    }
+
+    /// Pixel segments of the marks, through `map` (data → pixel). A dot is a horizontal
+    /// segment across its diameter.
     fn marks(&self, map: &dyn Fn((f64, f64)) -> (i32, i32)) -> Vec<((i32, i32), (i32, i32))> {
-        // A dot is drawn with a 3 px radius: its mark spans that.
-        let dot = |c: (i32, i32)| ((c.0 - 3, c.1), (c.0 + 3, c.1));
+        let dot = |c: (i32, i32), r: i32| ((c.0 - r, c.1), (c.0 + r, c.1));
         let ok = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
         match self {
             Drawn::Path(p, _) => {
@@ -244,10 +334,10 @@ impl Drawn {
             Drawn::Bars(b) => b
                 .iter()
                 .filter(|b| b.iter().all(ok))
-                .flat_map(|b| [(map(b[0]), map(b[2])), dot(map(b[1]))])
+                .flat_map(|b| [(map(b[0]), map(b[2])), dot(map(b[1]), BAR_DOT_PX)])
                 .collect(),
-            Drawn::Dots(d) => d.iter().map(|&p| dot(map(p))).collect(),
-            Drawn::Env(cols) => {
+            Drawn::Dots(d, r, _) => d.iter().map(|&p| dot(map(p), *r)).collect(),
+            Drawn::Env(cols, _) => {
                 let mut m: Vec<_> = cols
                     .iter()
                     .map(|c| (map((c.x, c.min)), map((c.x, c.max))))
@@ -258,27 +348,112 @@ impl Drawn {
             }
         }
     }
+
+    /// The bounding box of the marks with their reach, through `map`.
+    fn extent(&self, map: &dyn Fn((f64, f64)) -> (i32, i32)) -> Option<Rect> {
+        let r = self.reach_px();
+        let m = self.marks(map);
+        let pts = m.iter().flat_map(|&(a, b)| [a, b]);
+        let mut e: Option<Rect> = None;
+        for (x, y) in pts {
+            let (dx, dy) = match self {
+                // A dot segment already spans its radius in x.
+                Drawn::Bars(_) | Drawn::Dots(..) => (0, r),
+                _ => (r, r),
+            };
+            let q = Rect {
+                x0: x - dx,
+                y0: y - dy,
+                x1: x + dx,
+                y1: y + dy,
+            };
+            e = Some(e.map_or(q, |e| union(e, q)));
+        }
+        e
+    }
 }
 
-/// Legend box size for the labelled lines, px: plotters draws 12 pt text at about 9.7 px,
-/// about 6 px a character.
-fn legend_size(lines: &[Line]) -> Option<(i32, i32)> {
-    let labels: Vec<&str> = lines
-        .iter()
-        .map(|l| l.label)
-        .filter(|l| !l.is_empty())
-        .collect();
-    let longest = labels.iter().map(|l| l.chars().count()).max()?;
-    Some((40 + 6 * longest as i32, 8 + 17 * labels.len() as i32))
+fn union(a: Rect, b: Rect) -> Rect {
+    Rect {
+        x0: a.x0.min(b.x0),
+        y0: a.y0.min(b.y0),
+        x1: a.x1.max(b.x1),
+        y1: a.y1.max(b.y1),
+    }
 }
 
-/// The pixel rectangle of the plotting area a chart with these settings gets in an area of
-/// `dim` px (drawn on a throwaway backend: the label areas are fixed, so the data range does
-/// not move it).
-fn probe_plot(dim: (u32, u32), title: &str, right_px: i32) -> Result<Rect> {
+/// Width of a legend entry's sample mark, px.
+const SAMPLE_PX: i32 = 44;
+
+/// The legend of a panel: the labelled lines (with whether each is a later envelope, its mean
+/// drawn narrow) and their text widths.
+struct Legend<'p, 'a> {
+    entries: Vec<(&'p Line<'a>, bool, String, i32)>,
+}
+
+impl<'p, 'a> Legend<'p, 'a> {
+    fn of(lines: &'p [Line<'a>], later: &[bool]) -> Option<Self> {
+        let f = font(TEXT_PT);
+        let entries: Vec<_> = lines
+            .iter()
+            .zip(later)
+            .filter(|(l, _)| !l.label.is_empty())
+            .map(|(l, &d)| {
+                let t = rules::typeset(l.label);
+                let w = text_w(&f, &t);
+                (l, d, t, w)
+            })
+            .collect();
+        (!entries.is_empty()).then_some(Self { entries })
+    }
+
+    /// Size of the boxed legend inside the plot: one entry a row, px.
+    fn boxed_size(&self) -> (i32, i32) {
+        let longest = self.entries.iter().map(|e| e.3).max().unwrap_or(0);
+        (
+            2 * LEGEND_PAD_PX + SAMPLE_PX + 10 + longest,
+            2 * LEGEND_PAD_PX + line_px(TEXT_PT) * self.entries.len() as i32,
+        )
+    }
+
+    /// Entry positions (relative to the strip's top-left) of the legend above a plot `w` px
+    /// wide, entries side by side, wrapping into rows; and the strip's height.
+    fn strip(&self, w: i32) -> (Vec<(i32, i32)>, i32) {
+        let row = line_px(TEXT_PT);
+        let (mut x, mut y) = (0, 0);
+        let mut at = Vec::new();
+        for e in &self.entries {
+            let ew = SAMPLE_PX + 10 + e.3;
+            if x > 0 && x + ew > w {
+                (x, y) = (0, y + row);
+            }
+            at.push((x, y));
+            x += ew + 28;
+        }
+        (at, y + row + 4)
+    }
+}
+
+/// The space around a panel's plotting area, px.
+#[derive(Clone, Copy, Debug)]
+struct Layout {
+    /// Above the plot: the panel title and a legend strip.
+    top: i32,
+    /// Right of the plot (room for the last x tick label).
+    right: i32,
+    /// Below the plot: x tick labels or category names, and the x label on the last panel.
+    x_area: i32,
+    /// Left of the plot: y tick labels and the y label.
+    y_area: i32,
+}
+
+/// The pixel rectangle of the plotting area a chart with this layout gets in an area of `dim`
+/// px (drawn on a throwaway backend: the label areas are fixed, so the data range does not
+/// move it).
+fn probe_plot(dim: (u32, u32), layout: &Layout) -> Result<Rect> {
     let mut s = String::new();
     let area = SVGBackend::with_string(&mut s, dim).into_drawing_area();
-    let chart = builder(&area, title, right_px)
+    let chart = builder(&area, layout)
         .build_cartesian_2d(0.0..1.0, 0.0..1.0)
         .map_err(|e| anyhow!("{e}"))?;
     let (xr, yr) = chart.plotting_area().get_pixel_range();
@@ -292,15 +467,14 @@ fn probe_plot(dim: (u32, u32), title: &str, right_px: i32) -> Result<Rect> {
 
 fn builder<'a, 'b, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
-    title: &'b str,
-    right_px: i32,
+    layout: &Layout,
 ) -> ChartBuilder<'a, 'b, DB> {
     let mut b = ChartBuilder::on(area);
-    b.caption(title, ("sans-serif", 15))
-        .margin(8)
-        .margin_right(8 + right_px)
-        .x_label_area_size(35)
-        .y_label_area_size(70);
+    b.margin(6)
+        .margin_top(layout.top)
+        .margin_right(layout.right)
+        .x_label_area_size(layout.x_area)
+        .y_label_area_size(layout.y_area);
     b
 }
 
@@ -314,12 +488,21 @@ fn draw<DB: DrawingBackend>(
     register_font();
     let err = |e: &dyn std::fmt::Display| anyhow!("{}: {e}", path.display());
     root.fill(&WHITE).map_err(|e| err(&e))?;
-    let root = root
-        .titled(title, ("sans-serif", 20))
+    let (lines, title_h) = title_block(title);
+    let style = TextStyle::from(font(TITLE_PT)).pos(Pos::new(HPos::Center, VPos::Top));
+    for (k, l) in lines.iter().enumerate() {
+        root.draw(&Text::new(
+            l.clone(),
+            (WIDTH_PX as i32 / 2, 8 + line_px(TITLE_PT) * k as i32),
+            style.clone(),
+        ))
         .map_err(|e| err(&e))?;
+    }
+    let (_, body) = root.split_vertically(title_h);
     let mut out = Vec::new();
-    for (area, p) in root.split_evenly((panels.len(), 1)).iter().zip(panels) {
-        if let Some(g) = draw_panel(area, p, x_label).map_err(|e| err(&e))? {
+    let n = panels.len();
+    for (k, (area, p)) in body.split_evenly((n, 1)).iter().zip(panels).enumerate() {
+        if let Some(g) = draw_panel(area, p, x_label, k + 1 == n).map_err(|e| err(&e))? {
             out.push(g);
         }
     }
@@ -331,6 +514,7 @@ fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     p: &Panel,
     x_label: &str,
+    last: bool,
 ) -> Result<Option<PanelGeometry>> {
     let e = |e: &dyn std::fmt::Display| anyhow!("{e}");
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
@@ -359,62 +543,150 @@ fn draw_panel<DB: DrawingBackend>(
         x0 -= 0.5;
         x1 += 0.5;
     }
+    // A numeric x axis of dots (with or without curves) is widened in pixels below.
+    let pad_x = !categorical && p.lines.iter().any(|l| l.kind == Kind::Dots);
     x1 = x1.max(x0 + 1e-9);
-    let pad = ((y1 - y0) * 0.05).max(1e-12);
-    (y0, y1) = (y0 - pad, y1 + pad);
+    // Envelopes after a panel's first draw their mean line narrow over the first's wide one
+    // (draw order: where they coincide both show).
+    let mut seen = false;
+    let later: Vec<bool> = p
+        .lines
+        .iter()
+        .map(|l| {
+            let is_env = l.kind == Kind::Envelope;
+            let d = is_env && seen;
+            seen |= is_env;
+            d
+        })
+        .collect();
 
-    // Lay out: the plot rectangle, the envelopes at its pixel columns, the legend from the marks.
+    // Lay out: text sizes fix the label areas; the plot rectangle; the ranges padded to keep
+    // every mark HEADROOM_PX inside the frame; the envelopes at its pixel columns; the legend
+    // from the marks.
     let dim = area.dim_in_pixel();
-    let mut plot = probe_plot(dim, &p.title, 0)?;
-    let (pw, ph) = (plot.x1 - plot.x0, plot.y1 - plot.y0);
+    let tf = font(TEXT_PT);
+    let caption_h = |lines: usize| 8 + line_px(CAPTION_PT) * lines as i32;
+    let ys_guess = y1 - y0;
+    let y_ticks_w = [y0 - 0.25 * ys_guess, y1 + 0.25 * ys_guess, 0.5 * (y0 + y1)]
+        .iter()
+        .map(|&v| text_w(&tf, &rules::tick_label(v, 1.2 * ys_guess.max(1e-12))))
+        .max()
+        .unwrap_or(0);
+    let x_ticks_w = if categorical {
+        0
+    } else {
+        [x0, x1]
+            .iter()
+            .map(|&v| text_w(&tf, &rules::tick_label(v, x1 - x0)))
+            .max()
+            .unwrap_or(0)
+    };
+    let y_area = y_ticks_w + 16 + line_px(TEXT_PT) + 6;
+    // The title is centred over the plot: it wraps within twice the distance from the plot's
+    // centre to the nearer side of the panel.
+    let centre = (y_area + 6 + dim.0 as i32 - 10.max(x_ticks_w / 2 + 4)) / 2;
+    let caption = wrap(
+        &rules::typeset(&p.title),
+        &font(CAPTION_PT),
+        2 * centre.min(dim.0 as i32 - centre) - 16,
+    );
+    let mut layout = Layout {
+        top: caption_h(caption.len()) + 6,
+        right: 10.max(x_ticks_w / 2 + 4),
+        x_area: 14 + line_px(TEXT_PT) + if last { line_px(TEXT_PT) + 4 } else { 0 },
+        y_area,
+    };
+    let mut plot = probe_plot(dim, &layout)?;
+    let (pw, mut ph) = (plot.x1 - plot.x0, plot.y1 - plot.y0);
     let columns = (pw / COLUMN_PX).max(1) as usize;
     let drawn: Vec<Drawn> = p
         .lines
         .iter()
-        .map(|l| Drawn::of(l, x0, x1, columns))
+        .zip(&later)
+        .map(|(l, &d)| Drawn::of(l, x0, x1, columns, d))
         .collect();
-    let map = |(x, y): (f64, f64)| {
-        (
-            ((x - x0) / (x1 - x0) * pw as f64).round() as i32,
-            ((y1 - y) / (y1 - y0) * ph as f64).round() as i32,
-        )
+    let inset = (rules::HEADROOM_PX + drawn.iter().map(Drawn::reach_px).max().unwrap_or(0)) as f64;
+    let (data_y0, data_y1) = (y0, y1);
+    (y0, y1) = rules::padded_range(data_y0, data_y1, inset, ph as f64);
+    if pad_x {
+        (x0, x1) = rules::padded_range(x0, x1, inset, pw as f64);
+    }
+    let drawn: Vec<Drawn> = if pad_x {
+        p.lines
+            .iter()
+            .zip(&later)
+            .map(|(l, &d)| Drawn::of(l, x0, x1, columns, d))
+            .collect()
+    } else {
+        drawn
     };
-    let marks: Vec<_> = drawn.iter().flat_map(|d| d.marks(&map)).collect();
-    let size = legend_size(&p.lines);
-    let place = size.map(|(w, h)| rules::place_legend(pw, ph, w, h, &marks));
-    let right_px = match (place, size) {
-        (Some(LegendPlace::Outside), Some((w, _))) => w + 2 * LEGEND_PAD_PX,
-        _ => 0,
+    let legend = Legend::of(&p.lines, &later);
+    let place = {
+        let map = |(x, y): (f64, f64)| {
+            (
+                ((x - x0) / (x1 - x0) * pw as f64).round() as i32,
+                ((y1 - y) / (y1 - y0) * ph as f64).round() as i32,
+            )
+        };
+        let marks: Vec<_> = drawn.iter().flat_map(|d| d.marks(&map)).collect();
+        legend.as_ref().map(|l| {
+            let (w, h) = l.boxed_size();
+            rules::place_legend(pw, ph, w, h, &marks)
+        })
     };
+    let strip = match (&place, &legend) {
+        (Some(LegendPlace::Outside), Some(l)) => Some(l.strip(pw)),
+        _ => None,
+    };
+    if let Some((_, h)) = &strip {
+        // The legend goes above the plot: the plot is lowered, its y range padded anew.
+        layout.top += h;
+        plot = probe_plot(dim, &layout)?;
+        ph = plot.y1 - plot.y0;
+        (y0, y1) = rules::padded_range(data_y0, data_y1, inset, ph as f64);
+    }
     if let Some(LegendPlace::Headroom(_, raise)) = place {
         y1 += raise * (y1 - y0);
     }
-    if right_px > 0 {
-        plot = probe_plot(dim, &p.title, right_px)?;
-    }
-    let columns_now = ((plot.x1 - plot.x0) / COLUMN_PX).max(1) as usize;
-    let drawn: Vec<Drawn> = if columns_now == columns {
-        drawn
-    } else {
-        p.lines
-            .iter()
-            .map(|l| Drawn::of(l, x0, x1, columns_now))
-            .collect()
-    };
 
-    let mut chart = builder(area, &p.title, right_px)
+    // The panel title, centred over the plot (the probe's pixels are relative to the panel).
+    let base = area.get_base_pixel();
+    let cap_style = TextStyle::from(font(CAPTION_PT)).pos(Pos::new(HPos::Center, VPos::Top));
+    for (k, l) in caption.iter().enumerate() {
+        area.draw(&Text::new(
+            l.clone(),
+            ((plot.x0 + plot.x1) / 2, 6 + line_px(CAPTION_PT) * k as i32),
+            cap_style.clone(),
+        ))
+        .map_err(|x| e(&x))?;
+    }
+
+    let mut chart = builder(area, &layout)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(|x| e(&x))?;
     let (xs, ys) = (x1 - x0, y1 - y0);
     let y_fmt = |v: &f64| rules::tick_label(*v, ys);
     let x_fmt = |v: &f64| rules::tick_label(*v, xs);
+    let y_desc = rules::typeset(p.y_label);
+    let x_desc = if last {
+        rules::typeset(x_label)
+    } else {
+        String::new()
+    };
     let mut mesh = chart.configure_mesh();
     // Major grid lines only: the light ones read as noise and weigh most of a figure's file.
-    mesh.x_desc(x_label)
-        .y_desc(p.y_label)
+    // Tick counts leave a label's size free between labels.
+    mesh.y_desc(y_desc)
+        .label_style(tf.clone())
+        .axis_desc_style(tf.clone())
         .max_light_lines(0)
+        .y_labels(((ph / line_px(TEXT_PT)).max(4)) as usize)
+        .x_labels(((pw / (x_ticks_w + 3 * em_px(TEXT_PT) as i32).max(1)).clamp(2, 10)) as usize)
         .y_label_formatter(&y_fmt)
         .x_label_formatter(&x_fmt);
+    if !x_desc.is_empty() {
+        mesh.x_desc(x_desc);
+    }
     if categorical {
         // No numeric ticks on a category axis: the names are drawn below.
         mesh.x_labels(0).disable_x_mesh();
@@ -424,45 +696,60 @@ fn draw_panel<DB: DrawingBackend>(
     let mut envelopes = Vec::new();
     for (l, d) in p.lines.iter().zip(&drawn) {
         let c = l.color;
-        match d {
-            Drawn::Path(pts, dashed) => {
-                let pts = pts
+        // A solid or dashed line through `pts` (a macro: the chart is borrowed per draw).
+        macro_rules! path {
+            ($pts:expr, $dashed:expr) => {{
+                let pts = $pts
                     .iter()
                     .copied()
-                    .filter(|p| p.0.is_finite() && p.1.is_finite());
-                if *dashed {
-                    chart.draw_series(DashedLineSeries::new(pts, 7, 4, c.stroke_width(2)))
+                    .filter(|p: &(f64, f64)| p.0.is_finite() && p.1.is_finite());
+                if $dashed {
+                    chart
+                        .draw_series(DashedLineSeries::new(pts, 12, 7, c.stroke_width(2)))
+                        .map(|_| ())
                 } else {
-                    chart.draw_series(LineSeries::new(pts, c.stroke_width(2)))
+                    chart
+                        .draw_series(LineSeries::new(pts, c.stroke_width(2)))
+                        .map(|_| ())
                 }
-                .map_err(|x| e(&x))?;
-            }
+            }};
+        }
+        match d {
+            Drawn::Path(pts, dashed) => path!(pts, *dashed).map_err(|x| e(&x))?,
             Drawn::Bars(bars) => {
                 chart
                     .draw_series(
                         bars.iter()
-                            .map(|b| PathElement::new(vec![b[0], b[2]], c.stroke_width(2))),
+                            .map(|b| PathElement::new(vec![b[0], b[2]], c.stroke_width(3))),
                     )
                     .map_err(|x| e(&x))?;
                 chart
-                    .draw_series(bars.iter().map(|b| Circle::new(b[1], 3, c.filled())))
+                    .draw_series(
+                        bars.iter()
+                            .map(|b| Circle::new(b[1], BAR_DOT_PX, c.filled())),
+                    )
                     .map_err(|x| e(&x))?;
             }
-            Drawn::Dots(pts) => {
+            Drawn::Dots(pts, r, alpha) => {
                 chart
-                    .draw_series(pts.iter().map(|&q| Circle::new(q, 2, c.mix(0.45).filled())))
+                    .draw_series(
+                        pts.iter()
+                            .map(|&q| Circle::new(q, *r, c.mix(*alpha).filled())),
+                    )
                     .map_err(|x| e(&x))?;
             }
-            Drawn::Env(cols) => {
+            Drawn::Env(cols, narrow) => {
                 let mut ring: Vec<(f64, f64)> = cols.iter().map(|k| (k.x, k.max)).collect();
                 ring.extend(cols.iter().rev().map(|k| (k.x, k.min)));
                 chart
                     .draw_series(std::iter::once(Polygon::new(ring, c.mix(0.25).filled())))
                     .map_err(|x| e(&x))?;
+                // The first envelope's mean 3 px wide, later ones 1 px on top: where they
+                // coincide the later line runs inside the first.
                 chart
                     .draw_series(LineSeries::new(
                         cols.iter().map(|k| (k.x, k.mean)),
-                        c.stroke_width(1),
+                        c.stroke_width(if *narrow { 1 } else { 3 }),
                     ))
                     .map_err(|x| e(&x))?;
                 envelopes.push(cols.clone());
@@ -480,41 +767,48 @@ fn draw_panel<DB: DrawingBackend>(
     };
     let to_px = |q: (f64, f64)| chart.backend_coord(&q);
     let marks: Vec<_> = drawn.iter().flat_map(|d| d.marks(&to_px)).collect();
-    let base = area.get_base_pixel();
+    let extent = drawn.iter().filter_map(|d| d.extent(&to_px)).reduce(union);
     let mut categories = Vec::new();
     for (k, name) in p.categories.iter().enumerate() {
         let (x, _) = to_px((k as f64, y0));
-        let style = TextStyle::from(("sans-serif", 13).into_font()).pos(
-            plotters::style::text_anchor::Pos::new(
-                plotters::style::text_anchor::HPos::Center,
-                plotters::style::text_anchor::VPos::Top,
-            ),
-        );
+        let style = TextStyle::from(tf.clone()).pos(Pos::new(HPos::Center, VPos::Top));
         area.draw(&Text::new(
-            name.clone(),
-            (x - base.0, plot.y1 + 6 - base.1),
+            rules::typeset(name),
+            (x - base.0, plot.y1 + 8 - base.1),
             style,
         ))
         .map_err(|x| e(&x))?;
         categories.push((name.clone(), x));
     }
-    let legend = match (place, size) {
-        (Some(place), Some((w, h))) => {
-            let r = match place {
-                LegendPlace::Inside(r) | LegendPlace::Headroom(r, _) => Rect {
-                    x0: plot.x0 + r.x0,
-                    y0: plot.y0 + r.y0,
-                    x1: plot.x0 + r.x1,
-                    y1: plot.y0 + r.y1,
-                },
-                LegendPlace::Outside => Rect {
-                    x0: plot.x1 + LEGEND_PAD_PX,
-                    y0: plot.y0,
-                    x1: plot.x1 + LEGEND_PAD_PX + w,
-                    y1: plot.y0 + h,
-                },
+    let legend = match (place, legend) {
+        (Some(place), Some(lg)) => {
+            let (w, h) = lg.boxed_size();
+            let (r, at) = match place {
+                LegendPlace::Inside(r) | LegendPlace::Headroom(r, _) => {
+                    let r = Rect {
+                        x0: plot.x0 + r.x0,
+                        y0: plot.y0 + r.y0,
+                        x1: plot.x0 + r.x1,
+                        y1: plot.y0 + r.y1,
+                    };
+                    let at: Vec<(i32, i32)> = (0..lg.entries.len() as i32)
+                        .map(|k| (LEGEND_PAD_PX, LEGEND_PAD_PX + line_px(TEXT_PT) * k))
+                        .collect();
+                    debug_assert_eq!((r.x1 - r.x0, r.y1 - r.y0), (w, h));
+                    (r, at)
+                }
+                LegendPlace::Outside => {
+                    let (at, sh) = lg.strip(plot.x1 - plot.x0);
+                    let r = Rect {
+                        x0: plot.x0,
+                        y0: plot.y0 - sh - 2,
+                        x1: plot.x1,
+                        y1: plot.y0 - 2,
+                    };
+                    (r, at)
+                }
             };
-            draw_legend(area, r, &p.lines)?;
+            draw_legend(area, r, &lg, &at, !matches!(place, LegendPlace::Outside))?;
             Some(r)
         }
         _ => None,
@@ -525,65 +819,76 @@ fn draw_panel<DB: DrawingBackend>(
         marks,
         categories,
         envelopes,
+        extent,
     }))
 }
 
-/// The legend box at `r` (backend pixels): one row per labelled line with its mark.
+/// The legend at `r` (backend pixels): each labelled line's mark and label at its place in
+/// `at` (relative to `r`'s top-left), in a white box when `boxed`.
 fn draw_legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     r: Rect,
-    lines: &[Line],
+    lg: &Legend,
+    at: &[(i32, i32)],
+    boxed: bool,
 ) -> Result<()> {
     let e = |e: &dyn std::fmt::Display| anyhow!("{e}");
     let b = area.get_base_pixel();
     let (x0, y0, x1, y1) = (r.x0 - b.0, r.y0 - b.1, r.x1 - b.0, r.y1 - b.1);
-    area.draw(&Rectangle::new(
-        [(x0, y0), (x1, y1)],
-        WHITE.mix(0.9).filled(),
-    ))
-    .map_err(|x| e(&x))?;
-    area.draw(&Rectangle::new([(x0, y0), (x1, y1)], BLACK.stroke_width(1)))
+    if boxed {
+        area.draw(&Rectangle::new(
+            [(x0, y0), (x1, y1)],
+            WHITE.mix(0.9).filled(),
+        ))
         .map_err(|x| e(&x))?;
-    for (k, l) in lines.iter().filter(|l| !l.label.is_empty()).enumerate() {
-        let y = y0 + 12 + 17 * k as i32;
-        let (a, c) = (x0 + 6, l.color);
+        area.draw(&Rectangle::new([(x0, y0), (x1, y1)], BLACK.stroke_width(1)))
+            .map_err(|x| e(&x))?;
+    }
+    let row = line_px(TEXT_PT);
+    let style = TextStyle::from(font(TEXT_PT)).pos(Pos::new(HPos::Left, VPos::Center));
+    for ((l, later, label, _), &(dx, dy)) in lg.entries.iter().zip(at) {
+        let (a, y, c) = (x0 + dx, y0 + dy + row / 2, l.color);
+        let s = SAMPLE_PX;
         match l.kind {
             Kind::Solid => area.draw(&PathElement::new(
-                vec![(a, y), (a + 22, y)],
+                vec![(a, y), (a + s, y)],
                 c.stroke_width(2),
             )),
             Kind::Dashed => area.draw(&DashedPathElement::new(
-                vec![(a, y), (a + 22, y)],
-                5,
-                3,
+                vec![(a, y), (a + s, y)],
+                12,
+                7,
                 c.stroke_width(2),
             )),
             Kind::ErrorBars | Kind::Interval => area
                 .draw(&PathElement::new(
-                    vec![(a + 11, y - 6), (a + 11, y + 6)],
-                    c.stroke_width(2),
+                    vec![(a + s / 2, y - 12), (a + s / 2, y + 12)],
+                    c.stroke_width(3),
                 ))
-                .and_then(|_| area.draw(&Circle::new((a + 11, y), 3, c.filled()))),
-            Kind::Dots => area.draw(&Circle::new((a + 11, y), 3, c.mix(0.6).filled())),
+                .and_then(|_| area.draw(&Circle::new((a + s / 2, y), BAR_DOT_PX, c.filled()))),
+            Kind::Dots => {
+                let (r, alpha) = rules::dot_style(l.points.len());
+                area.draw(&Circle::new(
+                    (a + s / 2, y),
+                    r,
+                    c.mix(alpha.max(0.6)).filled(),
+                ))
+            }
             Kind::Envelope => area
                 .draw(&Rectangle::new(
-                    [(a, y - 5), (a + 22, y + 5)],
+                    [(a, y - 9), (a + s, y + 9)],
                     c.mix(0.25).filled(),
                 ))
                 .and_then(|_| {
                     area.draw(&PathElement::new(
-                        vec![(a, y), (a + 22, y)],
-                        c.stroke_width(1),
+                        vec![(a, y), (a + s, y)],
+                        c.stroke_width(if *later { 1 } else { 3 }),
                     ))
                 }),
         }
         .map_err(|x| e(&x))?;
-        area.draw(&Text::new(
-            l.label.to_string(),
-            (a + 28, y - 7),
-            ("sans-serif", 12),
-        ))
-        .map_err(|x| e(&x))?;
+        area.draw(&Text::new(label.clone(), (a + s + 10, y), style.clone()))
+            .map_err(|x| e(&x))?;
     }
     Ok(())
 }

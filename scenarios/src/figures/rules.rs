@@ -10,10 +10,94 @@
 //!   the plot;
 //! * tick labels never read "-0" or "-0.0" ([`tick_label`]);
 //! * a categorical axis (table position, channel, effect) is labelled with its category names
-//!   at integer positions, never with numeric ticks (drawn in [`super::plot`]).
+//!   at integer positions, never with numeric ticks (drawn in [`super::plot`]);
+//! * print size: a figure is laid out to be printed one column wide, [`PRINT_WIDTH_IN`] = 3.5 in
+//!   (88.9 mm, a two-column journal), and no text is smaller than [`MIN_TEXT_PT`] = 8 pt there
+//!   ([`px_per_pt`]: a 900 px figure is 257 px/in, so 8 pt is 28.6 px);
+//! * headroom: every mark (bar end, dot with its radius, trace) lies at least [`HEADROOM_PX`]
+//!   inside the frame: the y range, and the x range of scatter and bar panels, is widened by
+//!   [`padded_range`] so no bar or point runs into the frame or sits on its edge;
+//! * markers stay visible: a sparse scatter is drawn with large opaque dots, a dense one with
+//!   translucent dots so overlaps show ([`dot_style`]);
+//! * units are typeset: "ug" prints as "µg", "deg C" as "°C", "deg/h" as "°/h" ([`typeset`];
+//!   DejaVu Sans, which the PNG uses, has both glyphs).
 //!
 //! Overlapping traces are told apart by the line kinds of [`super::plot::Kind`] (dashed,
-//! translucent envelope fills, dots with transparency) and by side-by-side error bars.
+//! translucent envelope fills, dots with transparency), by side-by-side error bars, and by
+//! draw order: in a panel of several envelopes the first draws its mean line 3 px wide and each
+//! later one 1 px wide on top, so where two cases coincide (Figure 2's east and north axes,
+//! which δβ hardly moves) the second case's line runs inside the first's and both show.
+
+/// The width a figure is printed at: one column of a two-column journal, 3.5 in (88.9 mm).
+pub const PRINT_WIDTH_IN: f64 = 3.5;
+/// The smallest text size at [`PRINT_WIDTH_IN`], pt.
+pub const MIN_TEXT_PT: f64 = 8.0;
+/// Space between the outer edge of every mark and the plot frame, px (about 4 pt at
+/// [`PRINT_WIDTH_IN`] for a 900 px figure).
+pub const HEADROOM_PX: i32 = 14;
+
+/// Pixels per printed point of a figure `width_px` wide printed at [`PRINT_WIDTH_IN`]
+/// (72 pt to the inch): 900 px → 3.57 px/pt.
+pub fn px_per_pt(width_px: u32) -> f64 {
+    width_px as f64 / (PRINT_WIDTH_IN * 72.0)
+}
+
+/// The printed size, pt, of text whose em is `em_px` px in a figure `width_px` wide.
+pub fn text_pt(em_px: f64, width_px: u32) -> f64 {
+    em_px / px_per_pt(width_px)
+}
+
+/// The axis range that puts the data range `[lo, hi]` `inset_px` px inside both ends of an
+/// axis `len_px` px long (a degenerate range is first widened to ±1e-12 about its value; the
+/// inset is capped at 40 % of the axis so a tiny axis still shows its data).
+pub fn padded_range(lo: f64, hi: f64, inset_px: f64, len_px: f64) -> (f64, f64) {
+    let (lo, hi) = if hi > lo {
+        (lo, hi)
+    } else {
+        (lo - 1e-12, hi + 1e-12)
+    };
+    let len = len_px.max(1.0);
+    let inset = inset_px.clamp(0.0, 0.4 * len);
+    let per_px = (hi - lo) / (len - 2.0 * inset);
+    (lo - inset * per_px, hi + inset * per_px)
+}
+
+/// Radius (px) and opacity of the dots of a scatter of `n` points: a sparse one (up to 10
+/// points: a few cases, a noise-free pair) large and opaque, a dense one smaller and
+/// translucent so overlapping points show.
+pub fn dot_style(n: usize) -> (i32, f64) {
+    if n <= 10 { (8, 1.0) } else { (5, 0.5) }
+}
+
+/// `text` with its units typeset: the word "ug" → "µg", "deg C" → "°C", the word "deg"
+/// (alone or before "/") → "°". Other words are left alone ("plug", "degree", "ug_x").
+pub fn typeset(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let word = |c: char| c.is_alphanumeric() || c == '_';
+    let mut out = String::with_capacity(text.len() + 4);
+    let mut i = 0;
+    while i < chars.len() {
+        let starts_word = i == 0 || !word(chars[i - 1]);
+        let at = |s: &str| {
+            let w: Vec<char> = s.chars().collect();
+            chars[i..].starts_with(&w) && chars.get(i + w.len()).is_none_or(|&c| !word(c))
+        };
+        if starts_word && at("ug") {
+            out.push_str("µg");
+            i += 2;
+        } else if starts_word && at("deg C") {
+            out.push_str("°C");
+            i += 5;
+        } else if starts_word && at("deg") {
+            out.push('°');
+            i += 3;
+        } else {
+            out.push(chars[i]);
+            i += 1;
+        }
+    }
+    out
+}
 
 /// A pixel rectangle: left, top, right, bottom (right/bottom exclusive).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -103,17 +187,22 @@ pub enum LegendPlace {
     /// Inside at the top right, after raising the y range's top by this fraction of the range
     /// so the band under the legend holds no data.
     Headroom(Rect, f64),
-    /// Outside, right of the plotting area (the plot is narrowed by the legend's width).
+    /// Outside, in a strip above the plotting area (the plot is lowered by the strip's
+    /// height), its entries side by side.
     Outside,
 }
 
 /// Padding between a legend and the plot frame, px.
 pub const LEGEND_PAD_PX: i32 = 6;
+/// The largest share of the plot height a legend band may take as headroom; a taller legend
+/// goes above the plot.
+pub const HEADROOM_MAX_FRAC: f64 = 0.25;
 
 /// Picks a legend place for a `w`×`h` px legend in a `plot_w`×`plot_h` px plot whose marks are
 /// `segments` (pixel coordinates relative to the plot's top-left; a point is a segment of zero
 /// length): the first free corner of upper right, upper left, lower right, lower left; else
-/// headroom when the legend takes at most 40 % of the height; else outside.
+/// headroom when the legend band takes at most [`HEADROOM_MAX_FRAC`] of the height; else
+/// outside (above the plot).
 pub fn place_legend(
     plot_w: i32,
     plot_h: i32,
@@ -143,7 +232,7 @@ pub fn place_legend(
         }
     }
     let band = h + 2 * p;
-    if (band as f64) <= 0.4 * plot_h as f64 {
+    if (band as f64) <= HEADROOM_MAX_FRAC * plot_h as f64 {
         // Data squeezed into the lower plot_h - band px: the top band is free.
         let raise = band as f64 / (plot_h - band) as f64;
         let (x, y) = corners[0];
@@ -211,6 +300,37 @@ mod tests {
     }
 
     #[test]
+    fn print_size_of_a_900_px_figure() {
+        // 3.5 in at 72 pt/in is 252 pt across 900 px.
+        assert!((px_per_pt(900) - 900.0 / 252.0).abs() < 1e-12);
+        assert!((MIN_TEXT_PT * px_per_pt(900) - 28.571_428_571).abs() < 1e-6);
+        // plotters' old 12-unit text: an SVG em of 12 / 1.24 = 9.68 px is 2.7 pt.
+        assert!((text_pt(12.0 / 1.24, 900) - 2.71).abs() < 0.01);
+    }
+
+    #[test]
+    fn padded_range_keeps_the_data_inset() {
+        let (lo, hi) = padded_range(2.0, 10.0, 20.0, 300.0);
+        // Pixel of a value on a 300 px axis over [lo, hi].
+        let px = |v: f64| (v - lo) / (hi - lo) * 300.0;
+        assert!((px(2.0) - 20.0).abs() < 1e-9 && (px(10.0) - 280.0).abs() < 1e-9);
+        let (lo, hi) = padded_range(5.0, 5.0, 10.0, 100.0);
+        assert!(lo < 5.0 && hi > 5.0);
+    }
+
+    #[test]
+    fn units_are_typeset() {
+        assert_eq!(typeset("residual (ug)"), "residual (µg)");
+        assert_eq!(
+            typeset("sensor temperature (deg C)"),
+            "sensor temperature (°C)"
+        );
+        assert_eq!(typeset("rate (deg/h), ug/K"), "rate (°/h), µg/K");
+        assert_eq!(typeset("attitude error (deg)"), "attitude error (°)");
+        assert_eq!(typeset("plug degree ug_x bug"), "plug degree ug_x bug");
+    }
+
+    #[test]
     fn legend_takes_a_free_corner_or_headroom() {
         // Points along the top band: the lower corners are free; lower right comes first.
         let top: Vec<_> = (0..100).map(|x| ((x * 8, 20), (x * 8, 20))).collect();
@@ -222,9 +342,14 @@ mod tests {
         let mut cross: Vec<_> = vec![((0, 0), (800, 200)), ((0, 200), (800, 0))];
         cross.push(((0, 100), (800, 100)));
         assert!(matches!(
-            place_legend(800, 200, 100, 40, &cross),
+            place_legend(800, 200, 100, 30, &cross),
             LegendPlace::Headroom(_, _)
         ));
+        // A band over a quarter of the height goes above the plot.
+        assert_eq!(
+            place_legend(800, 200, 100, 40, &cross),
+            LegendPlace::Outside
+        );
         assert_eq!(
             place_legend(800, 200, 100, 150, &cross),
             LegendPlace::Outside
