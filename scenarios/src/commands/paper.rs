@@ -137,7 +137,7 @@ pub fn run_paired(
         let text = if name == "table5" {
             r.to_text_table5()
         } else {
-            r.to_text()
+            crate::report::RenderText::render_text(&r)
         };
         crate::figures::rerun::record_paired(
             t,

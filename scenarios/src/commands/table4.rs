@@ -80,7 +80,7 @@ pub fn study(a: &Table4Args) -> Result<rins_verify::paper::Table4Report> {
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
-        print!("{}", r.to_text());
+        print!("{}", crate::report::RenderText::render_text(&r));
         println!("  figures and table4.json in {}", a.out.display());
     }
     Ok(r)

@@ -1,10 +1,13 @@
 //! Terminal text of the results the commands print. The verification reports render their own
-//! text (`AnalyticReport::to_text`, `InsReport::to_text`, `Table4Report::to_text`); the result
-//! types of the calibration (rins-nav) and of the diagnosis (rins-verify) get theirs here,
-//! through [`RenderText`], since a trait of this crate is how they take a method here.
+//! text (`AnalyticReport::to_text`, `InsReport::to_text`, Table 5's `to_text_table5`); the
+//! result types of the calibration (rins-nav), of the diagnosis (rins-verify), of Table 4
+//! ([`table4`]) and of the at-sea study ([`sea`]) get theirs here, through [`RenderText`],
+//! since a trait of this crate is how they take a method here.
 
 pub mod calibration;
 pub mod diagnosis;
+pub mod sea;
+pub mod table4;
 
 pub use calibration::CalibrationRun;
 
