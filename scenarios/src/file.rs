@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use rins_plant::carrier::{CarrierKind, CarrierSpec};
+use rins_plant::carrier::{AfterEnd, CarrierKind, CarrierSpec};
 use rins_plant::config::{SensorSpec, VehicleSpec};
 use rins_plant::earth::{EarthSpec, SiteSpec};
 use rins_plant::effects::{AccelSpec, GyroSpec};
@@ -394,7 +394,7 @@ impl Scenario {
                 }
             }
         }
-        carrier_problems(&self.plant, &mut problems);
+        carrier_problems(&self.plant, self.meta.duration_s, &mut problems);
         if let Err(errs) = self.plant.validate() {
             problems.extend(
                 errs.into_iter()
@@ -443,14 +443,38 @@ fn carrier_resolved(mut c: CarrierSpec, source_name: &str) -> CarrierSpec {
 }
 
 /// A trajectory carrier's file must read and pass the trajectory rules (its errors name the
-/// row and column in the trajectory file).
-fn carrier_problems(plant: &PlantConfig, problems: &mut Vec<(String, String)>) {
+/// row and column in the trajectory file) and last the run unless `after_end = "hold"`; a
+/// ship's last leg, continued to the end of the run, must stay within the polar limit (the
+/// plant's own validation checks the legs over their own durations).
+fn carrier_problems(plant: &PlantConfig, duration_s: f64, problems: &mut Vec<(String, String)>) {
     let c = &plant.carrier;
+    if c.kind == CarrierKind::Ship && plant.validate().is_ok() {
+        let legs_s: f64 = c.ship.legs.iter().map(|l| l.duration_s).sum();
+        if duration_s > legs_s
+            && let Some((path, e, g)) =
+                rins_plant::carrier::spec::polar_problem(&c.ship, duration_s)
+        {
+            problems.push((path, format!("expected {e}, got {g}")));
+        }
+    }
     if c.kind != CarrierKind::Trajectory || c.trajectory.file.is_empty() {
         return;
     }
-    if let Err(e) = rins_plant::carrier::Trajectory::read(&c.trajectory.file) {
-        problems.push(("carrier.trajectory.file".into(), e.to_string()));
+    match rins_plant::carrier::Trajectory::read(&c.trajectory.file) {
+        Err(e) => problems.push(("carrier.trajectory.file".into(), e.to_string())),
+        Ok(t) if c.trajectory.after_end == AfterEnd::Error && t.end_s() < duration_s * (1.0 - 1e-9) => {
+            problems.push((
+                "carrier.trajectory.file".into(),
+                format!(
+                    "{}: the last row is at t = {} s (plant time), before the end of the run at \
+                     scenario.duration_s = {duration_s} s; give a file that covers the run, a \
+                     shorter run, or carrier.trajectory.after_end = \"hold\" (stop at the last row)",
+                    c.trajectory.file,
+                    t.end_s()
+                ),
+            ))
+        }
+        Ok(_) => {}
     }
 }
 

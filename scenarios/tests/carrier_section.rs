@@ -104,9 +104,37 @@ fn a_bad_trajectory_file_is_reported_with_its_row_and_column() {
          0.01,36.6,123.6,0,0,0,0,1,0,0,0\n",
     )
     .unwrap();
+    // Issue 29: a file shorter than the run (0.01 s against the default 3600 s) is refused,
+    // naming the file, its last time and the run's duration, unless the scenario says to hold.
+    let e = Scenario::load(&toml).unwrap_err().to_string();
+    assert!(
+        e.contains("track.csv: the last row is at t = 0.01 s")
+            && e.contains("scenario.duration_s = 3600 s")
+            && e.contains("after_end = \"hold\""),
+        "{e}"
+    );
+    let hold = "trajectory.after_end = \"hold\"\n";
+    std::fs::write(&toml, std::fs::read_to_string(&toml).unwrap() + hold).unwrap();
     let s = Scenario::load(&toml).unwrap();
     let mut p = Plant::new(&s.plant).unwrap();
     let d = p.step();
     assert!((d.dv_mps.z - 9.7987 * 0.01).abs() < 1e-4, "{:?}", d.dv_mps);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 29: the last leg continues to the end of the run, so a run that would take it past
+/// ±89° is refused naming the leg and the latitude (its own 100 s are inside).
+#[test]
+fn a_last_leg_continued_past_the_polar_limit_is_refused() {
+    let text = "[scenario]\nname = \"x\"\nduration_s = 200000.0\n[carrier]\nkind = \"ship\"\n\
+                [carrier.ship]\nlat_deg = 80.0\n\
+                legs = [{ heading_deg = 0.0, speed_kn = 10.0, duration_s = 100.0 }]\n";
+    let e = err(text);
+    assert!(
+        e.contains("carrier.ship.legs[0]")
+            && e.contains("continued to the end of the run at 200000 s")
+            && e.contains("would reach latitude"),
+        "{e}"
+    );
+    assert!(Scenario::from_toml(&text.replace("200000.0", "3600.0"), "t.toml").is_ok());
 }
