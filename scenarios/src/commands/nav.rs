@@ -1,4 +1,7 @@
-//! `rins nav`: the reference navigator as a separate process, consuming a served IMU stream.
+//! `rins nav`: the reference navigator as a separate process, consuming a served IMU stream. It
+//! starts from the state the plant sends with the first batch it receives (the run's start, or
+//! the batch a replacement navigator joins at), prints its solution in degrees, and its final
+//! error when the plant publishes its truth.
 
 use std::path::PathBuf;
 
@@ -11,10 +14,10 @@ use super::serve::peer_timeout;
 /// Arguments of `rins nav`.
 #[derive(clap::Args, Debug)]
 pub struct NavArgs {
-    /// Session to connect to.
+    /// Session to connect to (1-64 letters, digits, '-', '_').
     #[arg(long)]
     pub connect: String,
-    /// The scenario being served (site, mount and rate of the plant).
+    /// The scenario being served (its run.rate_hz; the start state comes from the plant).
     pub scenario: PathBuf,
     /// Do not acknowledge batches (for a free-running plant).
     #[arg(long)]
@@ -36,6 +39,7 @@ pub struct NavArgs {
 
 /// Navigates on the served stream to its end and prints the final state as one JSON line.
 pub fn run(a: &NavArgs) -> Result<()> {
+    rins_transport::session::check_name(&a.connect)?;
     let sc = load(&a.scenario, &a.overrides)?;
     let mut commands = a
         .command_after
@@ -59,9 +63,24 @@ pub fn run(a: &NavArgs) -> Result<()> {
         peer_timeout: peer_timeout(a.peer_timeout_s)?,
     };
     let s = rins_transport::navigate(&a.connect, &sc.plant, &opts)?;
+    let out = summary_json(&s);
+    eprintln!("{}", summary_line(&s));
+    println!("{out}");
+    Ok(())
+}
+
+/// Longitude in degrees wrapped to [−180°, 180°).
+fn lon_deg(lon_rad: f64) -> f64 {
+    (lon_rad.to_degrees() + 180.0).rem_euclid(360.0) - 180.0
+}
+
+/// The result as one JSON object: degrees and SI units in the names; `lat_rad`/`lon_rad` keep
+/// the exact bits for comparisons; the error figures when the plant published its truth.
+fn summary_json(s: &rins_transport::NavSummary) -> serde_json::Value {
     let st = s.nav.state().copied();
     let q = st.map(|s| s.q_bn.into_inner());
-    let out = serde_json::json!({
+    let fe = s.final_error();
+    serde_json::json!({
         "samples": s.nav.samples,
         "batches": s.batches,
         "duplicates": s.duplicates,
@@ -69,13 +88,52 @@ pub fn run(a: &NavArgs) -> Result<()> {
         "last_tick": s.nav.last_tick,
         "digest": format!("{:016x}", s.nav.digest),
         "interrupted": s.interrupted,
+        "start": s.nav.start.map(|b| serde_json::json!({
+            "tick": b.tick,
+            "lat_deg": b.lat_rad.to_degrees(),
+            "lon_deg": lon_deg(b.lon_rad),
+            "height_m": b.height_m,
+            "v_enu_mps": b.v_enu_mps,
+        })),
+        "lat_deg": st.map(|s| s.lat_rad.to_degrees()),
+        "lon_deg": st.map(|s| lon_deg(s.lon_rad)),
+        "height_m": st.map(|s| s.height_m),
+        "v_enu_mps": st.map(|s| [s.v_n.x, s.v_n.y, s.v_n.z]),
+        "q_bn": q.map(|q| [q.w, q.i, q.j, q.k]),
         "lat_rad": st.map(|s| s.lat_rad),
         "lon_rad": st.map(|s| s.lon_rad),
-        "v_n": st.map(|s| [s.v_n.x, s.v_n.y, s.v_n.z]),
-        "q_bn": q.map(|q| [q.w, q.i, q.j, q.k]),
-    });
-    println!("{out}");
-    Ok(())
+        "north_error_m": fe.map(|e| e.north_m),
+        "east_error_m": fe.map(|e| e.east_m),
+        "horizontal_error_m": fe.map(|e| e.horizontal_m),
+        "velocity_error_mps": fe.map(|e| e.velocity_mps),
+    })
+}
+
+/// One line for people: where the navigator ended and, with the plant's truth, how far off.
+fn summary_line(s: &rins_transport::NavSummary) -> String {
+    let Some(st) = s.nav.state() else {
+        return format!("navigated {} samples: no solution", s.nav.samples);
+    };
+    let mut line = format!(
+        "navigated {} samples (ticks {}-{}): {:.6}° {}, {:.6}° {}, v_e {:.3} m/s, v_n {:.3} m/s",
+        s.nav.samples,
+        s.nav.first_tick.unwrap_or(0),
+        s.nav.last_tick,
+        st.lat_rad.to_degrees().abs(),
+        if st.lat_rad < 0.0 { "S" } else { "N" },
+        lon_deg(st.lon_rad).abs(),
+        if lon_deg(st.lon_rad) < 0.0 { "W" } else { "E" },
+        st.v_n.x,
+        st.v_n.y,
+    );
+    match s.final_error() {
+        Some(e) => line.push_str(&format!(
+            "; error against the plant's truth: horizontal {:.3} m (north {:.3} m, east {:.3} m), velocity {:.4} m/s",
+            e.horizontal_m, e.north_m, e.east_m, e.velocity_mps
+        )),
+        None => line.push_str("; the plant published no truth: no error figure"),
+    }
+    line
 }
 
 /// One `--command-after SEQ:OUTER_DEG:INNER_DEG:RATE_DPS`.
@@ -110,4 +168,88 @@ fn parse_isolation(c: &str) -> Result<ScheduledCommand> {
         after_seq: seq.parse().map_err(|_| bad())?,
         action: NavAction::AzimuthIsolation(on),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rins_transport::layout::{ImuRecord, StartRecord, TruthRecord};
+
+    /// A summary as `navigate` returns it: the reference navigator over `samples` of `cfg`,
+    /// started like the transport starts it, with the plant's truth at the end if `truth`.
+    fn summary(
+        cfg: &rins_plant::PlantConfig,
+        samples: u64,
+        truth: bool,
+    ) -> rins_transport::NavSummary {
+        let mut plant = rins_plant::Plant::new(cfg).unwrap();
+        let mut nav = rins_transport::NavProcessor::new(cfg);
+        nav.begin(&StartRecord::from_plant(&plant));
+        for _ in 0..samples {
+            nav.push(&ImuRecord::from_sample(&plant.step()));
+        }
+        rins_transport::NavSummary {
+            nav,
+            batches: 1,
+            duplicates: 0,
+            interrupted: false,
+            truth: truth.then(|| TruthRecord::from_plant(&plant)),
+        }
+    }
+
+    #[test]
+    fn the_output_is_in_degrees_with_the_error_against_the_truth() {
+        // Issue 29's ship: 0° N 179.99° E, east at 30 kn; it crosses the antimeridian at ~72 s.
+        let mut cfg = rins_plant::presets::paper_16pos_config();
+        cfg.carrier.kind = rins_plant::carrier::CarrierKind::Ship;
+        (cfg.carrier.ship.lat_deg, cfg.carrier.ship.lon_deg) = (0.0, 179.99);
+        cfg.carrier.ship.legs = vec![rins_plant::carrier::LegSpec {
+            heading_deg: 90.0,
+            speed_kn: 30.0,
+            duration_s: 3600.0,
+        }];
+        let s = summary(&cfg, 10_000, true);
+        let j = summary_json(&s);
+        let st = s.nav.state().unwrap();
+        assert_eq!(j["lat_deg"].as_f64().unwrap(), st.lat_rad.to_degrees());
+        // East of the antimeridian: printed as west longitude, within ±180°.
+        let lon = j["lon_deg"].as_f64().unwrap();
+        assert!((-180.0..-179.9).contains(&lon), "{lon}");
+        assert!(
+            (st.lon_rad.to_degrees() - 360.0 - lon).abs() < 1e-9,
+            "{lon}"
+        );
+        let start_lon = j["start"]["lon_deg"].as_f64().unwrap();
+        assert!(
+            (start_lon - 179.99).abs() < 1e-9,
+            "starts at the ship: {start_lon}"
+        );
+        let v_e = j["v_enu_mps"][0].as_f64().unwrap();
+        assert!((v_e - 15.43).abs() < 0.5, "v_e {v_e} m/s at 30 kn");
+        // The error against the truth, computed here from the truth record independently.
+        let t = s.truth.unwrap();
+        let (rm, rn) = rins_plant::earth::radii_of_curvature(t.lat_rad);
+        let dlon = st.lon_rad
+            - t.lon_rad
+            - (st.lon_rad - t.lon_rad + std::f64::consts::PI).div_euclid(std::f64::consts::TAU)
+                * std::f64::consts::TAU;
+        let north = (st.lat_rad - t.lat_rad) * (rm + t.height_m);
+        let east = dlon * (rn + t.height_m) * t.lat_rad.cos();
+        let h = j["horizontal_error_m"].as_f64().unwrap();
+        assert!((h - north.hypot(east)).abs() < 1e-9, "{h} m");
+        assert!(h < 50.0, "the navigator follows the ship: {h} m");
+        assert!(
+            summary_line(&s).contains("horizontal"),
+            "{}",
+            summary_line(&s)
+        );
+        // Without the plant's truth: no error figure, and the line says so.
+        let s = summary(&cfg, 100, false);
+        assert!(summary_json(&s)["horizontal_error_m"].is_null());
+        assert!(
+            summary_line(&s).contains("no truth"),
+            "{}",
+            summary_line(&s)
+        );
+    }
 }

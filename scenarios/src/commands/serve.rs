@@ -14,7 +14,7 @@ use super::args::{Overrides, RerunArgs, load, positive, whole};
 pub struct ServeArgs {
     /// Scenario to serve.
     pub scenario: PathBuf,
-    /// Session name (letters, digits, '-', '_'): services rins/<session>/imu, cmd, nav.
+    /// Session name (1-64 letters, digits, '-', '_'): services rins/<session>/imu, cmd, nav.
     #[arg(long, default_value = "default")]
     pub session: String,
     /// `lockstep` (deterministic) or `free` (as fast as the navigator consumes, or paced).
@@ -47,6 +47,7 @@ pub fn peer_timeout(s: f64) -> Result<Duration> {
 
 /// Serves the scenario's samples until the end (or Ctrl-C) and reports what was served.
 pub fn run(a: &ServeArgs) -> Result<()> {
+    rins_transport::session::check_name(&a.session)?;
     let sc = load(&a.scenario, &a.overrides)?;
     let batch = whole(
         "--batch",
