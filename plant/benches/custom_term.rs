@@ -83,6 +83,7 @@ fn main() {
         let dth = nalgebra::Vector3::new(1e-5, 2e-5, a * 1e-9);
         let (g, _) = d.increments(
             black_box(&up),
+            &[nalgebra::Vector3::y(), nalgebra::Vector3::x()],
             &dth,
             &dth,
             0.01,

@@ -415,9 +415,28 @@ impl Plant {
                 } else {
                     0.0
                 };
-                let (g, a) = self
-                    .declared
-                    .increments(&up_b, &dtheta, &dv, h, gm.angles, t_mid);
+                // North and east in body axes only when an effect reads them: columns 1 and 0
+                // of C_n^b (ENU), at the interval's middle on a static carrier, at its start
+                // on a moving one.
+                let north_east_b = if self.declared.needs().heading {
+                    let c_nb = if self.carrier.is_some() {
+                        self.attitude_c_bn().transpose()
+                    } else {
+                        self.mid_attitude(&gm).c_nb
+                    };
+                    [c_nb.column(1).into_owned(), c_nb.column(0).into_owned()]
+                } else {
+                    [Vector3::zeros(); 2]
+                };
+                let (g, a) = self.declared.increments(
+                    &up_b,
+                    &north_east_b,
+                    &dtheta,
+                    &dv,
+                    h,
+                    gm.angles,
+                    t_mid,
+                );
                 let tr = &mut self.truth;
                 (tr.custom_gyro_rad, tr.custom_accel_mps) = if sub == 0 {
                     (g, a)

@@ -98,6 +98,8 @@ fn resolve(factors: &[Factor], accel: bool, axis: usize) -> Vec<Slot> {
                 Signal::Outer => (super::signals::OUTER, 0, false),
                 Signal::Inner => (super::signals::INNER, 0, false),
                 Signal::Time => (super::signals::TIME, 0, false),
+                Signal::North(i) => (super::signals::NORTH + i, 0, false),
+                Signal::East(i) => (super::signals::EAST + i, 0, false),
             };
             Slot {
                 a: a as u8,

@@ -34,6 +34,8 @@ pub struct Needs {
     pub gimbal: bool,
     /// Time.
     pub time: bool,
+    /// North and east directions in body axes.
+    pub heading: bool,
 }
 
 impl Needs {
@@ -43,6 +45,7 @@ impl Needs {
         rate: true,
         gimbal: true,
         time: true,
+        heading: true,
     };
 
     fn of(models: [&CustomModel; 2]) -> Self {
@@ -56,6 +59,7 @@ impl Needs {
                         S::Rate(_) | S::AbsRate(_) => n.rate = true,
                         S::Outer | S::Inner => n.gimbal = true,
                         S::Time => n.time = true,
+                        S::North(_) | S::East(_) => n.heading = true,
                         _ => {}
                     }
                 }
@@ -119,20 +123,31 @@ impl Declared {
     }
 
     /// Gyro and accelerometer increment errors over one interval of `h_s` with true
-    /// increments `dtheta`/`dv`, body up direction `up_b`, mid gimbal angles `mid` and mid time
+    /// increments `dtheta`/`dv`, body up direction `up_b`, body north and east directions
+    /// `north_east_b` (read only when [`Needs::heading`]), mid gimbal angles `mid` and mid time
     /// `t_mid_s`.
     #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn increments(
         &mut self,
         up_b: &Vector3<f64>,
+        north_east_b: &[Vector3<f64>; 2],
         dtheta: &Vector3<f64>,
         dv: &Vector3<f64>,
         h_s: f64,
         mid: GimbalAngles,
         t_mid_s: f64,
     ) -> (Vector3<f64>, Vector3<f64>) {
-        fill_fast(&mut self.frame, self.needs, up_b, dtheta, h_s, mid, t_mid_s);
+        fill_fast(
+            &mut self.frame,
+            self.needs,
+            up_b,
+            north_east_b,
+            dtheta,
+            h_s,
+            mid,
+            t_mid_s,
+        );
         let z = Vector3::zeros();
         (
             if self.gyro.is_active() {
@@ -149,13 +164,16 @@ impl Declared {
     }
 }
 
-/// Fills the per-interval slots of `f` that `needs` asks for: up direction, body rate (from
-/// the increment over `h_s`), its magnitude per axis, gimbal angles and time.
+/// Fills the per-interval slots of `f` that `needs` asks for: up direction, north and east
+/// directions, body rate (from the increment over `h_s`), its magnitude per axis, gimbal
+/// angles and time.
 #[inline]
+#[allow(clippy::too_many_arguments)]
 pub fn fill_fast(
     f: &mut Frame,
     needs: Needs,
     up_b: &Vector3<f64>,
+    north_east_b: &[Vector3<f64>; 2],
     dtheta: &Vector3<f64>,
     h_s: f64,
     mid: GimbalAngles,
@@ -163,6 +181,10 @@ pub fn fill_fast(
 ) {
     if needs.up {
         f[signals::UP..signals::UP + 3].copy_from_slice(up_b.as_slice());
+    }
+    if needs.heading {
+        f[signals::NORTH..signals::NORTH + 3].copy_from_slice(north_east_b[0].as_slice());
+        f[signals::EAST..signals::EAST + 3].copy_from_slice(north_east_b[1].as_slice());
     }
     if needs.rate {
         let to_dps = 180.0 / std::f64::consts::PI / h_s;

@@ -13,7 +13,7 @@
 use crate::thermal::node;
 
 /// Number of values in a [`Frame`].
-pub const SLOTS: usize = 24;
+pub const SLOTS: usize = 30;
 /// First slot of the node temperatures (°C), indexed by [`node`].
 pub const TEMP: usize = 0;
 /// First slot of the node temperature rates (K/s).
@@ -31,6 +31,10 @@ pub const OUTER: usize = 21;
 pub const INNER: usize = 22;
 /// Time since the start of the run, s.
 pub const TIME: usize = 23;
+/// First slot of the body components of the navigation frame's north unit vector n^b.
+pub const NORTH: usize = 24;
+/// First slot of the body components of the navigation frame's east unit vector e^b.
+pub const EAST: usize = 27;
 
 /// Values of every signal over one interval (slots above).
 pub type Frame = [f64; SLOTS];
@@ -186,10 +190,16 @@ pub enum Signal {
     Inner,
     /// `time`: since the start of the run, s.
     Time,
+    /// `n_x`, `n_y`, `n_z`: body components of the local north direction, 1 (with `e_*` and
+    /// `u_*`, any field fixed in the navigation frame, e.g. the Earth's magnetic field that an
+    /// RLG's bias is sensitive to, is a linear combination).
+    North(usize),
+    /// `e_x`, `e_y`, `e_z`: body components of the local east direction, 1.
+    East(usize),
 }
 
 /// Every signal name with its unit and description, for messages and docs/effects.md.
-pub const SIGNAL_DOCS: [(&str, &str, &str); 9] = [
+pub const SIGNAL_DOCS: [(&str, &str, &str); 11] = [
     (
         "temp:NODE",
         "degC",
@@ -215,6 +225,16 @@ pub const SIGNAL_DOCS: [(&str, &str, &str); 9] = [
         "inner gimbal angle, wrapped to [-180, 180)",
     ),
     ("time", "s", "time since the start of the run"),
+    (
+        "n_x, n_y, n_z",
+        "1",
+        "body components of the local north direction (a field fixed in the navigation frame)",
+    ),
+    (
+        "e_x, e_y, e_z",
+        "1",
+        "body components of the local east direction",
+    ),
 ];
 
 fn axis_of(c: &str) -> Option<usize> {
@@ -249,6 +269,12 @@ impl Signal {
         if let Some(a) = s.strip_prefix("u_") {
             return axis_of(a).map(Signal::Up);
         }
+        if let Some(a) = s.strip_prefix("n_") {
+            return axis_of(a).map(Signal::North);
+        }
+        if let Some(a) = s.strip_prefix("e_") {
+            return axis_of(a).map(Signal::East);
+        }
         match s {
             "gimbal_outer" => Some(Signal::Outer),
             "gimbal_inner" => Some(Signal::Inner),
@@ -272,7 +298,7 @@ impl Signal {
                 s: -1,
                 deg: 0,
             },
-            Signal::Up(_) => Unit::ONE,
+            Signal::Up(_) | Signal::North(_) | Signal::East(_) => Unit::ONE,
             Signal::Rate(_) | Signal::AbsRate(_) => dps,
             Signal::Outer | Signal::Inner => Unit {
                 deg: 1,
@@ -290,7 +316,7 @@ impl Signal {
             Signal::Temp(_) => 130.0,
             Signal::Gradient(..) => 260.0,
             Signal::TempRate(_) => 10.0,
-            Signal::Up(_) => 1.0,
+            Signal::Up(_) | Signal::North(_) | Signal::East(_) => 1.0,
             Signal::Rate(_) | Signal::AbsRate(_) => 100.0,
             Signal::Outer | Signal::Inner => 180.0,
             Signal::Time => 1e7,

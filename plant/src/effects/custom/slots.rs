@@ -26,10 +26,10 @@ pub const BLOCK_CODE: u64 = node::COUNT as u64;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct SlotFactor {
     /// Signal: 0 none, else the row of [`SIGNAL_DOCS`] + 1 (1 temp, 2 dtemp_dt, 3 grad, 4 u,
-    /// 5 w, 6 abs_w, 7 gimbal_outer, 8 gimbal_inner, 9 time).
+    /// 5 w, 6 abs_w, 7 gimbal_outer, 8 gimbal_inner, 9 time, 10 n, 11 e).
     pub signal: u64,
     /// Node (0 board, 1 gyro_x, 2 gyro_y, 3 gyro_z, 4 accel, 5 housing, 6 block) for temp,
-    /// dtemp_dt and the first node of grad; axis (0 x, 1 y, 2 z) for u, w and abs_w.
+    /// dtemp_dt and the first node of grad; axis (0 x, 1 y, 2 z) for u, w, abs_w, n and e.
     pub node_or_axis: u64,
     /// Second node of grad (A − B), as `node_or_axis`.
     pub node_b: u64,
@@ -123,6 +123,8 @@ impl Slot {
                 7 => "gimbal_outer".into(),
                 8 => "gimbal_inner".into(),
                 9 => "time".into(),
+                10 => format!("n_{}", axis(f.node_or_axis)?),
+                11 => format!("e_{}", axis(f.node_or_axis)?),
                 c => {
                     return Err(bad(
                         "signal",
@@ -223,6 +225,8 @@ impl Slot {
                 Signal::Outer => (7, 0, 0),
                 Signal::Inner => (8, 0, 0),
                 Signal::Time => (9, 0, 0),
+                Signal::North(i) => (10, i as u64, 0),
+                Signal::East(i) => (11, i as u64, 0),
             };
             *out = SlotFactor {
                 signal,
@@ -296,10 +300,14 @@ mod tests {
         assert_eq!(e.field, "node_or_axis[0]");
         assert!(e.message.contains("0…2"), "{}", e.message);
         slot.factors[0].node_or_axis = 0;
-        slot.factors[1].signal = 10;
+        slot.factors[1].signal = SIGNAL_CODE_MAX + 1;
         let e = slot.to_spec("t").unwrap_err();
         assert_eq!(e.field, "signal[1]");
-        assert!(e.message.contains("0…9"), "{}", e.message);
+        assert!(
+            e.message.contains(&format!("0…{SIGNAL_CODE_MAX}")),
+            "{}",
+            e.message
+        );
         slot.factors[1] = SlotFactor {
             signal: 3,
             node_or_axis: 6,
