@@ -25,6 +25,21 @@ fn position_of(w: &Window) -> &'static str {
     }
 }
 
+/// Azimuth step of the cell map's orientation label, °: fine enough to separate the 45° and
+/// 90° steps of rotation schemes, coarse enough that encoder noise never splits a dwell.
+const AZIMUTH_STEP_DEG: f64 = 15.0;
+
+/// The orientation of a static window (`az 90`: body x heading, rounded to 15°); empty while
+/// the table moves.
+fn orientation_of(w: &Window) -> String {
+    if w.moving {
+        String::new()
+    } else {
+        let az = (w.azimuth_deg / AZIMUTH_STEP_DEG).round() * AZIMUTH_STEP_DEG;
+        format!("az {:.0}", az.rem_euclid(360.0))
+    }
+}
+
 fn temp_of(w: &Window, c: usize) -> f64 {
     if c < 3 {
         w.gyro_temp_c[c]
@@ -44,14 +59,17 @@ impl Prepared {
     /// Residual sums per channel after removing `pred` (per-channel predictions).
     fn cells(&self, pred: &[Vec<f64>]) -> (Vec<Cell>, f64) {
         let o = &self.opts;
-        // (channel, position, temperature bin, time window) -> (residual sum, variance, duration, windows)
-        type Key<'a> = (usize, &'a str, i64, i64);
+        // (channel, position, orientation, temperature bin, time window) -> (residual sum,
+        // variance, duration, windows)
+        type Key<'a> = (usize, &'a str, String, i64, i64);
         let mut map: BTreeMap<Key, (f64, f64, f64, usize)> = BTreeMap::new();
         for (i, w) in self.replay.windows.iter().enumerate() {
             for c in 0..6 {
                 let tb = (temp_of(w, c) / o.temp_bin_k).floor() as i64;
                 let tw = (w.t_run_s / o.time_window_s).floor() as i64;
-                let e = map.entry((c, position_of(w), tb, tw)).or_default();
+                let e = map
+                    .entry((c, position_of(w), orientation_of(w), tb, tw))
+                    .or_default();
                 e.0 += self.data[c].y[i] - pred[c][i];
                 e.1 += self.data[c].v[i];
                 e.2 += w.duration_s;
@@ -61,11 +79,12 @@ impl Prepared {
         let zc = stats::z_critical(o.alpha, map.len());
         let cells = map
             .into_iter()
-            .map(|((c, pos, tb, tw), (r, v, d, n))| {
+            .map(|((c, pos, orientation, tb, tw), (r, v, d, n))| {
                 let (_, scale) = unit_of(c);
                 Cell {
                     channel: CHANNELS[c].into(),
                     position: pos.into(),
+                    orientation,
                     temp_bin_c: [tb as f64 * o.temp_bin_k, (tb + 1) as f64 * o.temp_bin_k],
                     time_window_s: [
                         tw as f64 * o.time_window_s,

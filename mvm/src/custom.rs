@@ -190,16 +190,19 @@ impl RowSignals {
         s
     }
 
-    /// The frame of row `k` (interval `dt_s`, true increment `dtheta`, mid attitude).
+    /// The frame of row `k` (interval `dt_s`, true increment `dtheta`, mid attitude C_n^b
+    /// `c_nb`: its columns are east, north and up in body axes).
     #[allow(clippy::too_many_arguments)]
     pub fn frame(
         &self,
         h: &History,
         k: usize,
         dt_s: f64,
-        up_b: &nalgebra::Vector3<f64>,
+        c_nb: &nalgebra::Matrix3<f64>,
         dtheta: &nalgebra::Vector3<f64>,
     ) -> Frame {
+        let up_b = &c_nb.column(2).into_owned();
+        let north_east_b = [c_nb.column(1).into_owned(), c_nb.column(0).into_owned()];
         let mut f = [0.0; SLOTS];
         for n in 0..node::COUNT {
             f[signals::TEMP + n] = reading(h, n, k);
@@ -222,6 +225,7 @@ impl RowSignals {
             &mut f,
             rins_plant::effects::custom::Needs::ALL,
             up_b,
+            &north_east_b,
             dtheta,
             dt_s,
             mid,

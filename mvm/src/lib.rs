@@ -24,7 +24,9 @@ pub mod custom;
 pub mod discover;
 pub mod fit;
 mod header;
+pub mod heredity;
 pub mod history;
+pub mod iterate;
 pub mod parquet;
 mod prepare;
 pub mod reader;
@@ -35,9 +37,10 @@ pub mod stats;
 
 use rins_plant::PlantConfig;
 
-pub use apply::Applied;
+pub use apply::{Applied, Coefficient, Fate};
 pub use fit::ChannelData;
 pub use history::{Attitude, History, to_history, with_data_site};
+pub use iterate::{IterateOptions, Iteration, IterationReport, iterate};
 pub use replay::{CHANNELS, Effect, Group, Replay};
 pub use report::{
     Cell, ChannelSummary, CompareReport, Confusable, Correlation, DiagnoseReport, NavComparison,

@@ -142,6 +142,11 @@ pub struct Window {
     pub moving: bool,
     /// Mean z component of the up direction in body axes (+1 Z-up, −1 Z-down).
     pub up_z: f64,
+    /// Azimuth of the table position: the heading of the body x axis's horizontal part (of
+    /// body y when body x is within 30° of vertical), degrees from north towards east, at the
+    /// window's first row. With the tilt (`up_z`) it names the dwell's orientation, so a
+    /// residual that follows a field fixed in the navigation frame shows by position.
+    pub azimuth_deg: f64,
     /// Mean specific force in body axes, g.
     pub f_b_g: [f64; 3],
     /// Mean gyro block temperatures, °C.
@@ -468,7 +473,7 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                 // Declared effects: the model's own contribution, and the candidates' regressors.
                 let frame = declared
                     .any
-                    .then(|| declared.signals.frame(h, k, dt, &up_b, &dtheta));
+                    .then(|| declared.signals.frame(h, k, dt, &c_nb, &dtheta));
                 if let Some(f) = &frame {
                     ge += declared.gyro.increment_error(f, dt, &dtheta);
                     ae += declared.accel.increment_error(f, dt, &dv);
@@ -511,6 +516,7 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                         rows: 0,
                         moving,
                         up_z: up_b.z,
+                        azimuth_deg: azimuth_deg(&c_nb),
                         f_b_g: [0.0; 3],
                         gyro_temp_c: [0.0; 3],
                         accel_temp_c: 0.0,
@@ -581,6 +587,15 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
         nav,
         rows: h.len(),
     }
+}
+
+/// Heading of the body x axis's horizontal part (body y when x is within 30° of vertical), °
+/// from north towards east in [0, 360), from C_n^b (ENU navigation frame): body axis i in
+/// navigation coordinates is row i of C_n^b.
+pub fn azimuth_deg(c_nb: &Matrix3<f64>) -> f64 {
+    let row = if c_nb[(0, 2)].abs() < 0.866 { 0 } else { 1 };
+    let (e, n) = (c_nb[(row, 0)], c_nb[(row, 1)]);
+    e.atan2(n).to_degrees().rem_euclid(360.0)
 }
 
 /// Turns time-weighted sums into means.

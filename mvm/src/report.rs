@@ -38,6 +38,9 @@ pub struct Cell {
     pub channel: String,
     /// `z-up`, `z-down`, `tilted` or `moving`.
     pub position: String,
+    /// The static position's orientation, `az DEG` (body x heading, 15° steps; body y when x
+    /// is near vertical); empty while moving.
+    pub orientation: String,
     /// Temperature bin, °C.
     pub temp_bin_c: [f64; 2],
     /// Time window since the segment start, s.

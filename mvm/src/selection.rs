@@ -245,10 +245,11 @@ pub(crate) fn diagnose(a: &Prepared, source: &str, before: &CompareReport) -> Di
                 .max_by(|a, b| a.z.abs().total_cmp(&b.z.abs()))
                 .expect("non-empty");
             unexplained.push(format!(
-                "{ch} at {pos}: {n} cells, worst {:.4} {} (z = {:.1}) at {:.0}–{:.0} °C, {:.0}–{:.0} s",
+                "{ch} at {pos}: {n} cells, worst {:.4} {} (z = {:.1}) at {} {:.0}–{:.0} °C, {:.0}–{:.0} s",
                 worst.residual,
                 unit_of(CHANNELS.iter().position(|x| *x == ch).unwrap_or(0)).0,
                 worst.z,
+                worst.orientation,
                 worst.temp_bin_c[0],
                 worst.temp_bin_c[1],
                 worst.time_window_s[0],

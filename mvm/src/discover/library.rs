@@ -24,7 +24,7 @@
 use rayon::prelude::*;
 use rins_plant::effects::custom::CustomKind;
 use rins_plant::effects::custom::signals::{
-    ABS_RATE, DTEMP, INNER, NodeRef, OUTER, RATE, SLOTS, Signal, TEMP, TIME, UP, Unit,
+    ABS_RATE, DTEMP, EAST, INNER, NORTH, NodeRef, OUTER, RATE, SLOTS, Signal, TEMP, TIME, UP, Unit,
 };
 use rins_plant::thermal::node;
 
@@ -70,6 +70,8 @@ pub fn signal_name(s: Signal) -> String {
         Signal::Outer => "gimbal_outer".into(),
         Signal::Inner => "gimbal_inner".into(),
         Signal::Time => "time".into(),
+        Signal::North(i) => format!("n_{}", axis(i)),
+        Signal::East(i) => format!("e_{}", axis(i)),
     }
 }
 
@@ -90,6 +92,8 @@ fn short(s: Signal) -> String {
         Signal::Outer => "outer".into(),
         Signal::Inner => "inner".into(),
         Signal::Time => "time".into(),
+        Signal::North(i) => format!("n_{}", axis(i)),
+        Signal::East(i) => format!("e_{}", axis(i)),
     }
 }
 
@@ -97,7 +101,13 @@ fn short(s: Signal) -> String {
 fn dwell_constant(s: Signal) -> bool {
     matches!(
         s,
-        Signal::Up(_) | Signal::Rate(_) | Signal::AbsRate(_) | Signal::Outer | Signal::Inner
+        Signal::Up(_)
+            | Signal::North(_)
+            | Signal::East(_)
+            | Signal::Rate(_)
+            | Signal::AbsRate(_)
+            | Signal::Outer
+            | Signal::Inner
     )
 }
 
@@ -211,10 +221,29 @@ pub fn library_signals(h: &History) -> Vec<Signal> {
     v
 }
 
+/// Signals the library holds alone, not in products: the body components of north and east.
+/// A field fixed in the navigation frame (the Earth's magnetic field an RLG's bias is sensitive
+/// to) acts through K·C_n^b·m^n, linear in them; their products would multiply the library for
+/// no physics.
+pub const LINEAR_ONLY: [Signal; 6] = [
+    Signal::North(0),
+    Signal::North(1),
+    Signal::North(2),
+    Signal::East(0),
+    Signal::East(1),
+    Signal::East(2),
+];
+
 /// Every product term of the library over `sig`: each signal, each product of two (squares
-/// included), as a bias and as a scale factor.
+/// included), as a bias and as a scale factor; and the [`LINEAR_ONLY`] signals as biases.
 pub fn product_terms(sig: &[Signal]) -> Vec<Term> {
-    let mut out = Vec::new();
+    let mut out: Vec<Term> = LINEAR_ONLY
+        .iter()
+        .map(|s| Term::Product {
+            factors: vec![*s],
+            kind: CustomKind::Bias,
+        })
+        .collect();
     for kind in [CustomKind::Bias, CustomKind::ScaleFactor] {
         for (i, a) in sig.iter().enumerate() {
             out.push(Term::Product {
@@ -285,8 +314,7 @@ pub(crate) fn moments(kin: &Kinematics, h: &History, windows: &[Window]) -> Mome
                 left -= 1;
                 let dt = h.t_s[k] - h.t_s[k - 1];
                 let r = kin.row(h, k, dt);
-                let up_b = r.c_nb.column(2).into_owned();
-                let f = rs.frame(h, k, dt, &up_b, &r.dtheta_rad);
+                let f = rs.frame(h, k, dt, &r.c_nb, &r.dtheta_rad);
                 let wts = [
                     dt,
                     r.dtheta_rad[0],
@@ -351,6 +379,8 @@ fn slots_of(s: Signal, accel: bool, axis: usize) -> (usize, Option<usize>) {
         Signal::Outer => (OUTER, None),
         Signal::Inner => (INNER, None),
         Signal::Time => (TIME, None),
+        Signal::North(i) => (NORTH + i, None),
+        Signal::East(i) => (EAST + i, None),
     }
 }
 

@@ -119,6 +119,68 @@ pub struct DiscoveryReport {
     pub refused: Vec<DiscoveredTerm>,
     /// Catalogue effects replaced by a discovered one.
     pub superseded: Vec<Superseded>,
+    /// Library terms whose column is, on this data, a catalogue effect's column up to scale:
+    /// not new physics, so not proposed; the catalogue effect is tested in its place.
+    pub identical: Vec<Identical>,
+}
+
+/// A library term identical on the data to a catalogue effect's regressor.
+#[derive(Clone, Debug, Serialize)]
+pub struct Identical {
+    /// Channel.
+    pub channel: String,
+    /// The library term (`bias ∝ u_z`).
+    pub term: String,
+    /// The catalogue effect it is (`gyro.g_sensitivity`).
+    pub effect: String,
+    /// Whether the two are the same function of the signals, so that no experiment can
+    /// separate them (e.g. a bias ∝ u_z is G_zz·f_z/g₀ with f = g·u); otherwise they only
+    /// coincide on this data and a different experiment would split them.
+    pub by_definition: bool,
+}
+
+/// Relative residual below which a library column is taken as a catalogue column up to scale:
+/// far below any noise (whitened columns of 10⁻⁹ relative difference carry no information a
+/// noise floor could resolve in ~10⁹ windows).
+pub const IDENTICAL_REL: f64 = 1e-9;
+
+/// Whether whitened column `a` is `b` up to scale: ‖a − (a·b/b·b) b‖ ≤ IDENTICAL_REL ‖a‖.
+fn same_up_to_scale(a: &[f64], b: &[f64]) -> bool {
+    let (ab, bb, aa) = a
+        .iter()
+        .zip(b)
+        .fold((0.0, 0.0, 0.0), |(ab, bb, aa), (x, y)| {
+            (ab + x * y, bb + y * y, aa + x * x)
+        });
+    if !(aa > 0.0 && bb > 0.0) {
+        return false;
+    }
+    let k = ab / bb;
+    let r2: f64 = a.iter().zip(b).map(|(x, y)| (x - k * y).powi(2)).sum();
+    r2 <= IDENTICAL_REL * IDENTICAL_REL * aa
+}
+
+/// Whether a library term and a catalogue effect are the same function of the signals (a
+/// gyro bias linear in one up component is the g-sensitivity's G·f/g₀ term; an accelerometer
+/// scale factor on a constant, its scale factor; a bias on a constant, the bias).
+fn identical_by_definition(term: &Term, effect: Effect) -> bool {
+    use rins_plant::effects::custom::Signal;
+    use rins_plant::effects::{AccelTerm, GyroTerm};
+    let Term::Product { factors, kind } = term else {
+        return false;
+    };
+    matches!(
+        (factors.as_slice(), kind, effect),
+        (
+            [Signal::Up(_)],
+            CustomKind::Bias,
+            Effect::Gyro(GyroTerm::GSensitivity)
+        ) | (
+            [Signal::Up(_)],
+            CustomKind::Bias,
+            Effect::Accel(AccelTerm::ScaleFactor | AccelTerm::Misalignment)
+        )
+    )
 }
 
 /// A proposal with what augmentation needs.
@@ -243,12 +305,49 @@ pub(crate) fn search(
         min_cv_gain_pct: 0.0,
     };
     let mut refused = Vec::new();
+    let mut identical = Vec::new();
     // (channel, term index, column, test)
     let mut kept: Vec<(usize, usize, Vec<f64>, DiscoveredTerm)> = Vec::new();
     for c in 0..6 {
         let idx = &per_channel[c];
         let accel = c >= 3;
-        let cols: Vec<Vec<f64>> = idx.iter().map(|&t| mom.column(&terms[t], c, ws)).collect();
+        let all_cols: Vec<Vec<f64>> = idx.iter().map(|&t| mom.column(&terms[t], c, ws)).collect();
+        // A term that is a catalogue column up to scale on this data is that catalogue effect,
+        // not new physics: reported, and left to the catalogue step.
+        let whiten = |v: &[f64]| -> Vec<f64> {
+            v.iter()
+                .zip(&a.data[c].v)
+                .map(|(x, var)| x / var.sqrt())
+                .collect()
+        };
+        let catalogue: Vec<(Effect, Vec<f64>)> = a
+            .replay
+            .groups
+            .iter()
+            .filter(|g| g.channel == c && !matches!(g.effect, Effect::Custom(_)))
+            .flat_map(|g| {
+                let x = design(ws, std::slice::from_ref(g));
+                (0..x.ncols())
+                    .map(|k| (g.effect, whiten(x.column(k).as_slice())))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        let mut keep = Vec::new();
+        for (j, col) in all_cols.iter().enumerate() {
+            let wc = whiten(col);
+            match catalogue.iter().find(|(_, cc)| same_up_to_scale(&wc, cc)) {
+                Some((e, _)) => identical.push(Identical {
+                    channel: CHANNELS[c].into(),
+                    term: terms[idx[j]].describe(),
+                    effect: e.name(),
+                    by_definition: identical_by_definition(&terms[idx[j]], *e),
+                }),
+                None => keep.push(j),
+            }
+        }
+        let idx: Vec<usize> = keep.iter().map(|&j| idx[j]).collect();
+        let idx = &idx;
+        let cols: Vec<Vec<f64>> = keep.iter().map(|&j| all_cols[j].clone()).collect();
         let units: Vec<f64> = idx
             .iter()
             .map(|&t| file_unit_si(terms[t].kind(), accel))
@@ -362,6 +461,7 @@ pub(crate) fn search(
             proposals: found.iter().map(|f| f.proposal.clone()).collect(),
             refused,
             superseded: Vec::new(),
+            identical,
         },
         found,
     }

@@ -1,0 +1,520 @@
+//! Iterating to the floor (`rins diagnose --iterate`): compare → rank (catalogue, declared,
+//! discovered) → joint fit of the accepted set with its parents → compare, step after step,
+//! until every channel is at its noise floor with no flagged cell, or nothing more passes the
+//! gate (then what stays unexplained, and where).
+//!
+//! Each accepted term must also survive the joint fit (the nested test of the full set against
+//! the set without it passes the gate) and resampling of the runs (its coefficient keeps its
+//! sign and stays beyond 2 σ in [`STABILITY`] of the resamples), so a term found only on the
+//! remainder a stand-in left does not pass. Coefficients are written only when the data
+//! determine them ([`crate::apply::MIN_WRITE_Z`]).
+
+// Six channels indexed in parallel arrays: index loops read best.
+#![allow(clippy::needless_range_loop)]
+
+use rand_chacha::ChaCha8Rng;
+use rand_chacha::rand_core::{RngCore, SeedableRng};
+use rins_plant::PlantConfig;
+use serde::Serialize;
+
+use crate::apply::{Coefficient, apply_groups};
+use crate::fit::{ChannelData, Gate, cv_rmse, design, nested_test, wls};
+use crate::heredity::{Parent, declare, parents};
+use crate::history::History;
+use crate::prepare::{Prepared, prepare};
+use crate::replay::{CHANNELS, Effect, Group};
+use crate::report::{Cell, CompareReport, unit_of};
+use crate::{Analysis, Options, analyse};
+
+/// Seed of the run resampling of the joint-fit check.
+pub const RESAMPLE_SEED: u64 = 0x17E2_A7E5;
+/// The resampling's named stream of that seed.
+pub const RESAMPLE_STREAM: u64 = 0x5AB1_E000;
+/// Resamples of the runs (or of the 5 blocks with fewer than 3 runs).
+pub const RESAMPLES: usize = 100;
+/// Share of resamples in which a term's coefficient must keep its sign beyond 2 σ.
+pub const STABILITY: f64 = 0.9;
+
+/// How far to iterate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IterateOptions {
+    /// Steps (joint fits) at most.
+    pub max_steps: usize,
+    /// A channel is at its floor when its residual RMS is at most this times the floor.
+    pub floor_ratio: f64,
+}
+
+impl Default for IterateOptions {
+    fn default() -> Self {
+        Self {
+            max_steps: 6,
+            floor_ratio: 1.1,
+        }
+    }
+}
+
+/// A channel's residual against its noise floor.
+#[derive(Clone, Debug, Serialize)]
+pub struct Level {
+    /// Channel.
+    pub channel: String,
+    /// Display unit (°/h or µg).
+    pub unit: String,
+    /// Residual RMS.
+    pub residual_rms: f64,
+    /// Noise floor RMS.
+    pub noise_floor_rms: f64,
+    /// Residual / floor.
+    pub ratio: f64,
+}
+
+/// A term accepted at a step.
+#[derive(Clone, Debug, Serialize)]
+pub struct AcceptedTerm {
+    /// Channel.
+    pub channel: String,
+    /// Effect (`gyro.position_bias`, `custom:NAME`).
+    pub effect: String,
+    /// How it was found: `catalogue`, `declared` (in the model) or `discovered`.
+    pub found_by: String,
+    /// ΔBIC when it was accepted.
+    pub delta_bic: f64,
+    /// Parents fitted with it.
+    pub parents: Vec<String>,
+    /// ΔBIC of removing it from the joint fit (positive: it is needed).
+    pub joint_delta_bic: f64,
+    /// Share of run resamples in which its coefficient keeps its sign beyond 2 σ.
+    pub stability: f64,
+    /// Survived the joint fit and the resampling (else dropped).
+    pub kept: bool,
+}
+
+/// One step of the iteration: the model entering it against the data, and what was fitted.
+#[derive(Clone, Debug, Serialize)]
+pub struct Step {
+    /// Step number (0: the model as given).
+    pub step: usize,
+    /// Per channel, residual against floor of the model entering the step.
+    pub levels: Vec<Level>,
+    /// Cells flagged for that model.
+    pub flagged_cells: usize,
+    /// Terms accepted by the gate at this step, with the joint-fit check.
+    pub accepted: Vec<AcceptedTerm>,
+    /// Every coefficient of the joint fit: written, kept or null, with the reason.
+    pub coefficients: Vec<Coefficient>,
+}
+
+/// The whole iteration.
+#[derive(Clone, Debug, Serialize)]
+pub struct IterationReport {
+    /// Where the data came from.
+    pub source: String,
+    /// The steps; the last one's levels are the final model's.
+    pub steps: Vec<Step>,
+    /// Every channel reached its floor with no flagged cell.
+    pub reached_floor: bool,
+    /// Why it stopped.
+    pub stop: String,
+    /// What stays unexplained, and where (empty at the floor).
+    pub unexplained: Vec<String>,
+    /// The flagged cells of the model as given and of the final model.
+    pub cells_before: Vec<Cell>,
+    /// The final model's cells (all, for the map).
+    pub cells_after: Vec<Cell>,
+    /// |z| beyond which a cell is flagged.
+    pub z_critical: f64,
+}
+
+/// The iteration's result.
+#[derive(Clone, Debug)]
+pub struct Iteration {
+    /// The report (steps, stop reason).
+    pub report: IterationReport,
+    /// The final model.
+    pub model: PlantConfig,
+    /// The analysis of the final model (a diagnosis with discovery).
+    pub last: Analysis,
+}
+
+fn levels(r: &CompareReport) -> Vec<Level> {
+    r.channels
+        .iter()
+        .enumerate()
+        .map(|(c, s)| Level {
+            channel: s.channel.clone(),
+            unit: unit_of(c).0.into(),
+            residual_rms: s.residual_rms,
+            noise_floor_rms: s.noise_floor_rms,
+            ratio: if s.noise_floor_rms > 0.0 {
+                s.residual_rms / s.noise_floor_rms
+            } else {
+                f64::INFINITY
+            },
+        })
+        .collect()
+}
+
+/// Share of run resamples in which coefficient `k` of the joint fit `x` keeps the sign of
+/// `sign` and stays beyond 2 σ.
+fn stability(x: &crate::fit::Design, d: &ChannelData, k: usize, sign: f64) -> f64 {
+    if d.folds == 0 {
+        return 0.0;
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(RESAMPLE_SEED);
+    rng.set_stream(RESAMPLE_STREAM);
+    let mut hits = 0;
+    for _ in 0..RESAMPLES {
+        let mut count = vec![0.0f64; d.folds];
+        for _ in 0..d.folds {
+            count[(rng.next_u64() % d.folds as u64) as usize] += 1.0;
+        }
+        // A unit drawn n times weighs n times: its windows' variances divided by n.
+        let mut dr = d.clone();
+        let mask: Vec<bool> = d.fold.iter().map(|&f| count[f] > 0.0).collect();
+        for (r, &f) in d.fold.iter().enumerate() {
+            if count[f] > 0.0 {
+                dr.v[r] = d.v[r] / count[f];
+            }
+        }
+        if let Some(f) = wls(x, &dr, Some(&mask))
+            && f.identified(k)
+        {
+            let (th, se) = (f.theta[k], f.cov[(k, k)].sqrt());
+            if th * sign > 0.0 && th.abs() >= 2.0 * se {
+                hits += 1;
+            }
+        }
+    }
+    hits as f64 / RESAMPLES as f64
+}
+
+/// The accepted groups of one channel (`terms`, with `parent` marking parents) checked in the
+/// joint fit: each non-parent term must pass `gate` against the set without it and be stable
+/// under resampling. Returns per term (ΔBIC of removing it, stability, kept).
+fn joint_check(
+    p: &Prepared,
+    c: usize,
+    terms: &[(Group, bool)],
+    gate: &Gate,
+) -> Vec<(f64, f64, bool)> {
+    let ws = &p.replay.windows;
+    let d = &p.data[c];
+    let all: Vec<Group> = terms.iter().map(|(g, _)| *g).collect();
+    let full = design(ws, &all);
+    let full_fit = wls(&full, d, None);
+    let mut out = Vec::new();
+    let mut offset = 0;
+    for (i, (g, parent)) in terms.iter().enumerate() {
+        let cols = offset..offset + g.len;
+        offset += g.len;
+        if *parent {
+            out.push((f64::NAN, f64::NAN, true));
+            continue;
+        }
+        // The set without it first, then it: the nested test of its columns.
+        let mut order: Vec<Group> = all.clone();
+        order.remove(i);
+        let base = design(ws, &order);
+        let (Some(base_fit), Some(ff)) = (wls(&base, d, None), full_fit.as_ref()) else {
+            out.push((f64::NAN, 0.0, false));
+            continue;
+        };
+        order.push(*g);
+        let x = design(ws, &order);
+        let cv0 = cv_rmse(&base, d);
+        let Some(t) = nested_test(&base_fit, cv0, base.ncols(), &x, d) else {
+            out.push((f64::NAN, 0.0, false));
+            continue;
+        };
+        // Stability of its best-determined coefficient.
+        let k = cols.clone().filter(|&k| ff.identified(k)).max_by(|&a, &b| {
+            let z = |k: usize| ff.theta[k].abs() / ff.cov[(k, k)].sqrt();
+            z(a).total_cmp(&z(b))
+        });
+        let stab = k.map_or(0.0, |k| stability(&full, d, k, ff.theta[k].signum()));
+        let passes = gate.passes_test(t.delta_bic, t.p_value, t.cv_gain_pct) && stab >= STABILITY;
+        out.push((-t.delta_bic, stab, passes));
+    }
+    out
+}
+
+/// Iterates `model` on `h` to the noise floor (see the module docs).
+pub fn iterate(
+    model: &PlantConfig,
+    h: &History,
+    opts: &Options,
+    it: &IterateOptions,
+) -> Result<Iteration, String> {
+    let diag_opts = Options {
+        diagnose: true,
+        discover: true,
+        apply: Vec::new(),
+        ..opts.clone()
+    };
+    let mut m = model.clone();
+    let mut steps: Vec<Step> = Vec::new();
+    let mut cells_before = Vec::new();
+    for step in 0.. {
+        let an = analyse(&m, h, &diag_opts);
+        let cmp = &an.comparison;
+        if step == 0 {
+            cells_before = cmp.cells.clone();
+        }
+        let lv = levels(cmp);
+        let at_floor = lv.iter().all(|l| l.ratio <= it.floor_ratio) && cmp.flagged_cells.is_empty();
+        steps.push(Step {
+            step,
+            levels: lv,
+            flagged_cells: cmp.flagged_cells.len(),
+            accepted: Vec::new(),
+            coefficients: Vec::new(),
+        });
+        let finish = |stop: String,
+                      reached: bool,
+                      unexplained: Vec<String>,
+                      steps: Vec<Step>,
+                      an: Analysis,
+                      m: PlantConfig| {
+            Ok(Iteration {
+                report: IterationReport {
+                    source: h.source.clone(),
+                    steps,
+                    reached_floor: reached,
+                    stop,
+                    unexplained,
+                    cells_before: cells_before.clone(),
+                    cells_after: an.comparison.cells.clone(),
+                    z_critical: an.comparison.z_critical,
+                },
+                model: m,
+                last: an,
+            })
+        };
+        if at_floor {
+            return finish(
+                format!(
+                    "every channel within {:.0} % of its noise floor and no cell flagged",
+                    100.0 * (it.floor_ratio - 1.0)
+                ),
+                true,
+                Vec::new(),
+                steps,
+                an,
+                m,
+            );
+        }
+        let diag = an.diagnosis.as_ref().expect("diagnose is set");
+        let unexplained = diag.report.unexplained.clone();
+        if diag.selected.iter().all(|s| s.is_empty()) {
+            return finish(
+                "nothing more passes the gate".into(),
+                false,
+                unexplained,
+                steps,
+                an,
+                m,
+            );
+        }
+        if step >= it.max_steps {
+            return finish(
+                format!("step limit ({}) reached", it.max_steps),
+                false,
+                unexplained,
+                steps,
+                an,
+                m,
+            );
+        }
+        // The accepted terms, declared in the model when discovered, with their parents.
+        let mut m2 = m.clone();
+        let mut accepted: Vec<(usize, String, usize, String, f64)> = Vec::new();
+        for c in 0..6 {
+            for g in &diag.selected[c] {
+                let name = g.effect.name();
+                let found_by = match g.effect {
+                    Effect::Custom(_) if Effect::parse_in(&m, &name).is_none() => {
+                        if Effect::parse_in(&m2, &name).is_none() {
+                            let disc = diag.report.discovery.as_ref().expect("discover is set");
+                            m2 = crate::discover::with_proposal(
+                                &m2,
+                                disc,
+                                name.trim_start_matches("custom:"),
+                            )?;
+                        }
+                        "discovered"
+                    }
+                    Effect::Custom(_) => "declared",
+                    _ => "catalogue",
+                };
+                let dbic = diag
+                    .report
+                    .accepted
+                    .iter()
+                    .find(|r| r.effect == name && r.channel == CHANNELS[c])
+                    .map_or(f64::NAN, |r| r.delta_bic);
+                accepted.push((c, name, g.len, found_by.into(), dbic));
+            }
+        }
+        // Parents per channel: (channel, effect name) of each parent of each accepted term.
+        let mut parent_names: Vec<Vec<(usize, String)>> = vec![Vec::new(); accepted.len()];
+        for (i, (c, name, _, _, _)) in accepted.iter().enumerate() {
+            let e = Effect::parse_in(&m2, name).ok_or_else(|| format!("{name} is not declared"))?;
+            for p in parents(&m2, e) {
+                let pname = match p {
+                    Parent::Effect(e) => e.name(),
+                    Parent::Declare {
+                        accel,
+                        kind,
+                        regressor,
+                    } => {
+                        let (next, n) = declare(&m2, accel, kind, &regressor, c % 3);
+                        m2 = next;
+                        n
+                    }
+                };
+                parent_names[i].push((*c, pname));
+            }
+        }
+        // The joint fit runs on the model with every term declared (zero where new).
+        let p2 = prepare(&m2, h, opts);
+        let group_of = |c: usize, name: &str, len: Option<usize>| -> Option<Group> {
+            p2.replay
+                .groups
+                .iter()
+                .find(|g| g.channel == c && g.effect.name() == name)
+                .map(|g| Group {
+                    len: len.map_or(g.len, |l| l.min(g.len)),
+                    ..*g
+                })
+        };
+        let gate = Gate {
+            max_delta_bic: -10.0,
+            alpha: opts.alpha,
+            tests: p2.replay.groups.len(),
+            min_cv_gain_pct: 0.0,
+        };
+        let mut per_channel: Vec<Vec<Group>> = vec![Vec::new(); 6];
+        let mut records = Vec::new();
+        for c in 0..6 {
+            let mut terms: Vec<(Group, bool)> = Vec::new();
+            let mut who: Vec<Option<usize>> = Vec::new();
+            for (i, (ac, name, len, _, _)) in accepted.iter().enumerate() {
+                if *ac != c {
+                    continue;
+                }
+                if let Some(g) = group_of(c, name, Some(*len))
+                    && !terms.iter().any(|(t, _)| t.effect == g.effect)
+                {
+                    terms.push((g, false));
+                    who.push(Some(i));
+                }
+            }
+            for (i, ps) in parent_names.iter().enumerate() {
+                if accepted[i].0 != c {
+                    continue;
+                }
+                for (_, pname) in ps {
+                    if let Some(g) = group_of(c, pname, None)
+                        && !terms.iter().any(|(t, _)| t.effect == g.effect)
+                    {
+                        terms.push((g, true));
+                        who.push(None);
+                    }
+                }
+            }
+            if terms.is_empty() {
+                continue;
+            }
+            let checks = joint_check(&p2, c, &terms, &gate);
+            for ((g, parent), (jd, stab, keep)) in terms.iter().zip(&checks) {
+                if *parent {
+                    continue;
+                }
+                let i = who[terms
+                    .iter()
+                    .position(|(t, _)| t.effect == g.effect)
+                    .expect("listed")]
+                .expect("not a parent");
+                let (_, name, _, found_by, dbic) = &accepted[i];
+                records.push(AcceptedTerm {
+                    channel: CHANNELS[c].into(),
+                    effect: name.clone(),
+                    found_by: found_by.clone(),
+                    delta_bic: *dbic,
+                    parents: parent_names[i].iter().map(|(_, n)| n.clone()).collect(),
+                    joint_delta_bic: *jd,
+                    stability: *stab,
+                    kept: *keep,
+                });
+            }
+            // The survivors with the parents any survivor needs.
+            let survivors: Vec<usize> = who
+                .iter()
+                .zip(&checks)
+                .filter_map(|(w, (_, _, keep))| w.filter(|_| *keep))
+                .collect();
+            let needed: Vec<&String> = survivors
+                .iter()
+                .flat_map(|&i| parent_names[i].iter().map(|(_, n)| n))
+                .collect();
+            per_channel[c] = terms
+                .iter()
+                .zip(&checks)
+                .filter(|((g, parent), (_, _, keep))| {
+                    if *parent {
+                        needed.contains(&&g.effect.name())
+                    } else {
+                        *keep
+                    }
+                })
+                .map(|((g, _), _)| *g)
+                .collect();
+        }
+        let last = steps.last_mut().expect("pushed");
+        last.accepted = records;
+        if per_channel.iter().all(|g| g.is_empty()) {
+            let mut unexplained = unexplained;
+            unexplained.insert(
+                0,
+                "the terms the gate accepted do not survive the joint fit with their parents and the run resampling".into(),
+            );
+            return finish(
+                "nothing survives the joint fit".into(),
+                false,
+                unexplained,
+                steps,
+                an,
+                m,
+            );
+        }
+        let applied = apply_groups(&m2, &p2, &[], &per_channel)?;
+        steps.last_mut().expect("pushed").coefficients = applied.coefficients;
+        // Declarations this step added for terms that did not survive stay in the list (the
+        // history's keys keep their indices) but are switched off.
+        let used: Vec<String> = per_channel
+            .iter()
+            .flatten()
+            .map(|g| g.effect.name())
+            .collect();
+        let mut next = applied.model;
+        for accel in [false, true] {
+            let before = if accel {
+                m.sensor.accel.custom.len()
+            } else {
+                m.sensor.gyro.custom.len()
+            };
+            let list = if accel {
+                &mut next.sensor.accel.custom
+            } else {
+                &mut next.sensor.gyro.custom
+            };
+            for s in list.iter_mut().skip(before) {
+                if !used.contains(&format!("custom:{}", s.name)) {
+                    s.enabled = false;
+                }
+            }
+        }
+        m = next;
+    }
+    unreachable!("the loop returns")
+}
