@@ -11,6 +11,7 @@ pub mod file;
 pub mod fmu;
 pub mod html;
 pub mod interrupt;
+pub mod iteration;
 pub mod progress;
 pub mod report;
 pub mod runner;

@@ -42,9 +42,10 @@ impl RenderText for CompareReport {
         for c in self.flagged_cells.iter().take(20) {
             let _ = writeln!(
                 s,
-                "  {:<8} {:<7} {:>5.1}-{:<5.1} C  {:>7.0}-{:<7.0} s  residual {:>10.5} ± {:.5}  z = {:>6.1}",
+                "  {:<8} {:<7} {:<6} {:>5.1}-{:<5.1} °C  {:>7.0}-{:<7.0} s  residual {:>10.5} ± {:.5}  z = {:>6.1}",
                 c.channel,
                 c.position,
+                c.orientation,
                 c.temp_bin_c[0],
                 c.temp_bin_c[1],
                 c.time_window_s[0],
@@ -55,11 +56,20 @@ impl RenderText for CompareReport {
             );
         }
         for c in self.correlations.iter().filter(|c| c.significant) {
-            let _ = writeln!(
-                s,
-                "  {}: residual correlates with {} (|rho| = {:.2} > {:.2}, lag {})",
-                c.channel, c.with, c.max_abs_rho, c.band99, c.lag
-            );
+            if c.with == "residual" {
+                // The whiteness check: the residual against itself at lags 1-10.
+                let _ = writeln!(
+                    s,
+                    "  {}: residual is not white (autocorrelation |rho| = {:.2} > {:.2} at lag {})",
+                    c.channel, c.max_abs_rho, c.band99, c.lag
+                );
+            } else {
+                let _ = writeln!(
+                    s,
+                    "  {}: residual correlates with {} (|rho| = {:.2} > {:.2}, lag {})",
+                    c.channel, c.with, c.max_abs_rho, c.band99, c.lag
+                );
+            }
         }
         let _ = writeln!(
             s,
@@ -110,9 +120,9 @@ impl RenderText for DiagnoseReport {
                     let k = k.rsplit('.').next().unwrap_or(k);
                     if c.is_nan() {
                         // Not identifiable on this data (null in the JSON).
-                        format!("{k}=null")
+                        format!("{k}=not identifiable")
                     } else {
-                        format!("{k}={c:.4} [{:.4}, {:.4}]", ci[0], ci[1])
+                        format!("{k}={} [{}, {}]", num(*c), num(ci[0]), num(ci[1]))
                     }
                 })
                 .collect();
@@ -130,21 +140,38 @@ impl RenderText for DiagnoseReport {
             for c in &r.confusable_with {
                 let _ = writeln!(
                     s,
-                    "    confusable with {} (gap {:.1}, rho {:.2}, VIF {:.0}): separate by {}",
-                    c.effect, c.delta_bic_gap, c.correlation, c.vif, c.separate_by
+                    "    confusable with {} (gap {:.1}, {}): separate by {}",
+                    c.effect,
+                    c.delta_bic_gap,
+                    collinearity(c.correlation, c.vif),
+                    c.separate_by
                 );
             }
         }
-        let accepted = if self.accepted.is_empty() {
-            "none".to_string()
+        if self.ranking.len() > 15 {
+            let _ = writeln!(
+                s,
+                "  ... {} more candidates in --json",
+                self.ranking.len() - 15
+            );
+        }
+        // The ranking tests each candidate against the model as given; forward selection tests
+        // each against the ones accepted before it, so an effect can pass only there.
+        if self.accepted.is_empty() {
+            let _ = writeln!(s, "accepted: none");
         } else {
-            self.accepted
-                .iter()
-                .map(|r| format!("{} on {}", r.effect, r.channel))
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
-        let _ = writeln!(s, "accepted: {accepted}");
+            let _ = writeln!(
+                s,
+                "accepted by forward selection (each tested on top of those before it on its channel):"
+            );
+            for r in &self.accepted {
+                let _ = writeln!(
+                    s,
+                    "  {} on {} (dBIC {:.1}, p {:.2e}, CV {:.2} %)",
+                    r.effect, r.channel, r.delta_bic, r.p_value, r.cv_rmse_gain_pct
+                );
+            }
+        }
         for (ch, b) in &self.residual_rms_before {
             let _ = writeln!(
                 s,
@@ -184,12 +211,12 @@ fn discovery(s: &mut String, d: &rins_mvm::discover::DiscoveryReport) {
         for t in &p.terms {
             let _ = writeln!(
                 s,
-                "    {} {}: {:.5} [{:.5}, {:.5}] {}, dBIC {:.1}, p {:.2e}, CV {:.2} %, ERR {:.4}, bootstrap {:.2}",
+                "    {} {}: {} [{}, {}] {}, dBIC {:.1}, p {:.2e}, CV {:.2} %, ERR {:.4}, bootstrap {:.2}",
                 t.channel,
                 t.term,
-                t.coefficient,
-                t.ci95[0],
-                t.ci95[1],
+                num(t.coefficient),
+                num(t.ci95[0]),
+                num(t.ci95[1]),
                 t.unit,
                 t.delta_bic,
                 t.p_value,
@@ -200,8 +227,10 @@ fn discovery(s: &mut String, d: &rins_mvm::discover::DiscoveryReport) {
             for c in &t.confusable_with {
                 let _ = writeln!(
                     s,
-                    "      confusable with {} (rho {:.3}, VIF {:.0}): separate by {}",
-                    c.effect, c.correlation, c.vif, c.separate_by
+                    "      confusable with {} ({}): separate by {}",
+                    c.effect,
+                    collinearity(c.correlation, c.vif),
+                    c.separate_by
                 );
             }
         }
@@ -218,11 +247,54 @@ fn discovery(s: &mut String, d: &rins_mvm::discover::DiscoveryReport) {
             x.channel, x.by, x.effect, x.delta_bic_by, x.delta_bic_effect, x.effect
         );
     }
+    for x in &d.identical {
+        let _ = writeln!(
+            s,
+            "  {}: {} is {} on this data{}: tested as the catalogue effect, not proposed",
+            x.channel,
+            x.term,
+            x.effect,
+            if x.by_definition {
+                " (the same regressor by definition: no experiment separates them)"
+            } else {
+                " (identical on this data; a run that excites them differently would split them)"
+            }
+        );
+    }
     for t in &d.refused {
         let _ = writeln!(
             s,
             "  nearest miss on {}: {} (dBIC {:.1}, p {:.2e}, CV {:.2} %)",
             t.channel, t.term, t.delta_bic, t.p_value, t.cv_rmse_gain_pct
         );
+    }
+}
+
+/// A coefficient as printed: scientific notation for magnitudes below 10⁻³ (so a small
+/// coefficient never reads "-0.0000"), "n/a" when there is none.
+fn num(v: f64) -> String {
+    if !v.is_finite() {
+        "n/a".into()
+    } else if v != 0.0 && v.abs() < 1e-3 {
+        format!("{v:.3e}")
+    } else {
+        format!("{v:.4}")
+    }
+}
+
+/// Correlation and variance inflation of a confusable pair as printed: "identical on this
+/// data" when the VIF is beyond any numerical meaning, "n/a" where they were not computed.
+fn collinearity(rho: f64, vif: f64) -> String {
+    let rho = if rho.is_finite() {
+        format!("rho {rho:.3}")
+    } else {
+        "rho n/a".into()
+    };
+    if !vif.is_finite() {
+        format!("{rho}, VIF n/a")
+    } else if vif > 1e9 {
+        format!("{rho}, identical on this data")
+    } else {
+        format!("{rho}, VIF {vif:.0}")
     }
 }
