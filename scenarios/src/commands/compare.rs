@@ -55,6 +55,9 @@ pub struct CompareArgs {
 /// The model (at the data's site), the measured history and the analysis options.
 pub fn load_data(a: &DataArgs) -> Result<(PlantConfig, History, Options)> {
     let sc = crate::file::Scenario::load(&a.model)?;
+    // The replay represents a static carrier on a table only: a moving one is refused.
+    rins_mvm::history::check_model(&sc.plant)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", a.model.display()))?;
     let map = a
         .map
         .as_deref()

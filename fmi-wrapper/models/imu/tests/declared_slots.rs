@@ -187,7 +187,7 @@ fn bad_slot_codes_are_refused_naming_the_variable_and_the_range() {
     assert!(
         e.log
             .iter()
-            .any(|l| l.contains("sensor.gyro.slot[1].signal[0] = 12") && l.contains("[0, 9]")),
+            .any(|l| l.contains("sensor.gyro.slot[1].signal[0] = 12") && l.contains("[0, 11]")),
         "{:?}",
         e.log
     );
