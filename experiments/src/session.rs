@@ -372,7 +372,7 @@ fn self_align(
         w_sum += s.dtheta_rad;
     }
     let c_bn = coarse(&f_sum, &w_sum);
-    let q0 = nalgebra::UnitQuaternion::from_matrix(&c_bn);
+    let q0 = rins_plant::attitude::quaternion_of(&c_bn);
     let coarse_err = attitude_error(&c_bn, &plant.attitude_c_bn());
 
     let cfg = plant.config().sensor.clone();

@@ -100,7 +100,7 @@ impl Plant {
 
     /// True IMU attitude now as the quaternion q_b^n.
     pub fn attitude_q_bn(&self) -> UnitQuaternion<f64> {
-        UnitQuaternion::from_matrix(&self.attitude_c_bn())
+        crate::attitude::quaternion_of(&self.attitude_c_bn())
     }
 
     /// Turns the dwell cache off or on. Output is bit-identical either way; only speed differs.

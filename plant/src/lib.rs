@@ -11,6 +11,7 @@
 //! Time is an integer tick counter; every random term draws from its own named stream of the seed.
 
 mod accessors;
+pub mod attitude;
 pub mod carrier;
 pub mod command;
 pub mod config;

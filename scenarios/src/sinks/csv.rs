@@ -197,7 +197,7 @@ impl<W: Write> CsvSink<W> {
                 self.c_vn
             };
             let c = rins_plant::table::body_to_nav(&c_vn, g.angles);
-            let q = nalgebra::UnitQuaternion::from_matrix(&c);
+            let q = rins_plant::attitude::quaternion_of(&c);
             write!(l, ",{},{},{},{}", q.w, q.i, q.j, q.k)?;
         }
         if self.opts.effects {
