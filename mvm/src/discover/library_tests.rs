@@ -55,6 +55,7 @@ fn windows() -> Vec<Window> {
             rows: WINDOW_ROWS as u32,
             moving: false,
             up_z: 1.0,
+            azimuth_deg: 0.0,
             // Not read by the window sums.
             f_b_g: [0.0, 0.0, 1.0],
             gyro_temp_c: [0.0; 3],
