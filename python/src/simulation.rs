@@ -4,7 +4,7 @@
 
 use std::sync::Mutex;
 
-use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, Vector3};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -129,7 +129,8 @@ impl Columns {
         } else {
             l.c_vn
         };
-        let q = UnitQuaternion::from_matrix(&rins_plant::table::body_to_nav(&c_vn, g.angles));
+        let q =
+            rins_plant::attitude::quaternion_of(&rins_plant::table::body_to_nav(&c_vn, g.angles));
         self.q_bn.extend_from_slice(&[q.w, q.i, q.j, q.k]);
         self.gimbal_outer_rad.push(g.angles.outer_rad);
         self.gimbal_inner_rad.push(g.angles.inner_rad);
