@@ -382,7 +382,7 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
     let row_dt_s = median_dt(h);
 
     let site_state = |c_bn: Matrix3<f64>| rins_nav::strapdown::NavState {
-        q_bn: UnitQuaternion::from_matrix(&c_bn),
+        q_bn: rins_plant::attitude::quaternion_of(&c_bn),
         v_n: Vector3::zeros(),
         lat_rad: model.site.lat_deg.to_radians(),
         lon_rad: model.site.lon_deg.to_radians(),

@@ -200,7 +200,15 @@ def main():
     check_report("diagnose", f"{t}/diag/report.html", {"diagnose": diag}, MVM, shots)
     comp = j(["compare", *data, "--report", f"{t}/comp"])
     check_report("compare", f"{t}/comp/report.html", {"compare": comp}, MVM, shots)
-    checked += 7
+    # --iterate on three missing effects: the history figure ("watch the error fall") and the
+    # cell map before and after are on the page, its numbers equal to the --json history.
+    run([rins, "measure", "docs/examples/three-effects-truth.toml", "--out", f"{t}/unit3.csv"])
+    it = j(["diagnose", "--model", "docs/examples/diagnosis-model.toml", "--data", f"{t}/unit3.csv",
+            "--iterate", "--out", f"{t}/iterated.toml", "--json", "--report", f"{t}/iter"])
+    assert len(it["steps"]) >= 2, it["stop"]
+    check_report("iterate", f"{t}/iter/report.html", {"iterate": it},
+                 ["iteration_history", "cells_before_after"], shots)
+    checked += 8
     print(f"{checked} passed, 0 failed: HTML reports in headless Chromium")
 
 
