@@ -191,7 +191,7 @@ pub fn check_model(model: &PlantConfig) -> Result<(), String> {
 
 /// The model with the site the data give (lat/lon/height columns, first row), if any; returns
 /// a note. The reader has checked the columns against the model's `[site]` ranges
-/// ([`crate::reader::ranges`]), so the site is one the model accepts.
+/// ([`crate::ranges`]), so the site is one the model accepts.
 pub fn with_data_site(model: &PlantConfig, m: &Measurement) -> (PlantConfig, Option<String>) {
     let mut cfg = model.clone();
     let get = |c: &str| m.col(c).and_then(|v| v.first().copied());

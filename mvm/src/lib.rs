@@ -29,6 +29,7 @@ pub mod history;
 pub mod iterate;
 pub mod parquet;
 mod prepare;
+pub mod ranges;
 pub mod reader;
 pub mod replay;
 pub mod report;

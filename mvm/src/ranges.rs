@@ -3,8 +3,6 @@
 //! mistake, a corrupt file or a wrong column, and it is refused with the file, the data row,
 //! the column, the value and the allowed range. Bounded values also keep every sum the
 //! comparison takes over a file finite (10^9 rows of at most 2^53 stay below 10^25).
-//!
-//! Declared from `reader.rs` (`rins_mvm::reader::ranges`); it can move to `lib.rs` unchanged.
 
 use crate::header::{Kind, Layout};
 use crate::reader::{Measurement, MeasurementError};

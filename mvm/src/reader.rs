@@ -10,8 +10,7 @@ use std::path::Path;
 use crate::colmap::ColumnMap;
 use crate::header::{Kind, Layout};
 
-#[path = "ranges.rs"]
-pub mod ranges;
+use crate::ranges;
 
 /// Longest line accepted, bytes (a header of a few hundred columns is a few kB; a longer line is
 /// not a measurement row and is reported by its length and start, never echoed).
