@@ -52,7 +52,7 @@ pub fn render_text(r: &IterationReport) -> String {
         for t in &st.accepted {
             let _ = writeln!(
                 s,
-                "  {} {} ({}, dBIC {:.1}){}: joint fit dBIC {:.1}, stable in {:.0} % of run resamples{}",
+                "  {} {} ({}, dBIC {:.1}){}: joint fit dBIC {:.1}, {}{}",
                 if t.kept { "accepted" } else { "dropped " },
                 t.effect,
                 t.channel,
@@ -63,7 +63,11 @@ pub fn render_text(r: &IterationReport) -> String {
                     format!(" with {}", t.parents.join(", "))
                 },
                 -t.joint_delta_bic,
-                100.0 * t.stability,
+                if t.stability.is_finite() {
+                    format!("stable in {:.0} % of run resamples", 100.0 * t.stability)
+                } else {
+                    "no run resampling (fewer than 3 runs)".into()
+                },
                 if t.kept {
                     ""
                 } else {
