@@ -35,17 +35,29 @@ pub struct DiagnoseArgs {
     #[arg(long, conflicts_with = "apply")]
     pub iterate: bool,
     /// Steps of --iterate at most.
-    #[arg(long, default_value_t = 6, requires = "iterate")]
-    pub max_steps: usize,
+    #[arg(
+        long,
+        default_value_t = 6,
+        requires = "iterate",
+        allow_negative_numbers = true
+    )]
+    pub max_steps: i64,
     /// Where --apply / --iterate write the new model (default: MODEL with -fitted, or
     /// -iterated, before the extension).
     #[arg(long)]
     pub out: Option<PathBuf>,
 }
 
+/// `--max-steps`, checked: 1..=100 steps.
+fn max_steps(a: &DiagnoseArgs) -> Result<usize> {
+    super::args::whole("--max-steps", a.max_steps, 1, 100, "steps")
+}
+
 /// Ranks the candidate effects, writes the fitted model, figures and recording when asked for,
 /// and prints the ranking.
 pub fn run(a: &DiagnoseArgs) -> Result<()> {
+    // A bad --max-steps fails before the data are read.
+    max_steps(a)?;
     let (model, h, mut opts) = load_data(&a.data)?;
     if a.iterate {
         return iterate(a, &model, &h, &opts);
@@ -132,7 +144,7 @@ fn iterate(
         h,
         opts,
         &rins_mvm::IterateOptions {
-            max_steps: a.max_steps,
+            max_steps: max_steps(a)?,
             ..Default::default()
         },
     )
