@@ -12,12 +12,14 @@
 //!
 //! A declared effect is linear in its coefficient: on axis i its increment error is
 //! c_i·r·Δt (bias) or c_i·r·Δθ_i / c_i·r·Δv_i (scale factor), with r the regressor over the
-//! interval. [`CustomModel`] compiles the list once into a flat plan of (axis, coefficient,
-//! factor range) that the plant evaluates every interval, and serves the same regressors and
-//! coefficients to the diagnosis ([`CustomModel::regressor`]), as the catalogue does.
+//! interval. [`CustomModel`] compiles the list once into a flat plan (each gradient, power and
+//! product computed once per interval, then one row of coefficients per term) that the plant
+//! evaluates every interval, and serves the same regressors and coefficients to the diagnosis
+//! ([`CustomModel::regressor`]), as the catalogue does; both give the same bits.
 
 mod expr;
 mod model;
+mod plan;
 mod plant_side;
 pub mod signals;
 pub mod slots;

@@ -6,7 +6,8 @@
 use nalgebra::Vector3;
 
 use super::expr::{Factor, bound_of, parse_regressor, unit_of};
-use super::signals::{Frame, Signal, TEMP, Unit};
+use super::plan::{FactorRef, Plan, PlanBuilder};
+use super::signals::{Frame, SLOTS, Signal, TEMP, Unit};
 use super::{CustomKind, CustomSpec};
 use crate::config::ConfigError;
 use crate::units::{DPH, PPM, UG};
@@ -19,17 +20,6 @@ struct Slot {
     b: u8,
     diff: bool,
     power: i32,
-}
-
-/// One regressor of the plan and the coefficients it carries on each axis:
-/// error_i = `coef_si[i] · Π slots · (Δt or the axis's true increment)`. An effect whose
-/// regressor is the same on every axis (no `block`) is one term, evaluated once.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Term {
-    coef_si: [f64; 3],
-    scale: bool,
-    start: u32,
-    end: u32,
 }
 
 /// A declared effect after checking.
@@ -69,8 +59,7 @@ impl CompiledEffect {
 pub struct CustomModel {
     accel: bool,
     effects: Vec<CompiledEffect>,
-    plan: Vec<Term>,
-    slots: Vec<Slot>,
+    plan: Plan,
     uses_time: bool,
 }
 
@@ -252,6 +241,7 @@ impl CustomModel {
         if !errors.is_empty() {
             return Err(errors);
         }
+        let mut plan = PlanBuilder::default();
         for e in m.effects.iter().filter(|e| e.enabled) {
             let live: Vec<usize> = (0..3)
                 .filter(|&i| e.axes[i] && e.coef_si[i] != 0.0)
@@ -264,20 +254,22 @@ impl CustomModel {
                 live.into_iter().map(|i| vec![i]).collect()
             };
             for axes in groups {
-                let start = m.slots.len() as u32;
-                m.slots.extend_from_slice(&e.slots[axes[0]]);
+                let factors: Vec<FactorRef> = e.slots[axes[0]]
+                    .iter()
+                    .map(|s| FactorRef {
+                        a: s.a as usize,
+                        b: s.diff.then_some(s.b as usize),
+                        power: s.power,
+                    })
+                    .collect();
                 let mut coef_si = [0.0; 3];
                 for i in axes {
                     coef_si[i] = e.coef_si[i];
                 }
-                m.plan.push(Term {
-                    coef_si,
-                    scale: e.kind == CustomKind::ScaleFactor,
-                    start,
-                    end: m.slots.len() as u32,
-                });
+                plan.term(&factors, coef_si, e.kind == CustomKind::ScaleFactor);
             }
         }
+        m.plan = plan.finish();
         Ok(m)
     }
 
@@ -306,17 +298,42 @@ impl CustomModel {
     /// signals `frame` and the true increment `input` (rad or m/s): rad or m/s.
     #[inline]
     pub fn increment_error(&self, frame: &Frame, dt_s: f64, input: &Vector3<f64>) -> Vector3<f64> {
-        let mut out = Vector3::zeros();
-        for t in &self.plan {
-            let r = product(&self.slots[t.start as usize..t.end as usize], frame);
-            let c = Vector3::from(t.coef_si) * r;
-            out += if t.scale {
-                c.component_mul(input)
-            } else {
-                c * dt_s
-            };
+        /// Values that fit on the stack (larger plans take a vector per call).
+        const STACK: usize = 96;
+        let n = self.plan.values_len();
+        if n <= STACK {
+            let mut values = [0.0; STACK];
+            values[..SLOTS].copy_from_slice(frame);
+            self.plan.evaluate(&mut values, dt_s, input)
+        } else {
+            let mut values = vec![0.0; n];
+            values[..SLOTS].copy_from_slice(frame);
+            self.plan.evaluate(&mut values, dt_s, input)
         }
-        out
+    }
+
+    /// Rows of the plan (terms after splitting per-axis regressors).
+    #[cfg(test)]
+    pub(super) fn plan_rows(&self) -> usize {
+        self.plan.len()
+    }
+
+    /// Length of the value array [`CustomModel::evaluate`] needs.
+    pub(super) fn values_len(&self) -> usize {
+        self.plan.values_len()
+    }
+
+    /// As [`CustomModel::increment_error`], with the frame in the first [`SLOTS`] entries of
+    /// `values` (at least [`CustomModel::values_len`] long; the entries after the frame are
+    /// overwritten): no copy, no allocation.
+    #[inline]
+    pub(super) fn evaluate(
+        &self,
+        values: &mut [f64],
+        dt_s: f64,
+        input: &Vector3<f64>,
+    ) -> Vector3<f64> {
+        self.plan.evaluate(values, dt_s, input)
     }
 
     /// Regressor φ of effect `index` on `axis` in increment units (the effect's error there is

@@ -16,9 +16,11 @@ pub struct Declared {
     pub gyro: CustomModel,
     /// Accelerometer effects.
     pub accel: CustomModel,
-    /// True node temperatures (°C) and their rates over the last thermal step (K/s); the
-    /// fast slots are filled per interval.
-    frame: Frame,
+    /// The signal frame in the first [`SLOTS`] entries: true node temperatures (°C) and their
+    /// rates over the last thermal step (K/s), the fast slots filled once per interval; then
+    /// the gradients and products the plans compute once per interval (shared by their
+    /// terms).
+    values: Vec<f64>,
     /// Which fast slots the switched-on effects read.
     needs: Needs,
 }
@@ -78,11 +80,11 @@ impl Declared {
         let accel = CustomModel::new(&accel.custom, true).unwrap_or_default();
         let mut d = Self {
             needs: Needs::of([&gyro, &accel]),
+            values: vec![0.0; gyro.values_len().max(accel.values_len())],
             gyro,
             accel,
-            frame: [0.0; SLOTS],
         };
-        d.frame[TEMP..TEMP + node::COUNT].copy_from_slice(temps_c);
+        d.values[TEMP..TEMP + node::COUNT].copy_from_slice(temps_c);
         d
     }
 
@@ -106,20 +108,20 @@ impl Declared {
     /// After a thermal step of `h_s` from the current temperatures to `new_c`.
     pub fn thermal_update(&mut self, new_c: &[f64; node::COUNT], h_s: f64) {
         for (n, t) in new_c.iter().enumerate() {
-            self.frame[DTEMP + n] = (t - self.frame[TEMP + n]) / h_s;
-            self.frame[TEMP + n] = *t;
+            self.values[DTEMP + n] = (t - self.values[TEMP + n]) / h_s;
+            self.values[TEMP + n] = *t;
         }
     }
 
     /// The temperature rates, K/s (part of the plant state).
     pub fn rates_k_per_s(&self) -> [f64; node::COUNT] {
-        std::array::from_fn(|n| self.frame[DTEMP + n])
+        std::array::from_fn(|n| self.values[DTEMP + n])
     }
 
     /// Restores temperatures and rates (state restore).
     pub fn restore(&mut self, temps_c: &[f64; node::COUNT], rates: &[f64; node::COUNT]) {
-        self.frame[TEMP..TEMP + node::COUNT].copy_from_slice(temps_c);
-        self.frame[DTEMP..DTEMP + node::COUNT].copy_from_slice(rates);
+        self.values[TEMP..TEMP + node::COUNT].copy_from_slice(temps_c);
+        self.values[DTEMP..DTEMP + node::COUNT].copy_from_slice(rates);
     }
 
     /// Gyro and accelerometer increment errors over one interval of `h_s` with true
@@ -138,8 +140,11 @@ impl Declared {
         mid: GimbalAngles,
         t_mid_s: f64,
     ) -> (Vector3<f64>, Vector3<f64>) {
+        let frame: &mut Frame = (&mut self.values[..SLOTS])
+            .try_into()
+            .expect("the value array starts with the frame");
         fill_fast(
-            &mut self.frame,
+            frame,
             self.needs,
             up_b,
             north_east_b,
@@ -148,15 +153,45 @@ impl Declared {
             mid,
             t_mid_s,
         );
+        self.evaluate(dtheta, dv, h_s)
+    }
+
+    /// The last interval's increment errors again at mid time `t_mid_s`, every other signal
+    /// as [`Declared::increments`] last set it: for a held dwell, where only `time` changes
+    /// from one interval to the next (the plant can then reuse the rest of the interval
+    /// instead of integrating it again). `dtheta`, `dv` and `h_s` are those of that call; the
+    /// result is then the same bits as [`Declared::increments`] with `t_mid_s`.
+    #[inline]
+    pub fn increments_at(
+        &mut self,
+        t_mid_s: f64,
+        dtheta: &Vector3<f64>,
+        dv: &Vector3<f64>,
+        h_s: f64,
+    ) -> (Vector3<f64>, Vector3<f64>) {
+        if self.needs.time {
+            self.values[signals::TIME] = t_mid_s;
+        }
+        self.evaluate(dtheta, dv, h_s)
+    }
+
+    /// Both plans over the filled frame.
+    #[inline]
+    fn evaluate(
+        &mut self,
+        dtheta: &Vector3<f64>,
+        dv: &Vector3<f64>,
+        h_s: f64,
+    ) -> (Vector3<f64>, Vector3<f64>) {
         let z = Vector3::zeros();
         (
             if self.gyro.is_active() {
-                self.gyro.increment_error(&self.frame, h_s, dtheta)
+                self.gyro.evaluate(&mut self.values, h_s, dtheta)
             } else {
                 z
             },
             if self.accel.is_active() {
-                self.accel.increment_error(&self.frame, h_s, dv)
+                self.accel.evaluate(&mut self.values, h_s, dv)
             } else {
                 z
             },
@@ -200,5 +235,60 @@ pub fn fill_fast(
     }
     if needs.time {
         f[signals::TIME] = t_mid_s;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::effects::custom::{Axis, CustomKind, CustomSpec};
+
+    fn spec(name: &str, regressor: &str, unit: &str, kind: CustomKind) -> CustomSpec {
+        CustomSpec {
+            name: name.into(),
+            enabled: true,
+            kind,
+            regressor: regressor.into(),
+            unit: unit.into(),
+            axes: vec![Axis::X, Axis::Y, Axis::Z],
+            coef: [0.3, -1.1, 2.5],
+        }
+    }
+
+    /// A dwell re-evaluated at a later time: the same bits as a full evaluation there, and
+    /// not those of the earlier time.
+    #[test]
+    fn increments_at_a_later_time_equal_a_full_evaluation() {
+        let mut s = crate::presets::nav_grade_full();
+        s.gyro.custom = vec![
+            spec("a", "time*u_x", "s", CustomKind::Bias),
+            spec("b", "temp:block*n_y", "K", CustomKind::Bias),
+            spec("c", "time^2*w_z", "s^2*deg/s", CustomKind::ScaleFactor),
+        ];
+        s.accel.custom = vec![
+            spec("d", "time*gimbal_outer", "s*deg", CustomKind::Bias),
+            spec("e", "abs_w_x*e_z", "deg/s", CustomKind::ScaleFactor),
+        ];
+        let temps = [20.0, 31.0, 32.0, 33.0, 28.0, 22.0];
+        let mut d = Declared::new(&s.gyro, &s.accel, &temps);
+        d.thermal_update(&temps.map(|t| t + 0.25), 1.0);
+        let up = Vector3::new(0.1, -0.2, 0.97);
+        let ne = [Vector3::new(0.3, 0.9, 0.1), Vector3::new(0.95, -0.3, 0.0)];
+        let (dth, dv) = (
+            Vector3::new(1e-6, -2e-6, 3e-4),
+            Vector3::new(0.01, 0.02, 0.098),
+        );
+        let mid = GimbalAngles::new(0.7, -1.2);
+        let h = 0.01;
+        let first = d.increments(&up, &ne, &dth, &dv, h, mid, 100.005);
+        let again = d.increments_at(250.005, &dth, &dv, h);
+        let mut fresh = Declared::new(&s.gyro, &s.accel, &temps);
+        fresh.thermal_update(&temps.map(|t| t + 0.25), 1.0);
+        let full = fresh.increments(&up, &ne, &dth, &dv, h, mid, 250.005);
+        for k in 0..3 {
+            assert_eq!(again.0[k].to_bits(), full.0[k].to_bits());
+            assert_eq!(again.1[k].to_bits(), full.1[k].to_bits());
+        }
+        assert_ne!(first, full);
     }
 }
