@@ -56,6 +56,11 @@ struct Hidden {
     pos_dph: [f64; 3],
     /// Its slope in block temperature about 25 °C, °/h/K.
     pos_dph_per_k: [f64; 3],
+    /// Gyro bias per unit of a field fixed in the navigation frame along its body component
+    /// (an RLG's magnetic sensitivity b_i = K_i·(C_n^b·m^n)_i), °/h.
+    field_dph: [f64; 3],
+    /// That field's unit direction m^n in the navigation frame (east, north, up).
+    field_enu: [f64; 3],
 }
 
 /// Chamber steps of the runs (from, to), °C.
@@ -107,9 +112,24 @@ fn rot_z(a: f64) -> nalgebra::Matrix3<f64> {
     nalgebra::Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
 }
 
+/// C_v^n of the mount: 30° roll (about the vehicle y axis) at 20° azimuth.
+fn mount_c_vn() -> nalgebra::Matrix3<f64> {
+    rot_z(20f64.to_radians()) * rot_y(30f64.to_radians())
+}
+
 /// The measurement CSV text: per row the increments (true + model bias + hidden + noise),
 /// gimbal angles, temperatures.
 fn dataset_text(model: &PlantConfig, hidden: &Hidden, seed: u64) -> String {
+    dataset_text_runs(model, hidden, seed, &RUNS)
+}
+
+/// [`dataset_text`] over the chamber steps `runs` (from, to), °C, one run each.
+fn dataset_text_runs(
+    model: &PlantConfig,
+    hidden: &Hidden,
+    seed: u64,
+    runs: &[(f64, f64)],
+) -> String {
     let site = rins_plant::earth::Site::new(&model.site, &model.earth);
     let bias = model.sensor.gyro.bias.dph.map(|b| b * DPH);
     let sf = if model.sensor.gyro.scale_factor.enabled {
@@ -124,14 +144,14 @@ fn dataset_text(model: &PlantConfig, hidden: &Hidden, seed: u64) -> String {
     // C_v^n of a 30° roll mount (about the vehicle y axis) at 20° azimuth: the azimuth keeps
     // the body components of north and east apart from products of the up components at the
     // table's 90° positions.
-    let c_vn = rot_z(20f64.to_radians()) * rot_y(30f64.to_radians());
+    let c_vn = mount_c_vn();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut out = String::from(
         "t_s,run,dtheta_x_rad,dtheta_y_rad,dtheta_z_rad,dv_x_mps,dv_y_mps,dv_z_mps,outer_deg,inner_deg,temp_gyro_x_c,temp_gyro_y_c,temp_gyro_z_c,temp_accel_c,temp_housing_c\n",
     );
     let move_rows = (90.0 / TABLE_RATE_DPS * RATE_HZ) as usize;
     let dwell_rows = (DWELL_S * RATE_HZ) as usize;
-    for (i, r) in RUNS.iter().enumerate() {
+    for (i, r) in runs.iter().enumerate() {
         // Gimbal angles (deg) at the end of each row.
         let mut angles = vec![(0.0f64, 0.0f64)];
         let n = (RUN_S * RATE_HZ) as usize;
@@ -168,6 +188,7 @@ fn dataset_text(model: &PlantConfig, hidden: &Hidden, seed: u64) -> String {
             let true_dtheta = gimbal + c_nb * site.omega_ie_n * dt;
             let up = c_nb.column(2);
             let f_b = up * site.gravity_mps2;
+            let field_b = c_nb * nalgebra::Vector3::from(hidden.field_enu);
             let tb = block_c(*r, t);
             let tb0 = if k == 0 { tb } else { block_c(*r, t - dt) };
             let tb_mid = block_c(*r, t - 0.5 * dt);
@@ -182,7 +203,8 @@ fn dataset_text(model: &PlantConfig, hidden: &Hidden, seed: u64) -> String {
                         * (1.0 - up[2])
                         * (hidden.pos_dph[a] + hidden.pos_dph_per_k[a] * (tb_mid - 25.0))
                         * DPH
-                        * dt;
+                        * dt
+                    + hidden.field_dph[a] * DPH * field_b[a] * dt;
                 dtheta[a] = true_dtheta[a]
                     + bias[a] * dt
                     + sf[a] * true_dtheta[a]
@@ -214,6 +236,16 @@ fn model() -> PlantConfig {
 
 fn history(m: &PlantConfig, hidden: &Hidden, seed: u64) -> History {
     let text = dataset_text(m, hidden, seed);
+    to_history(
+        rins_mvm::reader::parse(&text, "dataset").unwrap(),
+        "dataset",
+    )
+    .unwrap()
+}
+
+/// The history of [`dataset_text_runs`].
+fn history_runs(m: &PlantConfig, hidden: &Hidden, seed: u64, runs: &[(f64, f64)]) -> History {
+    let text = dataset_text_runs(m, hidden, seed, runs);
     to_history(
         rins_mvm::reader::parse(&text, "dataset").unwrap(),
         "dataset",
@@ -781,4 +813,391 @@ fn iterate_on_clean_data_accepts_nothing_in_at_least_19_of_20_seeds() {
         bad.len()
     );
     assert!(bad.len() <= 1, "{bad:#?}");
+}
+
+/// A unit direction in the navigation frame (east, north, up) from an inclination below the
+/// horizon and a declination east of north, degrees: the Earth's magnetic field direction.
+fn field_direction_enu(inclination_deg: f64, declination_deg: f64) -> [f64; 3] {
+    let (i, d) = (inclination_deg.to_radians(), declination_deg.to_radians());
+    [i.cos() * d.sin(), i.cos() * d.cos(), -i.sin()]
+}
+
+/// The distinct static table positions of the generator, (outer°, inner°) in [0, 360).
+fn static_positions() -> Vec<(f64, f64)> {
+    let mut a = (0.0f64, 0.0f64);
+    let mut out = vec![a];
+    for (outer, deg) in MOVES.iter().cycle().take(4 * MOVES.len()) {
+        if *outer {
+            a.0 += deg
+        } else {
+            a.1 += deg
+        }
+        let p = (a.0.rem_euclid(360.0), a.1.rem_euclid(360.0));
+        if !out.contains(&p) {
+            out.push(p);
+        }
+    }
+    out
+}
+
+/// The cell-map label of a static position, computed here from its definition
+/// (docs/model-vs-measurements.md): the up class from the body z component of up, and the
+/// heading of body x's horizontal part (body y's when x is within 30° of vertical), in 15°
+/// steps.
+fn orientation_label(c_nb: &nalgebra::Matrix3<f64>) -> (String, String) {
+    let up_z = c_nb[(2, 2)];
+    let class = if up_z > 0.5 {
+        "z-up"
+    } else if up_z < -0.5 {
+        "z-down"
+    } else {
+        "tilted"
+    };
+    // Body axis i in navigation coordinates: row i of C_n^b.
+    let axis = if c_nb[(0, 2)].abs() < 30f64.to_radians().cos() {
+        0
+    } else {
+        1
+    };
+    let az = c_nb[(axis, 0)].atan2(c_nb[(axis, 1)]).to_degrees();
+    let az = ((az / 15.0).round() * 15.0).rem_euclid(360.0);
+    (class.into(), format!("az {az:.0}"))
+}
+
+/// Inverse-variance mean of cells: (mean, standard error).
+fn pooled(cells: &[&rins_mvm::Cell]) -> (f64, f64) {
+    let (mut s, mut w) = (0.0, 0.0);
+    for c in cells {
+        let wi = 1.0 / (c.noise_floor * c.noise_floor);
+        s += c.residual * wi;
+        w += wi;
+    }
+    (s / w, 1.0 / w.sqrt())
+}
+
+/// A gyro bias that follows a field fixed in the navigation frame (an RLG's magnetic
+/// sensitivity, b = K·C_n^b·m^n with K = 0.006, 0.005, 0.004 °/h on x, y, z and the Earth field
+/// at 55° inclination, −8° declination), on the runs three times over. (1) `compare` flags it
+/// by table position: on x and y the cells of each static orientation hold the closed-form
+/// K·(C_n^b·m^n) of that orientation, with opposite signs at azimuths 180° apart. (2) Discovery
+/// proposes the north term n_y on y with K·m_N in its interval; body x turns only in the plane
+/// normal to the outer axis, so on x the field's three components are two regressors: n_x and
+/// e_x are accepted with the closed-form coefficients of the field with u_x eliminated. (3) The
+/// up component K·m_U·u_i is the catalogue's g-sensitivity: reported as identical to it by
+/// definition, never proposed; on y it is accepted as G_yy with K·m_U·g₀/g in its interval, on x
+/// it is superseded; nothing else from the catalogue is accepted on x or y.
+#[test]
+fn navigation_frame_field_bias_shows_by_orientation_and_is_discovered() {
+    let k_dph = [0.006, 0.005, 0.004];
+    let m_enu = field_direction_enu(55.0, -8.0);
+    let m = model();
+    // The runs three times over (36 000 s): a field of 0.003 °/h against an ARW of
+    // 0.0005 °/√h needs about 2 500 s at one orientation to stand 5 σ out.
+    let runs: Vec<(f64, f64)> = RUNS.iter().cycle().take(3 * RUNS.len()).copied().collect();
+    let h = history_runs(
+        &m,
+        &Hidden {
+            field_dph: k_dph,
+            field_enu: m_enu,
+            ..Hidden::default()
+        },
+        31,
+        &runs,
+    );
+    // (1) The cell map by orientation against the closed form. With 5 K bins each cell holds
+    // one or two dwells (z ≈ 1 at most); one bin over the runs' range pools an orientation.
+    let default_flagged = analyse(&m, &h, &Options::default())
+        .comparison
+        .flagged_cells
+        .len();
+    let cmp = analyse(
+        &m,
+        &h,
+        &Options {
+            temp_bin_k: 100.0,
+            time_window_s: 1e6,
+            ..Options::default()
+        },
+    )
+    .comparison;
+    eprintln!("cells flagged with 5 K bins and 1 h windows: {default_flagged}");
+    let m_n = nalgebra::Vector3::from(m_enu);
+    let mut truth_at: Vec<((String, String), [f64; 3])> = Vec::new();
+    for (o, i) in static_positions() {
+        let c_nb = (mount_c_vn() * rot_z(o.to_radians()) * rot_x(i.to_radians())).transpose();
+        let f = c_nb * m_n;
+        let b = [0, 1, 2].map(|a| k_dph[a] * f[a]);
+        let label = orientation_label(&c_nb);
+        eprintln!(
+            "position outer {o:>3} inner {i:>3}: {} {} closed form {:+.5} {:+.5} {:+.5} °/h",
+            label.0, label.1, b[0], b[1], b[2]
+        );
+        // Two positions under one label would mix two closed forms.
+        assert!(
+            !truth_at.iter().any(|(l, _)| *l == label),
+            "{label:?} twice"
+        );
+        truth_at.push((label, b));
+    }
+    eprintln!(
+        "z critical {:.2}, {} cells, {} flagged",
+        cmp.z_critical,
+        cmp.cells.len(),
+        cmp.flagged_cells.len()
+    );
+    for (a, ch) in [(0, "gyro_x"), (1, "gyro_y")] {
+        let flagged: Vec<&rins_mvm::Cell> = cmp
+            .flagged_cells
+            .iter()
+            .filter(|c| c.channel == ch)
+            .collect();
+        for c in &flagged {
+            eprintln!(
+                "  flagged {ch} {} {} {:?} °C: {:+.5} ± {:.5} °/h (z {:+.1})",
+                c.position, c.orientation, c.temp_bin_c, c.residual, c.noise_floor, c.z
+            );
+        }
+        let orientations: std::collections::BTreeSet<&str> = flagged
+            .iter()
+            .filter(|c| c.position != "moving")
+            .map(|c| c.orientation.as_str())
+            .collect();
+        assert!(
+            orientations.len() >= 2,
+            "{ch}: flagged static orientations {orientations:?}"
+        );
+        let mut means = Vec::new();
+        for (label, b) in &truth_at {
+            let cells: Vec<&rins_mvm::Cell> = cmp
+                .cells
+                .iter()
+                .filter(|c| c.channel == ch && c.position == label.0 && c.orientation == label.1)
+                .collect();
+            assert!(!cells.is_empty(), "{ch}: no cell at {label:?}");
+            let (mean, se) = pooled(&cells);
+            eprintln!(
+                "  {ch} {} {}: {:+.5} ± {:.5} °/h (closed form {:+.5}, {} cells)",
+                label.0,
+                label.1,
+                mean,
+                se,
+                b[a],
+                cells.len()
+            );
+            assert!(
+                (mean - b[a]).abs() <= 4.0 * se,
+                "{ch} {label:?}: {mean} ± {se} against {}",
+                b[a]
+            );
+            means.push((label.clone(), mean, se, b[a]));
+        }
+        // Azimuths 180° apart at the same up class: where the closed form changes sign
+        // (beyond 3 σ on both), so does the measured mean.
+        let az = |l: &str| l.trim_start_matches("az ").parse::<f64>().unwrap();
+        let mut pairs = 0;
+        for (l1, m1, s1, b1) in &means {
+            for (l2, m2, s2, b2) in &means {
+                if l1.0 == l2.0
+                    && az(&l2.1) - az(&l1.1) == 180.0
+                    && b1 * b2 < 0.0
+                    && b1.abs() > 3.0 * s1
+                    && b2.abs() > 3.0 * s2
+                {
+                    eprintln!(
+                        "  {ch} {} {} vs {}: {m1:+.5} / {m2:+.5} (closed form {b1:+.5} / {b2:+.5})",
+                        l1.0, l1.1, l2.1
+                    );
+                    assert!(m1 * m2 < 0.0 && m1 * b1 > 0.0, "{ch} {l1:?} {l2:?}");
+                    pairs += 1;
+                }
+            }
+        }
+        assert!(pairs >= 1, "{ch}: no pair 180° apart with opposite signs");
+    }
+
+    // (2) Discovery.
+    let report = discover(&m, &h);
+    let disc = report.discovery.as_ref().expect("discovery ran");
+    for p in &disc.proposals {
+        for t in &p.terms {
+            eprintln!(
+                "  proposal {} {} {}: {:.5} [{:.5}, {:.5}] dBIC {:.1} ERR {:.3} gate {} bootstrap {:.2} ({})",
+                p.name,
+                t.channel,
+                t.term,
+                t.coefficient,
+                t.ci95[0],
+                t.ci95[1],
+                t.delta_bic,
+                t.err,
+                t.passes_gate,
+                t.bootstrap_frequency,
+                t.searched_on
+            );
+        }
+    }
+    for t in &disc.refused {
+        eprintln!(
+            "  refused {} {}: {:.5} [{:.5}, {:.5}] dBIC {:.1}",
+            t.channel, t.term, t.coefficient, t.ci95[0], t.ci95[1], t.delta_bic
+        );
+    }
+    for i in &disc.identical {
+        eprintln!(
+            "  identical {} {} = {} (by definition {})",
+            i.channel, i.term, i.effect, i.by_definition
+        );
+    }
+    for p in &disc.proposals {
+        for t in &p.terms {
+            for c in &t.confusable_with {
+                eprintln!(
+                    "  confusable {} {}: {} rho {:.3} VIF {:.3e} gap {:.1} ({})",
+                    t.channel,
+                    t.term,
+                    c.effect,
+                    c.correlation,
+                    c.vif,
+                    c.delta_bic_gap,
+                    c.separate_by
+                );
+            }
+        }
+    }
+    for s in &disc.superseded {
+        eprintln!("  superseded {} {} by {}", s.channel, s.effect, s.by);
+    }
+    for r in report
+        .ranking
+        .iter()
+        .filter(|r| r.channel != "gyro_z" && r.channel.starts_with("gyro") && r.delta_bic < 0.0)
+    {
+        eprintln!(
+            "  ranked {} {}: dBIC {:.1} gate {} {:?} {:?} confusable {:?}",
+            r.channel,
+            r.effect,
+            r.delta_bic,
+            r.passes_gate,
+            r.coefficient,
+            r.ci95,
+            r.confusable_with
+                .iter()
+                .map(|c| (&c.effect, c.correlation, c.vif))
+                .collect::<Vec<_>>()
+        );
+    }
+    for r in &report.accepted {
+        eprintln!(
+            "  accepted {} {}: {:?} {:?} {:?}",
+            r.channel, r.effect, r.keys, r.coefficient, r.ci95
+        );
+    }
+    let term_on = |ch: &str, reg: &str| {
+        disc.proposals
+            .iter()
+            .flat_map(|p| p.terms.iter())
+            .find(|t| t.channel == ch && t.regressor.as_deref() == Some(reg))
+    };
+    let accepted_on = |ch: &str, effect: &str| {
+        report
+            .accepted
+            .iter()
+            .find(|r| r.channel == ch && r.effect == effect)
+            .unwrap_or_else(|| panic!("{ch}: {effect} not accepted"))
+    };
+    let inside = |what: &str, truth: f64, ci: [f64; 2]| {
+        eprintln!("  {what}: true {truth:.5} in [{:.5}, {:.5}]?", ci[0], ci[1]);
+        assert!(
+            ci[0] <= truth && truth <= ci[1],
+            "{what}: true {truth} outside {ci:?}"
+        );
+    };
+    let (m_east, m_north, m_up) = (m_enu[0], m_enu[1], m_enu[2]);
+    // y sweeps all three directions (the inner gimbal turns it out of the table's plane):
+    // north proposed with K·m_N, the up part is the catalogue's G_yy = K·m_U·g₀/g.
+    let t = term_on("gyro_y", "n_y").expect("n_y proposed on gyro_y");
+    assert!(t.passes_gate, "{t:#?}");
+    inside("gyro_y n_y proposal", k_dph[1] * m_north, t.ci95);
+    let r = accepted_on("gyro_y", "custom:b_n_y");
+    inside("gyro_y n_y accepted", k_dph[1] * m_north, r.ci95[0]);
+    if let Some(t) = term_on("gyro_y", "e_y") {
+        inside("gyro_y e_y proposal", k_dph[1] * m_east, t.ci95);
+    }
+    let g_local = rins_plant::earth::Site::new(&m.site, &m.earth).gravity_mps2;
+    let r = accepted_on("gyro_y", "gyro.g_sensitivity");
+    inside(
+        "gyro_y G_yy",
+        k_dph[1] * m_up * rins_plant::units::G0 / g_local,
+        r.ci95[1],
+    );
+    // Body x turns only in the plane normal to the outer axis (the inner axis is body x), so
+    // on this table x_n·z_v = 0: z_E·e_x + z_N·n_x + z_U·u_x = 0 at every position, and only
+    // two of the three field components are determined on x. With u_x eliminated the truth is
+    // K·(m_N − m_U·z_N/z_U) on n_x and K·(m_E − m_U·z_E/z_U) on e_x.
+    let z_v = mount_c_vn().column(2).into_owned();
+    let (z_e, z_n, z_u) = (z_v[0], z_v[1], z_v[2]);
+    let t = term_on("gyro_x", "n_x").expect("n_x proposed on gyro_x");
+    assert!(t.passes_gate, "{t:#?}");
+    eprintln!(
+        "  gyro_x n_x: K·m_N = {:.5} is not determined on this table",
+        k_dph[0] * m_north
+    );
+    let r = accepted_on("gyro_x", "custom:b_n_x");
+    inside(
+        "gyro_x n_x accepted (u_x eliminated)",
+        k_dph[0] * (m_north - m_up * z_n / z_u),
+        r.ci95[0],
+    );
+    let r = accepted_on("gyro_x", "custom:b_e_x");
+    inside(
+        "gyro_x e_x accepted (u_x eliminated)",
+        k_dph[0] * (m_east - m_up * z_e / z_u),
+        r.ci95[0],
+    );
+    // (3) The up component is the catalogue's g-sensitivity by definition, reported so and
+    // never proposed; on x the catalogue's g-sensitivity, accepted on the catalogue alone, is
+    // superseded by the north term; nothing else from the catalogue is accepted on x or y.
+    for x in ["x", "y"] {
+        let ch = format!("gyro_{x}");
+        assert!(
+            disc.identical.iter().any(|i| i.channel == ch
+                && i.term == format!("bias ∝ u_{x}")
+                && i.effect == "gyro.g_sensitivity"
+                && i.by_definition),
+            "{ch}: {:#?}",
+            disc.identical
+        );
+        let accepted: Vec<&str> = report
+            .accepted
+            .iter()
+            .filter(|r| r.channel == ch)
+            .map(|r| r.effect.as_str())
+            .collect();
+        let want: &[&str] = if x == "x" {
+            &["custom:b_n_x", "custom:b_e_x"]
+        } else {
+            &["gyro.g_sensitivity", "custom:b_n_y"]
+        };
+        let mut got = accepted.clone();
+        got.sort();
+        let mut want = want.to_vec();
+        want.sort();
+        assert_eq!(got, want, "{ch}");
+    }
+    assert!(
+        disc.superseded
+            .iter()
+            .any(|s| s.channel == "gyro_x" && s.effect == "gyro.g_sensitivity"),
+        "{:#?}",
+        disc.superseded
+    );
+    // No proposal is a single up component.
+    assert!(
+        !disc.proposals.iter().any(|p| p
+            .terms
+            .iter()
+            .any(|t| matches!(t.regressor.as_deref(), Some("u_x" | "u_y" | "u_z")))),
+        "{:#?}",
+        disc.proposals
+    );
 }
