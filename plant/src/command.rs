@@ -1,9 +1,8 @@
 //! Table commands from the navigation computer (a real RINS navigation computer drives its own
 //! table): they replace the configured scheme from the next output interval on.
 
-use crate::plant::Plant;
-use crate::table::scheme::{GimbalAxis, ResolvedScheme, ResolvedStep};
-use crate::table::{Cursor, GimbalAngles, Schedule};
+use crate::table::GimbalAngles;
+use crate::table::scheme::{GimbalAxis, ResolvedStep};
 
 /// A table command from the navigation computer (a real RINS navigation computer drives its own
 /// table). It takes effect at the start of the next output interval: the table leaves its
@@ -37,11 +36,14 @@ pub(crate) struct ActiveCommand {
     pub(crate) repeat: bool,
 }
 
-impl Plant {
-    /// Applies a table command from the next output interval on (see [`GimbalCommand`]).
-    /// Rejects non-finite or out-of-range angles and rates with the reason.
-    pub fn command_gimbal(&mut self, cmd: &GimbalCommand) -> Result<(), String> {
-        let now = self.gimbal_now.angles;
+impl ActiveCommand {
+    /// The motion `cmd` asks for from internal tick `start_tick`, the table at `now`. Rejects
+    /// non-finite or out-of-range angles and rates with the reason.
+    pub(crate) fn new(
+        cmd: &GimbalCommand,
+        now: GimbalAngles,
+        start_tick: u64,
+    ) -> Result<Self, String> {
         let rate_ok = |r: f64| r.is_finite() && r > 0.0 && r <= 100f64.to_radians();
         let (steps, repeat) = match cmd {
             GimbalCommand::MoveTo {
@@ -98,48 +100,11 @@ impl Plant {
                 (steps.clone(), *repeat)
             }
         };
-        self.install_command(ActiveCommand {
-            start_tick: self.tick,
+        Ok(Self {
+            start_tick,
             initial: now,
             steps,
             repeat,
-        });
-        Ok(())
-    }
-
-    pub(crate) fn install_command(&mut self, c: ActiveCommand) {
-        self.schedule = Schedule::new(&ResolvedScheme {
-            initial: c.initial,
-            lead_dwell_s: c.start_tick as f64 / self.internal_rate_hz,
-            steps: c.steps.clone(),
-            repeat: c.repeat,
-            continuous: None,
-            accel_rps2: self.cfg.scheme.accel_dps2.to_radians(),
-        });
-        self.command = Some(c);
-        self.cursor = Cursor::default();
-        self.hold_until_tick = 0;
-        self.dwell_cache = None;
-    }
-}
-
-impl Plant {
-    /// Switches azimuth isolation on or off from the next output interval (the navigation
-    /// computer's command; `[carrier] azimuth_isolation` sets it at start). On: the loop restarts
-    /// from the table's attitude now and holds the scheme at its present azimuth in the
-    /// navigation frame. Off: the outer offset stays where it is. Refused on the static carrier.
-    pub fn command_azimuth_isolation(&mut self, on: bool) -> Result<(), String> {
-        if self.cfg.carrier.is_static() {
-            // An external carrier (attached after building) keeps no isolation state in the
-            // plant's saved state, so it cannot run the loop.
-            return Err("azimuth isolation refused: the scenario's carrier is static ([carrier] kind = \"static\"; an external carrier attached to it, such as the carrier FMU, counts as static here), so the plant runs no isolation loop; isolation is allowed only with a moving carrier of the scenario itself: [carrier] kind = \"ship\" or \"trajectory\"".into());
-        }
-        let c_bn = self.attitude_c_bn();
-        let (angles, tick) = (self.gimbal_now.angles, self.tick);
-        let run = self.carrier.as_mut().ok_or(
-            "azimuth isolation needs a moving carrier ([carrier] kind = \"ship\" or \"trajectory\")",
-        )?;
-        run.set_isolation(on, &c_bn, angles, tick);
-        Ok(())
+        })
     }
 }

@@ -6,25 +6,26 @@
 //! Sensors 2022, 22, 8355.
 //!
 //! The plant is pure computation: no I/O, no global state. [`Plant::step`] advances one output
-//! interval through the stages kinematics ([`table`], [`earth`]) → [`thermal`] → sensor
-//! [`effects`] → noise → quantisation, and returns the Δθ/Δv increments an RLG IMU reports.
-//! Time is an integer tick counter; every random term draws from its own named stream of the seed.
+//! interval through its stages (see `stages`): the temperature field's slow update
+//! ([`thermal`]), per tick the motion (carrier and table: [`carrier`], [`table`], [`earth`])
+//! and the deterministic sensor [`effects`], then the readout (noise, quantisation, encoders,
+//! temperature sensors). It returns the Δθ/Δv increments an RLG IMU reports and keeps the truth
+//! beside them. Time is an integer tick counter; every random term draws from its own named
+//! stream of the seed.
 
-mod accessors;
 pub mod attitude;
 pub mod carrier;
 pub mod command;
 pub mod config;
 pub mod earth;
 pub mod effects;
-/// An externally driven carrier (a vessel model supplying samples at communication points).
-#[path = "carrier/external.rs"]
-pub mod external_carrier;
 pub mod kinematics;
+pub mod output;
 pub mod params;
 pub mod plant;
 pub mod presets;
 mod simd;
+mod stages;
 pub mod state;
 pub mod table;
 pub mod thermal;
@@ -33,4 +34,5 @@ pub mod units;
 
 pub use command::GimbalCommand;
 pub use config::{ConfigError, PlantConfig, SensorSpec, VehicleSpec};
-pub use plant::{ImuSample, Plant, Truth};
+pub use output::{ImuSample, Truth};
+pub use plant::Plant;

@@ -1,182 +1,43 @@
-//! The plant: advances the rotating IMU by whole output intervals and reports the increments an
-//! RLG IMU would output, with the truth and every effect's contribution beside them.
+//! The plant: a pipeline of stages advanced by whole output intervals. A step reads like the
+//! physics: the temperature field's slow update, then per tick the motion (carrier and table)
+//! and the deterministic sensor errors, then the readout (noise, quantisation, encoders and
+//! temperature sensors) that makes the sample the IMU outputs.
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
 use crate::carrier::run::CarrierRun;
-use crate::carrier::{Carrier, CarrierState, CarrierTruth};
-use crate::command::ActiveCommand;
+use crate::carrier::{Carrier, CarrierTruth};
+use crate::command::{ActiveCommand, GimbalCommand};
 use crate::config::{ConfigError, PlantConfig};
 use crate::earth::Site;
 use crate::effects::accel::ACCEL_TERMS;
-use crate::effects::custom::Declared;
-use crate::effects::encoder::Encoders;
-use crate::effects::gyro::{GYRO_TERMS, GyroThermalRates};
-use crate::effects::noise::NoiseState;
-use crate::effects::quantize::Quantizer;
-use crate::effects::temp_sensor::TempSensors;
-use crate::effects::{AccelModel, GyroModel, TermContext};
-use crate::kinematics::table_increments;
-use crate::table::gimbal::gimbal_rotation;
-use crate::table::{Cursor, GimbalAngles, GimbalState, Schedule, body_to_nav};
-use crate::thermal::{Temperatures, ThermalNetwork, node};
-use crate::units::ARCSEC;
-
-/// One IMU output: increments over the interval ending at `t_s`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ImuSample {
-    /// Output sample number; sample k covers [k·Δt, (k+1)·Δt].
-    pub index: u64,
-    /// End of the interval, s.
-    pub t_s: f64,
-    /// Angular increment Δθ, rad.
-    pub dtheta_rad: Vector3<f64>,
-    /// Velocity increment Δv, m/s.
-    pub dv_mps: Vector3<f64>,
-    /// Gimbal encoder readings at the end of the interval, rad.
-    pub encoder: GimbalAngles,
-    /// Temperature-sensor readings (board, gyro x, y, z, accelerometers, housing), °C: the
-    /// reading of the last thermal update.
-    pub temps_c: [f64; node::COUNT],
-}
-
-impl ImuSample {
-    /// The gyro block temperature readings (x, y, z), °C.
-    pub fn gyro_temps_c(&self) -> Vector3<f64> {
-        Vector3::new(self.temps_c[1], self.temps_c[2], self.temps_c[3])
-    }
-
-    /// The accelerometer cluster temperature reading, °C.
-    pub fn accel_temp_c(&self) -> f64 {
-        self.temps_c[node::ACCEL]
-    }
-}
-
-/// What really happened over the last interval.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Truth {
-    /// Table state at the end of the interval.
-    pub gimbal: GimbalState,
-    /// Error-free angular increment, rad.
-    pub dtheta_true_rad: Vector3<f64>,
-    /// Error-free velocity increment, m/s.
-    pub dv_true_mps: Vector3<f64>,
-    /// Temperatures used over the interval.
-    pub temps: Temperatures,
-    /// Each gyro term's increment error, rad, indexed like [`crate::effects::GyroTerm::ALL`].
-    pub gyro_terms_rad: [Vector3<f64>; GYRO_TERMS],
-    /// Each accelerometer term's increment error, m/s, indexed like [`crate::effects::AccelTerm::ALL`].
-    pub accel_terms_mps: [Vector3<f64>; ACCEL_TERMS],
-    /// Weight of δβ at the interval midpoint (0 Z-up, 1 Z-down).
-    pub position_weight: f64,
-    /// The declared gyro effects' summed increment error, rad (`[[sensor.gyro.custom]]`).
-    pub custom_gyro_rad: Vector3<f64>,
-    /// The declared accelerometer effects' summed increment error, m/s.
-    pub custom_accel_mps: Vector3<f64>,
-    /// The carrier at the end of the interval (the site and `[vehicle]` attitude when static).
-    /// [`Plant::truth`] fills it in on a moving carrier.
-    pub carrier: CarrierTruth,
-}
-
-/// Last internal tick at or before `hold_s` (a dwell end); whether the boundary tick itself is
-/// held or evaluated does not matter, the table is still there either way.
-fn hold_tick(hold_s: f64, internal_rate_hz: f64) -> u64 {
-    let t = (hold_s * internal_rate_hz).floor();
-    if t.is_finite() && t >= 0.0 {
-        t as u64
-    } else if t > 0.0 {
-        u64::MAX
-    } else {
-        0
-    }
-}
-
-/// Deterministic results of one output interval while the table dwells. Between thermal updates
-/// every input of the deterministic path is constant during a dwell, so later intervals of the
-/// same dwell reuse these bit for bit.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct DwellCache {
-    dtheta_true: Vector3<f64>,
-    dv_true: Vector3<f64>,
-    gyro_err: Vector3<f64>,
-    accel_err: Vector3<f64>,
-    weight: f64,
-}
-
-/// Attitude at the last evaluated midpoint, reused while the gimbal angles do not change; the
-/// sine and cosine of each angle are cached separately because only one gimbal moves at a time.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct MidCache {
-    outer_rad: f64,
-    inner_rad: f64,
-    c_nb: Matrix3<f64>,
-    sin_outer: f64,
-    cos_outer: f64,
-    sin_inner: f64,
-    cos_inner: f64,
-}
+use crate::effects::gyro::GYRO_TERMS;
+use crate::effects::{AccelModel, GyroModel};
+use crate::output::{ImuSample, Truth};
+use crate::stages::clock::Clock;
+use crate::stages::interval::Interval;
+use crate::stages::motion::Motion;
+use crate::stages::readout::Readout;
+use crate::stages::sensor_errors::{SensorErrors, TickInput};
+use crate::stages::temperature::{TemperatureField, ThermalEvent};
+use crate::table::{Schedule, body_to_nav};
+use crate::thermal::node;
 
 /// The rotating IMU.
 #[derive(Clone, Debug)]
 pub struct Plant {
-    pub(crate) cfg: PlantConfig,
-    pub(crate) site: Site,
-    /// C_v^n of the static carrier (a moving carrier's is [`Plant::vehicle_to_nav`]).
-    pub(crate) c_vn: Matrix3<f64>,
-    pub(crate) f_n: Vector3<f64>,
-    pub(crate) schedule: Schedule,
-    pub(crate) thermal: ThermalNetwork,
-    pub(crate) gyro: GyroModel,
-    pub(crate) accel: AccelModel,
-    pub(crate) noise: NoiseState,
-    pub(crate) gyro_quant: Quantizer,
-    pub(crate) accel_quant: Quantizer,
-    pub(crate) internal_rate_hz: f64,
-    pub(crate) dt_s: f64,
-    pub(crate) sqrt_dt: f64,
-    pub(crate) h_s: f64,
-    pub(crate) slow_every: u64,
-    /// Internal ticks since start (substeps × output samples).
-    pub(crate) tick: u64,
-    /// Output samples since start.
-    pub(crate) samples: u64,
-    /// Output samples left before the next thermal / slow-noise update.
-    pub(crate) slow_countdown: u64,
-    pub(crate) chamber_override_c: Option<f64>,
-    /// The chamber override changed since the last sample: the next sample starts with a
-    /// thermal update (a chamber input acts at the step it is set for, not at the next grid
-    /// update). Transient: set by `set_chamber_temp_c`, consumed by the next `step`.
-    pub(crate) chamber_changed: bool,
-    /// Temperature-dependent error rates at the current node temperatures.
-    pub(crate) gyro_thermal: GyroThermalRates,
-    pub(crate) accel_thermal_mps2: Vector3<f64>,
-    pub(crate) gimbal_now: GimbalState,
-    /// C_v^n is the identity (the usual level, azimuth-0 mount): skip one matrix product.
-    pub(crate) vehicle_level: bool,
-    /// The table holds `gimbal_now` up to this internal tick (end of the current dwell).
-    pub(crate) hold_until_tick: u64,
-    pub(crate) mid_cache: MidCache,
-    /// Segment of the last schedule evaluation.
-    pub(crate) cursor: Cursor,
-    /// Reusable deterministic interval while dwelling; cleared on motion and thermal updates.
-    pub(crate) dwell_cache: Option<DwellCache>,
-    /// Disable the dwell cache (tests compare against the uncached path).
-    pub(crate) use_dwell_cache: bool,
-    /// Motion commanded by the navigation side, replacing the scheme from its start tick.
-    pub(crate) command: Option<ActiveCommand>,
-    /// Seed of the noise streams (the configured seed until [`Plant::reseed_noise`]).
-    pub(crate) noise_seed: u64,
-    pub(crate) truth: Truth,
-    /// Gimbal angle encoders.
-    pub(crate) encoders: Encoders,
-    /// Temperature sensors (read at each thermal update, held in between).
-    pub(crate) temp_sensors: TempSensors,
-    /// The sensors' last readings, °C.
-    pub(crate) temp_readings_c: [f64; node::COUNT],
-    /// Declared effects (`[[sensor.*.custom]]`) and their slow signals.
-    pub(crate) declared: Declared,
-    /// The moving carrier; `None` for the static carrier (the original path).
-    pub(crate) carrier: Option<Box<CarrierRun>>,
+    cfg: PlantConfig,
+    clock: Clock,
+    motion: Motion,
+    temperature: TemperatureField,
+    errors: SensorErrors,
+    readout: Readout,
+    /// The last interval, reused while the table dwells between thermal updates (cleared on
+    /// motion, commands and thermal updates).
+    dwell: Option<Interval>,
+    /// Reuse dwell intervals (tests compare against the path without).
+    use_dwell_cache: bool,
+    truth: Truth,
 }
 
 impl Plant {
@@ -194,93 +55,23 @@ impl Plant {
         Ok(Self::build(cfg, carrier))
     }
 
-    pub(crate) fn build(cfg: &PlantConfig, carrier: Option<Carrier>) -> Self {
-        let site = Site::new(&cfg.site, &cfg.earth);
-        let carrier = carrier.map(|c| CarrierRun::new(c, cfg));
-        let c_vn = match &carrier {
-            Some(r) => r.c_vn(),
-            None => cfg.vehicle.c_vn(),
-        };
-        let carrier_truth = match &carrier {
-            Some(r) => r.now.truth(),
-            None => CarrierState::at_rest(site.lat_rad, site.lon_rad, site.height_m, c_vn).truth(),
-        };
-        let schedule = Schedule::new(&cfg.scheme.resolve());
-        let g0 = schedule.eval(0.0);
-        let c_bn = body_to_nav(&c_vn, g0.angles);
-        let up_b = c_bn.transpose() * Vector3::z();
-        let chamber0 = cfg.thermal.chamber.temp_at(0.0);
-        let thermal = ThermalNetwork::new(&cfg.thermal, chamber0, &up_b);
-        let s = &cfg.sensor;
-        let quant = |on: bool, p: [f64; 3], unit: f64| {
-            Quantizer::new(if on {
-                Vector3::from(p) * unit
-            } else {
-                Vector3::zeros()
-            })
-        };
-        let dt = 1.0 / cfg.rate_hz;
-        let temps = thermal.temperatures();
-        let gyro = GyroModel::new(&s.gyro);
-        let accel = AccelModel::new(&s.accel);
-        let mut temp_sensors = TempSensors::new(&s.temperature, cfg.seed);
-        let temp_readings_c = temp_sensors.read(&temps.nodes_c);
+    /// The plant of `cfg` on the moving carrier `carrier` (e.g. a trajectory already in memory),
+    /// replacing the one `cfg.carrier` describes.
+    pub fn with_carrier(cfg: &PlantConfig, carrier: Carrier) -> Result<Self, Vec<ConfigError>> {
+        cfg.validate()?;
+        Ok(Self::build(cfg, Some(carrier)))
+    }
+
+    fn build(cfg: &PlantConfig, carrier: Option<Carrier>) -> Self {
+        let clock = Clock::new(cfg);
+        let motion = Motion::new(cfg, carrier);
+        let g0 = motion.gimbal_now();
+        let up_b = body_to_nav(&motion.vehicle_to_nav(), g0.angles).transpose() * Vector3::z();
+        let temperature = TemperatureField::new(cfg, &up_b);
+        let temps = temperature.temperatures();
         Self {
-            declared: Declared::new(&s.gyro, &s.accel, &temps.nodes_c),
-            carrier,
-            encoders: Encoders::new(&s.encoder),
-            temp_sensors,
-            temp_readings_c,
-            gyro_thermal: gyro.thermal_rates(&temps.gyro_c(), &temps.gyro_gradient_k()),
-            accel_thermal_mps2: accel.thermal_bias_mps2(temps.accel_c()),
-            site,
-            c_vn,
-            f_n: Vector3::new(0.0, 0.0, site.gravity_mps2),
-            thermal,
-            gyro,
-            accel,
-            noise: NoiseState::new(&s.gyro, &s.accel, cfg.seed),
-            gyro_quant: quant(
-                s.gyro.quantization.enabled,
-                s.gyro.quantization.pulse,
-                ARCSEC,
-            ),
-            accel_quant: quant(
-                s.accel.quantization.enabled,
-                s.accel.quantization.pulse,
-                1.0,
-            ),
-            internal_rate_hz: cfg.rate_hz * cfg.substeps as f64,
-            dt_s: dt,
-            sqrt_dt: dt.sqrt(),
-            h_s: dt / cfg.substeps as f64,
-            slow_every: (cfg.thermal.step_s * cfg.rate_hz).round() as u64,
-            tick: 0,
-            samples: 0,
-            slow_countdown: (cfg.thermal.step_s * cfg.rate_hz).round() as u64,
-            chamber_override_c: None,
-            chamber_changed: false,
-            gimbal_now: g0,
-            hold_until_tick: hold_tick(
-                schedule.eval_hold(0.0).1,
-                cfg.rate_hz * cfg.substeps as f64,
-            ),
-            schedule,
-            mid_cache: MidCache {
-                outer_rad: f64::NAN,
-                inner_rad: f64::NAN,
-                c_nb: Matrix3::identity(),
-                sin_outer: 0.0,
-                cos_outer: 1.0,
-                sin_inner: 0.0,
-                cos_inner: 1.0,
-            },
-            vehicle_level: c_vn == Matrix3::identity(),
-            dwell_cache: None,
-            use_dwell_cache: true,
-            command: None,
-            noise_seed: cfg.seed,
-            cursor: Cursor::default(),
+            errors: SensorErrors::new(cfg, &temps),
+            readout: Readout::new(cfg, &temps.nodes_c),
             truth: Truth {
                 gimbal: g0,
                 dtheta_true_rad: Vector3::zeros(),
@@ -291,285 +82,355 @@ impl Plant {
                 position_weight: 0.0,
                 custom_gyro_rad: Vector3::zeros(),
                 custom_accel_mps: Vector3::zeros(),
-                carrier: carrier_truth,
+                carrier: motion.static_truth(),
             },
+            clock,
+            motion,
+            temperature,
+            dwell: None,
+            use_dwell_cache: true,
             cfg: cfg.clone(),
         }
     }
 
-    fn mid_attitude(&mut self, g: &GimbalState) -> MidCache {
-        // Dwells reuse the last attitude: no trigonometry while the table is still.
-        let mut m = self.mid_cache;
-        let (o, i) = (g.angles.outer_rad, g.angles.inner_rad);
-        if m.outer_rad == o && m.inner_rad == i {
-            return m;
-        }
-        if m.outer_rad != o {
-            (m.sin_outer, m.cos_outer) = o.sin_cos();
-            m.outer_rad = o;
-        }
-        if m.inner_rad != i {
-            (m.sin_inner, m.cos_inner) = i.sin_cos();
-            m.inner_rad = i;
-        }
-        let r = gimbal_rotation(m.sin_outer, m.cos_outer, m.sin_inner, m.cos_inner);
-        m.c_nb = if self.vehicle_level {
-            r.transpose()
-        } else {
-            (self.c_vn * r).transpose()
-        };
-        self.mid_cache = m;
-        m
-    }
-
-    /// Table state at internal tick `tick` and at the midpoint before it, skipping evaluation
-    /// while the table dwells.
-    fn gimbal_at(&mut self, tick: u64) -> (GimbalState, GimbalState) {
-        if tick <= self.hold_until_tick {
-            return (self.gimbal_now, self.gimbal_now);
-        }
-        let ((g1, hold), gm) = self.schedule.eval_end_and_mid(
-            tick as f64 / self.internal_rate_hz,
-            (tick as f64 - 0.5) / self.internal_rate_hz,
-            &mut self.cursor,
-        );
-        self.hold_until_tick = hold_tick(hold, self.internal_rate_hz);
-        (g1, gm)
-    }
-
-    /// Kinematics and deterministic sensor effects over one output interval (all substeps):
-    /// returns (Δθ_true, Δv_true, gyro error, accelerometer error, mean δβ weight) and writes
-    /// each term's contribution into the truth.
-    fn integrate_interval(
-        &mut self,
-        gyro_temp: Vector3<f64>,
-        gradient: Vector3<f64>,
-        accel_temp: f64,
-    ) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>, Vector3<f64>, f64) {
-        let mut dtheta_true = Vector3::zeros();
-        let mut dv_true = Vector3::zeros();
-        let mut gyro_err = Vector3::zeros();
-        let mut accel_err = Vector3::zeros();
-        let mut weight = 0.0;
-        let h = self.h_s;
-        let substeps = self.cfg.substeps;
-        for sub in 0..substeps {
-            let g0 = self.gimbal_now;
-            let (g1, gm) = self.gimbal_at(self.tick + 1);
-            let (inc, up_b) = if self.carrier.is_some() {
-                self.carrier_tick(&g0, &g1, &gm, h)
-            } else {
-                let m = self.mid_attitude(&gm);
-                // Gimbal part from exact angle differences (one axis moves at a time); Earth
-                // rate and specific force at the midpoint.
-                let inc = table_increments(
-                    &m.c_nb,
-                    m.sin_inner,
-                    m.cos_inner,
-                    g1.angles.outer_rad - g0.angles.outer_rad,
-                    g1.angles.inner_rad - g0.angles.inner_rad,
-                    &self.site.omega_ie_n,
-                    &self.f_n,
-                    h,
-                );
-                (inc, m.c_nb.column(2).into_owned())
-            };
-            let (dtheta, dv, f_b) = (inc.dtheta_rad, inc.dv_mps, inc.f_b_mps2);
-            let ctx = TermContext {
-                dt_s: h,
-                dtheta_rad: dtheta,
-                dv_mps: dv,
-                f_b_mps2: f_b,
-                up_b,
-                gyro_temp_c: gyro_temp,
-                gyro_gradient_k: gradient,
-                accel_temp_c: accel_temp,
-            };
-            let (gyro_terms, accel_terms) = (
-                &mut self.truth.gyro_terms_rad,
-                &mut self.truth.accel_terms_mps,
-            );
-            if sub == 0 {
-                gyro_err = self
-                    .gyro
-                    .increment_error_with(&ctx, &self.gyro_thermal, gyro_terms);
-                accel_err =
-                    self.accel
-                        .increment_error_with(&ctx, &self.accel_thermal_mps2, accel_terms);
-            } else {
-                let mut gterm = [Vector3::zeros(); GYRO_TERMS];
-                let mut aterm = [Vector3::zeros(); ACCEL_TERMS];
-                gyro_err += self
-                    .gyro
-                    .increment_error_with(&ctx, &self.gyro_thermal, &mut gterm);
-                accel_err +=
-                    self.accel
-                        .increment_error_with(&ctx, &self.accel_thermal_mps2, &mut aterm);
-                gyro_terms.iter_mut().zip(gterm).for_each(|(a, b)| *a += b);
-                accel_terms.iter_mut().zip(aterm).for_each(|(a, b)| *a += b);
-            }
-            if self.declared.is_active() {
-                // The division only when an effect reads the time.
-                let t_mid = if self.declared.needs().time {
-                    (self.tick as f64 + 0.5) / self.internal_rate_hz
-                } else {
-                    0.0
-                };
-                // North and east in body axes only when an effect reads them: columns 1 and 0
-                // of C_n^b (ENU), at the interval's middle on a static carrier, at its start
-                // on a moving one.
-                let north_east_b = if self.declared.needs().heading {
-                    let c_nb = if self.carrier.is_some() {
-                        self.attitude_c_bn().transpose()
-                    } else {
-                        self.mid_attitude(&gm).c_nb
-                    };
-                    [c_nb.column(1).into_owned(), c_nb.column(0).into_owned()]
-                } else {
-                    [Vector3::zeros(); 2]
-                };
-                let (g, a) = self.declared.increments(
-                    &up_b,
-                    &north_east_b,
-                    &dtheta,
-                    &dv,
-                    h,
-                    gm.angles,
-                    t_mid,
-                );
-                let tr = &mut self.truth;
-                (tr.custom_gyro_rad, tr.custom_accel_mps) = if sub == 0 {
-                    (g, a)
-                } else {
-                    (tr.custom_gyro_rad + g, tr.custom_accel_mps + a)
-                };
-                gyro_err += g;
-                accel_err += a;
-            }
-            weight += self.gyro.position_weight(&up_b);
-            dtheta_true += dtheta;
-            dv_true += dv;
-            self.gimbal_now = g1;
-            self.tick += 1;
-        }
-        weight /= substeps as f64;
-
-        (dtheta_true, dv_true, gyro_err, accel_err, weight)
-    }
-
-    /// Advances one output interval: kinematics → thermal → sensor effects → noise → quantisation.
+    /// Advances one output interval: temperatures → motion and sensor errors → readout.
     pub fn step(&mut self) -> ImuSample {
-        let index = self.samples;
-        self.samples += 1;
-        // A changed chamber input ends the thermal step early: the update runs now over the time
-        // since the last one, and the grid restarts here. Untouched inputs: the 1 s grid as ever.
-        let elapsed = self.slow_every - self.slow_countdown;
-        let split = std::mem::take(&mut self.chamber_changed) && self.slow_countdown != 0;
-        if split && elapsed == 0 {
-            // No time since the last update (the very first sample): only the chamber changes.
-            let ch = self.chamber_c(self.time_s());
-            self.thermal.hold_chamber(ch);
-            // Nodes move only when the network is off (they follow the chamber): refresh the
-            // rates that depend on them (no noise drawn; unchanged values otherwise).
-            let t = self.thermal.temperatures();
-            self.gyro_thermal = self.gyro.thermal_rates(&t.gyro_c(), &t.gyro_gradient_k());
-            self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(t.accel_c());
-            self.dwell_cache = None;
-        } else if self.slow_countdown == 0 || split {
-            self.slow_countdown = self.slow_every;
-            let h = if split {
-                elapsed as f64 / self.cfg.rate_hz
-            } else {
-                self.cfg.thermal.step_s
+        let index = self.clock.begin_sample();
+        self.update_temperatures();
+        let interval = self.deterministic_interval();
+        self.read_out(index, &interval)
+    }
+
+    /// The temperature field's slow update when one is due; the stages that depend on the
+    /// temperatures follow it.
+    fn update_temperatures(&mut self) {
+        let (t_s, tick) = (self.clock.time_s(), self.clock.tick());
+        let motion = &self.motion;
+        let event = self.temperature.begin_sample(t_s, || {
+            motion.attitude_c_bn(tick).transpose() * Vector3::z()
+        });
+        let Some(event) = event else {
+            return;
+        };
+        let t = self.temperature.temperatures();
+        match event {
+            ThermalEvent::ChamberHeld => self.errors.on_temperatures(&t, None),
+            ThermalEvent::Stepped { h_s } => {
+                self.readout.on_thermal_step(h_s, &t.nodes_c);
+                self.errors.on_temperatures(&t, Some(h_s));
+            }
+        }
+        self.dwell = None;
+    }
+
+    /// The interval's true increments and deterministic errors: the dwell's last interval
+    /// again while the table holds still, else every tick of motion and sensor errors.
+    fn deterministic_interval(&mut self) -> Interval {
+        let held = self
+            .motion
+            .holds_through(self.clock.tick() + self.clock.substeps());
+        if let (Some(d), true) = (self.dwell, held) {
+            // The per-term contributions in the truth are those of the previous interval of
+            // this dwell: unchanged.
+            self.clock.advance_interval();
+            return d;
+        }
+        let temps = self.temperature.temperatures();
+        let needs = self.errors.declared_needs();
+        let heading = needs.is_some_and(|n| n.heading);
+        // The division only when an effect reads the time.
+        let time = needs.is_some_and(|n| n.time);
+        let h_s = self.clock.h_s();
+        let mut x = Interval {
+            dtheta_true_rad: Vector3::zeros(),
+            dv_true_mps: Vector3::zeros(),
+            gyro_err_rad: Vector3::zeros(),
+            accel_err_mps: Vector3::zeros(),
+            position_weight: 0.0,
+        };
+        for sub in 0..self.clock.substeps() {
+            let tick = self.clock.tick();
+            let m = self.motion.tick(tick, h_s, heading);
+            let input = TickInput {
+                h_s,
+                dtheta_rad: m.inc.dtheta_rad,
+                dv_mps: m.inc.dv_mps,
+                f_b_mps2: m.inc.f_b_mps2,
+                up_b: m.up_b,
+                north_east_b: m.north_east_b,
+                gimbal_mid: m.gimbal_mid.angles,
+                t_mid_s: if time { self.clock.tick_mid_s() } else { 0.0 },
             };
-            let t = self.time_s();
-            let up_b = self.attitude_c_bn().transpose() * Vector3::z();
-            let ch = self.chamber_c(t);
-            self.thermal.step(h, ch, &up_b);
-            self.noise.step_slow(h);
-            let t = self.thermal.temperatures();
-            self.declared.thermal_update(&t.nodes_c, h);
-            self.temp_readings_c = self.temp_sensors.read(&t.nodes_c);
-            self.gyro_thermal = self.gyro.thermal_rates(&t.gyro_c(), &t.gyro_gradient_k());
-            self.accel_thermal_mps2 = self.accel.thermal_bias_mps2(t.accel_c());
-            self.dwell_cache = None;
+            self.errors.tick(
+                &input,
+                &temps,
+                sub == 0,
+                &mut self.truth,
+                &mut x.gyro_err_rad,
+                &mut x.accel_err_mps,
+            );
+            x.position_weight += self.errors.position_weight(&m.up_b);
+            x.dtheta_true_rad += m.inc.dtheta_rad;
+            x.dv_true_mps += m.inc.dv_mps;
+            self.clock.advance_tick();
         }
-        self.slow_countdown -= 1;
-        let temps = self.thermal.temperatures();
-        let (gyro_temp, gradient, accel_temp) =
-            (temps.gyro_c(), temps.gyro_gradient_k(), temps.accel_c());
+        x.position_weight /= self.clock.substeps() as f64;
+        let reuse = held && self.use_dwell_cache && !self.errors.vary_in_dwell();
+        self.dwell = reuse.then_some(x);
+        x
+    }
 
-        let substeps = self.cfg.substeps as u64;
-        let held = self.tick + substeps <= self.hold_until_tick && self.carrier.is_none();
-        let (dtheta_true, dv_true, gyro_err, accel_err, weight) = match self.dwell_cache {
-            Some(c) if held => {
-                // The per-term contributions in `self.truth` are those of the previous interval
-                // of this dwell: unchanged.
-                self.tick += substeps;
-                (c.dtheta_true, c.dv_true, c.gyro_err, c.accel_err, c.weight)
-            }
-            _ => {
-                let r = self.integrate_interval(gyro_temp, gradient, accel_temp);
-                let reuse = held && self.use_dwell_cache && !self.declared.varies_in_dwell();
-                self.dwell_cache = reuse.then_some(DwellCache {
-                    dtheta_true: r.0,
-                    dv_true: r.1,
-                    gyro_err: r.2,
-                    accel_err: r.3,
-                    weight: r.4,
-                });
-                r
-            }
-        };
-
-        let dt = self.dt_s;
-        use crate::effects::{AccelTerm as A, GyroTerm as G};
-        let arw = if self.noise.has_arw() {
-            self.noise.arw_increment(self.sqrt_dt)
-        } else {
-            Vector3::zeros()
-        };
-        let gm = self.noise.gm_bias_rps * dt;
-        let rrw = self.noise.rrw_bias_rps * dt;
-        let vrw = if self.noise.has_vrw() {
-            self.noise.vrw_increment(self.sqrt_dt)
-        } else {
-            Vector3::zeros()
-        };
+    /// The readout of `x`: the sample the IMU outputs, the truth beside it, and the isolation
+    /// loop fed with what was measured.
+    fn read_out(&mut self, index: u64, x: &Interval) -> ImuSample {
+        let measured = self.readout.measure(x, &mut self.truth);
+        let tick = self.clock.tick();
         let tr = &mut self.truth;
-        tr.gyro_terms_rad[G::AngleRandomWalk as usize] = arw;
-        tr.gyro_terms_rad[G::BiasInstability as usize] = gm;
-        tr.gyro_terms_rad[G::RateRandomWalk as usize] = rrw;
-        tr.accel_terms_mps[A::VelocityRandomWalk as usize] = vrw;
-
-        let dtheta_analog = dtheta_true + gyro_err + arw + gm + rrw;
-        let dv_analog = dv_true + accel_err + vrw;
-        let dtheta_out = self.gyro_quant.apply(&dtheta_analog);
-        let dv_out = self.accel_quant.apply(&dv_analog);
-        tr.gyro_terms_rad[G::Quantization as usize] = dtheta_out - dtheta_analog;
-        tr.accel_terms_mps[A::Quantization as usize] = dv_out - dv_analog;
-        tr.gimbal = self.gimbal_now;
-        tr.dtheta_true_rad = dtheta_true;
-        tr.dv_true_mps = dv_true;
-        tr.temps = temps;
-        tr.position_weight = weight;
-        if let Some(c) = &self.carrier {
-            // The carrier's own truth is filled in by `Plant::truth` when asked for.
-            if let Some(i) = &c.isolation {
-                // Azimuth isolation turns the outer gimbal on top of the scheme.
-                tr.gimbal.angles.outer_rad += i.offset_rad(self.tick, self.cfg.substeps as u64);
-                tr.gimbal.outer_rate_rps += i.rate_rps(self.tick);
-            }
-        }
+        tr.gimbal = self.motion.gimbal_truth(tick);
+        tr.dtheta_true_rad = x.dtheta_true_rad;
+        tr.dv_true_mps = x.dv_true_mps;
+        tr.temps = self.temperature.temperatures();
+        tr.position_weight = x.position_weight;
         let sample = ImuSample {
             index,
-            t_s: self.time_s(),
-            dtheta_rad: dtheta_out,
-            dv_mps: dv_out,
-            encoder: self.encoders.read(self.truth.gimbal.angles),
-            temps_c: self.temp_readings_c,
+            t_s: self.clock.time_s(),
+            dtheta_rad: measured.dtheta_rad,
+            dv_mps: measured.dv_mps,
+            encoder: self.readout.encoders(tr.gimbal.angles),
+            temps_c: self.readout.temp_readings_c(),
         };
-        self.isolate(&sample);
+        self.motion
+            .isolate(&sample.dtheta_rad, sample.encoder.inner_rad, tick);
         sample
+    }
+
+    /// Applies a table command from the next output interval on (see [`GimbalCommand`]).
+    /// Rejects non-finite or out-of-range angles and rates with the reason.
+    pub fn command_gimbal(&mut self, cmd: &GimbalCommand) -> Result<(), String> {
+        let c = ActiveCommand::new(cmd, self.motion.gimbal_now().angles, self.clock.tick())?;
+        self.motion.install_command(c);
+        self.dwell = None;
+        Ok(())
+    }
+
+    /// Switches azimuth isolation on or off from the next output interval (the navigation
+    /// computer's command; `[carrier] azimuth_isolation` sets it at start). On: the loop restarts
+    /// from the table's attitude now and holds the scheme at its present azimuth in the
+    /// navigation frame. Off: the outer offset stays where it is. Refused on the static carrier.
+    pub fn command_azimuth_isolation(&mut self, on: bool) -> Result<(), String> {
+        self.motion.command_azimuth_isolation(on, self.clock.tick())
+    }
+
+    /// Puts the plant on an externally driven carrier held at `start` (call after building,
+    /// or after restoring a saved state, before the first step).
+    pub fn attach_external_carrier(
+        &mut self,
+        start: &crate::carrier::external::CarrierSample,
+    ) -> Result<(), String> {
+        let seg = crate::carrier::external::segment(start, start, 1, self.clock.tick_s())?;
+        self.motion.set_carrier(CarrierRun::new(seg, &self.cfg));
+        Ok(())
+    }
+
+    /// Drives the external carrier from `start` to `end` over the next `samples` IMU samples
+    /// (see [`crate::carrier::external`]); the plant must be on an external carrier.
+    pub fn drive_carrier(
+        &mut self,
+        start: &crate::carrier::external::CarrierSample,
+        end: &crate::carrier::external::CarrierSample,
+        samples: u64,
+    ) -> Result<(), String> {
+        let ticks = samples * self.clock.substeps();
+        let seg = crate::carrier::external::segment(start, end, ticks, self.clock.tick_s())?;
+        let run = self
+            .motion
+            .carrier_mut()
+            .ok_or("the plant is not on an external carrier")?;
+        run.carrier = seg;
+        run.now = run.carrier.state_now();
+        Ok(())
+    }
+
+    /// Switches a ship between the segment rule (`true`, the default when its motion allows it)
+    /// and the exact per-tick evaluation (`false`, the reference the tests compare with); only
+    /// before the first step. Returns the segment length in ticks (`None`: per tick).
+    pub fn set_carrier_segments(&mut self, on: bool) -> Result<Option<u64>, String> {
+        if self.clock.tick() != 0 {
+            return Err("the carrier's segment rule is switched before the first step".into());
+        }
+        Ok(self.motion.carrier_mut().and_then(|r| r.set_segments(on)))
+    }
+
+    /// Turns the dwell cache off or on. Output is bit-identical either way; only speed differs.
+    pub fn set_dwell_cache(&mut self, on: bool) {
+        self.use_dwell_cache = on;
+        self.dwell = None;
+    }
+
+    /// Overrides the chamber temperature (an FMU input); `None` returns to the scenario profile.
+    /// A change acts from the next sample: it starts with a thermal update over the time since
+    /// the last one (docs/fmu.md, "When an input acts").
+    pub fn set_chamber_temp_c(&mut self, temp_c: Option<f64>) {
+        self.temperature.set_chamber_override(temp_c);
+    }
+
+    /// Restarts every noise stream from `seed` at the current tick, keeping the current
+    /// bias-instability and rate-random-walk values. A Monte Carlo can warm the plant up once,
+    /// save the state, and give each run its own noise from there.
+    pub fn reseed_noise(&mut self, seed: u64) {
+        self.readout.reseed(seed);
+    }
+
+    /// The configuration the plant was built from.
+    pub fn config(&self) -> &PlantConfig {
+        &self.cfg
+    }
+
+    /// Earth quantities at the site.
+    pub fn site(&self) -> &Site {
+        self.motion.site()
+    }
+
+    /// Output interval Δt, s.
+    pub fn dt_s(&self) -> f64 {
+        self.clock.dt_s()
+    }
+
+    /// Output samples produced so far.
+    pub fn samples_done(&self) -> u64 {
+        self.clock.samples()
+    }
+
+    /// Simulated time, s (from the integer tick counter).
+    pub fn time_s(&self) -> f64 {
+        self.clock.time_s()
+    }
+
+    /// Truth over the last interval. On a moving carrier the carrier's part is evaluated here,
+    /// when asked for, not at every tick (it is a copy for that reason).
+    pub fn truth(&self) -> Truth {
+        Truth {
+            carrier: self.carrier_truth(),
+            ..self.truth
+        }
+    }
+
+    /// The carrier's part of [`Plant::truth`] alone (the site and `[vehicle]` attitude when
+    /// static), without copying the rest.
+    pub fn carrier_truth(&self) -> CarrierTruth {
+        self.motion.carrier_truth()
+    }
+
+    /// The temperature-sensor readings of the last sample (a measured output), °C.
+    pub fn temp_readings_c(&self) -> [f64; node::COUNT] {
+        self.readout.temp_readings_c()
+    }
+
+    /// The chamber temperature over the last interval (the test set-up's, not the unit's), °C.
+    pub fn chamber_now_c(&self) -> f64 {
+        self.truth.temps.chamber_c
+    }
+
+    /// The compiled table schedule.
+    pub fn schedule(&self) -> &Schedule {
+        self.motion.schedule()
+    }
+
+    /// The deterministic gyro model (coefficients and regressors for diagnosis).
+    pub fn gyro_model(&self) -> &GyroModel {
+        self.errors.gyro()
+    }
+
+    /// The deterministic accelerometer model.
+    pub fn accel_model(&self) -> &AccelModel {
+        self.errors.accel()
+    }
+
+    /// Vehicle mount attitude C_v^n now (on a moving carrier, C_c^n·C_v^c).
+    pub fn vehicle_to_nav(&self) -> Matrix3<f64> {
+        self.motion.vehicle_to_nav()
+    }
+
+    /// True IMU attitude C_b^n now.
+    pub fn attitude_c_bn(&self) -> Matrix3<f64> {
+        self.motion.attitude_c_bn(self.clock.tick())
+    }
+
+    /// True IMU attitude now as the quaternion q_b^n.
+    pub fn attitude_q_bn(&self) -> UnitQuaternion<f64> {
+        crate::attitude::quaternion_of(&self.attitude_c_bn())
+    }
+
+    /// Seed of the noise streams in use.
+    pub fn noise_seed(&self) -> u64 {
+        self.readout.noise_seed()
+    }
+
+    /// True when the table rides a moving carrier (ship, trajectory or an external vessel model).
+    pub fn moving_carrier(&self) -> bool {
+        self.motion.is_moving()
+    }
+
+    /// Writes every evolving quantity, stage by stage (caches excluded), for [`crate::state`].
+    pub(crate) fn write_state(&self, w: &mut crate::state::Writer) {
+        w.u64(self.clock.tick());
+        w.u64(self.clock.samples());
+        self.temperature.write(w);
+        self.readout.write(w);
+        self.write_truth(w);
+        self.errors.write(w, &self.truth);
+        self.motion.write(w);
+    }
+
+    /// Reads what [`Plant::write_state`] wrote into a freshly built plant of the same
+    /// configuration, then rebuilds the derived quantities.
+    pub(crate) fn read_state(
+        &mut self,
+        r: &mut crate::state::Reader<'_>,
+    ) -> Result<(), crate::state::StateError> {
+        let (tick, samples) = (r.u64()?, r.u64()?);
+        self.clock.restore(tick, samples);
+        self.temperature.read(r)?;
+        self.readout.read(r)?;
+        self.read_truth(r)?;
+        let temps = self.temperature.temperatures();
+        self.errors.read(r, &temps, &mut self.truth)?;
+        self.motion.read(r, tick)?;
+        self.truth.gimbal = self.motion.gimbal_now();
+        self.dwell = None;
+        Ok(())
+    }
+
+    /// The truth's evolving part (the rest is rebuilt or filled in by the next step).
+    fn write_truth(&self, w: &mut crate::state::Writer) {
+        let tr = &self.truth;
+        w.v3(&tr.dtheta_true_rad);
+        w.v3(&tr.dv_true_mps);
+        tr.temps.nodes_c.iter().for_each(|x| w.f64(*x));
+        w.f64(tr.temps.chamber_c);
+        tr.gyro_terms_rad.iter().for_each(|v| w.v3(v));
+        tr.accel_terms_mps.iter().for_each(|v| w.v3(v));
+        w.f64(tr.position_weight);
+    }
+
+    fn read_truth(
+        &mut self,
+        r: &mut crate::state::Reader<'_>,
+    ) -> Result<(), crate::state::StateError> {
+        let tr = &mut self.truth;
+        tr.dtheta_true_rad = r.v3()?;
+        tr.dv_true_mps = r.v3()?;
+        for n in tr.temps.nodes_c.iter_mut() {
+            *n = r.f64()?;
+        }
+        tr.temps.chamber_c = r.f64()?;
+        for v in tr.gyro_terms_rad.iter_mut() {
+            *v = r.v3()?;
+        }
+        for v in tr.accel_terms_mps.iter_mut() {
+            *v = r.v3()?;
+        }
+        tr.position_weight = r.f64()?;
+        Ok(())
     }
 }

@@ -207,7 +207,7 @@ fn files_that_wrap_the_longitude_follow_the_closed_form_across_the_antimeridian(
 /// 0°) is accepted and moves the carrier the short way.
 #[test]
 fn an_external_carrier_input_at_minus_360_is_the_same_place_as_0() {
-    use rins_plant::external_carrier::{CarrierSample, segment};
+    use rins_plant::carrier::external::{CarrierSample, segment};
     let (_, rn) = rins_plant::earth::radii_of_curvature(0.0);
     let step_deg = (2.0 * 0.01 / rn).to_degrees(); // 2 m/s east over 10 ms
     let s = |lon_deg: f64| CarrierSample {

@@ -9,15 +9,10 @@
 //! master that passes outputs from the start of a step (Jacobi) gives the IMU its first sample
 //! twice, and a cubic through one position with a non-zero velocity would invent accelerations
 //! of 6·v/h.
-//!
-//! Declared from `lib.rs` (`rins_plant::external_carrier`, by `#[path]`) rather than in
-//! `carrier/mod.rs`, which belongs to the carrier module's owner; it can move there unchanged.
 
 use std::fmt::Write;
 
-use crate::carrier::run::CarrierRun;
 use crate::carrier::{Carrier, Trajectory};
-use crate::plant::Plant;
 
 /// Sample columns in the order [`CarrierSample::row`] writes them (a trajectory file's).
 const HEADER: &str =
@@ -90,41 +85,6 @@ pub fn segment(
         )
     })?;
     Ok(Carrier::from_trajectory(data, tick_s))
-}
-
-impl Plant {
-    /// Puts the plant on an externally driven carrier held at `start` (call after building,
-    /// or after restoring a saved state, before the first step).
-    pub fn attach_external_carrier(&mut self, start: &CarrierSample) -> Result<(), String> {
-        let tick_s = self.tick_s();
-        let seg = segment(start, start, 1, tick_s)?;
-        self.carrier = Some(CarrierRun::new(seg, &self.cfg));
-        Ok(())
-    }
-
-    /// Drives the external carrier from `start` to `end` over the next `samples` IMU samples
-    /// (see the module notes); the plant must be on an external carrier.
-    pub fn drive_carrier(
-        &mut self,
-        start: &CarrierSample,
-        end: &CarrierSample,
-        samples: u64,
-    ) -> Result<(), String> {
-        let tick_s = self.tick_s();
-        let ticks = samples * self.cfg.substeps as u64;
-        let seg = segment(start, end, ticks, tick_s)?;
-        let run = self
-            .carrier
-            .as_mut()
-            .ok_or("the plant is not on an external carrier")?;
-        run.carrier = seg;
-        run.now = run.carrier.state_now();
-        Ok(())
-    }
-
-    fn tick_s(&self) -> f64 {
-        1.0 / (self.cfg.rate_hz * self.cfg.substeps as f64)
-    }
 }
 
 #[cfg(test)]

@@ -8,13 +8,14 @@
 //! [`CarrierState`] samples at the ends of each communication step, and the plant interpolates
 //! them inside the step (see `docs/carrier.md`).
 
+pub mod external;
+pub(crate) mod gimbal_trig;
 pub mod isolation;
 pub mod run;
 pub mod segment;
 pub mod ship;
 pub mod spec;
 pub mod state;
-mod tick;
 pub mod track;
 pub mod trajectory;
 pub mod waves;

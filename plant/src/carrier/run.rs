@@ -1,15 +1,15 @@
-//! The carrier inside the plant: one tick of moving-base increments, and the carrier's part of
-//! the state codec.
+//! The carrier inside the plant: the carrier with its mount, lever arm and Earth switches, the
+//! azimuth isolation loop, and the carrier's part of the state codec.
 
 use nalgebra::{Matrix3, Vector3};
 
 use super::Carrier;
+use super::gimbal_trig::GimbalTrig;
 use super::isolation::Isolation;
 use super::segment::PointEnv;
 use super::state::CarrierState;
 use super::track::TrackPosition;
-use crate::config::{ConfigError, PlantConfig};
-use crate::plant::Plant;
+use crate::config::PlantConfig;
 use crate::state::{Reader, StateError, Writer};
 use crate::table::gimbal::body_to_nav;
 use crate::table::{GimbalAngles, Schedule};
@@ -33,7 +33,7 @@ pub struct CarrierRun {
     /// C_c^v, the transpose of the mount C_v^c (`None`: the identity, the default mount).
     pub mount_t: Option<Matrix3<f64>>,
     /// The gimbal angles' sines and cosines held between ticks.
-    pub(crate) trig: super::tick::GimbalTrig,
+    pub(crate) trig: GimbalTrig,
     /// The azimuth isolation loop (`None`: never switched on, the original moving-base path).
     pub isolation: Option<Isolation>,
 }
@@ -128,87 +128,40 @@ impl CarrierRun {
             c_cn * self.mount
         }
     }
-}
 
-impl Plant {
-    /// The plant of `cfg` on the moving carrier `carrier` (e.g. a trajectory already in memory),
-    /// replacing the one `cfg.carrier` describes.
-    pub fn with_carrier(cfg: &PlantConfig, carrier: Carrier) -> Result<Self, Vec<ConfigError>> {
-        cfg.validate()?;
-        Ok(Self::build(cfg, Some(carrier)))
-    }
-
-    /// Switches a ship between the segment rule (`true`, the default when its motion allows it)
-    /// and the exact per-tick evaluation (`false`, the reference the tests compare with); only
-    /// before the first step. Returns the segment length in ticks (`None`: per tick).
-    pub fn set_carrier_segments(&mut self, on: bool) -> Result<Option<u64>, String> {
-        if self.tick != 0 {
-            return Err("the carrier's segment rule is switched before the first step".into());
-        }
-        let Some(run) = self.carrier.as_mut() else {
-            return Ok(None);
-        };
-        let Carrier::Ship(s) = &mut run.carrier else {
-            return Ok(None);
+    /// Switches a ship between the segment rule (`true`) and the exact per-tick evaluation
+    /// (`false`); returns the segment length in ticks (`None`: per tick, or not a ship).
+    pub(crate) fn set_segments(&mut self, on: bool) -> Option<u64> {
+        let Carrier::Ship(s) = &mut self.carrier else {
+            return None;
         };
         if on && s.segment_ticks().is_none() {
             s.enable_segments(PointEnv {
-                rotation: run.rotation,
-                gravity: run.gravity,
-                lever_c_m: run.lever_c_m,
-                mount_t: run.mount_t,
+                rotation: self.rotation,
+                gravity: self.gravity,
+                lever_c_m: self.lever_c_m,
+                mount_t: self.mount_t,
             });
         } else if !on && s.segment_ticks().is_some() {
             s.disable_segments();
         }
         let m = s.segment_ticks();
-        run.now = run.carrier.state_now();
-        Ok(m)
+        self.now = self.carrier.state_now();
+        m
     }
 
-    /// True when the table rides a moving carrier (ship, trajectory or an external vessel model).
-    pub fn moving_carrier(&self) -> bool {
-        self.carrier.is_some()
-    }
-
-    /// Closes one output interval for the azimuth isolation loop: feeds it the sample just
-    /// output (measured increments and encoder reading) and the scheme's commanded outer angle.
-    pub(crate) fn isolate(&mut self, s: &crate::plant::ImuSample) {
-        let (tick, dt, outer) = (self.tick, self.dt_s, self.gimbal_now.angles.outer_rad);
-        let Some(run) = self.carrier.as_mut().filter(|r| r.isolation.is_some()) else {
-            return;
-        };
-        let now = run.state();
-        if let Some(i) = run.isolation.as_mut() {
-            i.update(
-                &s.dtheta_rad,
-                s.encoder.inner_rad,
-                outer,
-                now.lat_rad,
-                now.height_m,
-                &now.v_n,
-                dt,
-                tick,
-            );
-        }
-    }
-
-    /// Writes the carrier's integrated state (the ship's mean-track position).
-    pub(crate) fn write_carrier_state(&self, w: &mut Writer) {
-        if let Some(Carrier::Ship(s)) = self.carrier.as_ref().map(|r| &r.carrier) {
+    /// Writes the carrier's integrated state (the ship's mean-track position) and, with
+    /// `isolation` (the scenario's own moving carrier), the isolation loop (a flag, then its
+    /// state); an external carrier is attached after a restore and never runs the loop.
+    pub(crate) fn write(&self, w: &mut Writer, isolation: bool) {
+        if let Carrier::Ship(s) = &self.carrier {
             let (tick, p) = s.segment_position().unwrap_or_else(|| s.position());
             w.u64(tick);
             w.f64(p.lat_rad);
             w.f64(p.lon_rad);
         }
-        // The isolation loop (a flag, then its state), for the scenario's own moving carrier;
-        // an external carrier is attached after a restore and never runs the loop.
-        if let Some(run) = self
-            .carrier
-            .as_ref()
-            .filter(|_| !self.cfg.carrier.is_static())
-        {
-            match &run.isolation {
+        if isolation {
+            match &self.isolation {
                 Some(i) => {
                     w.u64(1);
                     i.write(w);
@@ -218,14 +171,14 @@ impl Plant {
         }
     }
 
-    /// Reads what [`Plant::write_carrier_state`] wrote and rebuilds the carrier at the plant's
-    /// tick (call after the tick is restored).
-    pub(crate) fn read_carrier_state(&mut self, r: &mut Reader<'_>) -> Result<(), StateError> {
-        let tick = self.tick;
-        let Some(run) = self.carrier.as_mut() else {
-            return Ok(());
-        };
-        match &mut run.carrier {
+    /// Reads what [`CarrierRun::write`] wrote and rebuilds the carrier at internal tick `tick`.
+    pub(crate) fn read(
+        &mut self,
+        r: &mut Reader<'_>,
+        tick: u64,
+        isolation: bool,
+    ) -> Result<(), StateError> {
+        match &mut self.carrier {
             Carrier::Ship(s) => {
                 let t = r.u64()?;
                 let pos = TrackPosition {
@@ -241,13 +194,13 @@ impl Plant {
             }
             Carrier::Trajectory { tick: t, .. } => *t = tick,
         }
-        if !self.cfg.carrier.is_static() {
-            run.isolation = match r.u64()? {
+        if isolation {
+            self.isolation = match r.u64()? {
                 0 => None,
                 _ => Some(Isolation::read(r)?),
             };
         }
-        run.now = run.carrier.state_now();
+        self.now = self.carrier.state_now();
         Ok(())
     }
 }

@@ -7,11 +7,11 @@
 //! Semantics (docs/fmu.md): the inputs set before `doStep(t, Δ)` are the carrier state at the
 //! end of that step; the plant moves from the previous sample (the values at the end of
 //! initialization for the first step) to this one as between two rows of a trajectory file
-//! ([`rins_plant::external_carrier`]).
+//! ([`rins_plant::carrier::external`]).
 
 use rins_fmi::vars::{Causality, Kind, ScalarVar, Value};
 use rins_plant::PlantConfig;
-use rins_plant::external_carrier::CarrierSample;
+use rins_plant::carrier::external::CarrierSample;
 
 /// Name of the switch parameter.
 pub const SWITCH: &str = "carrier.external_inputs";

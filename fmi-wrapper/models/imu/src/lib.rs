@@ -15,7 +15,7 @@ use rins_fmi::state::{StateReader, StateWriter};
 use rins_fmi::vars::{Value, VariableTable};
 use rins_fmi::xml::FmiVersion;
 use rins_plant::carrier::CarrierKind;
-use rins_plant::external_carrier::CarrierSample;
+use rins_plant::carrier::external::CarrierSample;
 use rins_plant::{GimbalCommand, ImuSample, Plant, PlantConfig};
 
 pub mod carrier_inputs;

@@ -4,71 +4,15 @@
 
 use nalgebra::Vector3;
 
-use super::segment::TickPoints;
-use super::{Carrier, GL_OFFSETS};
+use super::Motion;
+use crate::carrier::segment::TickPoints;
+use crate::carrier::{Carrier, GL_OFFSETS};
 use crate::kinematics::{
     CarrierPoint, TableIncrements, carrier_points, dwell_increments, moving_base_increments,
 };
-use crate::plant::Plant;
-use crate::table::{GimbalAngles, GimbalFrame, GimbalState, SmoothTurn};
-use crate::trig::{AngleTrig, GridTrig};
+use crate::table::{GimbalAngles, GimbalState, SmoothTurn};
 
-/// The gimbal angles' sines and cosines: held while the table dwells (libm once per dwell),
-/// from a fine grid while it turns ([`GridTrig`]: no libm call in most ticks).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct GimbalTrig {
-    outer: AngleTrig,
-    inner: AngleTrig,
-    outer_grid: GridTrig,
-    inner_grid: GridTrig,
-}
-
-impl GimbalTrig {
-    /// The gimbal frame at angles `a` while the table dwells (held for the next call).
-    #[inline]
-    fn frame(&mut self, a: GimbalAngles) -> GimbalFrame {
-        GimbalFrame::from_sin_cos(self.outer.at(a.outer_rad), self.inner.at(a.inner_rad))
-    }
-
-    /// The gimbal frame at angles `a` in the middle of a tick on which the outer gimbal
-    /// (`outer_turns`) or the inner one turns: the turning angle from the grid, the other held.
-    #[inline]
-    fn frame_turning(&mut self, a: GimbalAngles, outer_turns: bool) -> GimbalFrame {
-        if outer_turns {
-            GimbalFrame::from_sin_cos(
-                self.outer_grid.sin_cos(a.outer_rad),
-                self.inner.at(a.inner_rad),
-            )
-        } else {
-            GimbalFrame::from_sin_cos(
-                self.outer.at(a.outer_rad),
-                self.inner_grid.sin_cos(a.inner_rad),
-            )
-        }
-    }
-
-    /// The gimbal frames at the tick's two quadrature points with angles `a`.
-    #[inline]
-    fn frames(&mut self, a: &[GimbalAngles; 2]) -> [GimbalFrame; 2] {
-        if a[1] == a[0] {
-            return [self.frame(a[0]); 2];
-        }
-        // Only the turning gimbal's angle differs between the points: the other's is held.
-        let outer = if a[0].outer_rad == a[1].outer_rad {
-            [self.outer.at(a[0].outer_rad); 2]
-        } else {
-            a.map(|a| self.outer_grid.sin_cos(a.outer_rad))
-        };
-        let inner = if a[0].inner_rad == a[1].inner_rad {
-            [self.inner.at(a[0].inner_rad); 2]
-        } else {
-            a.map(|a| self.inner_grid.sin_cos(a.inner_rad))
-        };
-        [0, 1].map(|i| GimbalFrame::from_sin_cos(outer[i], inner[i]))
-    }
-}
-
-impl Plant {
+impl Motion {
     /// One tick on the moving carrier from table state `g0` to `g1` (`gm` at its middle): the
     /// increments and the up axis in body axes (the mean over the tick). The carrier part is the
     /// ship's segment-rule tick means while the table dwells, their turning-frame expansion
@@ -76,6 +20,7 @@ impl Plant {
     /// Gauss–Legendre otherwise; the gimbal part is the exact angle difference.
     pub(crate) fn carrier_tick(
         &mut self,
+        tick: u64,
         g0: &GimbalState,
         g1: &GimbalState,
         gm: &GimbalState,
@@ -113,7 +58,6 @@ impl Plant {
                 }
             }
         }
-        let tick = self.tick;
         let angles: [GimbalAngles; 2] = if g0.angles != g1.angles {
             GL_OFFSETS.map(|f| {
                 let t = (tick as f64 + f) / self.internal_rate_hz;
@@ -122,7 +66,7 @@ impl Plant {
         } else {
             [g1.angles; 2]
         };
-        let ticks = self.cfg.substeps as f64;
+        let ticks = self.substeps as f64;
         let dt = self.dt_s;
         let run = self.carrier.as_mut().expect("moving carrier");
         // Azimuth isolation: the outer offset at the tick's ends and quadrature points.

@@ -1,0 +1,186 @@
+//! The readout stage: what the unit measures of the deterministic interval. Gyro and
+//! accelerometer noise (angle and velocity random walk, bias instability, rate random walk),
+//! output quantisation with its carried residual, the gimbal encoders and the temperature
+//! sensors. Every seed-dependent quantity of the plant is here: the physics before it is the
+//! same for every seed.
+
+use nalgebra::Vector3;
+
+use super::interval::Interval;
+use crate::config::PlantConfig;
+use crate::effects::encoder::Encoders;
+use crate::effects::noise::NoiseState;
+use crate::effects::quantize::Quantizer;
+use crate::effects::temp_sensor::TempSensors;
+use crate::effects::{AccelTerm, GyroTerm};
+use crate::output::Truth;
+use crate::state::{Reader, StateError, Writer};
+use crate::table::GimbalAngles;
+use crate::thermal::node;
+use crate::units::ARCSEC;
+
+/// The measured outputs of one interval.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Measured {
+    /// Angular increment output, rad.
+    pub dtheta_rad: Vector3<f64>,
+    /// Velocity increment output, m/s.
+    pub dv_mps: Vector3<f64>,
+}
+
+/// Noise, quantisation, encoders and temperature sensors.
+#[derive(Clone, Debug)]
+pub(crate) struct Readout {
+    noise: NoiseState,
+    gyro_quant: Quantizer,
+    accel_quant: Quantizer,
+    encoders: Encoders,
+    temp_sensors: TempSensors,
+    /// The temperature sensors' last readings (taken at each thermal update, held between), °C.
+    temp_readings_c: [f64; node::COUNT],
+    /// Seed of the noise streams (the configured seed until [`Readout::reseed`]).
+    noise_seed: u64,
+    dt_s: f64,
+    sqrt_dt: f64,
+}
+
+impl Readout {
+    /// The readout of `cfg`, its first temperature reading taken of `nodes_c`.
+    pub(crate) fn new(cfg: &PlantConfig, nodes_c: &[f64; node::COUNT]) -> Self {
+        let s = &cfg.sensor;
+        let quant = |on: bool, p: [f64; 3], unit: f64| {
+            Quantizer::new(if on {
+                Vector3::from(p) * unit
+            } else {
+                Vector3::zeros()
+            })
+        };
+        let mut temp_sensors = TempSensors::new(&s.temperature, cfg.seed);
+        let temp_readings_c = temp_sensors.read(nodes_c);
+        let dt_s = 1.0 / cfg.rate_hz;
+        Self {
+            noise: NoiseState::new(&s.gyro, &s.accel, cfg.seed),
+            gyro_quant: quant(
+                s.gyro.quantization.enabled,
+                s.gyro.quantization.pulse,
+                ARCSEC,
+            ),
+            accel_quant: quant(
+                s.accel.quantization.enabled,
+                s.accel.quantization.pulse,
+                1.0,
+            ),
+            encoders: Encoders::new(&s.encoder),
+            temp_sensors,
+            temp_readings_c,
+            noise_seed: cfg.seed,
+            dt_s,
+            sqrt_dt: dt_s.sqrt(),
+        }
+    }
+
+    /// The temperature sensors' last readings, °C.
+    pub(crate) fn temp_readings_c(&self) -> [f64; node::COUNT] {
+        self.temp_readings_c
+    }
+
+    /// Seed of the noise streams in use.
+    pub(crate) fn noise_seed(&self) -> u64 {
+        self.noise_seed
+    }
+
+    /// Restarts every noise stream from `seed`, keeping the slow processes' values.
+    pub(crate) fn reseed(&mut self, seed: u64) {
+        self.noise.reseed(seed);
+        self.temp_sensors.reseed(seed);
+        self.noise_seed = seed;
+    }
+
+    /// A thermal step of `h_s` ended: the slow noise processes advance and the temperature
+    /// sensors read the true node temperatures `nodes_c`.
+    pub(crate) fn on_thermal_step(&mut self, h_s: f64, nodes_c: &[f64; node::COUNT]) {
+        self.noise.step_slow(h_s);
+        self.temp_readings_c = self.temp_sensors.read(nodes_c);
+    }
+
+    /// The encoders' reading of the true angles.
+    pub(crate) fn encoders(&self, angles: GimbalAngles) -> GimbalAngles {
+        self.encoders.read(angles)
+    }
+
+    /// Adds the noise to the deterministic interval and quantises it; each term's contribution
+    /// goes to `truth`.
+    #[inline]
+    pub(crate) fn measure(&mut self, x: &Interval, truth: &mut Truth) -> Measured {
+        let dt = self.dt_s;
+        let arw = if self.noise.has_arw() {
+            self.noise.arw_increment(self.sqrt_dt)
+        } else {
+            Vector3::zeros()
+        };
+        let gm = self.noise.gm_bias_rps * dt;
+        let rrw = self.noise.rrw_bias_rps * dt;
+        let vrw = if self.noise.has_vrw() {
+            self.noise.vrw_increment(self.sqrt_dt)
+        } else {
+            Vector3::zeros()
+        };
+        let (g, a) = (&mut truth.gyro_terms_rad, &mut truth.accel_terms_mps);
+        g[GyroTerm::AngleRandomWalk as usize] = arw;
+        g[GyroTerm::BiasInstability as usize] = gm;
+        g[GyroTerm::RateRandomWalk as usize] = rrw;
+        a[AccelTerm::VelocityRandomWalk as usize] = vrw;
+        let dtheta_analog = x.dtheta_true_rad + x.gyro_err_rad + arw + gm + rrw;
+        let dv_analog = x.dv_true_mps + x.accel_err_mps + vrw;
+        let dtheta_rad = self.gyro_quant.apply(&dtheta_analog);
+        let dv_mps = self.accel_quant.apply(&dv_analog);
+        g[GyroTerm::Quantization as usize] = dtheta_rad - dtheta_analog;
+        a[AccelTerm::Quantization as usize] = dv_mps - dv_analog;
+        Measured { dtheta_rad, dv_mps }
+    }
+
+    /// Writes the seed, the slow processes, the streams' positions, the quantisers' residuals
+    /// and the last temperature readings.
+    pub(crate) fn write(&self, w: &mut Writer) {
+        w.u64(self.noise_seed);
+        w.v3(&self.noise.gm_bias_rps);
+        w.v3(&self.noise.rrw_bias_rps);
+        for s in [
+            &self.noise.arw,
+            &self.noise.gm,
+            &self.noise.rrw,
+            &self.noise.vrw,
+            &self.temp_sensors.stream,
+        ] {
+            w.u128(s.word_pos());
+        }
+        w.v3(&self.gyro_quant.residual);
+        w.v3(&self.accel_quant.residual);
+        self.temp_readings_c.iter().for_each(|x| w.f64(*x));
+    }
+
+    /// Reads what [`Readout::write`] wrote.
+    pub(crate) fn read(&mut self, r: &mut Reader<'_>) -> Result<(), StateError> {
+        let seed = r.u64()?;
+        if seed != self.noise_seed {
+            self.reseed(seed);
+        }
+        self.noise.gm_bias_rps = r.v3()?;
+        self.noise.rrw_bias_rps = r.v3()?;
+        for s in [
+            &mut self.noise.arw,
+            &mut self.noise.gm,
+            &mut self.noise.rrw,
+            &mut self.noise.vrw,
+            &mut self.temp_sensors.stream,
+        ] {
+            s.set_word_pos(r.u128()?);
+        }
+        self.gyro_quant.residual = r.v3()?;
+        self.accel_quant.residual = r.v3()?;
+        for x in self.temp_readings_c.iter_mut() {
+            *x = r.f64()?;
+        }
+        Ok(())
+    }
+}
