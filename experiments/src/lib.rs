@@ -8,6 +8,8 @@
 
 pub mod calibration;
 pub mod campaign;
+pub mod montecarlo;
 pub mod session;
 
+pub use montecarlo::run_seeds;
 pub use session::{Alignment, NavRecord, NavRun, NavRunConfig, Tracker, run};

@@ -246,6 +246,11 @@ impl Tracker {
         }
     }
 
+    /// Samples between error records.
+    pub fn record_interval(&self) -> u64 {
+        self.every
+    }
+
     /// Mean of |φ_U| over the records so far, rad.
     pub fn up_att_mean_abs_rad(&self) -> f64 {
         self.up_sum / self.records.max(1) as f64
@@ -266,17 +271,9 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
         )));
     }
     let dt = plant.dt_s();
-    let site = *plant.site();
     let mut init = initial_state(plant);
-    let vertical = match cfg.vertical {
-        VerticalChannel::Hold { .. } => VerticalChannel::Hold {
-            ref_height_m: init.height_m,
-        },
-        VerticalChannel::Damped { tau_s, .. } => VerticalChannel::Damped {
-            ref_height_m: init.height_m,
-            tau_s,
-        },
-    };
+    // The vertical channel holds (or damps to) the true start height, whatever the alignment.
+    let ref_height_m = init.height_m;
     let moving = plant.moving_carrier();
     let mut alignment = None;
     if let Alignment::SelfAlign { coarse_s, fine_s } = cfg.alignment {
@@ -292,18 +289,7 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
         init = state;
         alignment = Some(res);
     }
-    let mut tracker = Tracker::new(
-        init,
-        dt,
-        vertical,
-        site,
-        plant.vehicle_to_nav(),
-        cfg.compensation.as_ref(),
-        cfg.record_every_s,
-    );
-    if moving {
-        tracker = tracker.on_moving_carrier(plant.config().vehicle.c_vn());
-    }
+    let mut tracker = tracker_for(plant, init, ref_height_m, cfg);
     let samples = (nav_s / dt).round() as u64;
     let mut records = Vec::with_capacity((samples / tracker.every + 1) as usize);
     for k in 1..=samples {
@@ -322,10 +308,41 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
     })
 }
 
+/// The navigator of `cfg` started at `init` on `plant`'s site or carrier, its vertical channel
+/// held (or damped) to `ref_height_m`.
+pub(crate) fn tracker_for(
+    plant: &Plant,
+    init: NavState,
+    ref_height_m: f64,
+    cfg: &NavRunConfig,
+) -> Tracker {
+    let vertical = match cfg.vertical {
+        VerticalChannel::Hold { .. } => VerticalChannel::Hold { ref_height_m },
+        VerticalChannel::Damped { tau_s, .. } => VerticalChannel::Damped {
+            ref_height_m,
+            tau_s,
+        },
+    };
+    let tracker = Tracker::new(
+        init,
+        plant.dt_s(),
+        vertical,
+        *plant.site(),
+        plant.vehicle_to_nav(),
+        cfg.compensation.as_ref(),
+        cfg.record_every_s,
+    );
+    if plant.moving_carrier() {
+        tracker.on_moving_carrier(plant.config().vehicle.c_vn())
+    } else {
+        tracker
+    }
+}
+
 /// The navigator's start aligned from truth: the table's attitude, and the site at rest (static
 /// carrier) or the carrier's reference point with its velocity (moving carrier: the navigator
 /// starts aligned from truth on the moving base; there is no moored dwell).
-fn initial_state(plant: &Plant) -> NavState {
+pub(crate) fn initial_state(plant: &Plant) -> NavState {
     if plant.moving_carrier() {
         let c = plant.truth().carrier;
         return NavState {

@@ -8,7 +8,7 @@
 //! The vertical channel of a free inertial navigator is unstable; see [`VerticalChannel`].
 
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
-use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity, radii_of_curvature};
+use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity_sin2, radii_of_curvature_sin2};
 use serde::{Deserialize, Serialize};
 
 /// How the unstable vertical channel is handled.
@@ -56,6 +56,31 @@ pub fn quat_from_rotvec(v: &Vector3<f64>) -> UnitQuaternion<f64> {
     let c = 1.0 - n2 / 8.0 + n2 * n2 / 384.0;
     let s = 0.5 - n2 / 48.0 + n2 * n2 / 3840.0;
     UnitQuaternion::new_unchecked(Quaternion::new(c, s * v.x, s * v.y, s * v.z))
+}
+
+/// The latitude's terms one update uses.
+struct Latitude {
+    sin: f64,
+    cos: f64,
+    sin2: f64,
+    rm: f64,
+    rn: f64,
+}
+
+impl Latitude {
+    #[inline]
+    fn of(lat_rad: f64) -> Self {
+        let (sin, cos) = lat_rad.sin_cos();
+        let sin2 = sin.powi(2);
+        let (rm, rn) = radii_of_curvature_sin2(sin2);
+        Self {
+            sin,
+            cos,
+            sin2,
+            rm,
+            rn,
+        }
+    }
 }
 
 /// The strapdown navigator.
@@ -109,9 +134,12 @@ impl Strapdown {
 
     /// Earth rate ω_ie^n and transport rate ω_en^n at the current solution, rad/s.
     pub fn frame_rates(&self) -> (Vector3<f64>, Vector3<f64>) {
+        self.frame_rates_at(&Latitude::of(self.state.lat_rad))
+    }
+
+    fn frame_rates_at(&self, l: &Latitude) -> (Vector3<f64>, Vector3<f64>) {
         let s = &self.state;
-        let (rm, rn) = radii_of_curvature(s.lat_rad);
-        let (sl, cl) = s.lat_rad.sin_cos();
+        let (rm, rn, sl, cl) = (l.rm, l.rn, l.sin, l.cos);
         let w_ie = Vector3::new(0.0, OMEGA_IE_RPS * cl, OMEGA_IE_RPS * sl);
         let rnh = rn + s.height_m;
         let w_en = Vector3::new(
@@ -132,15 +160,18 @@ impl Strapdown {
         self.prev_dv = *dv;
 
         let s = self.state;
-        let (w_ie, w_en) = self.frame_rates();
+        // The latitude's sine, cosine and radii once per update (the same bits as computing
+        // them where each is used).
+        let l = Latitude::of(s.lat_rad);
+        let (w_ie, w_en) = self.frame_rates_at(&l);
         let w_in = w_ie + w_en;
         let zeta = w_in * dt;
         let c_bn = s.q_bn.to_rotation_matrix().into_inner();
         let dv_sf_n = (Matrix3::identity() - 0.5 * zeta.cross_matrix()) * (c_bn * dv_sf_b);
-        let g_n = Vector3::new(0.0, 0.0, -normal_gravity(s.lat_rad, s.height_m));
+        let g_n = Vector3::new(0.0, 0.0, -normal_gravity_sin2(l.sin2, s.height_m));
         let mut v = s.v_n + dv_sf_n + (g_n - (2.0 * w_ie + w_en).cross(&s.v_n)) * dt;
 
-        let (rm, rn) = radii_of_curvature(s.lat_rad);
+        let (rm, rn) = (l.rm, l.rn);
         let mut h = s.height_m;
         match self.vertical {
             VerticalChannel::Hold { ref_height_m } => {
@@ -158,7 +189,7 @@ impl Strapdown {
         }
         let v_mid = 0.5 * (s.v_n + v);
         let lat = s.lat_rad + v_mid.y / (rm + s.height_m) * dt;
-        let lon = s.lon_rad + v_mid.x / ((rn + s.height_m) * s.lat_rad.cos()) * dt;
+        let lon = s.lon_rad + v_mid.x / ((rn + s.height_m) * l.cos) * dt;
 
         let mut q = quat_from_rotvec(&(-zeta)) * s.q_bn * quat_from_rotvec(&phi);
         q.renormalize_fast();

@@ -102,7 +102,12 @@ impl Site {
 
 /// Meridian and transverse radii of curvature (R_M, R_N) at geodetic latitude `lat_rad`.
 pub fn radii_of_curvature(lat_rad: f64) -> (f64, f64) {
-    let s2 = lat_rad.sin().powi(2);
+    radii_of_curvature_sin2(lat_rad.sin().powi(2))
+}
+
+/// [`radii_of_curvature`] from sin²(latitude) (a caller that has the sine already).
+#[inline]
+pub fn radii_of_curvature_sin2(s2: f64) -> (f64, f64) {
     let w = (1.0 - WGS84_E2 * s2).sqrt();
     let rn = WGS84_A_M / w;
     let rm = WGS84_A_M * (1.0 - WGS84_E2) / (w * w * w);
@@ -112,7 +117,12 @@ pub fn radii_of_curvature(lat_rad: f64) -> (f64, f64) {
 /// WGS-84 normal gravity: Somigliana's closed form on the ellipsoid with the second-order
 /// free-air height correction (NIMA TR8350.2, Eq. 4-1 and 4-3), m/s².
 pub fn normal_gravity(lat_rad: f64, height_m: f64) -> f64 {
-    let s2 = lat_rad.sin().powi(2);
+    normal_gravity_sin2(lat_rad.sin().powi(2), height_m)
+}
+
+/// [`normal_gravity`] from sin²(latitude).
+#[inline]
+pub fn normal_gravity_sin2(s2: f64, height_m: f64) -> f64 {
     let gamma0 = GAMMA_E_MPS2 * (1.0 + SOMIGLIANA_K * s2) / (1.0 - WGS84_E2 * s2).sqrt();
     let b = WGS84_A_M * (1.0 - WGS84_F);
     let m = OMEGA_IE_RPS * OMEGA_IE_RPS * WGS84_A_M * WGS84_A_M * b / WGS84_GM;

@@ -14,6 +14,7 @@
 //! stream of the seed.
 
 pub mod attitude;
+mod batch;
 pub mod carrier;
 pub mod command;
 pub mod config;
@@ -32,6 +33,7 @@ pub mod thermal;
 mod trig;
 pub mod units;
 
+pub use batch::SeedBatch;
 pub use command::GimbalCommand;
 pub use config::{ConfigError, PlantConfig, SensorSpec, VehicleSpec};
 pub use output::{ImuSample, Truth};

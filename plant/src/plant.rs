@@ -17,7 +17,7 @@ use crate::output::{ImuSample, Truth};
 use crate::stages::clock::Clock;
 use crate::stages::interval::Interval;
 use crate::stages::motion::Motion;
-use crate::stages::readout::Readout;
+use crate::stages::readout::{Readout, ReadoutTerms};
 use crate::stages::sensor_errors::{SensorErrors, TickInput};
 use crate::stages::temperature::{TemperatureField, ThermalEvent};
 use crate::table::{Schedule, body_to_nav};
@@ -102,25 +102,27 @@ impl Plant {
     }
 
     /// The temperature field's slow update when one is due; the stages that depend on the
-    /// temperatures follow it.
-    fn update_temperatures(&mut self) {
+    /// temperatures follow it. Returns the length of the thermal step taken, if one was.
+    fn update_temperatures(&mut self) -> Option<f64> {
         let (t_s, tick) = (self.clock.time_s(), self.clock.tick());
         let motion = &self.motion;
         let event = self.temperature.begin_sample(t_s, || {
             motion.attitude_c_bn(tick).transpose() * Vector3::z()
         });
-        let Some(event) = event else {
-            return;
-        };
+        let event = event?;
         let t = self.temperature.temperatures();
+        self.dwell = None;
         match event {
-            ThermalEvent::ChamberHeld => self.errors.on_temperatures(&t, None),
+            ThermalEvent::ChamberHeld => {
+                self.errors.on_temperatures(&t, None);
+                None
+            }
             ThermalEvent::Stepped { h_s } => {
                 self.readout.on_thermal_step(h_s, &t.nodes_c);
                 self.errors.on_temperatures(&t, Some(h_s));
+                Some(h_s)
             }
         }
-        self.dwell = None;
     }
 
     /// The interval's true increments and deterministic errors: the dwell's last interval
@@ -183,7 +185,7 @@ impl Plant {
     /// The readout of `x`: the sample the IMU outputs, the truth beside it, and the isolation
     /// loop fed with what was measured.
     fn read_out(&mut self, index: u64, x: &Interval) -> ImuSample {
-        let measured = self.readout.measure(x, &mut self.truth);
+        let measured = self.readout.measure(x);
         let tick = self.clock.tick();
         let tr = &mut self.truth;
         tr.gimbal = self.motion.gimbal_truth(tick);
@@ -202,6 +204,64 @@ impl Plant {
         self.motion
             .isolate(&sample.dtheta_rad, sample.encoder.inner_rad, tick);
         sample
+    }
+
+    /// True when every seed sees the same physics (motion, temperatures, deterministic
+    /// errors), so one interval can be read out for many seeds ([`crate::SeedBatch`]): not on
+    /// a ship in a seeded sea, nor with the azimuth isolation loop, which feeds the measured
+    /// increments back into the motion.
+    pub fn shares_physics_across_seeds(&self) -> bool {
+        match self.motion.carrier() {
+            None => true,
+            Some(run) => {
+                !run.carrier.depends_on_seed()
+                    && run.isolation.is_none()
+                    && !self.cfg.carrier.azimuth_isolation
+            }
+        }
+    }
+
+    /// One step for this plant's seed and, from the same interval, one for each of `lanes`
+    /// (readouts of other seeds): `out[0]` is this plant's sample, `out[k]` lane k − 1's. Only
+    /// when [`Plant::shares_physics_across_seeds`].
+    pub(crate) fn step_lanes(&mut self, lanes: &mut [Readout], out: &mut [ImuSample]) {
+        debug_assert_eq!(lanes.len() + 1, out.len());
+        let index = self.clock.begin_sample();
+        if let Some(h_s) = self.update_temperatures() {
+            let nodes = self.temperature.temperatures().nodes_c;
+            lanes
+                .iter_mut()
+                .for_each(|l| l.on_thermal_step(h_s, &nodes));
+        }
+        let interval = self.deterministic_interval();
+        let first = self.read_out(index, &interval);
+        out[0] = first;
+        for (lane, o) in lanes.iter_mut().zip(&mut out[1..]) {
+            let m = lane.measure(&interval);
+            *o = ImuSample {
+                dtheta_rad: m.dtheta_rad,
+                dv_mps: m.dv_mps,
+                temps_c: lane.temp_readings_c(),
+                ..first
+            };
+        }
+    }
+
+    /// A readout of this plant's configuration for `seed`, at the plant's start (lanes of a
+    /// [`crate::SeedBatch`], built before the first step).
+    pub(crate) fn lane_readout(&self, seed: u64) -> Readout {
+        let cfg = PlantConfig {
+            seed,
+            ..self.cfg.clone()
+        };
+        Readout::new(&cfg, &self.truth.temps.nodes_c)
+    }
+
+    /// [`Plant::truth`] with `lane`'s noise and quantisation terms.
+    pub(crate) fn truth_of_lane(&self, lane: &Readout) -> Truth {
+        let mut t = self.truth();
+        lane.terms().write_into(&mut t);
+        t
     }
 
     /// Applies a table command from the next output interval on (see [`GimbalCommand`]).
@@ -309,10 +369,12 @@ impl Plant {
     /// Truth over the last interval. On a moving carrier the carrier's part is evaluated here,
     /// when asked for, not at every tick (it is a copy for that reason).
     pub fn truth(&self) -> Truth {
-        Truth {
+        let mut t = Truth {
             carrier: self.carrier_truth(),
             ..self.truth
-        }
+        };
+        self.readout.terms().write_into(&mut t);
+        t
     }
 
     /// The carrier's part of [`Plant::truth`] alone (the site and `[vehicle]` attitude when
@@ -403,7 +465,8 @@ impl Plant {
 
     /// The truth's evolving part (the rest is rebuilt or filled in by the next step).
     fn write_truth(&self, w: &mut crate::state::Writer) {
-        let tr = &self.truth;
+        let mut tr = self.truth;
+        self.readout.terms().write_into(&mut tr);
         w.v3(&tr.dtheta_true_rad);
         w.v3(&tr.dv_true_mps);
         tr.temps.nodes_c.iter().for_each(|x| w.f64(*x));
@@ -431,6 +494,7 @@ impl Plant {
             *v = r.v3()?;
         }
         tr.position_weight = r.f64()?;
+        self.readout.set_terms(ReadoutTerms::read_from(&self.truth));
         Ok(())
     }
 }

@@ -224,38 +224,76 @@ pub fn one_run(
     out
 }
 
+/// The navigators of the study: uncompensated, then compensated with `opt`'s δβ (or the
+/// plant's own).
+fn paired_navs(
+    opt: &Table4Options,
+    plant_cfg: &PlantConfig,
+) -> [rins_experiments::NavRunConfig; 2] {
+    [false, true].map(|compensated| {
+        let mut cfg = opt.nav.clone();
+        cfg.compensation = compensated.then(|| {
+            opt.compensation
+                .unwrap_or(plant_cfg.sensor.gyro.position_bias)
+        });
+        cfg
+    })
+}
+
+/// `cfg` with the stochastic terms off (ARW, bias instability, RRW, VRW): the noise-free case.
+fn noise_free(cfg: &PlantConfig) -> PlantConfig {
+    let mut cfg = cfg.clone();
+    for t in [
+        GyroTerm::AngleRandomWalk,
+        GyroTerm::BiasInstability,
+        GyroTerm::RateRandomWalk,
+    ] {
+        cfg.sensor.gyro.set_enabled(t, false);
+    }
+    cfg.sensor.accel.velocity_random_walk.enabled = false;
+    cfg
+}
+
 /// Runs the reproduction on every core: `runs` seeds × {uncompensated, compensated} with common
-/// random numbers (the same seed gives the same IMU samples; only the navigator differs), plus
-/// the noise-free pair. `progress` receives samples done.
+/// random numbers (each seed's samples feed both navigators), plus the noise-free pair, through
+/// the Monte Carlo engine ([`rins_experiments::run_seeds`]). `progress` receives samples done.
 pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Report {
     let t0 = std::time::Instant::now();
-    let mut tasks: Vec<(Option<u64>, bool)> = Vec::new();
-    for k in 0..opt.runs as u64 {
-        tasks.push((Some(opt.plant.seed + k), false));
-        tasks.push((Some(opt.plant.seed + k), true));
+    let seeds: Vec<u64> = (0..opt.runs as u64).map(|k| opt.plant.seed + k).collect();
+    let nf_cfg = noise_free(&opt.plant);
+    let (seeded, nf_runs) = rayon::join(
+        || {
+            rins_experiments::run_seeds(
+                &opt.plant,
+                &seeds,
+                opt.duration_s,
+                &paired_navs(opt, &opt.plant),
+                progress,
+            )
+            .expect("navigation runs")
+        },
+        || {
+            rins_experiments::run_seeds(
+                &nf_cfg,
+                &[opt.plant.seed],
+                opt.duration_s,
+                &paired_navs(opt, &nf_cfg),
+                progress,
+            )
+            .expect("navigation runs")
+        },
+    );
+    let mut results: Vec<((Option<u64>, bool), rins_experiments::NavRun)> = Vec::new();
+    for (seed, pair) in seeds.iter().zip(seeded) {
+        for (comp, r) in [false, true].into_iter().zip(pair) {
+            results.push(((Some(*seed), comp), r));
+        }
     }
-    tasks.push((None, false));
-    tasks.push((None, true));
-    let results: Vec<((Option<u64>, bool), rins_experiments::NavRun)> = tasks
-        .into_par_iter()
-        .map(|(seed, comp)| {
-            let mut cfg = opt.plant.clone();
-            match seed {
-                Some(s) => cfg.seed = s,
-                None => {
-                    for t in [
-                        GyroTerm::AngleRandomWalk,
-                        GyroTerm::BiasInstability,
-                        GyroTerm::RateRandomWalk,
-                    ] {
-                        cfg.sensor.gyro.set_enabled(t, false);
-                    }
-                    cfg.sensor.accel.velocity_random_walk.enabled = false;
-                }
-            }
-            ((seed, comp), one_run(&cfg, opt, comp, progress))
-        })
-        .collect();
+    for pair in nf_runs {
+        for (comp, r) in [false, true].into_iter().zip(pair) {
+            results.push(((None, comp), r));
+        }
+    }
     let mut per_seed = Vec::new();
     let mut first = Series::default();
     let mut nf = NoiseFree::default();
@@ -427,7 +465,6 @@ pub struct SeaOptions {
 /// off. `progress` receives samples done.
 pub fn sea(opt: &SeaOptions, progress: &(dyn Fn(u64) + Sync)) -> SeaReport {
     let t0 = std::time::Instant::now();
-    let static_reference = table4(&opt.paired, progress);
     let with = |iso: bool| {
         let mut plant = opt.ship.clone();
         plant.carrier.azimuth_isolation = iso;
@@ -436,8 +473,16 @@ pub fn sea(opt: &SeaOptions, progress: &(dyn Fn(u64) + Sync)) -> SeaReport {
             ..opt.paired.clone()
         }
     };
-    let ship = table4(&with(false), progress);
-    let ship_isolated = table4(&with(true), progress);
+    // The three cases side by side: the cores take their seeds as they come free.
+    let (static_reference, (ship, ship_isolated)) = rayon::join(
+        || table4(&opt.paired, progress),
+        || {
+            rayon::join(
+                || table4(&with(false), progress),
+                || table4(&with(true), progress),
+            )
+        },
+    );
     let ideal: Vec<IdealFigures> = [false, true]
         .into_par_iter()
         .map(|iso| {

@@ -50,6 +50,11 @@ pub enum Carrier {
 }
 
 impl Carrier {
+    /// True when the carrier's motion depends on the run seed (a ship in a seeded sea state).
+    pub fn depends_on_seed(&self) -> bool {
+        matches!(self, Carrier::Ship(s) if s.waves.is_some())
+    }
+
     /// The carrier of `spec` for ticks of `tick_s` (`None` for the static carrier). A
     /// trajectory carrier reads its file here.
     pub fn new(spec: &CarrierSpec, seed: u64, tick_s: f64) -> Result<Option<Self>, String> {

@@ -28,6 +28,44 @@ pub(crate) struct Measured {
     pub dv_mps: Vector3<f64>,
 }
 
+/// The readout's contributions to the last interval's error, per term (the truth's noise and
+/// quantisation entries).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct ReadoutTerms {
+    arw_rad: Vector3<f64>,
+    bias_instability_rad: Vector3<f64>,
+    rrw_rad: Vector3<f64>,
+    gyro_quantization_rad: Vector3<f64>,
+    vrw_mps: Vector3<f64>,
+    accel_quantization_mps: Vector3<f64>,
+}
+
+impl ReadoutTerms {
+    /// Writes the terms into `truth`'s per-term arrays.
+    pub(crate) fn write_into(&self, truth: &mut Truth) {
+        let (g, a) = (&mut truth.gyro_terms_rad, &mut truth.accel_terms_mps);
+        g[GyroTerm::AngleRandomWalk as usize] = self.arw_rad;
+        g[GyroTerm::BiasInstability as usize] = self.bias_instability_rad;
+        g[GyroTerm::RateRandomWalk as usize] = self.rrw_rad;
+        g[GyroTerm::Quantization as usize] = self.gyro_quantization_rad;
+        a[AccelTerm::VelocityRandomWalk as usize] = self.vrw_mps;
+        a[AccelTerm::Quantization as usize] = self.accel_quantization_mps;
+    }
+
+    /// The terms as `truth` holds them (state restore).
+    pub(crate) fn read_from(truth: &Truth) -> Self {
+        let (g, a) = (&truth.gyro_terms_rad, &truth.accel_terms_mps);
+        Self {
+            arw_rad: g[GyroTerm::AngleRandomWalk as usize],
+            bias_instability_rad: g[GyroTerm::BiasInstability as usize],
+            rrw_rad: g[GyroTerm::RateRandomWalk as usize],
+            gyro_quantization_rad: g[GyroTerm::Quantization as usize],
+            vrw_mps: a[AccelTerm::VelocityRandomWalk as usize],
+            accel_quantization_mps: a[AccelTerm::Quantization as usize],
+        }
+    }
+}
+
 /// Noise, quantisation, encoders and temperature sensors.
 #[derive(Clone, Debug)]
 pub(crate) struct Readout {
@@ -40,6 +78,8 @@ pub(crate) struct Readout {
     temp_readings_c: [f64; node::COUNT],
     /// Seed of the noise streams (the configured seed until [`Readout::reseed`]).
     noise_seed: u64,
+    /// The last interval's noise and quantisation, per term.
+    terms: ReadoutTerms,
     dt_s: f64,
     sqrt_dt: f64,
 }
@@ -74,6 +114,7 @@ impl Readout {
             temp_sensors,
             temp_readings_c,
             noise_seed: cfg.seed,
+            terms: ReadoutTerms::default(),
             dt_s,
             sqrt_dt: dt_s.sqrt(),
         }
@@ -108,10 +149,20 @@ impl Readout {
         self.encoders.read(angles)
     }
 
+    /// The last interval's noise and quantisation, per term.
+    pub(crate) fn terms(&self) -> &ReadoutTerms {
+        &self.terms
+    }
+
+    /// Sets the per-term contributions (state restore).
+    pub(crate) fn set_terms(&mut self, terms: ReadoutTerms) {
+        self.terms = terms;
+    }
+
     /// Adds the noise to the deterministic interval and quantises it; each term's contribution
-    /// goes to `truth`.
+    /// is kept ([`Readout::terms`]).
     #[inline]
-    pub(crate) fn measure(&mut self, x: &Interval, truth: &mut Truth) -> Measured {
+    pub(crate) fn measure(&mut self, x: &Interval) -> Measured {
         let dt = self.dt_s;
         let arw = if self.noise.has_arw() {
             self.noise.arw_increment(self.sqrt_dt)
@@ -125,17 +176,18 @@ impl Readout {
         } else {
             Vector3::zeros()
         };
-        let (g, a) = (&mut truth.gyro_terms_rad, &mut truth.accel_terms_mps);
-        g[GyroTerm::AngleRandomWalk as usize] = arw;
-        g[GyroTerm::BiasInstability as usize] = gm;
-        g[GyroTerm::RateRandomWalk as usize] = rrw;
-        a[AccelTerm::VelocityRandomWalk as usize] = vrw;
         let dtheta_analog = x.dtheta_true_rad + x.gyro_err_rad + arw + gm + rrw;
         let dv_analog = x.dv_true_mps + x.accel_err_mps + vrw;
         let dtheta_rad = self.gyro_quant.apply(&dtheta_analog);
         let dv_mps = self.accel_quant.apply(&dv_analog);
-        g[GyroTerm::Quantization as usize] = dtheta_rad - dtheta_analog;
-        a[AccelTerm::Quantization as usize] = dv_mps - dv_analog;
+        self.terms = ReadoutTerms {
+            arw_rad: arw,
+            bias_instability_rad: gm,
+            rrw_rad: rrw,
+            gyro_quantization_rad: dtheta_rad - dtheta_analog,
+            vrw_mps: vrw,
+            accel_quantization_mps: dv_mps - dv_analog,
+        };
         Measured { dtheta_rad, dv_mps }
     }
 

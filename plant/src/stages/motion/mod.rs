@@ -157,6 +157,11 @@ impl Motion {
         self.carrier.as_deref_mut()
     }
 
+    /// The moving carrier, if any.
+    pub(crate) fn carrier(&self) -> Option<&CarrierRun> {
+        self.carrier.as_deref()
+    }
+
     /// Puts the table on `run` (an external carrier attached after building).
     pub(crate) fn set_carrier(&mut self, run: Box<CarrierRun>) {
         self.carrier = Some(run);

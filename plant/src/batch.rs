@@ -1,0 +1,202 @@
+//! Seeds side by side. A Monte Carlo case runs many seeds of one scenario; where the physics
+//! does not depend on the seed (the static site, a calm ship or a trajectory, no azimuth
+//! isolation), the motion, the temperature field and every deterministic sensor error are
+//! computed once per interval and read out for each seed (noise, quantisation, temperature
+//! sensors). Otherwise each seed runs its own plant. Either way a seed's samples are the bits
+//! [`Plant::step`] gives for that seed alone: the readout is the same code on the same
+//! interval.
+
+use crate::config::{ConfigError, PlantConfig};
+use crate::output::{ImuSample, Truth};
+use crate::plant::Plant;
+use crate::stages::readout::Readout;
+
+/// Several seeds of one configuration stepped together.
+#[derive(Clone, Debug)]
+pub struct SeedBatch {
+    seeds: Vec<u64>,
+    kind: Kind,
+    samples: Vec<ImuSample>,
+}
+
+#[derive(Clone, Debug)]
+enum Kind {
+    /// One plant (the first seed) and the other seeds' readouts.
+    Shared {
+        plant: Box<Plant>,
+        lanes: Vec<Readout>,
+    },
+    /// A plant per seed (the physics depends on the seed).
+    Separate(Vec<Plant>),
+}
+
+impl SeedBatch {
+    /// The configuration `cfg` (its own seed ignored) for each of `seeds`.
+    pub fn new(cfg: &PlantConfig, seeds: &[u64]) -> Result<Self, Vec<ConfigError>> {
+        if seeds.is_empty() {
+            return Err(vec![ConfigError {
+                path: "seeds".into(),
+                expected: "at least one seed".into(),
+                got: "none".into(),
+            }]);
+        }
+        let of = |seed: u64| PlantConfig {
+            seed,
+            ..cfg.clone()
+        };
+        let first = Plant::new(&of(seeds[0]))?;
+        let kind = if first.shares_physics_across_seeds() {
+            let lanes = seeds[1..].iter().map(|&s| first.lane_readout(s)).collect();
+            Kind::Shared {
+                plant: Box::new(first),
+                lanes,
+            }
+        } else {
+            let mut plants = vec![first];
+            for &s in &seeds[1..] {
+                plants.push(Plant::new(&of(s))?);
+            }
+            Kind::Separate(plants)
+        };
+        let placeholder = ImuSample {
+            index: 0,
+            t_s: 0.0,
+            dtheta_rad: Default::default(),
+            dv_mps: Default::default(),
+            encoder: Default::default(),
+            temps_c: [0.0; crate::thermal::node::COUNT],
+        };
+        Ok(Self {
+            seeds: seeds.to_vec(),
+            kind,
+            samples: vec![placeholder; seeds.len()],
+        })
+    }
+
+    /// The seeds, in lane order.
+    pub fn seeds(&self) -> &[u64] {
+        &self.seeds
+    }
+
+    /// True when the seeds share one plant's physics (see the module notes).
+    pub fn is_shared(&self) -> bool {
+        matches!(self.kind, Kind::Shared { .. })
+    }
+
+    /// The plant of the first seed (its configuration, site, schedule, time).
+    pub fn first(&self) -> &Plant {
+        match &self.kind {
+            Kind::Shared { plant, .. } => plant,
+            Kind::Separate(p) => &p[0],
+        }
+    }
+
+    /// The plant lane `k` runs on: the shared one, or the seed's own.
+    pub fn plant(&self, k: usize) -> &Plant {
+        match &self.kind {
+            Kind::Shared { plant, .. } => plant,
+            Kind::Separate(p) => &p[k],
+        }
+    }
+
+    /// Advances every seed by one output interval ([`SeedBatch::samples`] holds the result).
+    pub fn step(&mut self) {
+        match &mut self.kind {
+            Kind::Shared { plant, lanes } => plant.step_lanes(lanes, &mut self.samples),
+            Kind::Separate(plants) => {
+                for (p, s) in plants.iter_mut().zip(&mut self.samples) {
+                    *s = p.step();
+                }
+            }
+        }
+    }
+
+    /// The last interval's samples, in lane order.
+    pub fn samples(&self) -> &[ImuSample] {
+        &self.samples
+    }
+
+    /// Lane `k`'s truth over the last interval (see [`Plant::truth`]).
+    pub fn truth(&self, k: usize) -> Truth {
+        match &self.kind {
+            Kind::Shared { plant, lanes } => match k {
+                0 => plant.truth(),
+                _ => plant.truth_of_lane(&lanes[k - 1]),
+            },
+            Kind::Separate(p) => p[k].truth(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::carrier::{CarrierKind, SpectrumKind};
+    use crate::thermal::ChamberSpec;
+
+    /// Table 3 sensors (noise, quantisation, δβ) with a chamber step, so thermal updates, slow
+    /// noise and temperature-sensor noise all happen within the run.
+    fn config() -> PlantConfig {
+        let mut c = crate::presets::paper_16pos_config();
+        c.sensor.temperature.noise.enabled = true;
+        c.thermal.enabled = true;
+        c.thermal.chamber = ChamberSpec {
+            temp_c: 20.0,
+            profile: vec![[0.0, 20.0], [200.0, 30.0]],
+        };
+        c
+    }
+
+    /// Every seed's samples and final truth from the batch equal a plant run for that seed
+    /// alone, bit for bit; `shared` says which path the batch must have taken.
+    fn check(cfg: &PlantConfig, shared: bool, samples: usize) {
+        let seeds = [7, 11, 12, 1000];
+        let mut batch = SeedBatch::new(cfg, &seeds).unwrap();
+        assert_eq!(batch.is_shared(), shared);
+        let mut alone: Vec<Plant> = seeds
+            .iter()
+            .map(|&seed| {
+                Plant::new(&PlantConfig {
+                    seed,
+                    ..cfg.clone()
+                })
+                .unwrap()
+            })
+            .collect();
+        for k in 0..samples {
+            batch.step();
+            let got = batch.samples();
+            for (lane, p) in alone.iter_mut().enumerate() {
+                assert_eq!(got[lane], p.step(), "seed {} sample {k}", seeds[lane]);
+            }
+        }
+        for (lane, p) in alone.iter().enumerate() {
+            assert_eq!(
+                batch.truth(lane),
+                p.truth(),
+                "truth of seed {}",
+                seeds[lane]
+            );
+        }
+        // The seeds differ: the noise is the seed's.
+        batch.step();
+        let s = batch.samples();
+        assert_ne!(s[0].dtheta_rad, s[1].dtheta_rad);
+    }
+
+    #[test]
+    fn static_seeds_share_the_physics_and_equal_their_runs_alone() {
+        // 300 s at 100 Hz: a turn of the scheme, 300 thermal updates, the chamber step.
+        check(&config(), true, 30_000);
+    }
+
+    #[test]
+    fn a_calm_ship_shares_and_a_ship_at_sea_runs_a_plant_per_seed() {
+        let mut c = config();
+        c.carrier.kind = CarrierKind::Ship;
+        check(&c, true, 3_000);
+        c.carrier.ship.sea.spectrum = SpectrumKind::Jonswap;
+        c.carrier.ship.sea.sea_state = 4;
+        check(&c, false, 3_000);
+    }
+}
