@@ -27,7 +27,7 @@ enum Command {
     #[command(subcommand)]
     Verify(verify::VerifyCommand),
     /// The paper's experiments. Without a subcommand: the headline job, the analytic
-    /// verification plus Table 4 with a few seeds (`--full`: 32 seeds).
+    /// verification plus Table 4 with the paper's 32 seeds (`--runs N` for fewer).
     Paper(paper::PaperArgs),
     /// Section 3.2: Z-up and Z-down system-level indirect calibration (Fig. 4-5, Eq. 16-19),
     /// estimating beta at each position and delta-beta = beta_down - beta_up.

@@ -1,0 +1,99 @@
+//! The Monte Carlo engine against its floor, one thread, Table 3 sensors on the paper's
+//! 16-position scenario, 100 Hz, one simulated hour per measurement (criterion: time per
+//! sample and seed):
+//!
+//! - `naive`: the floor any engine must beat: a bare loop that makes biased, noisy increments
+//!   (constant rate and specific force, bias, white noise from ChaCha8 normals) and integrates
+//!   them with the reference strapdown navigator. One navigator.
+//! - `plant+1nav`: one seed through the plant and one navigator ([`rins_experiments::run`]).
+//! - `engine 1 seed, 2 navs`: one seed, its samples feeding the uncompensated and compensated
+//!   navigators ([`rins_experiments::run_seeds`]).
+//! - `engine 16 seeds, 2 navs`: sixteen seeds sharing the physics, two navigators each
+//!   (per sample and seed).
+
+use criterion::{Criterion, Throughput};
+use nalgebra::{UnitQuaternion, Vector3};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, StandardNormal};
+use rins_experiments::{NavRunConfig, run, run_seeds};
+use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
+use rins_plant::Plant;
+use std::hint::black_box;
+
+const HOUR_S: f64 = 3600.0;
+const RATE_HZ: f64 = 100.0;
+
+/// The naive loop for `samples` samples; returns the final longitude (kept alive).
+fn naive(samples: u64) -> f64 {
+    let dt = 1.0 / RATE_HZ;
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let lat = 36.6f64.to_radians();
+    let w_ie = 7.292_115e-5;
+    let (bias_rps, arw, vrw) = (0.003f64.to_radians() / 3600.0, 1e-6, 2e-5);
+    let mut nav = Strapdown::new(
+        NavState {
+            q_bn: UnitQuaternion::identity(),
+            v_n: Vector3::zeros(),
+            lat_rad: lat,
+            lon_rad: 2.157,
+            height_m: 0.0,
+        },
+        dt,
+        VerticalChannel::Hold { ref_height_m: 0.0 },
+    );
+    let omega = Vector3::new(0.0, w_ie * lat.cos(), w_ie * lat.sin());
+    let f = Vector3::new(0.0, 0.0, 9.8);
+    let sqrt_dt = dt.sqrt();
+    let mut n = || -> f64 { StandardNormal.sample(&mut rng) };
+    for _ in 0..samples {
+        let dtheta = (omega + Vector3::repeat(bias_rps)) * dt
+            + Vector3::new(n(), n(), n()) * (arw * sqrt_dt);
+        let dv = f * dt + Vector3::new(n(), n(), n()) * (vrw * sqrt_dt);
+        nav.update(&dtheta, &dv);
+    }
+    nav.state().lon_rad
+}
+
+fn main() {
+    let cfg = rins_plant::presets::paper_16pos_config();
+    let samples = (HOUR_S * RATE_HZ) as u64;
+    let navs = [
+        NavRunConfig::default(),
+        NavRunConfig {
+            compensation: Some(cfg.sensor.gyro.position_bias),
+            ..NavRunConfig::default()
+        },
+    ];
+    // One thread: the figures are per core.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("pool");
+    let mut c = Criterion::default().configure_from_args().sample_size(10);
+    let mut g = c.benchmark_group("montecarlo");
+    g.throughput(Throughput::Elements(samples));
+    g.bench_function("naive", |b| b.iter(|| black_box(naive(samples))));
+    g.bench_function("plant+1nav", |b| {
+        b.iter(|| {
+            let mut p = Plant::new(&cfg).expect("valid");
+            black_box(run(&mut p, HOUR_S, &navs[0]).expect("run").end())
+        })
+    });
+    g.bench_function("engine 1 seed, 2 navs", |b| {
+        b.iter(|| {
+            pool.install(|| black_box(run_seeds(&cfg, &[1], HOUR_S, &navs, &|_| {}).expect("run")))
+        })
+    });
+    let seeds: Vec<u64> = (1..=16).collect();
+    g.throughput(Throughput::Elements(samples * seeds.len() as u64));
+    g.bench_function("engine 16 seeds, 2 navs (per seed)", |b| {
+        b.iter(|| {
+            pool.install(|| {
+                black_box(run_seeds(&cfg, &seeds, HOUR_S, &navs, &|_| {}).expect("run"))
+            })
+        })
+    });
+    g.finish();
+    c.final_summary();
+}
