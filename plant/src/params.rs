@@ -472,5 +472,4 @@ fn set_node(v: &mut Value, path: &str, value: ParamValue) -> Result<(), ParamErr
 }
 
 #[cfg(test)]
-#[path = "params_tests.rs"]
-mod tests;
+mod params_tests;

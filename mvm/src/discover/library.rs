@@ -472,5 +472,4 @@ pub fn file_unit_si(kind: CustomKind, accel: bool) -> f64 {
 }
 
 #[cfg(test)]
-#[path = "library_tests.rs"]
-mod tests;
+mod library_tests;

@@ -25,9 +25,9 @@ use nalgebra::Vector3;
 use super::GL_OFFSETS;
 use crate::simd::{LANES, MAX_PAIRS, combine_mirrored};
 
-mod ship;
+mod ship_segment;
 
-pub use ship::{PointEnv, SegState};
+pub use ship_segment::{PointEnv, SegState};
 
 /// Nodes per segment the tests take (the ship chooses its own: [`SegmentRule::choose`]).
 pub const SEGMENT_NODES: usize = 16;
