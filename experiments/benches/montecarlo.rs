@@ -55,6 +55,15 @@ fn naive(samples: u64) -> f64 {
     nav.state().lon_rad
 }
 
+/// This thread's CPU time, ns (Linux schedstat): on a shared machine wall time counts the time
+/// other processes ran; CPU time does not.
+fn cpu_ns() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .unwrap_or(f64::NAN)
+}
+
 fn main() {
     let cfg = rins_plant::presets::paper_16pos_config();
     let samples = (HOUR_S * RATE_HZ) as u64;
@@ -96,4 +105,53 @@ fn main() {
     });
     g.finish();
     c.final_summary();
+    // Thread CPU time per sample and seed, best of 3 interleaved repeats (robust to load).
+    let cases: [(&str, u64, Box<dyn Fn() + Sync>); 4] = [
+        (
+            "naive (1 navigator)",
+            1,
+            Box::new(|| {
+                black_box(naive(samples));
+            }),
+        ),
+        (
+            "plant + 1 navigator",
+            1,
+            Box::new(|| {
+                let mut p = Plant::new(&cfg).expect("valid");
+                black_box(run(&mut p, HOUR_S, &navs[0]).expect("run").end());
+            }),
+        ),
+        (
+            "engine, 1 seed x 2 navigators",
+            1,
+            Box::new(|| {
+                black_box(run_seeds(&cfg, &[1], HOUR_S, &navs, &|_| {}).expect("run"));
+            }),
+        ),
+        (
+            "engine, 16 seeds x 2 navigators",
+            16,
+            Box::new(|| {
+                black_box(run_seeds(&cfg, &seeds, HOUR_S, &navs, &|_| {}).expect("run"));
+            }),
+        ),
+    ];
+    let mut best = [f64::INFINITY; 4];
+    for _ in 0..3 {
+        for (k, (_, _, f)) in cases.iter().enumerate() {
+            let ns = pool.install(|| {
+                let t0 = cpu_ns();
+                f();
+                cpu_ns() - t0
+            });
+            best[k] = best[k].min(ns);
+        }
+    }
+    for (k, (name, lanes, _)) in cases.iter().enumerate() {
+        println!(
+            "{name}: {:.1} ns per sample and seed (thread CPU time, best of 3)",
+            best[k] / (samples * lanes) as f64
+        );
+    }
 }
