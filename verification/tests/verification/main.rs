@@ -1,0 +1,6 @@
+//! The integration tests of rins-verify in one test binary (one link instead of one per file):
+//! one module per former test file.
+
+mod analytic;
+mod ins_closed_form;
+mod paper_table4;
