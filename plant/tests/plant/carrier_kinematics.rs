@@ -3,9 +3,7 @@
 //! oscillation under a spinning table (coning), a ship at rest against the static plant, and
 //! save/restore on a ship.
 
-mod carrier_common;
-
-use carrier_common::{meridian_arc_m, quad, ship_config, with_sea_state};
+use crate::carrier_common::{meridian_arc_m, quad, ship_config, with_sea_state};
 use nalgebra::Vector3;
 use rins_plant::carrier::{RaoSpec, ShipRaoSpec, SpectrumKind};
 use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity, radii_of_curvature};

@@ -1,9 +1,7 @@
 //! The trajectory-file carrier: fed the ship carrier's own truth it reproduces the ship's
 //! increments, and bad files are refused with errors naming the row and column.
 
-mod carrier_common;
-
-use carrier_common::{ship_config, with_sea_state};
+use crate::carrier_common::{ship_config, with_sea_state};
 use nalgebra::{Rotation3, UnitQuaternion};
 use rins_plant::Plant;
 use rins_plant::carrier::{Carrier, CarrierState, Trajectory};

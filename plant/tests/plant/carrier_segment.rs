@@ -3,9 +3,7 @@
 //! 16-position scheme turning the table, and azimuth isolation (the table always turning); the
 //! bound is the rule's own interpolation bound (docs/carrier.md "Increments on a moving base").
 
-mod carrier_common;
-
-use carrier_common::{ship_config, with_sea_state};
+use crate::carrier_common::{ship_config, with_sea_state};
 use rins_plant::carrier::segment::SEGMENT_EPS;
 use rins_plant::{Plant, PlantConfig};
 
