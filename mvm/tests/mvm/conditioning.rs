@@ -3,9 +3,7 @@
 //! the inner gimbal axis and stays horizontal, so nothing depends on the specific force along
 //! it) is reported as null, never gated and never written by `--apply`.
 
-mod common;
-
-use common::{Hidden, history, model, to_quaternion};
+use crate::common::{Hidden, history, model, to_quaternion};
 use rins_mvm::{Analysis, DiagnoseReport, Effect, History, Options, RankedEffect, analyse};
 use rins_plant::effects::{AccelTerm, GyroTerm, MISALIGNMENT_PAIRS};
 

@@ -3,9 +3,7 @@
 //! (5 %) shows any flag, while a real effect of the temperature rate (a gyro bias ∝ dT/dt,
 //! which the catalogue lacks) is still flagged against the temperature rate.
 
-mod common;
-
-use common::{Hidden, history, model};
+use crate::common::{Hidden, history, model};
 use rins_mvm::{Options, analyse};
 
 #[test]
