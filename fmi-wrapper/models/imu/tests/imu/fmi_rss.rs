@@ -20,8 +20,7 @@ use rins_fmi::xml::FmiVersion;
 use rins_fmi_import::{Fmu2, parse_model_description};
 use rins_imu_fmu::RinsImu;
 
-mod common;
-use common::{Fmi3, Inst, library_path};
+use crate::common::{Fmi3, Inst, library_path};
 
 const WARM_UP: usize = 50;
 const CYCLES: usize = 1000;

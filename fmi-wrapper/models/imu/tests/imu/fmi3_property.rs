@@ -21,8 +21,7 @@ use rins_fmi::fmu;
 use rins_fmi::xml::FmiVersion;
 use rins_imu_fmu::RinsImu;
 
-mod common;
-use common::{Fmi3, Inst};
+use crate::common::{Fmi3, Inst};
 
 const SEED: u64 = 0x5eed_0016;
 const SEQUENCES: usize = 600;

@@ -19,8 +19,8 @@ use rins_imu_fmu::RinsImu;
 use rins_plant::Plant;
 use rins_plant::thermal::node;
 
-mod common;
-use common::{Fmi3, Inst};
+use crate::common;
+use crate::common::{Fmi3, Inst};
 
 fn library() -> Fmu2 {
     let (guid, _, vars) =

@@ -135,7 +135,8 @@ fn serialized_state_restores_in_a_new_process() {
     let status = std::process::Command::new(std::env::current_exe().unwrap())
         .args([
             "--exact",
-            "child_restores_serialized_state",
+            // The test's name in the crate's one test binary (tests/imu/main.rs).
+            "c_api::child_restores_serialized_state",
             "--test-threads=1",
         ])
         .env("RINS_FMU_STATE_FILE", &path)

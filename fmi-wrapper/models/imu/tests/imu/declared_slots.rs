@@ -16,7 +16,7 @@ use rins_plant::Plant;
 use rins_plant::effects::CustomSpec;
 use rins_plant::effects::custom::{Axis, CustomKind};
 
-mod common;
+use crate::common;
 
 fn library() -> Fmu2 {
     let (guid, _, vars) =
