@@ -8,12 +8,11 @@
 //! /dev/shm afterwards; after every fault a new run on the same session name must complete.
 //! The table (docs/transport.md, Faults) is printed with `--nocapture`.
 
-#[path = "chaos/peer.rs"]
-mod peer;
+use crate::peer;
 
 use std::time::Duration;
 
-use peer::{BATCH, Peer, SAMPLES, field, left, now_ms, remove_counter, stage_seq, stamp};
+use crate::peer::{BATCH, Peer, SAMPLES, field, left, now_ms, remove_counter, stage_seq, stamp};
 
 const WAIT: Duration = Duration::from_secs(10);
 

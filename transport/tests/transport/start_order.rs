@@ -3,13 +3,9 @@
 //! docs/transport.md) is served every time: 24 process pairs, the navigator ahead by 0 to 49 ms,
 //! each run delivering every sample once.
 
-#[path = "chaos/peer.rs"]
-#[allow(dead_code, reason = "the chaos tests' helpers; this test needs a few")]
-mod peer;
-
 use std::time::Duration;
 
-use peer::{BATCH, Peer, SAMPLES, field, left, remove_counter};
+use crate::peer::{BATCH, Peer, SAMPLES, field, left, remove_counter};
 
 const WAIT: Duration = Duration::from_secs(20);
 

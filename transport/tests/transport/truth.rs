@@ -2,8 +2,7 @@
 //! every record, the plant's carrier truth and IMU attitude bit for bit, and the navigator's
 //! result does not depend on it (the navigator side never reads it).
 
-mod ship;
-use ship::ship;
+use crate::ship::ship;
 use std::time::{Duration, Instant};
 
 use rins_plant::Plant;

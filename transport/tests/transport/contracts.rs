@@ -213,7 +213,7 @@ fn a_navigator_configured_for_another_rate_is_refused() {
     assert!(served.is_err());
 }
 
-mod ship;
+use crate::ship;
 
 /// The in-process navigation run (`rins_experiments::Tracker::at_truth`) of `cfg` started after
 /// `skip` samples, over `samples` more: the digest of its states (folded as the transport's

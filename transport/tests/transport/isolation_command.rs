@@ -11,8 +11,7 @@ use rins_transport::{
     Mode, NavAction, NavOptions, ScheduledCommand, ServeOptions, navigate, reference, serve,
 };
 
-mod ship;
-use ship::ship;
+use crate::ship::ship;
 
 fn session(tag: &str) -> String {
     format!("iso{}{tag}", std::process::id())
