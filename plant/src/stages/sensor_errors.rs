@@ -104,6 +104,7 @@ impl SensorErrors {
     /// interval's sums `gyro_err` and `accel_err` (set on the interval's first tick, `first`).
     /// Each term's contribution goes to `truth` the same way. The catalogue's sum is added
     /// before the declared effects', in that order, so the sums do not depend on grouping.
+    /// Returns the tick's catalogue errors (gyro, accelerometer).
     pub(crate) fn tick(
         &mut self,
         x: &TickInput,
@@ -112,7 +113,7 @@ impl SensorErrors {
         truth: &mut Truth,
         gyro_err: &mut Vector3<f64>,
         accel_err: &mut Vector3<f64>,
-    ) {
+    ) -> (Vector3<f64>, Vector3<f64>) {
         let ctx = TermContext {
             dt_s: x.h_s,
             dtheta_rad: x.dtheta_rad,
@@ -123,24 +124,29 @@ impl SensorErrors {
             gyro_gradient_k: temps.gyro_gradient_k(),
             accel_temp_c: temps.accel_c(),
         };
+        let catalogue;
         if first {
-            *gyro_err =
+            catalogue = (
                 self.gyro
-                    .increment_error_with(&ctx, &self.gyro_thermal, &mut truth.gyro_terms_rad);
-            *accel_err = self.accel.increment_error_with(
-                &ctx,
-                &self.accel_thermal_mps2,
-                &mut truth.accel_terms_mps,
+                    .increment_error_with(&ctx, &self.gyro_thermal, &mut truth.gyro_terms_rad),
+                self.accel.increment_error_with(
+                    &ctx,
+                    &self.accel_thermal_mps2,
+                    &mut truth.accel_terms_mps,
+                ),
             );
+            (*gyro_err, *accel_err) = catalogue;
         } else {
             let mut gterm = [Vector3::zeros(); GYRO_TERMS];
             let mut aterm = [Vector3::zeros(); ACCEL_TERMS];
-            *gyro_err += self
-                .gyro
-                .increment_error_with(&ctx, &self.gyro_thermal, &mut gterm);
-            *accel_err +=
+            catalogue = (
+                self.gyro
+                    .increment_error_with(&ctx, &self.gyro_thermal, &mut gterm),
                 self.accel
-                    .increment_error_with(&ctx, &self.accel_thermal_mps2, &mut aterm);
+                    .increment_error_with(&ctx, &self.accel_thermal_mps2, &mut aterm),
+            );
+            *gyro_err += catalogue.0;
+            *accel_err += catalogue.1;
             truth
                 .gyro_terms_rad
                 .iter_mut()
@@ -170,6 +176,41 @@ impl SensorErrors {
             *gyro_err += g;
             *accel_err += a;
         }
+        catalogue
+    }
+
+    /// One tick of a dwell again, for declared effects that read the time: adds the tick's
+    /// `catalogue` errors (unchanged within the dwell) and the declared effects at `t_mid_s`
+    /// to `sums`, as [`SensorErrors::tick`] would (the frame's other signals are the dwell's).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn redo_declared(
+        &mut self,
+        first: bool,
+        catalogue: (Vector3<f64>, Vector3<f64>),
+        t_mid_s: f64,
+        dtheta_rad: &Vector3<f64>,
+        dv_mps: &Vector3<f64>,
+        h_s: f64,
+        truth: &mut Truth,
+        sums: (&mut Vector3<f64>, &mut Vector3<f64>),
+    ) {
+        let (gyro_err, accel_err) = sums;
+        if first {
+            (*gyro_err, *accel_err) = catalogue;
+        } else {
+            *gyro_err += catalogue.0;
+            *accel_err += catalogue.1;
+        }
+        let (g, a) = self
+            .declared
+            .increments_at(t_mid_s, dtheta_rad, dv_mps, h_s);
+        (truth.custom_gyro_rad, truth.custom_accel_mps) = if first {
+            (g, a)
+        } else {
+            (truth.custom_gyro_rad + g, truth.custom_accel_mps + a)
+        };
+        *gyro_err += g;
+        *accel_err += a;
     }
 
     /// Weight of δβ at body up direction `up_b` (0 Z-up, 1 Z-down; Eq. 9).
