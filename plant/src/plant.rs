@@ -582,7 +582,11 @@ mod tests {
             for k in 0..40_000 {
                 let a = cached.step();
                 assert_eq!(a, plain.step(), "substeps {substeps}, sample {k}");
-                assert_eq!(cached.truth(), plain.truth(), "substeps {substeps}, sample {k}");
+                assert_eq!(
+                    cached.truth(),
+                    plain.truth(),
+                    "substeps {substeps}, sample {k}"
+                );
                 reused += cached.dwell.is_some_and(|d| d.timed.is_some()) as u32;
             }
             // About 55 % of the samples: the dwells, less each thermal update (every 1 s).

@@ -76,10 +76,7 @@ fn headline(a: &PaperArgs) -> Result<()> {
         report: None,
         viz: a.viz.clone(),
     };
-    println!(
-        "== Section 3.1 / Table 4 ({} seeds) ==",
-        t4.runs
-    );
+    println!("== Section 3.1 / Table 4 ({} seeds) ==", t4.runs);
     let t4_report = table4::study(&t4)?;
     // The headline always writes its HTML report: the README's first command leaves it there.
     let mut page =
