@@ -8,6 +8,7 @@
 //! [`CarrierState`] samples at the ends of each communication step, and the plant interpolates
 //! them inside the step (see `docs/carrier.md`).
 
+pub mod carrier_state;
 pub mod external;
 pub(crate) mod gimbal_trig;
 pub mod isolation;
@@ -15,16 +16,15 @@ pub mod run;
 pub mod segment;
 pub mod ship;
 pub mod spec;
-pub mod state;
 pub mod track;
 pub mod trajectory;
 pub mod waves;
 
+pub use carrier_state::{CarrierState, CarrierTruth};
 pub use spec::{
     AfterEnd, CarrierKind, CarrierSpec, LegSpec, RaoSpec, SeaSpec, ShipRaoSpec, ShipSpec,
     SpectrumKind, TrajectorySpec,
 };
-pub use state::{CarrierState, CarrierTruth};
 pub use trajectory::{Trajectory, TrajectoryError};
 
 use ship::Ship;

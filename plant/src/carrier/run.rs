@@ -4,10 +4,10 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::Carrier;
+use super::carrier_state::CarrierState;
 use super::gimbal_trig::GimbalTrig;
 use super::isolation::Isolation;
 use super::segment::PointEnv;
-use super::state::CarrierState;
 use super::track::TrackPosition;
 use crate::config::PlantConfig;
 use crate::state::{Reader, StateError, Writer};

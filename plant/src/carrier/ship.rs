@@ -13,8 +13,8 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use super::carrier_state::{CarrierState, quintic_basis};
 use super::spec::ShipSpec;
-use super::state::{CarrierState, quintic_basis};
 use super::track::{Track, TrackPoint, TrackPosition};
 use super::waves::{JET_LEN, SeaJet, Waves, dof};
 use crate::earth::{EarthPoint, LocalEarth};

@@ -19,7 +19,7 @@
 
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
-use super::state::CarrierState;
+use super::carrier_state::CarrierState;
 use super::track::wrap_lon_rad;
 use crate::earth::radii_of_curvature;
 use crate::units::DEG;

@@ -535,7 +535,10 @@ fn the_steepest_accepted_sea_keeps_a_unit_quaternion_at_any_rate() {
         assert!(roll > 1e-3, "the sea moved the ship: {roll}");
         // Kept as converted while within Q_NORM_KEEP of 1 (existing outputs keep their bits),
         // normalised beyond.
-        assert!(norm <= rins_plant::carrier::state::Q_NORM_KEEP, "{norm:e}");
+        assert!(
+            norm <= rins_plant::carrier::carrier_state::Q_NORM_KEEP,
+            "{norm:e}"
+        );
         assert!(diff < 1e-9, "Tp {tp}: {diff:e} rad");
     }
 }

@@ -5,8 +5,8 @@ use std::sync::Arc;
 
 use nalgebra::{Matrix3, Vector3};
 
+use super::super::carrier_state::CarrierState;
 use super::super::ship::{Ship, Trig, angles, compose_with};
-use super::super::state::CarrierState;
 use super::super::track::{TrackPoint, TrackPosition};
 use super::super::waves::SeaJet;
 use super::{CHANNELS, POINT_CHANNELS, SegmentRule, TickMeans, TickPoints};
