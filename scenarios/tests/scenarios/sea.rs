@@ -5,8 +5,9 @@
 //!   seeds and days must give the same numbers (the same plant and navigator through a
 //!   different command).
 //! * With every sensor error off the navigator on the ship (with and without azimuth isolation)
-//!   must stay within the ideal-IMU bound derived in experiments/tests/moving_base_nav.rs
-//!   (horizontal < 2 m, attitude < 5e-7 rad: algorithm order at 100 Hz).
+//!   must stay within the ideal-IMU bound derived in
+//!   experiments/tests/experiments/moving_base_nav.rs (horizontal < 2 m, attitude < 5e-7 rad:
+//!   algorithm order at 100 Hz).
 //! * The bands are the order statistics of the per-seed figures (two seeds: the median is their
 //!   mean, 5 % and 95 % interpolate between them).
 //! * The figure data file holds exactly the JSON's numbers, and the figures name the cases on

@@ -1,5 +1,5 @@
 //! The measurement format: the plant's own CSV is a valid measurement file (the reader and
-//! its tests on bad files are in rins-mvm, mvm/tests/reader.rs).
+//! its tests on bad files are in rins-mvm, mvm/tests/mvm/reader.rs).
 
 use rins_mvm::reader::parse;
 use rins_scenarios::file::{OutputSpec, Scenario};

@@ -2,7 +2,6 @@
 //! lockstep over one simulated hour equals the in-process run bit for bit; a navigator killed
 //! with SIGKILL is detected and replaced with no sample lost or duplicated from the restart
 //! point; a killed plant is detected by the navigator, and a new session on the same name works.
-#![cfg(feature = "transport")]
 
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
