@@ -1,12 +1,12 @@
 //! Monte Carlo over seeds: the end figures `rins paper table4` reports per seed (uncompensated
 //! and δβ-compensated navigation, common random numbers), for any list of seeds, and the whole
-//! Table 4 study. Both reuse rins-verify's runner (`paper::one_run`, `EndFigures::from_run`,
-//! `paper::table4`); the seeds run on every core with the GIL released.
+//! Table 4 study. Both reuse the Monte Carlo engine (`rins_experiments::run_seeds`, through
+//! rins-verify's `paper::paired_navs`, `EndFigures::from_run`, `paper::table4`); the seeds run
+//! on every core with the GIL released.
 
 use pyo3::prelude::*;
-use rayon::prelude::*;
 use rins_experiments::{Alignment, NavRunConfig};
-use rins_verify::paper::{EndFigures, Table4Options, one_run};
+use rins_verify::paper::{EndFigures, Table4Options};
 
 use crate::navigation::parse_alignment;
 use crate::scenario::PyScenario;
@@ -83,25 +83,27 @@ pub fn end_figures(
     )?;
     rins_scenarios::runner::new_plant(&opt.plant, &sc.inner.source)
         .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
+    // Each seed's samples feed both navigators (the Monte Carlo engine: seeds sharing the
+    // physics are read out from one plant); the figures are those of runs made one by one.
     let out = py.detach(|| {
-        let tasks: Vec<(u64, bool)> = seeds
-            .iter()
-            .flat_map(|&s| [(s, false), (s, true)])
-            .collect();
-        let runs: Vec<EndFigures> = tasks
-            .into_par_iter()
-            .map(|(seed, comp)| {
-                let mut cfg = opt.plant.clone();
-                cfg.seed = seed;
-                EndFigures::from_run(&one_run(&cfg, &opt, comp, &|_| {}))
-            })
-            .collect();
-        seeds
-            .iter()
-            .zip(runs.chunks(2))
-            .map(|(&s, r)| (s, figures(&r[0]), figures(&r[1])))
-            .collect()
+        let navs = rins_verify::paper::paired_navs(&opt, &opt.plant);
+        rins_experiments::run_seeds(&opt.plant, &seeds, opt.duration_s, &navs, &|_| {}).map(
+            |runs| {
+                seeds
+                    .iter()
+                    .zip(runs)
+                    .map(|(&s, r)| {
+                        (
+                            s,
+                            figures(&EndFigures::from_run(&r[0])),
+                            figures(&EndFigures::from_run(&r[1])),
+                        )
+                    })
+                    .collect::<Vec<_>>()
+            },
+        )
     });
+    let out = out.map_err(|e| crate::errors::ScenarioError::new_err(e.to_string()))?;
     Ok(out)
 }
 

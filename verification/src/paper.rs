@@ -226,7 +226,7 @@ pub fn one_run(
 
 /// The navigators of the study: uncompensated, then compensated with `opt`'s δβ (or the
 /// plant's own).
-fn paired_navs(
+pub fn paired_navs(
     opt: &Table4Options,
     plant_cfg: &PlantConfig,
 ) -> [rins_experiments::NavRunConfig; 2] {
