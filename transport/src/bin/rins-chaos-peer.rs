@@ -1,4 +1,4 @@
-//! Test helper for the chaos tests (transport/tests/chaos.rs): a plant or a navigator of the
+//! Test helper for the chaos tests (transport/tests/transport/chaos.rs): a plant or a navigator of the
 //! 16-position scenario that runs `serve_probed` / `navigate_probed` — the code `rins serve`
 //! and `rins nav` run — and can freeze at a named lifecycle stage so the test kills it there.
 //!
