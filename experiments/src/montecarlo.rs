@@ -34,6 +34,19 @@ pub fn run_seeds(
             "navigation time {nav_s} s and record intervals must be > 0"
         )));
     }
+    // The configuration is checked here, once (every plant below is built from it). Seeds
+    // that share the physics: one batch per core; seeds that do not: one task per seed, so
+    // the cores stay busy to the end.
+    let shared = rins_plant::Plant::new(cfg)
+        .map_err(|e| {
+            SessionError::InvalidConfig(
+                e.iter()
+                    .map(|x| x.to_string())
+                    .collect::<Vec<_>>()
+                    .join("; "),
+            )
+        })?
+        .shares_physics_across_seeds();
     if navs
         .iter()
         .any(|n| matches!(n.alignment, Alignment::SelfAlign { .. }))
@@ -56,11 +69,6 @@ pub fn run_seeds(
             })
             .collect();
     }
-    // Seeds that share the physics: one batch per core. Seeds that do not: one task per seed,
-    // so the cores stay busy to the end.
-    let shared = rins_plant::Plant::new(cfg)
-        .map_err(|e| SessionError::BadTimes(format!("invalid configuration: {e:?}")))?
-        .shares_physics_across_seeds();
     let lanes_per_batch = if shared {
         seeds.len().div_ceil(rayon::current_num_threads().max(1))
     } else {
@@ -175,6 +183,15 @@ mod tests {
         }
         // Different seeds, different errors.
         assert_ne!(got[0][0].end(), got[1][0].end());
+    }
+
+    #[test]
+    fn an_invalid_configuration_is_refused_naming_the_field() {
+        let mut c = rins_plant::presets::paper_16pos_config();
+        c.rate_hz = -5.0;
+        let e = run_seeds(&c, &[1, 2], 10.0, &[NavRunConfig::default()], &|_| {}).unwrap_err();
+        assert!(matches!(e, SessionError::InvalidConfig(_)), "{e:?}");
+        assert!(e.to_string().contains("rate_hz"), "{e}");
     }
 
     #[test]

@@ -87,6 +87,9 @@ pub enum SessionError {
         "self-alignment needs the static carrier; on a moving carrier the navigator starts aligned from truth (alignment = truth)"
     )]
     MovingBaseAlignment,
+    /// The plant configuration was refused (each error names its field and range).
+    #[error("invalid plant configuration: {0}")]
+    InvalidConfig(String),
 }
 
 /// The reference navigator fed one sample at a time, with error records against the plant's
