@@ -17,12 +17,11 @@ use rins_fmi::xml::FmiVersion;
 use rins_plant::PlantConfig;
 use rins_plant::carrier::track::MAX_LAT_DEG;
 use rins_plant::carrier::{Carrier, CarrierState};
-use rins_plant::params;
 
 pub mod reference;
 pub mod table;
 
-use table::{Role, outputs, table, to_param};
+use table::{Role, outputs, table};
 
 /// File name of the shared library cargo builds for `version`.
 pub fn library_file(version: FmiVersion) -> &'static str {
@@ -55,16 +54,7 @@ impl RinsCarrier {
     /// are the ship's), validated by the plant's own rules.
     pub fn config(&self) -> Result<PlantConfig, String> {
         let t = table();
-        let pairs = t
-            .roles
-            .iter()
-            .zip(&t.vars.scalars)
-            .zip(&self.values)
-            .filter_map(|((r, s), v)| match r {
-                Role::Param(path) if *v != s.start => Some((path.as_str(), to_param(s, *v))),
-                _ => None,
-            });
-        let cfg = params::apply(&t.defaults, pairs).map_err(|e| e.to_string())?;
+        let cfg = t.params.config(&t.vars.scalars, &self.values)?;
         cfg.validate().map_err(|errs| {
             errs.iter()
                 .map(|e| e.to_string())

@@ -5,10 +5,10 @@
 use std::sync::OnceLock;
 
 use nalgebra::{Rotation3, UnitQuaternion};
-use rins_fmi::vars::{Causality, Kind, OutputDecl, ScalarVar, Value, VariableTable};
+use rins_fmi::vars::{Kind, OutputDecl, Value, VariableTable};
+use rins_fmi_plant::PlantParams;
 use rins_plant::PlantConfig;
 use rins_plant::carrier::{CarrierKind, CarrierState, SpectrumKind};
-use rins_plant::params::{self, ParamValue};
 
 /// How an output reads element `i` of the carrier state.
 pub type Read = fn(&CarrierState, usize) -> f64;
@@ -82,7 +82,8 @@ pub(crate) enum Role {
 pub(crate) struct Table {
     pub vars: VariableTable,
     pub roles: Vec<Role>,
-    pub defaults: PlantConfig,
+    /// The ship's parameters (the first slots) and the configuration they describe.
+    pub params: PlantParams,
 }
 
 /// The defaults: the plant's ship (12 kn due north from 36.6° N 123.6° E) in a
@@ -95,63 +96,10 @@ pub fn defaults() -> PlantConfig {
     cfg
 }
 
-fn param_var(p: &params::Param) -> ScalarVar {
-    let (kind, start, range) = match &p.value {
-        ParamValue::Real(x) => (Kind::Real, Value::Real(*x), p.range),
-        ParamValue::Integer(u) => {
-            // FMI 2 Integer is 32-bit signed: the range both FMI versions carry.
-            let (lo, hi) = p.range.unwrap_or((0.0, f64::INFINITY));
-            (
-                Kind::Integer,
-                Value::Integer(*u),
-                Some((lo, hi.min(i32::MAX as f64))),
-            )
-        }
-        ParamValue::Bool(b) => (Kind::Boolean, Value::Boolean(*b), None),
-        ParamValue::Enum(name) => {
-            let items = params::enum_choices(&p.path)
-                .expect("every enumeration has choices (tested in rins-plant)");
-            let idx = items
-                .iter()
-                .position(|c| c == name)
-                .expect("start value is a valid item");
-            (
-                Kind::Enumeration {
-                    type_name: "WaveSpectrum",
-                    items,
-                },
-                Value::Enumeration(idx),
-                None,
-            )
-        }
-    };
-    // The FMI 3 variable is the name without its trailing index: an element of an array is
-    // `a[i]`, and `carrier.ship.legs[0].heading_deg` is a scalar of its own name.
-    let name = p.path.replace("][", ",");
-    ScalarVar {
-        array: rins_fmi::vars::array_name(&name).to_string(),
-        name,
-        kind,
-        causality: Causality::Parameter,
-        unit: (p.unit != "1").then_some(p.unit),
-        start,
-        range,
-        description: format!("scenario key {}", params::key_of(&p.path)),
-    }
-}
-
 fn build_table() -> Table {
-    let defaults = defaults();
     let mut scalars = Vec::new();
-    let mut roles = Vec::new();
-    for p in params::flatten(&defaults)
-        .into_iter()
-        .filter(|p| is_carrier_param(&p.path))
-    {
-        scalars.push(param_var(&p));
-        roles.push(Role::Param(p.path));
-    }
-    let params_end = scalars.len();
+    let params = PlantParams::push_vars(defaults(), is_carrier_param, &mut scalars);
+    let mut roles: Vec<Role> = params.iter().map(|(_, p)| Role::Param(p.into())).collect();
     for (k, o) in outputs().iter().enumerate() {
         for (e, v) in o.decl.scalars().enumerate() {
             scalars.push(v);
@@ -161,7 +109,7 @@ fn build_table() -> Table {
     let mut vars = VariableTable::with_enum_codes(scalars);
     // Every initial output depends on the ship's parameters (start point, first leg, sea):
     // all of them and the enumeration codes, a superset the FMI standards allow.
-    let mut knowns: Vec<usize> = (0..params_end).collect();
+    let mut knowns: Vec<usize> = params.slots.clone().collect();
     knowns.extend(vars.enum_codes.iter().map(|(code, _)| *code));
     for (slot, r) in roles.iter().enumerate() {
         if matches!(r, Role::Output(..)) {
@@ -171,7 +119,7 @@ fn build_table() -> Table {
     Table {
         vars,
         roles,
-        defaults,
+        params,
     }
 }
 
@@ -179,17 +127,4 @@ fn build_table() -> Table {
 pub(crate) fn table() -> &'static Table {
     static TABLE: OnceLock<Table> = OnceLock::new();
     TABLE.get_or_init(build_table)
-}
-
-/// The parameter value `v` of slot `s` in the plant's parameter form.
-pub(crate) fn to_param(s: &ScalarVar, v: Value) -> ParamValue {
-    match (s.kind, v) {
-        (_, Value::Real(x)) => ParamValue::Real(x),
-        (_, Value::Integer(u)) => ParamValue::Integer(u),
-        (_, Value::Boolean(b)) => ParamValue::Bool(b),
-        (Kind::Enumeration { items, .. }, Value::Enumeration(i)) => {
-            ParamValue::Enum(items[i].to_string())
-        }
-        (_, Value::Enumeration(i)) => ParamValue::Integer(i as u64),
-    }
 }

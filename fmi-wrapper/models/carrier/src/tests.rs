@@ -6,6 +6,7 @@ use super::*;
 use rins_fmi::instance::Instance;
 use rins_plant::carrier::track::KNOT_MPS;
 use rins_plant::earth::radii_of_curvature;
+use rins_plant::params;
 
 fn slot(name: &str) -> usize {
     table()

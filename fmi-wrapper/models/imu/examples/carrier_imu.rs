@@ -25,8 +25,8 @@ fn main() -> Result<(), String> {
         .ok_or("usage: carrier_imu STEPS [--csv]")?;
     let csv = args.iter().any(|a| a == "--csv");
     let e = |e: rins_fmi::instance::FmiError| e.message;
-    let src: Vec<usize> = INPUTS.iter().map(|i| slot::<RinsCarrier>(i.0)).collect();
-    let dst: Vec<usize> = INPUTS.iter().map(|i| slot::<RinsImu>(i.0)).collect();
+    let src: Vec<usize> = INPUTS.iter().map(|i| slot::<RinsCarrier>(i.name)).collect();
+    let dst: Vec<usize> = INPUTS.iter().map(|i| slot::<RinsImu>(i.name)).collect();
     let out: Vec<usize> = (0..3)
         .map(|i| slot::<RinsImu>(&format!("imu.dtheta_rad[{i}]")))
         .collect();

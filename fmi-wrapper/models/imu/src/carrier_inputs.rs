@@ -10,134 +10,125 @@
 //! ([`rins_plant::carrier::external`]).
 
 use rins_fmi::vars::{Causality, Kind, ScalarVar, Value};
+use rins_fmi_plant::InputRow;
 use rins_plant::PlantConfig;
 use rins_plant::carrier::external::CarrierSample;
 
 /// Name of the switch parameter.
 pub const SWITCH: &str = "carrier.external_inputs";
 
-/// One carrier input: (FMI 2 name, FMI 3 array, unit, range, description).
-pub type InputDecl = (
-    &'static str,
-    &'static str,
-    &'static str,
-    (f64, f64),
-    &'static str,
-);
+/// The switch: a parameter, fixed at the end of initialisation.
+const SWITCH_ROW: InputRow = InputRow {
+    name: SWITCH,
+    kind: Kind::Boolean,
+    causality: Causality::Parameter,
+    unit: None,
+    start: |_| Value::Boolean(false),
+    range: None,
+    description: "drive the carrier from the carrier.* inputs (a vessel model) instead of the carrier.kind parameters",
+};
 
-/// The inputs in slot order.
-pub const INPUTS: [InputDecl; 10] = [
-    (
-        "carrier.lat_deg",
-        "carrier.lat_deg",
-        "deg",
-        (-89.0, 89.0),
-        "geodetic latitude of the carrier reference point (WGS-84) at the end of the step",
-    ),
-    (
-        "carrier.lon_deg",
-        "carrier.lon_deg",
-        "deg",
-        (-360.0, 360.0),
-        "longitude of the carrier reference point at the end of the step",
-    ),
-    (
-        "carrier.height_m",
-        "carrier.height_m",
-        "m",
-        (-1.0e4, 1.0e5),
-        "ellipsoidal height of the carrier reference point at the end of the step",
-    ),
-    (
-        "carrier.v_enu_mps[0]",
-        "carrier.v_enu_mps",
-        "m/s",
-        (-300.0, 300.0),
-        "ground velocity of the reference point, east, north, up, at the end of the step",
-    ),
-    (
-        "carrier.v_enu_mps[1]",
-        "carrier.v_enu_mps",
-        "m/s",
-        (-300.0, 300.0),
-        "ground velocity of the reference point, east, north, up, at the end of the step",
-    ),
-    (
-        "carrier.v_enu_mps[2]",
-        "carrier.v_enu_mps",
-        "m/s",
-        (-300.0, 300.0),
-        "ground velocity of the reference point, east, north, up, at the end of the step",
-    ),
-    (
-        "carrier.q_cn[0]",
-        "carrier.q_cn",
-        "1",
-        (-1.0, 1.0),
-        "attitude quaternion q_c^n (w, x, y, z, norm 1): carrier axes (x starboard, y bow, z up) to east-north-up, at the end of the step",
-    ),
-    (
-        "carrier.q_cn[1]",
-        "carrier.q_cn",
-        "1",
-        (-1.0, 1.0),
-        "attitude quaternion q_c^n (w, x, y, z, norm 1): carrier axes (x starboard, y bow, z up) to east-north-up, at the end of the step",
-    ),
-    (
-        "carrier.q_cn[2]",
-        "carrier.q_cn",
-        "1",
-        (-1.0, 1.0),
-        "attitude quaternion q_c^n (w, x, y, z, norm 1): carrier axes (x starboard, y bow, z up) to east-north-up, at the end of the step",
-    ),
-    (
-        "carrier.q_cn[3]",
-        "carrier.q_cn",
-        "1",
-        (-1.0, 1.0),
-        "attitude quaternion q_c^n (w, x, y, z, norm 1): carrier axes (x starboard, y bow, z up) to east-north-up, at the end of the step",
-    ),
+/// The inputs in slot order, start values at rest at the default site with the carrier axes on
+/// east-north-up.
+pub const INPUTS: [InputRow; 10] = [
+    InputRow {
+        name: "carrier.lat_deg",
+        kind: Kind::Real,
+        causality: Causality::Input,
+        unit: Some("deg"),
+        start: |d| Value::Real(d.site.lat_deg),
+        range: Some((-89.0, 89.0)),
+        description: "geodetic latitude of the carrier reference point (WGS-84) at the end of the step",
+    },
+    InputRow {
+        name: "carrier.lon_deg",
+        kind: Kind::Real,
+        causality: Causality::Input,
+        unit: Some("deg"),
+        start: |d| Value::Real(d.site.lon_deg),
+        range: Some((-360.0, 360.0)),
+        description: "longitude of the carrier reference point at the end of the step",
+    },
+    InputRow {
+        name: "carrier.height_m",
+        kind: Kind::Real,
+        causality: Causality::Input,
+        unit: Some("m"),
+        start: |d| Value::Real(d.site.height_m),
+        range: Some((-1.0e4, 1.0e5)),
+        description: "ellipsoidal height of the carrier reference point at the end of the step",
+    },
+    InputRow {
+        name: "carrier.v_enu_mps[0]",
+        kind: Kind::Real,
+        causality: Causality::Input,
+        unit: Some("m/s"),
+        start: |_| Value::Real(0.0),
+        range: Some((-300.0, 300.0)),
+        description: "ground velocity of the reference point, east, north, up, at the end of the step",
+    },
+    InputRow {
+        name: "carrier.v_enu_mps[1]",
+        kind: Kind::Real,
+        causality: Causality::Input,
+        unit: Some("m/s"),
+        start: |_| Value::Real(0.0),
+        range: Some((-300.0, 300.0)),
+        description: "ground velocity of the reference point, east, north, up, at the end of the step",
+    },
+    InputRow {
+        name: "carrier.v_enu_mps[2]",
+        kind: Kind::Real,
+        causality: Causality::Input,
+        unit: Some("m/s"),
+        start: |_| Value::Real(0.0),
+        range: Some((-300.0, 300.0)),
+        description: "ground velocity of the reference point, east, north, up, at the end of the step",
+    },
+    InputRow {
+        name: "carrier.q_cn[0]",
+        kind: Kind::Real,
+        causality: Causality::Input,
+        unit: None,
+        start: |_| Value::Real(1.0),
+        range: Some((-1.0, 1.0)),
+        description: "attitude quaternion q_c^n (w, x, y, z, norm 1): carrier axes (x starboard, y bow, z up) to east-north-up, at the end of the step",
+    },
+    InputRow {
+        name: "carrier.q_cn[1]",
+        kind: Kind::Real,
+        causality: Causality::Input,
+        unit: None,
+        start: |_| Value::Real(0.0),
+        range: Some((-1.0, 1.0)),
+        description: "attitude quaternion q_c^n (w, x, y, z, norm 1): carrier axes (x starboard, y bow, z up) to east-north-up, at the end of the step",
+    },
+    InputRow {
+        name: "carrier.q_cn[2]",
+        kind: Kind::Real,
+        causality: Causality::Input,
+        unit: None,
+        start: |_| Value::Real(0.0),
+        range: Some((-1.0, 1.0)),
+        description: "attitude quaternion q_c^n (w, x, y, z, norm 1): carrier axes (x starboard, y bow, z up) to east-north-up, at the end of the step",
+    },
+    InputRow {
+        name: "carrier.q_cn[3]",
+        kind: Kind::Real,
+        causality: Causality::Input,
+        unit: None,
+        start: |_| Value::Real(0.0),
+        range: Some((-1.0, 1.0)),
+        description: "attitude quaternion q_c^n (w, x, y, z, norm 1): carrier axes (x starboard, y bow, z up) to east-north-up, at the end of the step",
+    },
 ];
 
-/// The switch parameter and the inputs, start values at rest at the default site with the
-/// carrier axes on east-north-up.
+/// The switch parameter and the inputs.
 pub(crate) fn vars(defaults: &PlantConfig) -> Vec<ScalarVar> {
-    let site = &defaults.site;
-    let start = [
-        site.lat_deg,
-        site.lon_deg,
-        site.height_m,
-        0.0,
-        0.0,
-        0.0,
-        1.0,
-        0.0,
-        0.0,
-        0.0,
-    ];
-    let mut v = vec![ScalarVar {
-        name: SWITCH.into(),
-        array: SWITCH.into(),
-        kind: Kind::Boolean,
-        causality: Causality::Parameter,
-        unit: None,
-        start: Value::Boolean(false),
-        range: None,
-        description: "drive the carrier from the carrier.* inputs (a vessel model) instead of the carrier.kind parameters".into(),
-    }];
-    for ((name, array, unit, range, description), x) in INPUTS.iter().zip(start) {
-        v.push(ScalarVar {
-            name: (*name).into(),
-            array: (*array).into(),
-            kind: Kind::Real,
-            causality: Causality::Input,
-            unit: (*unit != "1").then_some(*unit),
-            start: Value::Real(x),
-            range: Some(*range),
-            description: (*description).into(),
-        });
-    }
-    v
+    std::iter::once(&SWITCH_ROW)
+        .chain(&INPUTS)
+        .map(|row| row.var(defaults))
+        .collect()
 }
 
 /// The sample the ten input values (in [`INPUTS`] order) describe.

@@ -2,15 +2,13 @@
 //! strings a master can be relied on to set, so each sensor has [`SLOTS`] slots of numbers
 //! (`sensor.gyro.slot[k].*`): kind, up to two factors (signal code, node or axis, second node
 //! of a gradient, power) and the coefficient per axis. They map onto the plant's declared
-//! effects through [`rins_plant::effects::custom::slots`], so the plant compiles and simulates
+//! effects through [`crate::slots`], so the plant compiles and simulates
 //! a slot with the same code as the same block of a scenario file.
 
+use crate::slots::{BLOCK_CODE, FACTORS, SIGNAL_CODE_MAX, Slot, signal_codes};
 use rins_fmi::vars::{Causality, Kind, ScalarVar, Value};
 use rins_plant::PlantConfig;
 use rins_plant::effects::CustomSpec;
-use rins_plant::effects::custom::slots::{
-    BLOCK_CODE, FACTORS, SIGNAL_CODE_MAX, Slot, signal_codes,
-};
 
 /// Slots per sensor.
 pub const SLOTS: usize = 4;

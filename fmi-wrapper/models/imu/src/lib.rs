@@ -19,15 +19,15 @@ use rins_plant::carrier::external::CarrierSample;
 use rins_plant::{GimbalCommand, ImuSample, Plant, PlantConfig};
 
 pub mod carrier_inputs;
-pub mod config;
 pub mod declared;
 pub mod outputs;
 pub mod reference;
+pub mod slots;
 pub mod ssv;
 mod table;
 
 use outputs::{Record, View, outputs};
-use table::{Input, Role, table, to_param};
+use table::{Input, Role, table};
 
 /// File name of the shared library cargo builds for `version` (the crates `rins-imu-fmi2` /
 /// `rins-imu-fmi3`).
@@ -142,16 +142,7 @@ impl RinsImu {
     /// The plant configuration the parameters describe.
     pub fn config(&self) -> Result<PlantConfig, String> {
         let t = table();
-        let pairs = t
-            .roles
-            .iter()
-            .zip(&t.vars.scalars)
-            .zip(&self.values)
-            .filter_map(|((r, s), v)| match r {
-                Role::Param(path) if *v != s.start => Some((path.as_str(), to_param(s, *v))),
-                _ => None,
-            });
-        let mut cfg = config::apply(&t.defaults, pairs)?;
+        let mut cfg = t.params.config(&t.vars.scalars, &self.values)?;
         // Declared effects from the slots (none enabled: the configuration is unchanged).
         let slots = declared::read(
             t.roles

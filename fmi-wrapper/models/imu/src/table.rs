@@ -4,9 +4,8 @@
 
 use std::sync::OnceLock;
 
-use rins_fmi::vars::{Causality, Kind, ScalarVar, Value, VariableTable};
-use rins_plant::PlantConfig;
-use rins_plant::params::{self, ParamValue};
+use rins_fmi::vars::{Causality, Kind, Value, VariableTable};
+use rins_fmi_plant::{InputRow, PlantParams};
 use rins_plant::thermal::{CHAMBER_MAX_C, CHAMBER_MIN_C};
 
 use crate::outputs::outputs;
@@ -21,10 +20,6 @@ pub(crate) enum Input {
     GimbalInner,
     GimbalRate,
     NoiseSeed,
-}
-
-impl Input {
-    const COUNT: usize = 7;
 }
 
 /// What a slot is.
@@ -47,7 +42,8 @@ pub(crate) enum Role {
 pub(crate) struct Table {
     pub vars: VariableTable,
     pub roles: Vec<Role>,
-    pub defaults: PlantConfig,
+    /// The scenario parameters (the first slots) and the configuration they describe.
+    pub params: PlantParams,
     /// Slot of each input, indexed by `Input as usize` (doStep reads them every step).
     pub input_slots: Vec<usize>,
     /// Slot of the carrier switch; the carrier inputs follow it.
@@ -60,173 +56,110 @@ fn is_fixed_shape(path: &str) -> bool {
     !(path.starts_with("scheme.steps") || path.starts_with("thermal.chamber.profile"))
 }
 
-fn describe(path: &str) -> String {
-    let key = params::key_of(path);
-    match path.rsplit('.').next().unwrap_or("") {
-        "enabled" => format!("switch: {} on/off", key.trim_end_matches(".enabled")),
-        _ => format!("scenario key {key}"),
-    }
-}
+/// The inputs, one row each, in table order after the parameters.
+const INPUTS: [(InputRow, Input); 7] = [
+    (
+        InputRow {
+            name: "input.chamber_override",
+            kind: Kind::Boolean,
+            causality: Causality::Input,
+            unit: None,
+            start: |_| Value::Boolean(false),
+            range: None,
+            description: "use input.chamber_temp_c instead of the scenario's chamber temperature",
+        },
+        Input::ChamberOverride,
+    ),
+    (
+        InputRow {
+            name: "input.chamber_temp_c",
+            kind: Kind::Real,
+            causality: Causality::Input,
+            unit: Some("degC"),
+            start: |d| Value::Real(d.thermal.chamber.temp_c),
+            range: Some((CHAMBER_MIN_C, CHAMBER_MAX_C)),
+            description: "chamber (ambient) temperature when input.chamber_override",
+        },
+        Input::ChamberTemp,
+    ),
+    (
+        InputRow {
+            name: "input.gimbal_command",
+            kind: Kind::Boolean,
+            causality: Causality::Input,
+            unit: None,
+            start: |_| Value::Boolean(false),
+            range: None,
+            description: "drive the table to input.gimbal_outer_deg/inner_deg instead of the rotation scheme",
+        },
+        Input::GimbalEnable,
+    ),
+    (
+        InputRow {
+            name: "input.gimbal_outer_deg",
+            kind: Kind::Real,
+            causality: Causality::Input,
+            unit: Some("deg"),
+            start: |_| Value::Real(0.0),
+            range: Some(GIMBAL_ANGLE_DEG),
+            description: "commanded outer (azimuth) gimbal angle",
+        },
+        Input::GimbalOuter,
+    ),
+    (
+        InputRow {
+            name: "input.gimbal_inner_deg",
+            kind: Kind::Real,
+            causality: Causality::Input,
+            unit: Some("deg"),
+            start: |_| Value::Real(0.0),
+            range: Some(GIMBAL_ANGLE_DEG),
+            description: "commanded inner gimbal angle",
+        },
+        Input::GimbalInner,
+    ),
+    (
+        InputRow {
+            name: "input.gimbal_rate_dps",
+            kind: Kind::Real,
+            causality: Causality::Input,
+            unit: Some("deg/s"),
+            start: |d| Value::Real(d.scheme.rate_dps),
+            range: Some((1e-6, 100.0)),
+            description: "cruise rate of commanded moves",
+        },
+        Input::GimbalRate,
+    ),
+    (
+        InputRow {
+            name: "input.noise_seed",
+            kind: Kind::Integer,
+            causality: Causality::Input,
+            unit: None,
+            start: |_| Value::Integer(0),
+            range: Some((0.0, i32::MAX as f64)),
+            description: "a new non-zero value restarts every noise stream from this seed at the next step (Monte Carlo from a saved warm state)",
+        },
+        Input::NoiseSeed,
+    ),
+];
 
-fn param_var(p: &params::Param) -> ScalarVar {
-    // FMI structured names write matrix elements as `a[i,j]`; the FMI 3 variable is the name
-    // without its trailing index (`carrier.ship.legs[0].heading_deg` is a scalar of its own).
-    let name = p.path.replace("][", ",");
-    let array = rins_fmi::vars::array_name(&name).to_string();
-    let unit = (p.unit != "1").then_some(p.unit);
-    let (kind, start, range) = match &p.value {
-        ParamValue::Real(x) => (Kind::Real, Value::Real(*x), p.range),
-        ParamValue::Integer(u) => {
-            // FMI 2 Integer is 32-bit signed: the seed range is what both FMI versions carry.
-            let (lo, hi) = p.range.unwrap_or((0.0, f64::INFINITY));
-            (
-                Kind::Integer,
-                Value::Integer(*u),
-                Some((lo, hi.min(i32::MAX as f64))),
-            )
-        }
-        ParamValue::Bool(b) => (Kind::Boolean, Value::Boolean(*b), None),
-        ParamValue::Enum(name) => {
-            let items = params::enum_choices(&p.path)
-                .expect("every enumeration has choices (tested in rins-plant)");
-            let type_name = match array.as_str() {
-                "scheme.kind" => "SchemeKind",
-                "scheme.axis" => "GimbalAxis",
-                "carrier.kind" => "CarrierKind",
-                "carrier.ship.sea.spectrum" => "WaveSpectrum",
-                _ => "PositionBiasTransition",
-            };
-            let idx = items
-                .iter()
-                .position(|c| c == name)
-                .expect("start value is a valid item");
-            (
-                Kind::Enumeration { type_name, items },
-                Value::Enumeration(idx),
-                None,
-            )
-        }
-    };
-    ScalarVar {
-        name,
-        array,
-        kind,
-        causality: Causality::Parameter,
-        unit,
-        start,
-        range,
-        description: describe(&p.path),
-    }
-}
-
-fn input_vars(defaults: &PlantConfig) -> [(ScalarVar, Input); Input::COUNT] {
-    let real = |name: &str, unit, start, range, description: &str| ScalarVar {
-        name: name.into(),
-        array: name.into(),
-        kind: Kind::Real,
-        causality: Causality::Input,
-        unit: Some(unit),
-        start: Value::Real(start),
-        range: Some(range),
-        description: description.into(),
-    };
-    let boolean = |name: &str, description: &str| ScalarVar {
-        kind: Kind::Boolean,
-        unit: None,
-        start: Value::Boolean(false),
-        range: None,
-        ..real(name, "", 0.0, (0.0, 0.0), description)
-    };
-    let angle = (-3600.0, 3600.0);
-    [
-        (
-            boolean(
-                "input.chamber_override",
-                "use input.chamber_temp_c instead of the scenario's chamber temperature",
-            ),
-            Input::ChamberOverride,
-        ),
-        (
-            real(
-                "input.chamber_temp_c",
-                "degC",
-                defaults.thermal.chamber.temp_c,
-                (CHAMBER_MIN_C, CHAMBER_MAX_C),
-                "chamber (ambient) temperature when input.chamber_override",
-            ),
-            Input::ChamberTemp,
-        ),
-        (
-            boolean(
-                "input.gimbal_command",
-                "drive the table to input.gimbal_outer_deg/inner_deg instead of the rotation scheme",
-            ),
-            Input::GimbalEnable,
-        ),
-        (
-            real(
-                "input.gimbal_outer_deg",
-                "deg",
-                0.0,
-                angle,
-                "commanded outer (azimuth) gimbal angle",
-            ),
-            Input::GimbalOuter,
-        ),
-        (
-            real(
-                "input.gimbal_inner_deg",
-                "deg",
-                0.0,
-                angle,
-                "commanded inner gimbal angle",
-            ),
-            Input::GimbalInner,
-        ),
-        (
-            real(
-                "input.gimbal_rate_dps",
-                "deg/s",
-                defaults.scheme.rate_dps,
-                (1e-6, 100.0),
-                "cruise rate of commanded moves",
-            ),
-            Input::GimbalRate,
-        ),
-        (
-            ScalarVar {
-                kind: Kind::Integer,
-                unit: None,
-                start: Value::Integer(0),
-                ..real(
-                    "input.noise_seed",
-                    "",
-                    0.0,
-                    (0.0, i32::MAX as f64),
-                    "a new non-zero value restarts every noise stream from this seed at the next step (Monte Carlo from a saved warm state)",
-                )
-            },
-            Input::NoiseSeed,
-        ),
-    ]
-}
+/// Range of the commanded gimbal angles, degrees (ten turns either way).
+const GIMBAL_ANGLE_DEG: (f64, f64) = (-3600.0, 3600.0);
 
 fn build_table() -> Table {
-    let defaults = rins_plant::presets::paper_16pos_config();
     let mut scalars = Vec::new();
-    let mut roles = Vec::new();
-    for p in params::flatten(&defaults)
-        .into_iter()
-        .filter(|p| is_fixed_shape(&p.path))
-    {
-        scalars.push(param_var(&p));
-        roles.push(Role::Param(p.path));
-    }
-    let mut input_slots = vec![usize::MAX; Input::COUNT];
-    for (v, i) in input_vars(&defaults) {
-        input_slots[i as usize] = scalars.len();
-        scalars.push(v);
-        roles.push(Role::Input(i));
+    let params = PlantParams::push_vars(
+        rins_plant::presets::paper_16pos_config(),
+        is_fixed_shape,
+        &mut scalars,
+    );
+    let mut roles: Vec<Role> = params.iter().map(|(_, p)| Role::Param(p.into())).collect();
+    let mut input_slots = vec![usize::MAX; INPUTS.len()];
+    for (row, i) in &INPUTS {
+        input_slots[*i as usize] = scalars.len();
+        scalars.push(row.var(&params.defaults));
+        roles.push(Role::Input(*i));
     }
     for (k, o) in outputs().iter().enumerate() {
         for (e, v) in o.decl.scalars().enumerate() {
@@ -237,7 +170,7 @@ fn build_table() -> Table {
     // The carrier switch and inputs after the outputs, so the value references of everything
     // before them are those of the FMU without them.
     let carrier_switch = scalars.len();
-    for (i, v) in crate::carrier_inputs::vars(&defaults)
+    for (i, v) in crate::carrier_inputs::vars(&params.defaults)
         .into_iter()
         .enumerate()
     {
@@ -261,7 +194,7 @@ fn build_table() -> Table {
     Table {
         vars,
         roles,
-        defaults,
+        params,
         input_slots,
         carrier_switch,
     }
@@ -310,17 +243,4 @@ fn initial_dependencies(vars: &VariableTable, roles: &[Role], slot: usize) -> Ve
 pub(crate) fn table() -> &'static Table {
     static TABLE: OnceLock<Table> = OnceLock::new();
     TABLE.get_or_init(build_table)
-}
-
-/// The parameter value `v` of slot `s` in the plant's parameter form.
-pub(crate) fn to_param(s: &ScalarVar, v: Value) -> ParamValue {
-    match (s.kind, v) {
-        (_, Value::Real(x)) => ParamValue::Real(x),
-        (_, Value::Integer(u)) => ParamValue::Integer(u),
-        (_, Value::Boolean(b)) => ParamValue::Bool(b),
-        (Kind::Enumeration { items, .. }, Value::Enumeration(i)) => {
-            ParamValue::Enum(items[i].to_string())
-        }
-        (_, Value::Enumeration(i)) => ParamValue::Integer(i as u64),
-    }
 }

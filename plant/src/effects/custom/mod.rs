@@ -22,11 +22,10 @@ mod model;
 mod plan;
 mod plant_side;
 pub mod signals;
-pub mod slots;
 
 use serde::{Deserialize, Serialize};
 
-pub use expr::{Factor, parse_regressor};
+pub use expr::{Factor, MAX_POWER, parse_regressor, unit_of};
 pub use model::{CompiledEffect, CustomModel, custom_coefficient_key};
 pub use plant_side::{Declared, Needs, fill_fast};
 pub use signals::{Frame, Signal, Unit};

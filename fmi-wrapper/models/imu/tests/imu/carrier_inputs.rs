@@ -30,7 +30,7 @@ fn real<M: Model>(inst: &Instance<M>, name: &str) -> f64 {
 
 /// Copies the carrier outputs onto the IMU's inputs (the connections of the system files).
 fn connect(c: &Instance<RinsCarrier>, imu: &mut Instance<RinsImu>) -> Result<(), String> {
-    for (name, ..) in INPUTS {
+    for name in INPUTS.map(|row| row.name) {
         imu.set_slot(slot::<RinsImu>(name), Value::Real(real(c, name)))
             .map_err(|e| e.message)?;
     }

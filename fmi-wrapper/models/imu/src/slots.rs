@@ -1,5 +1,7 @@
 //! Declared effects as fixed-size slots of numbers, for interfaces without strings (FMU
-//! parameters: FMI has no String parameters a master can be relied on to set).
+//! parameters: FMI has no String parameters a master can be relied on to set). Only the FMU
+//! uses them, so they live here; the plant knows declared effects by their scenario form
+//! ([`CustomSpec`]) alone.
 //!
 //! A slot holds one declared effect whose regressor has at most [`FACTORS`] factors: per
 //! factor an Integer signal code (the rows of [`SIGNAL_DOCS`], numbered from 1; 0 = no
@@ -9,11 +11,12 @@
 //! effect read from a file, so a slot and the same `[[sensor.gyro.custom]]` block simulate the
 //! same numbers.
 
-use super::expr::{parse_regressor, unit_of};
-use super::signals::{NodeRef, SIGNAL_DOCS, Signal};
-use super::{Axis, CustomKind, CustomSpec};
-use crate::effects::Axes3;
-use crate::thermal::node;
+use rins_plant::effects::Axes3;
+use rins_plant::effects::custom::signals::{NodeRef, SIGNAL_DOCS, Signal};
+use rins_plant::effects::custom::{
+    Axis, CustomKind, CustomSpec, MAX_POWER, parse_regressor, unit_of,
+};
+use rins_plant::thermal::node;
 
 /// Factors per slot.
 pub const FACTORS: usize = 2;
@@ -135,14 +138,10 @@ impl Slot {
                     ));
                 }
             };
-            if !(1..=super::expr::MAX_POWER as u64).contains(&f.power) {
+            if !(1..=MAX_POWER as u64).contains(&f.power) {
                 return Err(bad(
                     "power",
-                    format!(
-                        "= {} is not a power (valid: 1…{})",
-                        f.power,
-                        super::expr::MAX_POWER
-                    ),
+                    format!("= {} is not a power (valid: 1…{})", f.power, MAX_POWER),
                 ));
             }
             parts.push(if f.power == 1 {
@@ -252,7 +251,7 @@ pub fn signal_codes() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::effects::custom::CustomModel;
+    use rins_plant::effects::custom::CustomModel;
 
     fn spec(regressor: &str, kind: CustomKind) -> CustomSpec {
         CustomSpec {
