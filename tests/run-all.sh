@@ -38,6 +38,14 @@ PATH="$venv/bin:$PATH" "$venv/bin/pip" install -q --disable-pip-version-check --
 "$venv/bin/python" tests/python/test_package.py "$bin/rins" "$pytmp"
 rm -rf "$pytmp"
 
+echo "== documented commands (README.md, docs/*.md; tests/doc_commands.py lists every block) =="
+# The blocks run as written with this build's rins first on PATH and the venv's python (the
+# package above, fmpy, libcosimpy, ecospy, dask, rerun-sdk); this build has Rerun, so the
+# blocks marked `needs rerun` must run rather than be skipped.
+python3 tests/doc_commands.py --bin "$bin" --self-test
+PATH="$venv/bin:$PATH" RINS_DOC_PYTHON="$venv/bin/python" RINS_DOC_RERUN=1 \
+  python3 tests/doc_commands.py --bin "$bin"
+
 echo "== rins command line =="
 rins=(cargo run --release -q -p rins-scenarios --features rerun --bin rins --)
 "${rins[@]}" verify analytic > /dev/null
