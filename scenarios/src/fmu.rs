@@ -10,8 +10,8 @@ use rins_fmi::package;
 use rins_fmi::vars::{Kind, Value};
 use rins_fmi::xml::FmiVersion;
 use rins_fmi_import::{Fmu2, Instance2};
+use rins_imu_fmu::RinsImu;
 use rins_imu_fmu::outputs::{Output, Record, outputs};
-use rins_imu_fmu::{RinsImu, library_file};
 use rins_plant::PlantConfig;
 use rins_plant::params::{self, ParamValue};
 
@@ -28,35 +28,89 @@ pub fn default_lib_dir() -> PathBuf {
         .unwrap_or_default()
 }
 
-/// Writes the IMU and carrier FMUs (FMI 2 and FMI 3 each) into `out`, each with its reference
-/// results beside it as modelica/Reference-FMUs ship them (`<Model>_ref.opt`, `<Model>_in.csv`
-/// when it has inputs, `<Model>_ref.csv`: [`rins_imu_fmu::reference`],
+/// One exported FMU model: what `rins fmu build` builds and packages for it. A new model is
+/// one row of [`MODELS`] (beside its own crates).
+pub struct FmuModel {
+    /// Cargo packages of its FMI 2 and FMI 3 libraries (the one-line cdylib crates).
+    pub packages: [&'static str; 2],
+    /// File name of the library cargo builds for an FMI version.
+    pub library_file: fn(FmiVersion) -> &'static str,
+    /// Its reference results as `(file suffix, text)`, written beside each of its FMUs as
+    /// modelica/Reference-FMUs ship them (`<Model>_ref.opt`, `<Model>_in.csv` when it has
+    /// inputs, `<Model>_ref.csv`).
+    pub reference: fn() -> Result<Vec<(&'static str, String)>>,
+    /// Packages its library for an FMI version into a folder with the reference files
+    /// ([`package_one`]).
+    pub package: fn(FmiVersion, &Path, &Path, &[(&'static str, String)]) -> Result<PathBuf>,
+}
+
+/// Every model `rins fmu build` packages, in the order it lists them.
+pub const MODELS: [FmuModel; 2] = [
+    FmuModel {
+        packages: ["rins-imu-fmi2", "rins-imu-fmi3"],
+        library_file: rins_imu_fmu::library_file,
+        reference: || {
+            let (opt, input, reference) =
+                rins_imu_fmu::reference::reference_results().map_err(anyhow::Error::msg)?;
+            Ok(vec![
+                ("_ref.opt", opt),
+                ("_in.csv", input),
+                ("_ref.csv", reference),
+            ])
+        },
+        package: package_one::<RinsImu>,
+    },
+    FmuModel {
+        packages: ["rins-carrier-fmi2", "rins-carrier-fmi3"],
+        library_file: rins_carrier_fmu::library_file,
+        reference: || {
+            let (opt, reference) =
+                rins_carrier_fmu::reference::reference_results().map_err(anyhow::Error::msg)?;
+            Ok(vec![("_ref.opt", opt), ("_ref.csv", reference)])
+        },
+        package: package_one::<RinsCarrier>,
+    },
+];
+
+/// The FMI versions packaged, in the order of [`FmuModel::packages`].
+pub const FMI_VERSIONS: [FmiVersion; 2] = [FmiVersion::V2, FmiVersion::V3];
+
+/// The cargo packages of every model's libraries ([`MODELS`], each FMI version).
+pub const FMI_PACKAGES: [&str; 2 * MODELS.len()] = {
+    let mut out = [""; 2 * MODELS.len()];
+    let mut i = 0;
+    while i < MODELS.len() {
+        out[2 * i] = MODELS[i].packages[0];
+        out[2 * i + 1] = MODELS[i].packages[1];
+        i += 1;
+    }
+    out
+};
+
+/// The cargo command that builds every library of [`FMI_PACKAGES`].
+pub fn build_command() -> String {
+    let packages: Vec<String> = FMI_PACKAGES.iter().map(|p| format!("-p {p}")).collect();
+    format!("cargo build --release {}", packages.join(" "))
+}
+
+/// Writes the FMUs of every model of [`MODELS`] (FMI 2 and FMI 3 each) into `out`, each with
+/// its reference results beside it ([`rins_imu_fmu::reference`],
 /// [`rins_carrier_fmu::reference`]); returns the FMU paths.
 pub fn build(out: &Path, lib_dir: &Path) -> Result<Vec<PathBuf>> {
+    let references = MODELS
+        .iter()
+        .map(|m| (m.reference)())
+        .collect::<Result<Vec<_>>>()?;
     let mut made = Vec::new();
-    let (opt, input, reference) =
-        rins_imu_fmu::reference::reference_results().map_err(anyhow::Error::msg)?;
-    let imu_files = [
-        ("_ref.opt", opt),
-        ("_in.csv", input),
-        ("_ref.csv", reference),
-    ];
-    let (opt, reference) =
-        rins_carrier_fmu::reference::reference_results().map_err(anyhow::Error::msg)?;
-    let carrier_files = [("_ref.opt", opt), ("_ref.csv", reference)];
-    for v in [FmiVersion::V2, FmiVersion::V3] {
-        made.push(package_one::<RinsImu>(
-            v,
-            &lib_dir.join(library_file(v)),
-            out,
-            &imu_files,
-        )?);
-        made.push(package_one::<RinsCarrier>(
-            v,
-            &lib_dir.join(rins_carrier_fmu::library_file(v)),
-            out,
-            &carrier_files,
-        )?);
+    for v in FMI_VERSIONS {
+        for (m, files) in MODELS.iter().zip(&references) {
+            made.push((m.package)(
+                v,
+                &lib_dir.join((m.library_file)(v)),
+                out,
+                files,
+            )?);
+        }
     }
     Ok(made)
 }
@@ -71,8 +125,9 @@ fn package_one<M: rins_fmi::model::Model>(
 ) -> Result<PathBuf> {
     if !lib.exists() {
         bail!(
-            "{} not found: build the FMI libraries first with `cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3 -p rins-carrier-fmi2 -p rins-carrier-fmi3` (or pass --lib-dir)",
-            lib.display()
+            "{} not found: build the FMI libraries first with `{}` (or pass --lib-dir)",
+            lib.display(),
+            build_command()
         );
     }
     let made = package::build_fmu::<M>(v, lib, out)
@@ -333,7 +388,7 @@ truth = true
             .and_then(Path::parent)
             .unwrap()
             .to_path_buf();
-        let lib = lib_dir.join(library_file(FmiVersion::V2));
+        let lib = lib_dir.join(rins_imu_fmu::library_file(FmiVersion::V2));
         assert!(
             lib.exists(),
             "{} missing: run `cargo build -p rins-imu-fmi2` first",

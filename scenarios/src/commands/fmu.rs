@@ -6,8 +6,6 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
 use anyhow::{Context, Result};
-use rins_fmi::xml::FmiVersion;
-use rins_imu_fmu::library_file;
 
 use super::args::{Overrides, load};
 use crate::figures::RunFigures;
@@ -78,23 +76,14 @@ fn build(a: &BuildArgs) -> Result<()> {
     Ok(())
 }
 
-/// The cargo packages whose cdylibs `rins fmu build` packages, one per model and FMI version
-/// of [`FMI_VERSIONS`] (the library file names are `rins_imu_fmu::library_file`'s and
-/// `rins_carrier_fmu::library_file`'s).
-pub const FMI_PACKAGES: [&str; 4] = [
-    "rins-imu-fmi2",
-    "rins-imu-fmi3",
-    "rins-carrier-fmi2",
-    "rins-carrier-fmi3",
-];
-/// The FMI versions packaged.
-pub const FMI_VERSIONS: [FmiVersion; 2] = [FmiVersion::V2, FmiVersion::V3];
+pub use crate::fmu::{FMI_PACKAGES, FMI_VERSIONS};
 
-/// File names of every library of [`FMI_PACKAGES`] (IMU and carrier, each FMI version).
+/// File names of every library of [`FMI_PACKAGES`] (each FMI version, each model of
+/// [`crate::fmu::MODELS`]).
 pub fn library_files() -> Vec<&'static str> {
     FMI_VERSIONS
         .iter()
-        .flat_map(|v| [library_file(*v), rins_carrier_fmu::library_file(*v)])
+        .flat_map(|v| crate::fmu::MODELS.iter().map(|m| (m.library_file)(*v)))
         .collect()
 }
 
@@ -110,8 +99,7 @@ pub fn ensure_libraries(lib_dir: &Path) -> Result<()> {
     if missing.is_empty() {
         return Ok(());
     }
-    let packages: Vec<String> = FMI_PACKAGES.iter().map(|p| format!("-p {p}")).collect();
-    let what = format!("cargo build --release {}", packages.join(" "));
+    let what = crate::fmu::build_command();
     // Built by cargo: the executable sits in <target>/<profile>/ and its workspace still exists.
     let profile = lib_dir.file_name().and_then(|n| n.to_str());
     let (Some(profile @ ("release" | "debug")), Some(target), Some(root)) =
