@@ -3,7 +3,7 @@
 //! every model's own fields go through it; a model may append an opaque block of its own
 //! (the rins plant appends its state in the plant's codec).
 
-use crate::vars::Value;
+use crate::vars::{Value, VariableTable};
 
 /// Appends fields to a byte buffer.
 #[derive(Clone, Debug, Default)]
@@ -30,6 +30,12 @@ impl StateWriter {
         };
         self.u64(tag);
         self.u64(bits);
+    }
+
+    /// The value of every slot of a model's table, count first ([`StateReader::values`]).
+    pub fn values(&mut self, values: &[Value]) {
+        self.u64(values.len() as u64);
+        values.iter().for_each(|v| self.value(*v));
     }
 
     /// A length-prefixed block of bytes.
@@ -92,6 +98,24 @@ impl<'a> StateReader<'a> {
         })
     }
 
+    /// The value of every slot of `table`, as [`StateWriter::values`] wrote them. A state of
+    /// another table (another count) or a value of the wrong kind, out of range or past an
+    /// enumeration's items (a corrupted state) is an error naming the slot.
+    pub fn values(&mut self, table: &VariableTable) -> Result<Vec<Value>, String> {
+        let n = self.u64()?;
+        let expected = table.scalars.len();
+        if n != expected as u64 {
+            return Err(format!("state has {n} variables, this FMU has {expected}"));
+        }
+        let values: Vec<Value> = (0..n).map(|_| self.value()).collect::<Result<_, _>>()?;
+        for (slot, v) in values.iter().enumerate() {
+            table
+                .check(slot, *v)
+                .map_err(|e| format!("variable {slot}: {e}"))?;
+        }
+        Ok(values)
+    }
+
     /// A length-prefixed block of bytes.
     pub fn bytes(&mut self) -> Result<&'a [u8], String> {
         let n = usize::try_from(self.u64()?).map_err(|_| "block length overflows")?;
@@ -134,5 +158,37 @@ mod tests {
         let mut short = StateReader::new(&w.0[..12]);
         short.u64().unwrap();
         assert!(short.u64().unwrap_err().contains("truncated"));
+    }
+
+    #[test]
+    fn a_table_s_values_round_trip_and_a_foreign_or_bad_one_is_refused() {
+        use crate::vars::{Causality, Kind, ScalarVar};
+        let var = |name: &str| ScalarVar {
+            name: name.into(),
+            array: name.into(),
+            kind: Kind::Real,
+            causality: Causality::Parameter,
+            unit: None,
+            start: Value::Real(0.0),
+            range: Some((0.0, 1.0)),
+            description: String::new(),
+        };
+        let table = VariableTable::new(vec![var("a"), var("b")]);
+        let mut w = StateWriter::default();
+        w.values(&[Value::Real(0.5), Value::Real(1.0)]);
+        assert_eq!(
+            StateReader::new(&w.0).values(&table).unwrap(),
+            [Value::Real(0.5), Value::Real(1.0)]
+        );
+        let mut short = StateWriter::default();
+        short.values(&[Value::Real(0.5)]);
+        assert_eq!(
+            StateReader::new(&short.0).values(&table).unwrap_err(),
+            "state has 1 variables, this FMU has 2"
+        );
+        let mut bad = StateWriter::default();
+        bad.values(&[Value::Real(0.5), Value::Real(2.0)]);
+        let e = StateReader::new(&bad.0).values(&table).unwrap_err();
+        assert!(e.starts_with("variable 1: b = 2 is outside"), "{e}");
     }
 }

@@ -158,8 +158,7 @@ impl Model for RinsCarrier {
     }
 
     fn save(&self, w: &mut StateWriter) {
-        w.u64(self.values.len() as u64);
-        self.values.iter().for_each(|v| w.value(*v));
+        w.values(&self.values);
         // The ship's integrated state: its mean-track position and tick (the sea state is a
         // function of the tick).
         match self.running.as_ref().map(|r| &r.carrier) {
@@ -175,18 +174,7 @@ impl Model for RinsCarrier {
     }
 
     fn restore(&mut self, r: &mut StateReader<'_>) -> Result<(), String> {
-        let n = r.u64()? as usize;
-        let expected = table().vars.scalars.len();
-        if n != expected {
-            return Err(format!("state has {n} variables, this FMU has {expected}"));
-        }
-        let values: Vec<Value> = (0..n).map(|_| r.value()).collect::<Result<_, _>>()?;
-        for (slot, v) in values.iter().enumerate() {
-            table()
-                .vars
-                .check(slot, *v)
-                .map_err(|e| format!("variable {slot}: {e}"))?;
-        }
+        let values = r.values(&table().vars)?;
         let running = r.u64()? != 0;
         let pos = if running {
             Some((r.u64()?, r.f64()?, r.f64()?))

@@ -360,8 +360,7 @@ impl Model for RinsImu {
     }
 
     fn save(&self, w: &mut StateWriter) {
-        w.u64(self.values.len() as u64);
-        self.values.iter().for_each(|v| w.value(*v));
+        w.values(&self.values);
         // The last sample, by the fields the outputs carry (rebuilt on restore).
         w.u64(self.sample.is_some() as u64);
         if let Some(s) = &self.sample {
@@ -411,20 +410,9 @@ impl Model for RinsImu {
     }
 
     fn restore(&mut self, r: &mut StateReader<'_>) -> Result<(), String> {
-        let n = r.u64()? as usize;
-        let expected = table().vars.scalars.len();
-        if n != expected {
-            return Err(format!("state has {n} variables, this FMU has {expected}"));
-        }
-        self.values = (0..n).map(|_| r.value()).collect::<Result<_, _>>()?;
         // A corrupted state must not put a value of the wrong kind, out of range or past an
         // enumeration's items into a slot (that indexed out of bounds; tests/fmi_property.rs).
-        for (slot, v) in self.values.iter().enumerate() {
-            table()
-                .vars
-                .check(slot, *v)
-                .map_err(|e| format!("variable {slot}: {e}"))?;
-        }
+        self.values = r.values(&table().vars)?;
         let mut fields = Vec::new();
         if r.u64()? != 0 {
             for o in outputs().iter().filter(|o| o.sample_field.is_some()) {

@@ -125,7 +125,7 @@ impl Model for OneAxis {
         Ok(())
     }
     fn save(&self, w: &mut StateWriter) {
-        self.values.iter().for_each(|v| w.value(*v));
+        w.values(&self.values);
         let (bias, hz) = self.running.unwrap_or((f64::NAN, f64::NAN));
         w.u64(self.running.is_some() as u64);
         w.f64(bias);
@@ -133,9 +133,7 @@ impl Model for OneAxis {
         w.f64(self.angle_deg);
     }
     fn restore(&mut self, r: &mut StateReader<'_>) -> Result<(), String> {
-        self.values = (0..self.values.len())
-            .map(|_| r.value())
-            .collect::<Result<_, _>>()?;
+        self.values = r.values(&table().vars)?;
         let running = r.u64()? != 0;
         let (bias, hz) = (r.f64()?, r.f64()?);
         self.running = running.then_some((bias, hz));
