@@ -25,7 +25,7 @@ pub fn sensor_parameter_set(preset: &str) -> Option<String> {
         .into_iter()
         .filter(|p| p.path.starts_with("sensor."))
     {
-        let name = p.path.replace("][", ",");
+        let name = rins_fmi_plant::parameter::variable_name(&p.path);
         let slot = t.vars.slot(&name)?;
         let var = &t.vars.scalars[slot];
         let unit = var
