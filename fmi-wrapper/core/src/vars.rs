@@ -45,7 +45,7 @@ impl Kind {
     }
 
     /// The type as the modelDescription of `version` declares it, with its article
-    /// ("a Float64", "an Enumeration (WaveSpectrum)"): for messages.
+    /// ("a Float64", "an Enumeration (Colour)"): for messages.
     pub fn described(self, version: FmiVersion) -> String {
         match self {
             Kind::Enumeration { type_name, .. } => format!("an Enumeration ({type_name})"),
@@ -500,13 +500,13 @@ mod tests {
     #[test]
     fn type_names_follow_the_fmi_version() {
         let e = Kind::Enumeration {
-            type_name: "WaveSpectrum",
+            type_name: "Colour",
             items: &["a"],
         };
         assert_eq!(Kind::Real.described(FmiVersion::V3), "a Float64");
         assert_eq!(Kind::Integer.described(FmiVersion::V3), "a UInt64");
         assert_eq!(Kind::Integer.described(FmiVersion::V2), "an Integer");
-        assert_eq!(e.described(FmiVersion::V3), "an Enumeration (WaveSpectrum)");
+        assert_eq!(e.described(FmiVersion::V3), "an Enumeration (Colour)");
         assert_eq!(e.accessor(FmiVersion::V3), "Int64");
         assert_eq!(e.accessor(FmiVersion::V2), "Integer");
         assert_eq!(with_article("Int32"), "an Int32");

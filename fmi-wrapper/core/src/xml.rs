@@ -1,5 +1,5 @@
-//! modelDescription.xml for FMI 2.0 and FMI 3.0, generated from the [`VariableTable`] (one source
-//! of truth with the plant's parameter table). The GUID / instantiation token is a hash of the
+//! modelDescription.xml for FMI 2.0 and FMI 3.0, generated from the [`VariableTable`] (the model's
+//! one source of truth for its variables). The GUID / instantiation token is a hash of the
 //! document itself, so a stale binary and a newer description cannot be paired silently.
 
 use std::fmt::Write;
