@@ -24,7 +24,7 @@ use crate::history::History;
 use crate::prepare::{Prepared, prepare};
 use crate::replay::{CHANNELS, Effect, Group};
 use crate::report::{Cell, CompareReport, unit_of};
-use crate::{Analysis, Options, analyse};
+use crate::{Analysis, Options, analyse, swap};
 
 /// Seed of the run resampling of the joint-fit check.
 pub const RESAMPLE_SEED: u64 = 0x17E2_A7E5;
@@ -78,6 +78,9 @@ pub struct AcceptedTerm {
     pub effect: String,
     /// How it was found: `catalogue`, `declared` (in the model) or `discovered`.
     pub found_by: String,
+    /// The term it replaced in the replacement pass ([`crate::swap`]), if it came in that
+    /// way; `delta_bic` is then the swap's gain in joint-fit BIC (negative).
+    pub replaces: Option<String>,
     /// ΔBIC when it was accepted.
     pub delta_bic: f64,
     /// Parents fitted with it.
@@ -247,6 +250,96 @@ fn joint_check(
     out
 }
 
+/// An accepted term: (channel, effect name, coefficients, found by, ΔBIC).
+type Accepted = (usize, String, usize, String, f64);
+
+/// The group of an effect name on a channel, at most `len` coefficients long.
+type GroupOf<'a> = dyn Fn(usize, &str, Option<usize>) -> Option<Group> + 'a;
+
+/// A channel's terms after the replacement pass.
+struct Replaced {
+    /// The terms, `true` marking parents.
+    terms: Vec<(Group, bool)>,
+    /// Index into the accepted list of each non-parent term.
+    who: Vec<Option<usize>>,
+    /// Per swapped-in term: its accepted index and the name of the term it replaced.
+    swapped: Vec<(usize, String)>,
+}
+
+/// The replacement pass ([`crate::swap`]) on channel `c`'s `terms` (`who`: index into
+/// `accepted` of each non-parent term, `None` for parents). A term swapped in is appended to
+/// `accepted` and `parent_names`.
+#[allow(clippy::too_many_arguments)]
+fn replacement_pass(
+    m2: &PlantConfig,
+    p2: &Prepared,
+    c: usize,
+    terms: &[(Group, bool)],
+    who: &[Option<usize>],
+    accepted: &mut Vec<Accepted>,
+    parent_names: &mut Vec<Vec<(usize, String)>>,
+    group_of: &GroupOf,
+) -> Replaced {
+    let mut slots: Vec<usize> = Vec::new();
+    let mut current: Vec<swap::Term> = Vec::new();
+    for ((g, parent), w) in terms.iter().zip(who) {
+        if let (false, Some(i)) = (*parent, w) {
+            slots.push(*i);
+            current.push(swap::Term {
+                group: *g,
+                parents: parent_names[*i]
+                    .iter()
+                    .filter_map(|(_, n)| group_of(c, n, None))
+                    .collect(),
+            });
+        }
+    }
+    let candidates: Vec<swap::Term> = p2
+        .replay
+        .groups
+        .iter()
+        .filter(|g| g.channel == c)
+        .flat_map(|g| g.orders())
+        .filter_map(|g| {
+            swap::parent_groups(m2, p2, c, g.effect).map(|parents| swap::Term { group: g, parents })
+        })
+        .collect();
+    let swaps = swap::replace(p2, c, &mut current, &candidates);
+    if swaps.is_empty() {
+        return Replaced {
+            terms: terms.to_vec(),
+            who: who.to_vec(),
+            swapped: Vec::new(),
+        };
+    }
+    let mut swapped = Vec::new();
+    for s in &swaps {
+        let t = &current[s.slot];
+        let name = t.group.effect.name();
+        let found_by = match t.group.effect {
+            Effect::Custom(_) => "declared",
+            _ => "catalogue",
+        };
+        accepted.push((c, name, t.group.len, found_by.into(), -s.gain));
+        parent_names.push(t.parents.iter().map(|g| (c, g.effect.name())).collect());
+        slots[s.slot] = accepted.len() - 1;
+        swapped.push((accepted.len() - 1, s.out.effect.name()));
+    }
+    // A term swapped in and then out again is not listed as swapped in.
+    swapped.retain(|(i, _)| slots.contains(i));
+    let mut out: Vec<(Group, bool)> = current.iter().map(|t| (t.group, false)).collect();
+    let mut out_who: Vec<Option<usize>> = slots.iter().map(|&i| Some(i)).collect();
+    for g in swap::with_parents(&current).into_iter().skip(current.len()) {
+        out.push((g, true));
+        out_who.push(None);
+    }
+    Replaced {
+        terms: out,
+        who: out_who,
+        swapped,
+    }
+}
+
 /// Iterates `model` on `h` to the noise floor (see the module docs).
 pub fn iterate(
     model: &PlantConfig,
@@ -336,7 +429,7 @@ pub fn iterate(
         }
         // The accepted terms, declared in the model when discovered, with their parents.
         let mut m2 = m.clone();
-        let mut accepted: Vec<(usize, String, usize, String, f64)> = Vec::new();
+        let mut accepted: Vec<Accepted> = Vec::new();
         for c in 0..6 {
             for g in &diag.selected[c] {
                 let name = g.effect.name();
@@ -362,6 +455,33 @@ pub fn iterate(
                     .find(|r| r.effect == name && r.channel == CHANNELS[c])
                     .map_or(f64::NAN, |r| r.delta_bic);
                 accepted.push((c, name, g.len, found_by.into(), dbic));
+            }
+        }
+        // Every accepted declared term is declared on the other axes of its sensor too (zero
+        // coefficient), so the swap pass can try it there: a term discovered on x may be what
+        // z needs in place of a catalogue stand-in. Axes no fit uses are removed again below.
+        let mut widened: Vec<(bool, String, usize)> = Vec::new();
+        for (c, name, _, _, _) in &accepted {
+            if let Some(Effect::Custom(r)) = Effect::parse_in(&m2, name) {
+                let list = if r.accel {
+                    &m2.sensor.accel.custom
+                } else {
+                    &m2.sensor.gyro.custom
+                };
+                let spec = list[r.index as usize].clone();
+                for axis in (0..3).filter(|a| *a != c % 3) {
+                    if !spec.axes.iter().any(|x| x.index() == axis) {
+                        let (next, _) = declare(
+                            &m2,
+                            r.accel,
+                            spec.kind,
+                            &spec.regressor.replace(' ', ""),
+                            axis,
+                        );
+                        m2 = next;
+                        widened.push((r.accel, spec.name.clone(), axis));
+                    }
+                }
             }
         }
         // Parents per channel: (channel, effect name) of each parent of each accepted term.
@@ -434,6 +554,20 @@ pub fn iterate(
             if terms.is_empty() {
                 continue;
             }
+            let Replaced {
+                terms,
+                who,
+                swapped,
+            } = replacement_pass(
+                &m2,
+                &p2,
+                c,
+                &terms,
+                &who,
+                &mut accepted,
+                &mut parent_names,
+                &group_of,
+            );
             let checks = joint_check(&p2, c, &terms, &gate);
             for ((g, parent), (jd, stab, keep)) in terms.iter().zip(&checks) {
                 if *parent {
@@ -449,6 +583,10 @@ pub fn iterate(
                     channel: CHANNELS[c].into(),
                     effect: name.clone(),
                     found_by: found_by.clone(),
+                    replaces: swapped
+                        .iter()
+                        .find(|(j, _)| *j == i)
+                        .map(|(_, out)| out.clone()),
                     delta_bic: *dbic,
                     parents: parent_names[i].iter().map(|(_, n)| n.clone()).collect(),
                     joint_delta_bic: *jd,
@@ -521,6 +659,23 @@ pub fn iterate(
                 if !used.contains(&format!("custom:{}", s.name)) {
                     s.enabled = false;
                 }
+            }
+        }
+        // Axes the widening added and no fit of this step uses are taken off again.
+        for (accel, name, axis) in &widened {
+            let channel = axis + if *accel { 3 } else { 0 };
+            let key = format!("custom:{name}");
+            if per_channel[channel].iter().any(|g| g.effect.name() == key) {
+                continue;
+            }
+            let list = if *accel {
+                &mut next.sensor.accel.custom
+            } else {
+                &mut next.sensor.gyro.custom
+            };
+            if let Some(s) = list.iter_mut().find(|s| &s.name == name) {
+                s.axes.retain(|a| a.index() != *axis);
+                s.coef[*axis] = 0.0;
             }
         }
         m = next;

@@ -35,6 +35,7 @@ pub mod replay;
 pub mod report;
 pub mod selection;
 pub mod stats;
+mod swap;
 
 use rins_plant::PlantConfig;
 

@@ -52,11 +52,15 @@ pub fn render_text(r: &IterationReport) -> String {
         for t in &st.accepted {
             let _ = writeln!(
                 s,
-                "  {} {} ({}, dBIC {:.1}){}: joint fit dBIC {:.1}, {}{}",
+                "  {} {} ({}, {}){}: joint fit dBIC {:.1}, {}{}",
                 if t.kept { "accepted" } else { "dropped " },
                 t.effect,
                 t.channel,
-                t.delta_bic,
+                match &t.replaces {
+                    Some(out) =>
+                        format!("in place of {out}: joint-fit BIC {:.1} lower", -t.delta_bic),
+                    None => format!("dBIC {:.1}", t.delta_bic),
+                },
                 if t.parents.is_empty() {
                     String::new()
                 } else {

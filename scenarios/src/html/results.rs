@@ -612,6 +612,10 @@ pub fn iterate<T: Serialize>(report: &T, dir: &Path) -> Result<PathBuf> {
                 d.text(&format!("{t}.channel")),
                 d.text(&format!("{t}.effect")),
                 d.text(&format!("{t}.found_by")),
+                match crate::html::lookup(&v, &format!("{t}.replaces")).and_then(Value::as_str) {
+                    Some(out) => Cell::Text(out.into()),
+                    None => Cell::Text("-".into()),
+                },
                 d.num(&format!("{t}.delta_bic"), 4),
                 d.num(&format!("{t}.stability"), 2),
                 d.text(&format!("{t}.kept")),
@@ -625,6 +629,7 @@ pub fn iterate<T: Serialize>(report: &T, dir: &Path) -> Result<PathBuf> {
             "channel",
             "effect",
             "found by",
+            "in place of (replacement pass)",
             "delta-BIC",
             "stable in (share of run resamples)",
             "kept",
