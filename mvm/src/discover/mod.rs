@@ -122,6 +122,25 @@ pub struct DiscoveryReport {
     /// Library terms whose column is, on this data, a catalogue effect's column up to scale:
     /// not new physics, so not proposed; the catalogue effect is tested in its place.
     pub identical: Vec<Identical>,
+    /// Kept terms whose column is, on this data, a combination of two other columns of the
+    /// channel (kept terms or catalogue columns): a dependence among three that the pairwise
+    /// `identical` check cannot see.
+    pub dependent: Vec<Dependent>,
+}
+
+/// Three columns of a channel that are linearly dependent on this data: `term` = a·`on[0]` +
+/// b·`on[1]` at every window. Their coefficients are then determined only as a combination:
+/// each one's value depends on which of the others is in the fit.
+#[derive(Clone, Debug, Serialize)]
+pub struct Dependent {
+    /// Channel.
+    pub channel: String,
+    /// The kept library term.
+    pub term: String,
+    /// The two columns it is a combination of (a kept term, or a catalogue coefficient key).
+    pub on: [String; 2],
+    /// a and b (in the columns' SI units).
+    pub weights: [f64; 2],
 }
 
 /// A library term identical on the data to a catalogue effect's regressor.
@@ -158,6 +177,33 @@ fn same_up_to_scale(a: &[f64], b: &[f64]) -> bool {
     let k = ab / bb;
     let r2: f64 = a.iter().zip(b).map(|(x, y)| (x - k * y).powi(2)).sum();
     r2 <= IDENTICAL_REL * IDENTICAL_REL * aa
+}
+
+/// The weights (a, b) with ‖t − a·x − b·y‖ ≤ IDENTICAL_REL·‖t‖ (whitened columns), if any:
+/// `t` lies in the plane of `x` and `y`, and neither alone is `t` up to scale.
+fn in_span_of_two(t: &[f64], x: &[f64], y: &[f64]) -> Option<[f64; 2]> {
+    let dot = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(a, b)| a * b).sum::<f64>();
+    let (xx, yy, xy, tx, ty, tt) = (
+        dot(x, x),
+        dot(y, y),
+        dot(x, y),
+        dot(t, x),
+        dot(t, y),
+        dot(t, t),
+    );
+    let det = xx * yy - xy * xy;
+    // x and y themselves (nearly) parallel: that is the pairwise case.
+    if !(tt > 0.0) || !(det > 1e-12 * xx * yy) {
+        return None;
+    }
+    let a = (tx * yy - ty * xy) / det;
+    let b = (ty * xx - tx * xy) / det;
+    let r2: f64 = t
+        .iter()
+        .zip(x.iter().zip(y))
+        .map(|(ti, (xi, yi))| (ti - a * xi - b * yi).powi(2))
+        .sum();
+    (r2 <= IDENTICAL_REL * IDENTICAL_REL * tt && a != 0.0 && b != 0.0).then_some([a, b])
 }
 
 /// Whether a library term and a catalogue effect are the same function of the signals (a
@@ -306,6 +352,7 @@ pub(crate) fn search(
     };
     let mut refused = Vec::new();
     let mut identical = Vec::new();
+    let mut dependent = Vec::new();
     // (channel, term index, column, test)
     let mut kept: Vec<(usize, usize, Vec<f64>, DiscoveredTerm)> = Vec::new();
     for c in 0..6 {
@@ -329,6 +376,25 @@ pub(crate) fn search(
                 let x = design(ws, std::slice::from_ref(g));
                 (0..x.ncols())
                     .map(|k| (g.effect, whiten(x.column(k).as_slice())))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        // The coefficient key of each catalogue column, for the dependence report.
+        let catalogue_keys: Vec<String> = a
+            .replay
+            .groups
+            .iter()
+            .filter(|g| g.channel == c && !matches!(g.effect, Effect::Custom(_)))
+            .flat_map(|g| {
+                let n = design(ws, std::slice::from_ref(g)).ncols();
+                let keys = g.effect.coefficient_keys(c);
+                (0..n)
+                    .map(|k| {
+                        keys.get(k).map_or_else(
+                            || format!("{}[{k}]", g.effect.name()),
+                            |(key, _)| key.clone(),
+                        )
+                    })
                     .collect::<Vec<_>>()
             })
             .collect();
@@ -397,6 +463,40 @@ pub(crate) fn search(
                 refused.push(dt);
             }
         }
+        // A kept term in the plane of two other columns (kept terms or catalogue columns).
+        let mine: Vec<(String, Vec<f64>)> = kept
+            .iter()
+            .filter(|(kc, _, _, _)| *kc == c)
+            .map(|(_, t, col, _)| (terms[*t].describe(), whiten(col)))
+            .collect();
+        let others: Vec<(String, &[f64])> = mine
+            .iter()
+            .map(|(n, v)| (n.clone(), v.as_slice()))
+            .chain(
+                catalogue_keys
+                    .iter()
+                    .zip(&catalogue)
+                    .map(|(k, (_, v))| (k.clone(), v.as_slice())),
+            )
+            .collect();
+        for (name, col) in &mine {
+            'found: for i in 0..others.len() {
+                for j in i + 1..others.len() {
+                    if &others[i].0 == name || &others[j].0 == name {
+                        continue;
+                    }
+                    if let Some(w) = in_span_of_two(col, others[i].1, others[j].1) {
+                        dependent.push(Dependent {
+                            channel: CHANNELS[c].into(),
+                            term: name.clone(),
+                            on: [others[i].0.clone(), others[j].0.clone()],
+                            weights: w,
+                        });
+                        break 'found;
+                    }
+                }
+            }
+        }
     }
     // Group the kept terms into proposals: one per term and sensor, on every axis it was kept on.
     let mut found: Vec<Found> = Vec::new();
@@ -462,6 +562,7 @@ pub(crate) fn search(
             refused,
             superseded: Vec::new(),
             identical,
+            dependent,
         },
         found,
     }

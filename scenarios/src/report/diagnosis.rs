@@ -261,6 +261,22 @@ fn discovery(s: &mut String, d: &rins_mvm::discover::DiscoveryReport) {
             }
         );
     }
+    for x in &d.dependent {
+        let _ = writeln!(
+            s,
+            "  {}: {}, {} and {} are linearly dependent on this data ({} = {:.4e}·{} {} {:.4e}·{}): their coefficients are determined only together, each one's value depends on which others are fitted",
+            x.channel,
+            x.term,
+            x.on[0],
+            x.on[1],
+            x.term,
+            x.weights[0],
+            x.on[0],
+            if x.weights[1] < 0.0 { "−" } else { "+" },
+            x.weights[1].abs(),
+            x.on[1]
+        );
+    }
     for t in &d.refused {
         let _ = writeln!(
             s,
