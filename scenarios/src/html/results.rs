@@ -426,6 +426,17 @@ pub fn compare<T: Serialize>(
     r.write(dir)
 }
 
+/// A scenario key's unit as a reader writes it (°/h, µg, K², °C).
+fn display_unit(unit: &str) -> String {
+    unit.replace("deg/h", "°/h")
+        .replace("deg/sqrt(h)", "°/√h")
+        .replace("degC", "°C")
+        .replace("ug", "µg")
+        .replace("sqrt(", "√(")
+        .replace("K2", "K²")
+        .replace("K3", "K³")
+}
+
 /// `rins diagnose --report DIR`.
 pub fn diagnose<T: Serialize>(
     report: &T,
@@ -462,6 +473,31 @@ pub fn diagnose<T: Serialize>(
                 ]
             })
             .collect(),
+    );
+    let mut rows = Vec::new();
+    for k in 0..ranked.min(15) {
+        let keys = v
+            .pointer(&format!("/ranking/{k}/keys"))
+            .and_then(Value::as_array)
+            .cloned()
+            .unwrap_or_default();
+        for (j, key) in keys.iter().enumerate() {
+            let key = key.as_str().unwrap_or("?");
+            rows.push(vec![
+                d.text(&format!("ranking.{k}.effect")),
+                d.text(&format!("ranking.{k}.channel")),
+                Cell::Text(key.to_string()),
+                d.num(&format!("ranking.{k}.coefficient.{j}"), 4),
+                d.num(&format!("ranking.{k}.ci95.{j}.0"), 4),
+                d.num(&format!("ranking.{k}.ci95.{j}.1"), 4),
+                Cell::Text(display_unit(rins_plant::params::unit_for(key))),
+            ]);
+        }
+    }
+    r.table(
+        "Fitted coefficients of the ranked effects, each against the model as given, with its 95 % interval (n/a: not identifiable on this data)",
+        &["effect", "channel", "key", "coefficient", "95 % low", "95 % high", "unit"],
+        rows,
     );
     r.table(
         "Residual RMS before and after the accepted effects",
