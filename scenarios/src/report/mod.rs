@@ -1,15 +1,15 @@
 //! Terminal text of the results the commands print. The verification reports render their own
 //! text (`AnalyticReport::to_text`, `InsReport::to_text`, Table 5's `to_text_table5`); the
 //! result types of the calibration (rins-nav), of the diagnosis (rins-verify), of Table 4
-//! ([`table4`]) and of the at-sea study ([`sea`]) get theirs here, through [`RenderText`],
+//! ([`table4_text`]) and of the at-sea study ([`sea_text`]) get theirs here, through [`RenderText`],
 //! since a trait of this crate is how they take a method here.
 
-pub mod calibration;
-pub mod diagnosis;
-pub mod sea;
-pub mod table4;
+pub mod calibration_text;
+pub mod diagnosis_text;
+pub mod sea_text;
+pub mod table4_text;
 
-pub use calibration::CalibrationRun;
+pub use calibration_text::CalibrationRun;
 
 /// The text a command prints for a result (newline-terminated lines).
 pub trait RenderText {

@@ -8,7 +8,7 @@ use std::fmt::Write;
 use rins_verify::paper::SeaReport;
 
 use super::RenderText;
-use super::table4::NOISE_FREE;
+use super::table4_text::NOISE_FREE;
 
 impl RenderText for SeaReport {
     fn render_text(&self) -> String {
