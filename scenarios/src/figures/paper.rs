@@ -10,7 +10,7 @@ use plotters::style::RGBColor;
 use rins_nav::NavRecord;
 use rins_verify::paper::{Series, Table4Report};
 
-use super::plot::{Kind, Line, Panel, PanelGeometry, render_svg, write_svg};
+use super::plot::{Kind, Line, PALETTE, Panel, PanelGeometry, render_svg, write_svg};
 
 /// Uncompensated case.
 const UNC: RGBColor = RGBColor(200, 40, 40);
@@ -36,8 +36,26 @@ impl PairedFigure<'_> {
     }
 }
 
+/// Colours of the east, north and up differences (tab10 green, purple, brown: neither case's).
+const AXES: [RGBColor; 3] = [PALETTE[2], PALETTE[4], PALETTE[5]];
+
 fn pts(recs: &[NavRecord], f: &dyn Fn(&NavRecord) -> f64) -> Vec<(f64, f64)> {
     recs.iter().map(|x| (x.t_s / 3600.0, f(x))).collect()
+}
+
+/// `f`(uncompensated) − `f`(compensated) at the records of the two cases taken at the same
+/// time (the pair runs on the same seed and record rate, so they pair one to one; a record
+/// without its partner is left out).
+pub fn difference(
+    unc: &[NavRecord],
+    comp: &[NavRecord],
+    f: &dyn Fn(&NavRecord) -> f64,
+) -> Vec<(f64, f64)> {
+    unc.iter()
+        .zip(comp)
+        .filter(|(u, c)| (u.t_s - c.t_s).abs() <= 1e-6 * u.t_s.abs().max(1.0))
+        .map(|(u, c)| (u.t_s / 3600.0, f(u) - f(c)))
+        .collect()
 }
 
 /// The four figures of a paired study: attitude and position error for the first seed and the
@@ -63,7 +81,8 @@ pub fn paired_figures<'a>(
                 Line::new("compensated", pts(&series.compensated, f), COMP, kind),
             ]
         };
-        let att = ["East", "North", "Up"]
+        let axes = ["East", "North", "Up"];
+        let mut att: Vec<Panel> = axes
             .iter()
             .enumerate()
             .map(|(k, n)| {
@@ -74,6 +93,26 @@ pub fn paired_figures<'a>(
                 )
             })
             .collect();
+        // Where δβ hardly moves an axis (east and north) the two cases' traces coincide and
+        // one hides the other at print size whatever the draw order: the difference panel
+        // shows what the compensation changes on each axis, on its own scale.
+        att.push(Panel::new(
+            "Difference uncompensated - compensated: δβ's own effect",
+            "difference (deg)",
+            axes.iter()
+                .enumerate()
+                .map(|(k, n)| {
+                    Line::new(
+                        *n,
+                        difference(&series.uncompensated, &series.compensated, &|x| {
+                            x.att_err_rad[k].to_degrees()
+                        }),
+                        AXES[k],
+                        kind,
+                    )
+                })
+                .collect(),
+        ));
         out.push(PairedFigure {
             stem: format!("fig2_attitude_error{tag}"),
             title: format!("{} counterpart: attitude error ({what})", figures[0]),

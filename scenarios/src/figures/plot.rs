@@ -138,6 +138,9 @@ pub struct PanelGeometry {
     /// The bounding box of every mark with its drawn reach (a dot's radius in x and y), the
     /// box the headroom rule keeps [`rules::HEADROOM_PX`] inside the plot (`None`: no marks).
     pub extent: Option<Rect>,
+    /// The axis ranges as drawn, data units: x (left, right) and y (bottom, top), after the
+    /// padding of [`rules::padded_range`] and any legend headroom.
+    pub axes: ((f64, f64), (f64, f64)),
 }
 
 /// DejaVu Sans, registered as the `sans-serif` family for both backends.
@@ -152,7 +155,8 @@ fn register_font() {
     });
 }
 
-/// The em of text of `pt` points at print width, px.
+/// The em of text of `pt` points at print width, px: for [`TEXT_PT`], the smallest text,
+/// [`rules::min_text_px`] of [`WIDTH_PX`].
 fn em_px(pt: f64) -> f64 {
     pt * rules::px_per_pt(WIDTH_PX)
 }
@@ -609,7 +613,9 @@ fn draw_panel<DB: DrawingBackend>(
     let (data_y0, data_y1) = (y0, y1);
     (y0, y1) = rules::padded_range(data_y0, data_y1, inset, ph as f64);
     if pad_x {
-        (x0, x1) = rules::padded_range(x0, x1, inset, pw as f64);
+        // Clusters at a few x values (chamber temperatures) sit well off the side frames.
+        let inset_x = inset.max(rules::SCATTER_X_PAD_FRAC * pw as f64);
+        (x0, x1) = rules::padded_range(x0, x1, inset_x, pw as f64);
     }
     let drawn: Vec<Drawn> = if pad_x {
         p.lines
@@ -820,6 +826,7 @@ fn draw_panel<DB: DrawingBackend>(
         categories,
         envelopes,
         extent,
+        axes: ((x0, x1), (y0, y1)),
     }))
 }
 

@@ -13,10 +13,11 @@
 //!   at integer positions, never with numeric ticks (drawn in [`super::plot`]);
 //! * print size: a figure is laid out to be printed one column wide, [`PRINT_WIDTH_IN`] = 3.5 in
 //!   (88.9 mm, a two-column journal), and no text is smaller than [`MIN_TEXT_PT`] = 8 pt there
-//!   ([`px_per_pt`]: a 900 px figure is 257 px/in, so 8 pt is 28.6 px);
+//!   ([`min_text_px`]: a 900 px figure is 257 px/in, so 8 pt is 28.6 px);
 //! * headroom: every mark (bar end, dot with its radius, trace) lies at least [`HEADROOM_PX`]
 //!   inside the frame: the y range, and the x range of scatter and bar panels, is widened by
-//!   [`padded_range`] so no bar or point runs into the frame or sits on its edge;
+//!   [`padded_range`] so no bar or point runs into the frame or sits on its edge; a scatter's
+//!   outermost dots keep [`SCATTER_X_PAD_FRAC`] of the width from the side frames;
 //! * markers stay visible: a sparse scatter is drawn with large opaque dots, a dense one with
 //!   translucent dots so overlaps show ([`dot_style`]);
 //! * units are typeset: "ug" prints as "µg", "deg C" as "°C", "deg/h" as "°/h" ([`typeset`];
@@ -25,8 +26,10 @@
 //! Overlapping traces are told apart by the line kinds of [`super::plot::Kind`] (dashed,
 //! translucent envelope fills, dots with transparency), by side-by-side error bars, and by
 //! draw order: in a panel of several envelopes the first draws its mean line 3 px wide and each
-//! later one 1 px wide on top, so where two cases coincide (Figure 2's east and north axes,
-//! which δβ hardly moves) the second case's line runs inside the first's and both show.
+//! later one 1 px wide on top, so where two cases nearly coincide the second case's line runs
+//! inside the first's. Where they coincide at print size (Figure 2's east and north axes,
+//! which δβ hardly moves) a difference panel (uncompensated − compensated per axis, on its own
+//! scale) shows what draw order cannot ([`super::paper::paired_figures`]).
 
 /// The width a figure is printed at: one column of a two-column journal, 3.5 in (88.9 mm).
 pub const PRINT_WIDTH_IN: f64 = 3.5;
@@ -36,10 +39,25 @@ pub const MIN_TEXT_PT: f64 = 8.0;
 /// [`PRINT_WIDTH_IN`] for a 900 px figure).
 pub const HEADROOM_PX: i32 = 14;
 
+/// The least space between a scatter's outermost dots and the left and right frame, as a
+/// share of the plot width (5 %: about 40 px, 4 mm printed, for a 900 px figure), so clusters
+/// at a few x values (chamber temperatures) stand clear of the frame, not on its edge.
+pub const SCATTER_X_PAD_FRAC: f64 = 0.05;
+
 /// Pixels per printed point of a figure `width_px` wide printed at [`PRINT_WIDTH_IN`]
 /// (72 pt to the inch): 900 px → 3.57 px/pt.
 pub fn px_per_pt(width_px: u32) -> f64 {
     width_px as f64 / (PRINT_WIDTH_IN * 72.0)
+}
+
+/// The smallest font size, px (the em: the SVG's `font-size`), that keeps text at least
+/// [`MIN_TEXT_PT`] when a figure `width_px` wide is printed [`PRINT_WIDTH_IN`] wide.
+///
+/// A point is 1/72 in, so 8 pt is 8/72 in = 0.1111 in (2.82 mm). Printed 3.5 in wide, the
+/// figure has `width_px` / 3.5 px per inch; the text needs 8/72 × `width_px` / 3.5 px:
+/// for 900 px that is 0.1111 × 257.14 = 28.57 px (for 88 mm, 3.46 in, it would be 28.9 px).
+pub fn min_text_px(width_px: u32) -> f64 {
+    MIN_TEXT_PT / 72.0 * (width_px as f64 / PRINT_WIDTH_IN)
 }
 
 /// The printed size, pt, of text whose em is `em_px` px in a figure `width_px` wide.
@@ -250,11 +268,16 @@ pub fn place_legend(
 }
 
 /// A tick label for `v` on an axis spanning `span`: enough decimals for the tick step, no
-/// "-0"/"-0.0", scientific notation for very small or large magnitudes.
+/// "-0"/"-0.0", scientific notation for very small steps or large magnitudes. The notation is
+/// chosen from the axis (its step and span), not from each value, so one axis never mixes
+/// "5.00e-4" with "-0.0010"; a zero in scientific notation reads "0".
 pub fn tick_label(v: f64, span: f64) -> String {
     let step = (span.abs() / 5.0).max(f64::MIN_POSITIVE);
-    let mag = v.abs().max(step);
-    let s = if !(1e-3..1e6).contains(&mag) {
+    let mag = v.abs().max(span.abs());
+    let s = if step < 1e-4 || mag >= 1e6 {
+        if v.abs() < 1e-9 * step {
+            return "0".to_string();
+        }
         format!("{v:.2e}")
     } else {
         let decimals = (-(step.log10().floor()) as i32).clamp(0, 6) as usize;
@@ -297,6 +320,12 @@ mod tests {
         assert_eq!(tick_label(-0.25, 1.0), "-0.2");
         assert_eq!(tick_label(3.0, 40.0), "3");
         assert_eq!(tick_label(2.5e-6, 1e-5), "2.50e-6");
+        assert_eq!(tick_label(0.0, 1e-5), "0");
+        // One notation per axis: a ±0.001 axis reads 0.0005, 0, -0.0010 alike.
+        assert_eq!(tick_label(5e-4, 0.002), "0.0005");
+        assert_eq!(tick_label(0.0, 0.002), "0.0000");
+        assert_eq!(tick_label(-1e-3, 0.002), "-0.0010");
+        assert_eq!(tick_label(2.0e6, 4.0e6), "2.00e6");
     }
 
     #[test]
@@ -304,6 +333,11 @@ mod tests {
         // 3.5 in at 72 pt/in is 252 pt across 900 px.
         assert!((px_per_pt(900) - 900.0 / 252.0).abs() < 1e-12);
         assert!((MIN_TEXT_PT * px_per_pt(900) - 28.571_428_571).abs() < 1e-6);
+        // The same minimum by the arithmetic of min_text_px's doc: 8/72 in at 900/3.5 px/in.
+        assert!((min_text_px(900) - 8.0 / 72.0 * 900.0 / 3.5).abs() < 1e-12);
+        assert!((text_pt(min_text_px(900), 900) - MIN_TEXT_PT).abs() < 1e-12);
+        // Half the pixels, half the minimum.
+        assert!((min_text_px(450) - 0.5 * min_text_px(900)).abs() < 1e-12);
         // plotters' old 12-unit text: an SVG em of 12 / 1.24 = 9.68 px is 2.7 pt.
         assert!((text_pt(12.0 / 1.24, 900) - 2.71).abs() < 0.01);
     }

@@ -1,47 +1,70 @@
 //! The figure rules (`figures::rules`) on real results, checked on the geometry the plotting
 //! code placed and on the SVG text it wrote (not by eye): `bias_by_position` has a categorical
 //! position axis and no legend box covers a plotted mark; the week-long paper figures shrink at
-//! least 5× as envelopes, and each envelope's extremes are the series' extremes; print size:
-//! every text of `bias_by_position`, `residual_vs_temperature`, Figure 2 and `sea_end_error` is
-//! at least 8 pt when the figure is printed 3.5 in (one journal column) wide, every mark keeps
-//! `HEADROOM_PX` from the frame, units are typeset ("µg", "°C") and the PNG font has their
-//! glyphs.
+//! least 5× as envelopes, and each envelope's extremes are the series' extremes; Figure 2 has a
+//! difference panel (uncompensated − compensated per axis); print size: every text of
+//! `bias_by_position`, `residual_vs_temperature`, Figures 2-3 and `sea_end_error` has a font
+//! size of at least `rules::min_text_px` of the figure's width (8 pt when printed 3.5 in, one
+//! journal column, wide); headroom: the data range of every panel, error-bar ends included,
+//! computed here from the data, lies `HEADROOM_PX` inside the padded axis range the panel was
+//! drawn with, and every drawn mark keeps `HEADROOM_PX` from the frame; units are typeset
+//! ("µg", "°C") and the PNG font has their glyphs.
 
 use std::path::{Path, PathBuf};
 
 use rins_scenarios::commands::measure::{MeasureArgs, run as measure};
 use rins_scenarios::figures::paper::paired_figures;
-use rins_scenarios::figures::plot::{BAR_DOT_PX, Kind, PanelGeometry};
-use rins_scenarios::figures::rules::{HEADROOM_PX, MIN_TEXT_PT, Rect, text_pt};
+use rins_scenarios::figures::plot::{BAR_DOT_PX, Kind, Panel, PanelGeometry};
+use rins_scenarios::figures::rules::{
+    HEADROOM_PX, MIN_TEXT_PT, Rect, SCATTER_X_PAD_FRAC, min_text_px, text_pt,
+};
 
-/// Every `font-size` of an SVG's text, in pt when the figure is printed at
-/// `rules::PRINT_WIDTH_IN` (the SVG's width attribute is its pixel width), with the text.
-fn text_sizes_pt(svg: &str) -> Vec<(f64, String)> {
+/// The SVG's pixel width (its `width` attribute) and every `font-size` of its text, px, with
+/// the text.
+fn font_sizes_px(svg: &str) -> (u32, Vec<(f64, String)>) {
     let num = |t: &str, name: &str| -> Option<f64> {
         let i = t.find(&format!(" {name}=\""))? + name.len() + 3;
         t[i..i + t[i..].find('"')?].parse::<f64>().ok()
     };
     let width = num(svg, "width").expect("svg width") as u32;
-    svg.split("<text")
+    let sizes = svg
+        .split("<text")
         .skip(1)
         .filter_map(|t| {
             let head = &t[..t.find('>')?];
             let body = &t[t.find('>')? + 1..];
             let text = body[..body.find("</text>")?].trim().to_string();
-            Some((text_pt(num(head, "font-size")?, width), text))
+            Some((num(head, "font-size")?, text))
         })
+        .collect();
+    (width, sizes)
+}
+
+/// Every `font-size` of an SVG's text, in pt when the figure is printed at
+/// `rules::PRINT_WIDTH_IN`, with the text.
+fn text_sizes_pt(svg: &str) -> Vec<(f64, String)> {
+    let (width, sizes) = font_sizes_px(svg);
+    sizes
+        .into_iter()
+        .map(|(px, t)| (text_pt(px, width), t))
         .collect()
 }
 
-/// No text of `svg` (figure `name`) is smaller than 8 pt at one column width; some text is
-/// there to check.
+/// No text of `svg` (figure `name`) has a font size below the minimum for the figure's pixel
+/// width (`min_text_px`: 8 pt at one column width); some text is there to check.
 fn text_at_least_8_pt(name: &str, svg: &str) {
-    let sizes = text_sizes_pt(svg);
+    let (width, sizes) = font_sizes_px(svg);
     assert!(sizes.len() > 5, "{name}: {} texts", sizes.len());
-    for (pt, text) in sizes {
+    let min = min_text_px(width);
+    // The reference by hand for the usual width: 8/72 in at 900 px / 3.5 in.
+    if width == 900 {
+        assert!((min - 28.571).abs() < 1e-3, "{min}");
+    }
+    for (px, text) in sizes {
         assert!(
-            pt >= MIN_TEXT_PT - 1e-9,
-            "{name}: \"{text}\" is {pt:.2} pt at 3.5 in wide (minimum {MIN_TEXT_PT})"
+            px >= min - 1e-6,
+            "{name}: \"{text}\" is {px:.2} px ({:.2} pt at 3.5 in wide), below {min:.2} px ({MIN_TEXT_PT} pt) for {width} px",
+            text_pt(px, width)
         );
     }
 }
@@ -65,6 +88,60 @@ fn marks_keep_headroom(name: &str, g: &[PanelGeometry], x_also: bool) {
             );
         }
     }
+}
+
+/// The x and y range of a panel's data: every finite point of every line, so the ends of an
+/// error bar or interval, not only its estimate.
+fn data_range(p: &Panel) -> ((f64, f64), (f64, f64)) {
+    let mut r = ((f64::MAX, f64::MIN), (f64::MAX, f64::MIN));
+    for &(x, y) in p.lines.iter().flat_map(|l| &l.points) {
+        if x.is_finite() && y.is_finite() {
+            r = ((r.0.0.min(x), r.0.1.max(x)), (r.1.0.min(y), r.1.1.max(y)));
+        }
+    }
+    r
+}
+
+/// Headroom in data terms: each panel's data y range (`data[k].1`) lies inside the y axis
+/// range it was drawn with, each end at least `HEADROOM_PX` px (less one of rounding) inside
+/// at the panel's plot height; with `x_px` the x range too, each end at least that many px
+/// inside at the plot width. Returns the smallest margins found, px (y, x).
+fn data_inside_padded_axes(
+    name: &str,
+    data: &[((f64, f64), (f64, f64))],
+    g: &[PanelGeometry],
+    x_px: Option<f64>,
+) -> (f64, f64) {
+    assert_eq!(data.len(), g.len(), "{name}: one data range per panel");
+    let (mut min_y, mut min_x) = (f64::MAX, f64::MAX);
+    for (k, (d, p)) in data.iter().zip(g).enumerate() {
+        let ((ax0, ax1), (ay0, ay1)) = p.axes;
+        let (w, h) = (
+            (p.plot.x1 - p.plot.x0) as f64,
+            (p.plot.y1 - p.plot.y0) as f64,
+        );
+        let below = (d.1.0 - ay0) / (ay1 - ay0) * h;
+        let above = (ay1 - d.1.1) / (ay1 - ay0) * h;
+        assert!(
+            below >= (HEADROOM_PX - 1) as f64 && above >= (HEADROOM_PX - 1) as f64,
+            "{name} panel {k}: data y {:?} in the axis {:?}: {below:.1} px below, {above:.1} px above (at least {HEADROOM_PX})",
+            d.1,
+            (ay0, ay1)
+        );
+        min_y = min_y.min(below).min(above);
+        if let Some(need) = x_px {
+            let left = (d.0.0 - ax0) / (ax1 - ax0) * w;
+            let right = (ax1 - d.0.1) / (ax1 - ax0) * w;
+            assert!(
+                left >= need - 1.0 && right >= need - 1.0,
+                "{name} panel {k}: data x {:?} in the axis {:?}: {left:.1} px left, {right:.1} px right (at least {need:.1})",
+                d.0,
+                (ax0, ax1)
+            );
+            min_x = min_x.min(left).min(right);
+        }
+    }
+    (min_y, min_x)
 }
 
 fn docs(p: &str) -> PathBuf {
@@ -118,6 +195,43 @@ fn bias_by_position_is_categorical_and_its_legends_cover_no_point() {
     text_at_least_8_pt("bias_by_position", &svg);
     text_at_least_8_pt("residual_vs_temperature", &rvt);
     marks_keep_headroom("bias_by_position", &g, true);
+    // The bars' ends computed here from the cells, as the figure's caption defines them: per
+    // channel and position the inverse-variance mean residual ± 1.96 / sqrt(Σ 1/σ²), before at
+    // x = k - 0.15 and after the fitted effects at k + 0.15.
+    let ranges: Vec<_> = rins_mvm::CHANNELS
+        .iter()
+        .map(|ch| {
+            let mut r = ((f64::MAX, f64::MIN), (f64::MAX, f64::MIN));
+            for (report, shift) in [(&an.comparison, -0.15), (an.after().unwrap(), 0.15)] {
+                for (k, pos) in rins_scenarios::diagnose::POSITIONS.iter().enumerate() {
+                    let cells: Vec<_> = report
+                        .cells
+                        .iter()
+                        .filter(|c| c.channel == *ch && c.position == *pos)
+                        .collect();
+                    if cells.is_empty() {
+                        continue;
+                    }
+                    let w: f64 = cells.iter().map(|c| c.noise_floor.powi(-2)).sum();
+                    let m: f64 = cells
+                        .iter()
+                        .map(|c| c.residual * c.noise_floor.powi(-2))
+                        .sum::<f64>()
+                        / w;
+                    let e = 1.96 / w.sqrt();
+                    let x = k as f64 + shift;
+                    r = (
+                        (r.0.0.min(x), r.0.1.max(x)),
+                        (r.1.0.min(m - e), r.1.1.max(m + e)),
+                    );
+                }
+            }
+            r
+        })
+        .collect();
+    let (margin, _) =
+        data_inside_padded_axes("bias_by_position", &ranges, &g, Some(HEADROOM_PX as f64));
+    eprintln!("bias_by_position: smallest margin of a bar end to the frame {margin:.1} px");
     for (name, svg) in [
         ("bias_by_position", &svg),
         ("residual_vs_temperature", &rvt),
@@ -243,7 +357,51 @@ fn week_long_figures_shrink_fivefold_as_envelopes_with_the_same_extremes() {
                 .filter(|t| t.contains(rgb) && t.contains(&format!("stroke-width=\"{w}\"")))
                 .count()
         };
-        let n = e.panels.len();
+        let data: Vec<_> = e.panels.iter().map(data_range).collect();
+        data_inside_padded_axes(&e.stem, &data, &g, None);
+        // The panels of the two cases (the difference panel has neither).
+        let n = e
+            .panels
+            .iter()
+            .filter(|p| p.lines.iter().any(|l| l.label == "uncompensated"))
+            .count();
+        assert_eq!(n, 3, "{}: three axes or three position errors", e.stem);
+        if e.stem.starts_with("fig2") {
+            // Where the cases coincide (east, north) the difference panel shows what δβ
+            // changes: per axis uncompensated − compensated at the same record, recomputed
+            // here from the records, on a scale of its own.
+            let series = if e.stem.ends_with("noise_free") {
+                &r.noise_free_series
+            } else {
+                &r.first_seed
+            };
+            let diff = e.panels.last().unwrap();
+            assert!(diff.title.contains("Difference"), "{}", diff.title);
+            let labels: Vec<&str> = diff.lines.iter().map(|l| l.label).collect();
+            assert_eq!(labels, ["East", "North", "Up"]);
+            for (k, line) in diff.lines.iter().enumerate() {
+                assert_eq!(line.points.len(), series.uncompensated.len());
+                for i in [0, line.points.len() / 3, line.points.len() - 1] {
+                    let (u, c) = (&series.uncompensated[i], &series.compensated[i]);
+                    let want = u.att_err_rad[k].to_degrees() - c.att_err_rad[k].to_degrees();
+                    assert_eq!(line.points[i], (u.t_s / 3600.0, want), "{k} {i}");
+                }
+            }
+            let span = |p: &Panel| {
+                let ((_, _), (lo, hi)) = data_range(p);
+                hi - lo
+            };
+            let diff_axis = g.last().unwrap().axes.1;
+            let case_axis = g[0].axes.1;
+            eprintln!(
+                "{}: east error spans {:.4} deg, the difference panel {:.4} deg (axis {:.4}, east axis {:.4})",
+                e.stem,
+                span(&e.panels[0]),
+                span(diff),
+                diff_axis.1 - diff_axis.0,
+                case_axis.1 - case_axis.0
+            );
+        }
         assert!(
             lines("#C82828", "3") >= n && lines("#1E5AC8", "1") >= n,
             "{}: wide uncompensated {}, narrow compensated {} mean lines for {n} panels",
@@ -349,6 +507,21 @@ fn sea_end_error_is_print_sized_with_headroom_and_visible_dots() {
         rins_scenarios::figures::plot::render_svg(END_ERROR_TITLE, END_ERROR_X, &panels).unwrap();
     text_at_least_8_pt("sea_end_error", &svg);
     marks_keep_headroom("sea_end_error", &g, true);
+    // The bands' 5 % and 95 % ends, from the data above (not from what was drawn).
+    let ends: Vec<f64> = data
+        .iter()
+        .flat_map(|d| [&d.uncompensated_nm, &d.compensated_nm])
+        .flat_map(|b| [b.p05, b.p95])
+        .collect();
+    let ranges: Vec<_> = panels.iter().map(data_range).collect();
+    let lo = ends.iter().copied().fold(f64::MAX, f64::min);
+    let hi = ends.iter().copied().fold(f64::MIN, f64::max);
+    assert_eq!(
+        ranges[0].1,
+        (lo, hi),
+        "the band panel's data are the band ends"
+    );
+    data_inside_padded_axes("sea_end_error", &ranges, &g, Some(HEADROOM_PX as f64));
     no_mark_under_legend(&g);
     // The noise-free dots: opaque, radius at least 8 px (1 mm at 3.5 in); the old ones were
     // 2 px at 45 % opacity.
@@ -397,7 +570,13 @@ fn scatter_clusters_keep_off_the_frame() {
         ],
     );
     let (svg, g) = render_svg("Residual vs temperature", "temperature (deg C)", &[panel]).unwrap();
+    // The data by construction: x from 23.00 to 63.06 °C, y from -5 to 5 (all 11 residues).
     marks_keep_headroom("scatter", &g, true);
+    // The clusters at 23 and 63 °C stand 5 % of the plot width off the side frames.
+    let w = (g[0].plot.x1 - g[0].plot.x0) as f64;
+    let data = [((23.0, 63.06), (-5.0, 5.0))];
+    let (_, x_margin) = data_inside_padded_axes("scatter", &data, &g, Some(SCATTER_X_PAD_FRAC * w));
+    assert!(x_margin >= SCATTER_X_PAD_FRAC * w - 1.0, "{x_margin} px");
     text_at_least_8_pt("scatter", &svg);
     assert!(svg.contains("temperature (°C)") && svg.contains("residual (°/h)"));
 }
