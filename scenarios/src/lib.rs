@@ -17,6 +17,7 @@ pub mod report;
 pub mod runner;
 pub mod sinks;
 pub mod spans;
+pub mod sweep;
 
 /// The plotting helpers under their former path (`crate::diagnose` draws with them).
 pub use figures::plot as plots;

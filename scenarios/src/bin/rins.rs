@@ -3,7 +3,8 @@
 
 use clap::{Parser, Subcommand};
 use rins_scenarios::commands::{
-    self, calibrate, campaign, compare, diagnose, fmu, measure, paper, run, scenarios, verify,
+    self, calibrate, campaign, compare, diagnose, fmu, measure, paper, run, scenarios, sweep,
+    verify,
 };
 #[cfg(feature = "transport")]
 use rins_scenarios::commands::{nav, serve};
@@ -55,6 +56,9 @@ enum Command {
     Nav(nav::NavArgs),
     /// List the built-in scenarios, or print one.
     Scenarios(scenarios::ScenariosArgs),
+    /// Sweep scenario keys over a list or a grid, each point x seeds through the Monte Carlo
+    /// engine (uncompensated and compensated): table, CSV/Parquet, figures, report (docs/sweeps.md).
+    Sweep(sweep::SweepArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -74,6 +78,7 @@ fn main() -> std::process::ExitCode {
         #[cfg(feature = "transport")]
         Command::Nav(a) => nav::run(&a),
         Command::Scenarios(a) => scenarios::run(&a),
+        Command::Sweep(a) => sweep::run(&a),
     })
 }
 

@@ -16,6 +16,7 @@ pub mod scenarios;
 pub mod sea;
 #[cfg(feature = "transport")]
 pub mod serve;
+pub mod sweep;
 pub mod table4;
 pub mod table5;
 pub mod verify;

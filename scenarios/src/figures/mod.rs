@@ -12,5 +12,6 @@ pub mod plot;
 pub mod rerun;
 pub mod rules;
 pub mod run;
+pub mod sweep;
 
 pub use run::RunFigures;

@@ -8,6 +8,7 @@
 //! (`data-value`), so a test can check the page against the JSON (tests/browser/).
 
 pub mod results;
+pub mod sweep;
 
 use std::fmt::Write;
 use std::path::{Path, PathBuf};

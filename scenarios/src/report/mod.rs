@@ -7,6 +7,7 @@
 pub mod calibration_text;
 pub mod diagnosis_text;
 pub mod sea_text;
+pub mod sweep_text;
 pub mod table4_text;
 
 pub use calibration_text::CalibrationRun;

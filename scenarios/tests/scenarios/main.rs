@@ -19,5 +19,6 @@ mod scenario_errors;
 mod scenario_files;
 mod scenario_fuzz;
 mod sea;
+mod sweep;
 #[cfg(feature = "transport")]
 mod transport;
