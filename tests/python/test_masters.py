@@ -282,6 +282,16 @@ def master(name, system, steps, record=True, outputs=OUTPUTS, **extra):
     return rows, res["wall_s"]
 
 
+def master_fails(name, system, steps, **extra):
+    """Runs one job that must fail; returns the worker's exit code and output."""
+    job = dict(master=name, system=system, steps=steps, record=True, outputs=OUTPUTS, **extra)
+    path = os.path.join(WORK, f"job-{name}-{len(os.listdir(WORK))}.json")
+    with open(path, "w") as f:
+        json.dump(job, f)
+    r = subprocess.run([sys.executable, __file__, "--worker", path], capture_output=True, text=True)
+    return r.returncode, r.stdout + r.stderr, os.path.exists(path + ".out")
+
+
 def osp_dir():
     """The shipped OSP file beside the built FMUs (it names them relative to itself)."""
     d = os.path.join(WORK, "osp")
@@ -398,6 +408,27 @@ def test_a_parameter_set_reaches_the_plant_in_both_masters():
     p, _ = master("ecos", ssp(2, "paper-table3"), n, parameter_set="paper-table3")
     g, _ = master("ecos", ssp(2, "nav-grade-full"), n, parameter_set="nav-grade-full")
     assert not np.array_equal(p[:, :3], g[:, :3])
+
+
+def test_a_refused_parameter_never_runs_with_the_default_value():
+    """A value out of its documented range in the bound parameter set (the gyro z bias at
+    1000 °/h, range [-100, 100]): the FMU refuses the set, refuses to leave initialization
+    (FMI 2 as FMI 3) and refuses every step, so no master runs on with the default value.
+    libcosim stops at initialization (the job fails before its first step). ecos 0.7.2 ignores
+    the statuses and steps on (its init returns true): every increment it reads is NaN, never
+    a number it could take for data. The same set in range runs (the control: the failure is
+    the value's)."""
+    bad = {"sensor.gyro.bias.dph[2]": 1000.0}
+    good = {"sensor.gyro.bias.dph[2]": 99.0}
+    code, out, wrote = master_fails("libcosim", ssp(2, edit=bad), 10)
+    assert code != 0 and not wrote, ("libcosim", code, out[-2000:])
+    rows, _ = master("libcosim", ssp(2, edit=good), 10)
+    assert rows.shape[0] == 10 and np.isfinite(rows).all(), rows
+    for version in (2, 3):
+        rows, _ = master("ecos", ssp(version, edit=bad), 10, parameter_set="paper-table3")
+        assert rows.shape[0] == 10 and np.isnan(rows[:, :3]).all(), (version, rows[:, :3])
+        rows, _ = master("ecos", ssp(version, edit=good), 10, parameter_set="paper-table3")
+        assert np.isfinite(rows).all(), (version, rows)
 
 
 def test_chamber_inputs_before_initialization_and_at_100_s():

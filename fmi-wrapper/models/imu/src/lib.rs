@@ -282,7 +282,10 @@ impl Model for RinsImu {
 
     fn get(&self, slot: usize) -> Value {
         match (&table().roles[slot], &self.plant) {
-            (Role::Output(k, _), Some(_)) if self.step_refused && outputs()[*k].per_step => {
+            // After a refused step, also when the plant was never built (initialization
+            // failed and a master stepped on regardless): per-step sums read NaN, not the
+            // initial zeros a master ignoring the status would take as a real step.
+            (Role::Output(k, _), _) if self.step_refused && outputs()[*k].per_step => {
                 Value::Real(f64::NAN)
             }
             (Role::Output(k, i), Some(p)) => (outputs()[*k].read)(&self.view(p), *i),

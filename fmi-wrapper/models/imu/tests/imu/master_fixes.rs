@@ -464,9 +464,16 @@ const BAD_BIAS: Op = Op::Set("sensor.gyro.bias.dph[0]", 1e6, 3);
 
 const FAULTS: &[Fault] = &[
     Fault {
-        name: "refused parameter set, master carries on",
+        name: "refused parameter set, master carries on: every step refused, increments NaN",
         version: FmiVersion::V2,
-        ops: &[BAD_BIAS, Op::Enter(0), Op::Exit(3), Op::Step(0.0, 3)],
+        ops: &[
+            BAD_BIAS,
+            Op::Enter(0),
+            Op::Exit(3),
+            Op::Step(0.0, 3),
+            Op::Nan(INCREMENTS, true),
+            Op::Nan(STATES, false),
+        ],
         log: &[
             "fmi2SetReal: sensor.gyro.bias.dph[0] = 1000000 is outside its range",
             "fmi2ExitInitializationMode: cannot leave initialization mode: an earlier call setting a value was refused (fmi2SetReal: sensor.gyro.bias.dph[0] = 1000000 is outside its range",
@@ -475,9 +482,16 @@ const FAULTS: &[Fault] = &[
         ],
     },
     Fault {
-        name: "refused parameter set, master carries on",
+        name: "refused parameter set, master carries on: every step refused, increments NaN",
         version: FmiVersion::V3,
-        ops: &[BAD_BIAS, Op::Enter(3), Op::Exit(3), Op::Step(0.0, 3)],
+        ops: &[
+            BAD_BIAS,
+            Op::Enter(3),
+            Op::Exit(3),
+            Op::Step(0.0, 3),
+            Op::Nan(INCREMENTS, true),
+            Op::Nan(STATES, false),
+        ],
         log: &[
             "fmi3SetFloat64: sensor.gyro.bias.dph[0] = 1000000 is outside its range",
             "fmi3EnterInitializationMode: entering initialization mode is refused: the instance is in the error state after an earlier call failed",
