@@ -221,6 +221,20 @@ def main():
         assert len(rows6[f"/diagnosis/residual/{ch}"]) == windows, (ch, len(rows6[f"/diagnosis/residual/{ch}"]), windows)
         assert len(rows6[f"/diagnosis/residual/{ch}"][0][2]) == 3, "residual, fitted, up_z"
     assert json.loads(dg)["ranking"], "diagnose still prints its report"
+    # --iterate records the error falling: per channel one row per step, residual/floor as in
+    # the history JSON the same run prints.
+    it = json.loads(run(["diagnose", "--model", "docs/examples/diagnosis-model.toml", "--data", unit, "--iterate",
+                         "--out", f"{WORK}/rr-iterated.toml", "--json", "--rerun", f"save:{WORK}/rr-iter.rrd"], cwd=ROOT).stdout)
+    verify(f"{WORK}/rr-iter.rrd")
+    rows_it, _ = read_rrd(f"{WORK}/rr-iter.rrd")
+    views = check_blueprint(f"{WORK}/rr-iter.rrd", set(rows_it), plant=False)
+    assert ("TimeSeries", "/diagnosis/iteration/gyro_x") in views, views
+    assert len(it["steps"]) >= 2, "the dataset needs at least one fit"
+    for c, ch in enumerate(("gyro_x", "gyro_y", "gyro_z", "accel_x", "accel_y", "accel_z")):
+        got = rows_it[f"/diagnosis/iteration/{ch}"]
+        assert len(got) == len(it["steps"]), (ch, len(got), len(it["steps"]))
+        for st, row in zip(it["steps"], got):
+            assert row[2][0] == st["levels"][c]["ratio"], (ch, st["step"], row, st["levels"][c])
     session = f"rr{os.getpid()}"
     plant = subprocess.Popen([RINS, "serve", "builtin:paper-16pos-week", "--session", session, "--duration-s", "600",
                               "--rerun", f"save:{WORK}/rr-serve.rrd", "--rerun-bucket-s", "1"], stderr=subprocess.PIPE, text=True)

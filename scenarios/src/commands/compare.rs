@@ -88,6 +88,7 @@ pub fn run(a: &CompareArgs) -> Result<()> {
         &a.data.viz,
         &an,
         None,
+        None,
         &h.source,
         &serde_json::to_string_pretty(report)?,
     )?;
@@ -116,16 +117,17 @@ pub fn record_analysis(
     viz: &RerunArgs,
     an: &Analysis,
     pred: Option<&[Vec<f64>]>,
+    history: Option<&rins_mvm::IterationReport>,
     source: &str,
     text: &str,
 ) -> Result<()> {
     let target = viz.target()?;
     #[cfg(feature = "rerun")]
     if let Some(t) = &target {
-        crate::figures::rerun::record_diagnosis(t, an, pred, source, text)?;
+        crate::figures::rerun::record_diagnosis(t, an, pred, history, source, text)?;
         eprintln!("rerun: recorded -> {}", viz.dest());
     }
     #[cfg(not(feature = "rerun"))]
-    let _ = (target, an, pred, source, text);
+    let _ = (target, an, pred, history, source, text);
     Ok(())
 }

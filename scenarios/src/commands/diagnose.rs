@@ -111,6 +111,7 @@ pub fn run(a: &DiagnoseArgs) -> Result<()> {
             &a.data.viz,
             &an,
             an.predictions(),
+            None,
             &h.source,
             &serde_json::to_string_pretty(report)?,
         )?;
@@ -181,6 +182,7 @@ fn iterate(
             &a.data.viz,
             &it.last,
             it.last.predictions(),
+            Some(&it.report),
             &h.source,
             &json,
         )?;

@@ -201,11 +201,15 @@ pub fn record_paired(
 
 /// Records a model-vs-measurement analysis: per channel the window residual (measured −
 /// model, as a rate) with the fitted effects' prediction, and static navigation on the
-/// measured vs the model's increments, with the report text.
+/// measured vs the model's increments, with the report text. With `history` (`--iterate`)
+/// the analysis is the final model's, and the error falling is recorded too: per channel the
+/// residual over the noise floor at each step (`diagnosis/iteration/CHANNEL`, one row per
+/// step; the time axis counts steps, 1 s each) beside the floor bound.
 pub fn record_diagnosis(
     target: &Target,
     an: &rins_mvm::Analysis,
     pred: Option<&[Vec<f64>]>,
+    history: Option<&rins_mvm::IterationReport>,
     source: &str,
     text: &str,
 ) -> Result<()> {
@@ -269,7 +273,39 @@ pub fn record_diagnosis(
             "# {source}\n\nWindows are the diagnosis windows (one row each, time = window mid time).\n\n```text\n{text}\n```\n"
         ),
     )?;
+    let mut iteration_roots = Vec::new();
+    if let Some(hist) = history {
+        // The ratio at which `--iterate` calls a channel at its floor, drawn beside it.
+        let bound = rins_mvm::IterateOptions::default().floor_ratio;
+        for (c, ch) in CHANNELS.iter().enumerate() {
+            let rows = hist.steps.iter().map(|st| {
+                let ratio = st.levels.get(c).map_or(f64::NAN, |l| l.ratio);
+                (st.step as u64, st.step as f64, vec![ratio, bound])
+            });
+            let path = format!("diagnosis/iteration/{ch}");
+            rins_rerun::series::log_rows(
+                rec,
+                &path,
+                &[
+                    "residual RMS / noise floor".into(),
+                    "at the floor below".into(),
+                ],
+                &[[31, 119, 180], [120, 120, 120]],
+                rows,
+            )?;
+            iteration_roots.push(format!("/{path}"));
+        }
+    }
     let mut extra = vec![("Residuals".to_string(), roots)];
+    if !iteration_roots.is_empty() {
+        extra.insert(
+            0,
+            (
+                "Iteration: residual / floor per step".to_string(),
+                iteration_roots,
+            ),
+        );
+    }
     if !nav_roots.is_empty() {
         nav_roots.truncate(8);
         extra.push(("Navigation: measured vs model".to_string(), nav_roots));
