@@ -257,6 +257,15 @@ def tail(text: str, n: int = 25) -> str:
     return "\n".join("    " + l for l in lines[-n:])
 
 
+NUMBER = re.compile(r"[-+−]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?")
+
+
+def skeleton(s: str) -> str:
+    """A line with its numbers replaced by '#' and its white space normalised: two lines
+    with the same skeleton say the same thing with other figures."""
+    return normalise(NUMBER.sub("#", s))
+
+
 def normalise(s: str) -> str:
     return re.sub(r"\s+", " ", s).strip()
 
@@ -273,8 +282,12 @@ def shows(have: str, piece: str) -> bool:
 
 
 class Runner:
-    def __init__(self, bindir: Path, python: str, keep: bool, keep_going: bool = False):
+    def __init__(self, bindir: Path, python: str, keep: bool, keep_going: bool = False,
+                 update: bool = False):
         self.keep_going = keep_going
+        self.update = update
+        # (document, 0-based line, old text, new text) of the output lines --update rewrites.
+        self.updates: list[tuple[str, int, str, str]] = []
         self.bindir = bindir
         self.python = python
         self.keep = keep
@@ -410,12 +423,40 @@ class Runner:
         missing = [l for l in b.text.splitlines()
                    if any(p and not shows(have, p)
                           for p in (normalise(x) for x in re.split(r"\.\.\.|…", l)))]
+        updated = 0
+        if missing and self.update:
+            before = len(self.updates)
+            missing = self.propose_updates(b, missing, output)
+            updated = len(self.updates) - before
         if missing:
             self.fail(b, f"output of the block at line {cmd_block.line} no longer shows:\n"
                          + "\n".join(f"    {l}" for l in missing)
                          + f"\n  its output (tail):\n{tail(output, 15)}")
         else:
-            b.status = f"checked: {sum(1 for l in b.text.splitlines() if l.strip())} line(s) against line {cmd_block.line}"
+            b.status = f"checked: {sum(1 for l in b.text.splitlines() if l.strip())} line(s) against line {cmd_block.line}" + (
+                f", {updated} updated" if updated else "")
+
+    def propose_updates(self, b: Block, missing: list[str], output: str) -> list[str]:
+        """With --update: each missing line whose text, numbers aside, is one output line's
+        becomes that line (kept in `self.updates` for the document); returns the lines that
+        have no such counterpart (changed wording, or an elided line), which stay failures."""
+        lines = b.text.splitlines()
+        outs = output.splitlines()
+        left = []
+        for line in missing:
+            if re.search(r"\.\.\.|…", line):
+                left.append(line)
+                continue
+            want = skeleton(line)
+            match = [o for o in outs if skeleton(o) == want]
+            if len(match) != 1:
+                left.append(line)
+                continue
+            # Keep the document's indentation of the line.
+            indent = line[: len(line) - len(line.lstrip())]
+            new = indent + match[0].strip()
+            self.updates.append((b.doc, b.line + lines.index(line), line, new))
+        return left
 
     def fail(self, b: Block, message: str, line: int | None = None) -> None:
         b.status = "FAILED"
@@ -519,9 +560,22 @@ def self_test(bindir: Path) -> int:
             bad.append(f"block at line {line}: no failure message holding {text!r}")
     if len(blocks) != len(SELF_TEST_EXPECT):
         bad.append(f"{len(blocks)} blocks extracted, expected {len(SELF_TEST_EXPECT)}")
+    # --update: the stale "got 9" line (block at line 25) is rewritten from the output ("got
+    # 95"), and nothing else is touched.
+    with tempfile.TemporaryDirectory() as d:
+        doc = Path(d) / "self-test.md"
+        doc.write_text(SELF_TEST_DOC)
+        runner = Runner(bindir, sys.executable, keep=False, keep_going=True, update=True)
+        with contextlib.redirect_stderr(io.StringIO()):
+            runner.run_doc(doc, extract(doc))
+    want = [(doc.name, 25, "line 2, column 11: site.lat_deg: expected a number in [-89, 89], got 9",
+             "line 2, column 11: site.lat_deg: expected a number in [-89, 89], got 95")]
+    got = [(Path(u[0]).name, *u[1:]) for u in runner.updates]
+    if got != want:
+        bad.append(f"--update proposed {got}, expected {want}")
     for m in bad:
         print(f"doc-test self-test: {m}", file=sys.stderr)
-    print(f"doc-test self-test: {len(SELF_TEST_EXPECT) - len(bad)} of {len(SELF_TEST_EXPECT)} checks passed")
+    print(f"doc-test self-test: {len(SELF_TEST_EXPECT) + 1 - len(bad)} of {len(SELF_TEST_EXPECT) + 1} checks passed")
     return 1 if bad else 0
 
 
@@ -536,6 +590,10 @@ def main() -> int:
     ap.add_argument("--list", action="store_true", help="list the blocks and their markers, run nothing")
     ap.add_argument("--self-test", action="store_true",
                     help="run a built-in document of known faults and check that each is caught")
+    ap.add_argument("--update", action="store_true",
+                    help="rewrite an output block's line whose figures changed (same text, other "
+                         "numbers) from the current output, instead of failing; lines whose "
+                         "wording changed still fail (docs/regenerate.sh)")
     ap.add_argument("docs", nargs="*", help="documents relative to the repository (default: all)")
     args = ap.parse_args()
 
@@ -560,7 +618,7 @@ def main() -> int:
         return 2
     if args.self_test:
         return self_test(Path(rins).resolve().parent)
-    runner = Runner(Path(rins).resolve().parent, args.python, args.keep, args.keep_going)
+    runner = Runner(Path(rins).resolve().parent, args.python, args.keep, args.keep_going, args.update)
     t0 = time.monotonic()
     for d, blocks in per_doc:
         print(f"== {display(d)}" + ("" if blocks else " (no code blocks)"), flush=True)
@@ -575,6 +633,19 @@ def main() -> int:
             key = next((k for k in ("not a command", "not run", "not checked") if b.status.startswith(k)),
                        b.status.split(" ")[0].rstrip(":"))
             counts[key] = counts.get(key, 0) + 1
+    if runner.updates:
+        by_doc: dict[str, list[tuple[int, str, str]]] = {}
+        for doc, n, old, new in runner.updates:
+            by_doc.setdefault(doc, []).append((n, old, new))
+        for doc, changes in by_doc.items():
+            path = ROOT / doc
+            lines = path.read_text(encoding="utf-8").split("\n")
+            for n, old, new in changes:
+                # The body line as extracted, after the fence's own indentation.
+                assert lines[n].endswith(old), (doc, n + 1, lines[n], old)
+                lines[n] = lines[n][: len(lines[n]) - len(old)] + new
+                print(f"doc-test: updated {doc}:{n + 1}\n    - {old.strip()}\n    + {new.strip()}")
+            path.write_text("\n".join(lines), encoding="utf-8")
     summary = ", ".join(f"{v} {k}" for k, v in sorted(counts.items()))
     print(f"doc-test: {summary} in {time.monotonic() - t0:.0f} s")
     if runner.failures:
