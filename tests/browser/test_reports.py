@@ -149,6 +149,22 @@ to_c = 50.0
 runs = 5
 """
 
+SWEEP = """[sweep]
+name = "browser-sweep"
+scenario = "builtin:paper-16pos-week"
+duration_s = 3600.0
+seeds = 2
+outputs = ["lon_nm", "abs_lon_nm"]
+
+[[parameter]]
+key = "sensor.gyro.position_bias.dph[2]"
+values = [0.0, 0.02]
+
+[[parameter]]
+key = "scheme.kind"
+values = ["sixteen-position", "eight-position"]
+"""
+
 PAIRED = ["fig2_attitude_error", "fig3_position_error",
           "fig2_attitude_error_noise_free", "fig3_position_error_noise_free"]
 MVM = ["residual_vs_temperature", "bias_by_position", "allan_residual", "navigation_error"]
@@ -208,7 +224,13 @@ def main():
     assert len(it["steps"]) >= 2, it["stop"]
     check_report("iterate", f"{t}/iter/report.html", {"iterate": it},
                  ["iteration_history", "cells_before_after"], shots)
-    checked += 8
+    # A sweep with a numeric and a named key: its bands, swept values and per-seed figures.
+    with open(f"{t}/sweep.toml", "w") as f:
+        f.write(SWEEP)
+    sw = j(["sweep", f"{t}/sweep.toml", "--json", "--out", f"{t}/sweep", "--report", f"{t}/sweep"])
+    check_report("sweep", f"{t}/sweep/report.html", {"sweep": sw},
+                 ["sweep_lon_nm", "sweep_abs_lon_nm"], shots)
+    checked += 9
     print(f"{checked} passed, 0 failed: HTML reports in headless Chromium")
 
 

@@ -171,7 +171,7 @@ pub fn sweep_figures(r: &SweepReport) -> Vec<SweepFigure> {
                     first.key,
                     crate::html::format_sig(r.days, 3)
                 ),
-                x_label: format!("{} ({})", first.key, first.unit),
+                x_label: first.heading(),
                 y_label: format!("{} ({})", o.name, o.unit),
                 categories: categories.clone(),
                 lines,

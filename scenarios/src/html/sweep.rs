@@ -14,10 +14,19 @@ use crate::sweep::{NAVIGATORS, SweepReport};
 /// Most per-seed rows the page lists.
 pub const MAX_SEED_ROWS: usize = 200;
 
+/// Significant digits of `x`'s shortest round-trip form (`0.02` → 1, `180` → 2), so a swept
+/// value is shown as written.
+fn digits(x: f64) -> usize {
+    let e = format!("{x:e}");
+    let mantissa = e.split('e').next().unwrap_or("");
+    mantissa.chars().filter(char::is_ascii_digit).count().max(1)
+}
+
 /// The cell of swept value `i` at point `k`: a number with its JSON path, or text.
 fn value_cell(d: &Doc, r: &SweepReport, k: usize, i: usize) -> Cell {
-    if r.points[k].values[i].is_number() {
-        d.num(&format!("points.{k}.values.{i}"), 6)
+    let v = &r.points[k].values[i];
+    if let Some(x) = v.as_f64().filter(|_| v.is_number()) {
+        d.num(&format!("points.{k}.values.{i}"), digits(x))
     } else {
         d.text(&format!("points.{k}.values.{i}"))
     }
@@ -44,7 +53,7 @@ pub fn report(r: &SweepReport, fig_dir: &Path, out: &Path) -> Result<PathBuf> {
             r.points.len(),
             r.combine,
             r.seeds.len(),
-            r.days,
+            super::format_sig(r.days, 4),
             r.scenario,
             r.alignment,
             r.sweep_file,
@@ -71,11 +80,7 @@ pub fn report(r: &SweepReport, fig_dir: &Path, out: &Path) -> Result<PathBuf> {
             })
             .collect(),
     );
-    let heads: Vec<String> = r
-        .parameters
-        .iter()
-        .map(|p| format!("{} ({})", p.key, p.unit))
-        .collect();
+    let heads: Vec<String> = r.parameters.iter().map(|p| p.heading()).collect();
     for o in &r.outputs {
         let mut columns: Vec<&str> = heads.iter().map(String::as_str).collect();
         columns.extend([

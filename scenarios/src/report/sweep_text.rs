@@ -22,11 +22,7 @@ impl RenderText for SweepReport {
         if !self.description.is_empty() {
             let _ = writeln!(s, "  {}", self.description);
         }
-        let heads: Vec<String> = self
-            .parameters
-            .iter()
-            .map(|p| format!("{} ({})", p.key, p.unit))
-            .collect();
+        let heads: Vec<String> = self.parameters.iter().map(|p| p.heading()).collect();
         let widths: Vec<usize> = heads
             .iter()
             .enumerate()

@@ -64,6 +64,18 @@ pub struct ParameterInfo {
     pub values: Vec<serde_json::Value>,
 }
 
+impl ParameterInfo {
+    /// The key with its unit, as a column heading or axis label (`scheme.dwell_s (s)`; a
+    /// dimensionless key without one).
+    pub fn heading(&self) -> String {
+        if self.unit == "1" {
+            self.key.clone()
+        } else {
+            format!("{} ({})", self.key, self.unit)
+        }
+    }
+}
+
 /// A tabulated output.
 #[derive(Clone, Debug, Serialize)]
 pub struct OutputInfo {
