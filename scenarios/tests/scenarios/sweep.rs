@@ -240,6 +240,22 @@ fn sweep_errors_name_file_line_field_and_the_allowed_values() {
         e.contains("parameter[0].linspace.stop: scheme.dwell_s: expected a number in [0, 10000000] s, got 20000000"),
         "{e}"
     );
+    let e = refused(
+        &with(
+            "key = \"scheme.dwell_s\"\nvalues = [180.0]\n",
+            "[\"lon_nm\"]",
+        )
+        .replace("seeds = 2", "seeds = [3, 3]"),
+    );
+    assert!(
+        e.contains("line 4, column 13: sweep.seeds[1]: seed 3 is listed twice"),
+        "{e}"
+    );
+    let e = refused(&with("key = \"run.seed\"\nvalues = [1]\n", "[\"lon_nm\"]"));
+    assert!(
+        e.contains("parameter[0].key: the seeds are given by sweep.seeds"),
+        "{e}"
+    );
     // The command refuses the file before running anything, naming it.
     let dir = tmp("bad");
     let file = dir.join("bad.toml");
@@ -303,9 +319,71 @@ fn sweep_linspace_and_zip_make_the_points_the_docs_say() {
         })
         .collect();
     assert_eq!(pairs, [(0.0, 120.0), (0.01, 240.0), (0.02, 360.0)]);
+    // Self-alignment starts the scheme after its 900 s, as `rins paper table4 --align self`.
+    let aligned = text("grid", "[120.0]").replace("combine", "alignment = \"self\"\ncombine");
+    let aligned = SweepPlan::from_toml(&aligned, "a.toml", None).unwrap();
+    assert_eq!(
+        aligned.points[0].plant.scheme.lead_dwell_s,
+        grid.points[0].plant.scheme.lead_dwell_s + 900.0
+    );
     let e = refused(&text("zip", "[120.0, 240.0]"));
     assert!(
         e.contains("line 13, column 7: parameter[1].key: combine = \"zip\""),
         "{e}"
     );
+}
+
+#[test]
+fn sweep_figures_put_names_on_a_categorical_axis_one_line_per_other_value_clear_of_the_legend() {
+    use rins_scenarios::figures::rules::HEADROOM_PX;
+    let text = "[sweep]\nscenario = \"builtin:paper-16pos-week\"\nduration_s = 300.0\nseeds = 2\noutputs = [\"lon_nm\"]\n\n[[parameter]]\nkey = \"scheme.kind\"\nvalues = [\"sixteen-position\", \"eight-position\"]\n\n[[parameter]]\nkey = \"sensor.gyro.position_bias.dph[2]\"\nvalues = [0.0, 0.02]\n";
+    let plan = SweepPlan::from_toml(text, "f.toml", None).unwrap();
+    let r = rins_scenarios::sweep::run(&plan, &|_| {}).unwrap();
+    let figs = rins_scenarios::figures::sweep::sweep_figures(&r);
+    assert_eq!(figs.len(), 1);
+    let f = &figs[0];
+    assert_eq!(f.stem, "sweep_lon_nm");
+    assert_eq!(f.categories, ["sixteen-position", "eight-position"]);
+    // Grid order: scheme.kind slowest; the line of δβ_z = 0 holds points 0 and 2.
+    for nav in 0..2 {
+        assert_eq!(f.lines[nav].len(), 2);
+        for (j, (label, pts)) in f.lines[nav].iter().enumerate() {
+            assert!(
+                label.ends_with(&format!("dph[2] = {} deg/h", [0.0, 0.02][j])),
+                "{label}"
+            );
+            for (i, p) in pts.iter().enumerate() {
+                let b = r.points[2 * i + j].band(nav, "lon_nm");
+                assert_eq!([p[1], p[2], p[3]], [b.p05, b.median, b.p95]);
+                assert!(
+                    (p[0] - i as f64).abs() < 0.05,
+                    "category {i} drawn at {}",
+                    p[0]
+                );
+            }
+        }
+    }
+    let (_, geometry) = f.render().unwrap();
+    assert_eq!(geometry.len(), 2);
+    for (k, g) in geometry.iter().enumerate() {
+        assert_eq!(g.categories.len(), 2, "panel {k}");
+        let e = g.extent.expect("marks");
+        let h = HEADROOM_PX - 1;
+        assert!(
+            e.y0 >= g.plot.y0 + h
+                && e.y1 <= g.plot.y1 - h
+                && e.x0 >= g.plot.x0 + h
+                && e.x1 <= g.plot.x1 - h,
+            "panel {k}: marks {e:?} within {HEADROOM_PX} px of the frame {:?}",
+            g.plot
+        );
+        if let Some(l) = g.legend {
+            for &(a, b) in &g.marks {
+                assert!(
+                    !l.touches_segment(a, b),
+                    "panel {k}: legend {l:?} covers {a:?}-{b:?}"
+                );
+            }
+        }
+    }
 }
