@@ -168,7 +168,7 @@ pub fn paired_sections<T: Serialize>(
         ("Figure 2", "Figure 3")
     };
     let att = format!(
-        "{f2} counterpart: east, north and up attitude error of the first seed over the run, uncompensated (red) and compensated (blue). Each trace is its min-max band per pixel column with the mean line."
+        "{f2} counterpart: east, north and up attitude error of the first seed over the run, uncompensated (red) and compensated (blue), and in the bottom panel their difference (uncompensated − compensated) per axis on its own scale: at print size the east and north traces of the two cases overlap, the difference shows what the compensation changed. Each trace is its min-max band per pixel column with the mean line."
     );
     let pos = format!(
         "{f3} counterpart: latitude, longitude and horizontal error with the tRMS of Eq. 20 (dashed), first seed."
