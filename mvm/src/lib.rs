@@ -11,8 +11,10 @@
 //! rows), [`fit`] (weighted least squares, candidate tests, gate, collinearity), [`stats`]
 //! (Allan variance, correlations, test distributions), `prepare` (noise floors and folds),
 //! `compare` (cell map, correlations, Allan, navigation level), [`selection`] (ranking and
-//! forward selection), [`apply`] (fitting chosen effects into the model) and [`report`] (the
-//! report types).
+//! forward selection), [`apply`] (fitting chosen effects into the model), [`discover`] (what
+//! the catalogue lacks), [`iterate`] (compare → rank → joint fit, step after step, to the noise
+//! floor), `swap` (its replacement pass: a stand-in accepted early is swapped for the term the
+//! data prefer) and [`report`] (the report types).
 //!
 //! [`analyse`] is the one entry: it returns everything the `rins compare` / `rins diagnose`
 //! commands, their figures and the Rerun recording use, so none of them recomputes anything.
