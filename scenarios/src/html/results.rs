@@ -484,7 +484,6 @@ pub fn diagnose<T: Serialize>(
         for (j, key) in keys.iter().enumerate() {
             let key = key.as_str().unwrap_or("?");
             rows.push(vec![
-                d.text(&format!("ranking.{k}.effect")),
                 d.text(&format!("ranking.{k}.channel")),
                 Cell::Text(key.to_string()),
                 d.num(&format!("ranking.{k}.coefficient.{j}"), 4),
@@ -495,8 +494,8 @@ pub fn diagnose<T: Serialize>(
         }
     }
     r.table(
-        "Fitted coefficients of the ranked effects, each against the model as given, with its 95 % interval (n/a: not identifiable on this data)",
-        &["effect", "channel", "key", "coefficient", "95 % low", "95 % high", "unit"],
+        "Coefficients of the ranked effects (each fitted against the model as given; the key names the effect; n/a: not identifiable on this data)",
+        &["channel", "key", "coefficient", "95 % low", "95 % high", "unit"],
         rows,
     );
     r.table(
