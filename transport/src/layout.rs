@@ -352,3 +352,9 @@ mod tests {
         assert_eq!(b.reason_text(), "");
     }
 }
+
+// The Python and C mirrors of these types (transport/wire) checked against them; the test
+// lives beside the mirrors it reads.
+#[cfg(test)]
+#[path = "../wire/mirror_check.rs"]
+mod wire;
