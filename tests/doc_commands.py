@@ -30,6 +30,25 @@ Markers: HTML comments on the lines directly above a fence (several may be stack
                                             ellipsis (`…` or `...`) stands for elided text, the
                                             pieces around it must occur. So each number is checked
                                             to the digits it is printed with.
+  <!-- doc-test: name NAME -->              names a command block for `quotes from NAME`.
+
+Prose quotes: a marker on the line directly above a paragraph, a list item or a table (indented
+like it; nothing between them) checks the figures that text quotes from a command's output:
+  <!-- doc-test: quotes [from NAME] N1 N2 ... ["PHRASE" ...] -->
+Each listed number must occur in the text below the marker (with its sign as printed there;
+`−` counts as `-`), and must be shown by the output (stdout + stderr) of the command block just
+before the text, or of the block named NAME, to its printed digits: some number x of that output,
+printed with at least as many decimals, lies within half a unit of the quote's last digit
+(`1.797` is shown by 1.797, 1.7966 or 1.797e0, not by 1.8 or 1.7976; `+1.4` by 1.4 or 1.37; a
+quote's sign must be the output's). A "PHRASE" in double quotes (`"0 of 84 cells flagged"`, for
+a count whose meaning is in its words) must occur verbatim in the text and in the output, runs of
+spaces counted as one. Only the listed numbers and phrases are checked: the text's other
+numbers (durations of runs, timings, years, equation and section numbers, inputs) are not
+outputs. The text runs to the next blank line, fence, marker or heading; a list item's to its
+next sibling item. A quote from a block that was skipped or failed is listed as not checked.
+
+The run lists every block with what was done to it, the prose checks among them (kind `quotes`),
+and counts both.
 
 Usage: tests/doc_commands.py [--bin DIR] [--python PY] [--keep] [--keep-going] [--list] [--self-test] [DOC ...]
 Exit status 0 when every block that runs passes, 1 otherwise, 2 on a malformed marker.
@@ -48,6 +67,7 @@ import sys
 import tempfile
 import time
 from dataclasses import dataclass, field
+from decimal import Decimal
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -56,6 +76,12 @@ PYTHON_LANGS = {"python", "py", "python3"}
 DEFAULT_TIMEOUT_S = 600
 FEATURES = ("rerun",)
 MARKER = re.compile(r"^\s*<!--\s*doc-test:\s*(.*?)\s*-->\s*$")
+FENCE = re.compile(r"^(\s*)(```+|~~~+)\s*([^\s`]*)")
+LIST_ITEM = re.compile(r"^(\s*)([-*+]|\d+[.)])\s")
+# A quoted number: an optional sign (`−` is the typographic minus), digits, a fraction, an
+# exponent. Not preceded by a word character or a point, so "v2" or the "11" of "2026-11" is no
+# signed number.
+QUOTED = re.compile(r"(?<![\w.])([-+−]?)(\d+(?:\.\d*)?|\.\d+)(?:[eE]([-+]?\d+))?")
 
 
 class MarkerError(Exception):
@@ -75,11 +101,16 @@ class Block:
     timeout_s: float = DEFAULT_TIMEOUT_S
     output_check: bool = False
     expect_rc: int = 0
+    name: str | None = None  # `name NAME`: what a `quotes from NAME` marker calls the block
+    quotes: list[str] = field(default_factory=list)  # a prose check: the numbers it quotes
+    source: str | None = None  # a prose check's `from NAME`; None: the command block before it
     status: str = ""
     seconds: float = 0.0
 
     @property
     def kind(self) -> str:
+        if self.lang == "quotes":
+            return "quotes"
         if self.output_check:
             return "output"
         if self.lang in SHELL_LANGS:
@@ -125,10 +156,57 @@ def parse_marker(body: str, block: Block, where: str) -> None:
     if m:
         block.expect_rc = int(m.group(1))
         return
+    m = re.fullmatch(r"name\s+([A-Za-z0-9_.-]+)", body)
+    if m:
+        block.name = m.group(1)
+        return
+    if body.startswith("quotes"):
+        raise MarkerError(f"{where}: `quotes` marks the paragraph below it, not a code fence")
     raise MarkerError(
         f"{where}: unknown marker {body!r}; expected skip (REASON), needs FEATURE, "
-        f'replace "OLD" "NEW", env NAME=VALUE, timeout SECONDS, exit STATUS or output'
+        f'replace "OLD" "NEW", env NAME=VALUE, timeout SECONDS, exit STATUS, output, name NAME '
+        f"or (above a paragraph) quotes [from NAME] NUMBER..."
     )
+
+
+def parse_quotes(body: str, where: str) -> tuple[str | None, list[str]]:
+    """`quotes [from NAME] N1 N2 "PHRASE" ...` -> (NAME or None, the numbers as written and the
+    phrases with their double quotes)."""
+    m = re.fullmatch(r"quotes(?:\s+from\s+([A-Za-z0-9_.-]+))?(\s.*)?", body)
+    if not m:
+        raise MarkerError(f"{where}: expected quotes [from NAME] NUMBER..., got {body!r}")
+    rest = m.group(2) or ""
+    items = []
+    for t in re.finditer(r'\s*(?:"([^"]+)"|(\S+))', rest):
+        if t.group(1) is not None:
+            items.append(f'"{t.group(1)}"')
+        elif QUOTED.fullmatch(t.group(2)):
+            items.append(t.group(2))
+        else:
+            raise MarkerError(f"{where}: `quotes`: {t.group(2)!r} is not a number (e.g. 1.797, -6.07, +1.4, "
+                              f'2.2e-73) nor a "PHRASE" in double quotes')
+    if not items:
+        raise MarkerError(f"{where}: `quotes` lists no number: quotes [from NAME] NUMBER...")
+    return m.group(1), items
+
+
+def is_phrase(item: str) -> bool:
+    return item.startswith('"')
+
+
+def paragraph_end(lines: list[str], start: int) -> int:
+    """The 0-based line after the paragraph, list item or table starting at `start`."""
+    item = LIST_ITEM.match(lines[start])
+    i = start + 1
+    while i < len(lines):
+        line = lines[i]
+        if not line.strip() or FENCE.match(line) or MARKER.match(line) or line.lstrip().startswith("#"):
+            break
+        sibling = LIST_ITEM.match(line)
+        if item and sibling and len(sibling.group(1)) <= len(item.group(1)):
+            break
+        i += 1
+    return i
 
 
 def extract(doc: Path) -> list[Block]:
@@ -136,9 +214,10 @@ def extract(doc: Path) -> list[Block]:
     rel = display(doc)
     lines = doc.read_text(encoding="utf-8").splitlines()
     blocks: list[Block] = []
+    inside: set[int] = set()  # 0-based lines of fences and their bodies
     i = 0
     while i < len(lines):
-        m = re.match(r"^(\s*)(```+|~~~+)\s*([^\s`]*)", lines[i])
+        m = FENCE.match(lines[i])
         if not m:
             i += 1
             continue
@@ -151,6 +230,7 @@ def extract(doc: Path) -> list[Block]:
             i += 1
         if i >= len(lines):
             raise MarkerError(f"{rel}:{start + 1}: unclosed code fence")
+        inside.update(range(start, i + 1))
         i += 1
         block = Block(rel, start + 1, lang, "\n".join(body) + "\n")
         markers = []
@@ -168,9 +248,40 @@ def extract(doc: Path) -> list[Block]:
         while j >= 0 and MARKER.match(lines[j]):
             used.add(j)
             j -= 1
+    # Prose checks: a `quotes` marker directly above a paragraph, list item or table.
+    names: dict[str, int] = {}
+    for b in blocks:
+        if b.name:
+            if b.name in names:
+                raise MarkerError(f"{rel}:{b.line}: block name {b.name!r} already names the block at line {names[b.name]}")
+            names[b.name] = b.line
     for n, line in enumerate(lines):
-        if "doc-test:" in line and n not in used and MARKER.match(line):
-            raise MarkerError(f"{rel}:{n + 1}: a doc-test marker must sit directly above a code fence")
+        m = MARKER.match(line)
+        if not m or n in used or n in inside or not m.group(1).startswith("quotes"):
+            continue
+        where = f"{rel}:{n + 1}"
+        source, numbers = parse_quotes(m.group(1), where)
+        if n + 1 >= len(lines) or not lines[n + 1].strip() or FENCE.match(lines[n + 1]) \
+                or MARKER.match(lines[n + 1]):
+            raise MarkerError(f"{where}: a `quotes` marker must sit directly above the paragraph it checks")
+        if source is not None and (source not in names or names[source] > n):
+            raise MarkerError(f"{where}: `quotes from {source}`: no command block above is named {source!r}"
+                              + (f" (named: {', '.join(sorted(names))})" if names else ""))
+        end = paragraph_end(lines, n + 1)
+        text = "\n".join(lines[n + 1:end])
+        flat = normalise(text.replace("−", "-"))
+        absent = [q for q in numbers
+                  if not shows(flat, normalise(q.strip('"') if is_phrase(q) else q.replace("−", "-")))]
+        if absent:
+            raise MarkerError(f"{where}: `quotes` lists {', '.join(absent)}, which the text below "
+                              f"(lines {n + 2}–{end}) does not show")
+        blocks.append(Block(rel, n + 2, "quotes", text, quotes=numbers, source=source))
+        used.add(n)
+    blocks.sort(key=lambda b: b.line)
+    for n, line in enumerate(lines):
+        if "doc-test:" in line and n not in used and n not in inside and MARKER.match(line):
+            raise MarkerError(f"{rel}:{n + 1}: a doc-test marker must sit directly above a code fence"
+                              " (or, for `quotes`, above a paragraph)")
     return blocks
 
 
@@ -252,6 +363,15 @@ def probe_rerun(rins: str, work: Path) -> bool:
     return r.returncode == 0
 
 
+def quoted_value(m: re.Match) -> tuple[Decimal, int]:
+    """A QUOTED match as (value, exponent of its last printed digit): "1.797" -> (1.797, -3),
+    "-6.07e1" -> (-60.7, -1), "25" -> (25, 0)."""
+    sign, digits, exp = m.group(1), m.group(2), m.group(3)
+    value = Decimal(("-" if sign in ("-", "−") else "") + digits + (f"e{exp}" if exp else ""))
+    decimals = len(digits.split(".")[1]) if "." in digits else 0
+    return value, int(exp or 0) - decimals
+
+
 def tail(text: str, n: int = 25) -> str:
     lines = text.rstrip().splitlines()
     return "\n".join("    " + l for l in lines[-n:])
@@ -330,11 +450,28 @@ class Runner:
         work.mkdir()
         copy_repository(work)
         last_output: tuple[Block, str] | None = None
+        # For prose checks: the command block just before, and each named block, with its
+        # output when it ran (None when it was skipped, failed or not run).
+        prev_cmd: Block | None = None
+        outputs: dict[int, str | None] = {}
+        named: dict[str, Block] = {}
         broken = None  # a failed block stops the document: later blocks depend on it
         last_failed = None  # with --keep-going: the command block before an output block failed
         for n, b in enumerate(blocks):
             if b.kind == "other":
                 b.status = f"not a command ({b.lang or 'no language'})"
+                continue
+            if b.kind == "quotes":
+                src = named.get(b.source) if b.source else prev_cmd
+                if src is None:
+                    self.fail(b, "a prose quote with no command block before it")
+                elif outputs.get(src.line) is None:
+                    why = ("ran with substitutions (other figures than the document's)"
+                           if src.status.startswith("ran") else
+                           "failed" if src.status == "FAILED" else src.status.split(":")[0])
+                    b.status = f"not checked: its block at line {src.line} {why}"
+                else:
+                    self.check_quotes(b, src, outputs[src.line])
                 continue
             if b.kind == "output":
                 if broken or last_failed:
@@ -344,6 +481,10 @@ class Runner:
                 else:
                     self.check_output(b, *last_output)
                 continue
+            prev_cmd = b
+            outputs[b.line] = None
+            if b.name:
+                named[b.name] = b
             if b.skip:
                 b.status = f"skipped: {b.skip}"
                 continue
@@ -367,6 +508,8 @@ class Runner:
                 if ok:
                     b.status = "ran" + (f" (with {len(b.replace)} substitution(s))" if b.replace else "")
                     last_output, last_failed = (b, output), None
+                    # A block run with substitutions prints other figures than the document's.
+                    outputs[b.line] = None if b.replace else output
                     continue
             last_failed = b.line
             if not self.keep_going:
@@ -435,6 +578,31 @@ class Runner:
         else:
             b.status = f"checked: {sum(1 for l in b.text.splitlines() if l.strip())} line(s) against line {cmd_block.line}" + (
                 f", {updated} updated" if updated else "")
+
+    def check_quotes(self, b: Block, cmd_block: Block, output: str) -> None:
+        """Each number a prose paragraph quotes must be shown by the command's output to the
+        digits the paragraph prints it with."""
+        found = [(m.group(0), quoted_value(m)) for m in QUOTED.finditer(output.replace("−", "-"))]
+        missing = []
+        for q in b.quotes:
+            if is_phrase(q):
+                if not shows(normalise(output), normalise(q.strip('"'))):
+                    missing.append(q)
+                continue
+            value, exp = quoted_value(QUOTED.fullmatch(q.replace("−", "-")))
+            half = Decimal(5).scaleb(exp - 1)  # half a unit of the quote's last digit
+            if not any(e <= exp and abs(v - value) <= half for _, (v, e) in found):
+                # The nearest in size, then in value: a sign flip shows as such.
+                near = min(found, key=lambda f: (abs(abs(f[1][0]) - abs(value)), abs(f[1][0] - value)),
+                           default=None)
+                missing.append(f"{q}" + (f" (nearest in the output: {near[0]})" if near else ""))
+        src = f"line {cmd_block.line}" + (f" ({b.source})" if b.source else "")
+        if missing:
+            self.fail(b, f"the output of the block at {src} no longer shows, to the printed digits:\n"
+                         + "\n".join(f"    {m}" for m in missing)
+                         + f"\n  the text:\n{tail(b.text, 8)}")
+        else:
+            b.status = f"checked: {len(b.quotes)} figure(s) against {src}"
 
     def propose_updates(self, b: Block, missing: list[str], output: str) -> list[str]:
         """With --update: each missing line whose text, numbers aside, is one output line's
@@ -523,6 +691,38 @@ sleep 30
 ```toml
 a = 1
 ```
+
+<!-- doc-test: name rate -->
+```sh
+echo "rate on x: 1.797 [1.714, 1.880] deg/h, -6.0661, took 0.9 s"
+```
+
+<!-- doc-test: quotes 1.797 1.714 1.880 -6.07 "rate on x" -->
+The rate on x is 1.797 [1.714, 1.880] and on z −6.07, in 2.2 s (1 run, Eq. 11).
+
+<!-- doc-test: quotes 1.797 1.71 1.881 -6.066 -->
+- the rate 1.797 [1.71, 1.881], −6.066: 1.881 is not 1.880 to its digits
+- a sibling item, not part of the paragraph above: 9.99
+
+```sh
+echo "coarse: 1.8; sign: 2.5"
+```
+
+<!-- doc-test: quotes 1.797 -2.5 "sign: -2.5" -->
+1. Finer digits than printed (1.797) and the other sign (-2.5) are not shown, nor "sign: -2.5".
+
+<!-- doc-test: quotes from rate 0.9 -->
+| figure | value |
+|---|---|
+| from the named block | 0.9 |
+
+<!-- doc-test: skip (a reason) -->
+```sh
+echo 42
+```
+
+<!-- doc-test: quotes 42 -->
+A quote of a skipped block: 42.
 """
 
 SELF_TEST_EXPECT = [  # (block line, status prefix, text the failure message must hold)
@@ -537,6 +737,26 @@ SELF_TEST_EXPECT = [  # (block line, status prefix, text the failure message mus
     (45, "FAILED", "line 47: exit status 1"),
     (51, "FAILED", "timed out after 1 s"),
     (55, "not a command (toml)", ""),
+    (60, "ran", ""),
+    (65, "checked: 5 figure(s)", ""),  # rounding -6.0661 to -6.07; other numbers not listed
+    (68, "FAILED", "1.881 (nearest in the output: 1.880)"),  # a list item alone
+    (71, "ran", ""),
+    (76, "FAILED", "1.797 (nearest in the output: 1.8)"),  # and -2.5 (a named block follows)
+    (79, "checked: 1 figure(s) against line 60 (rate)", ""),
+    (84, "skipped: a reason", ""),
+    (89, "not checked: its block at line 84 skipped", ""),
+]
+
+# Malformed prose markers: the document is refused (exit status 2), naming the line.
+SELF_TEST_BAD = [  # (document, text the error must hold)
+    ("<!-- doc-test: quotes 1.5 -->\nThe figure is 1.50.\n", "does not show"),
+    ("<!-- doc-test: quotes 1.5 -->\n\nThe figure is 1.5.\n", "directly above the paragraph"),
+    ("<!-- doc-test: quotes from nope 1.5 -->\nThe figure is 1.5.\n", "no command block above is named"),
+    ("<!-- doc-test: quotes -->\nThe figure is 1.5.\n", "lists no number"),
+    ("<!-- doc-test: quotes 1.5 abc -->\nThe figure is 1.5 abc.\n", "is not a number"),
+    ('<!-- doc-test: quotes "5 cells" -->\nThe 15 cells\n', "does not show"),
+    ("<!-- doc-test: quotes 9.99 -->\n- an item: 1.5\n- its sibling: 9.99\n", "does not show"),
+    ("<!-- doc-test: quotes 1.5 -->\n```sh\necho 1.5\n```\n", "not a code fence"),
 ]
 
 
@@ -560,6 +780,20 @@ def self_test(bindir: Path) -> int:
             bad.append(f"block at line {line}: no failure message holding {text!r}")
     if len(blocks) != len(SELF_TEST_EXPECT):
         bad.append(f"{len(blocks)} blocks extracted, expected {len(SELF_TEST_EXPECT)}")
+    # The failing quote of the block at line 76 names both numbers it misses.
+    if not any("block at line 76 " in f and "-2.5 (nearest in the output: 2.5)" in f
+               and '"sign: -2.5"' in f for f in runner.failures):
+        bad.append("block at line 76: the quote of the other sign (-2.5) or the phrase is not named")
+    for text, want in SELF_TEST_BAD:
+        with tempfile.TemporaryDirectory() as d:
+            doc = Path(d) / "bad.md"
+            doc.write_text(text)
+            try:
+                extract(doc)
+                bad.append(f"malformed quote accepted: {text.splitlines()[0]!r}")
+            except MarkerError as e:
+                if want not in str(e):
+                    bad.append(f"malformed quote {text.splitlines()[0]!r}: error {e} lacks {want!r}")
     # --update: the stale "got 9" line (block at line 25) is rewritten from the output ("got
     # 95"), and nothing else is touched.
     with tempfile.TemporaryDirectory() as d:
@@ -575,7 +809,8 @@ def self_test(bindir: Path) -> int:
         bad.append(f"--update proposed {got}, expected {want}")
     for m in bad:
         print(f"doc-test self-test: {m}", file=sys.stderr)
-    print(f"doc-test self-test: {len(SELF_TEST_EXPECT) + 1 - len(bad)} of {len(SELF_TEST_EXPECT) + 1} checks passed")
+    total = len(SELF_TEST_EXPECT) + 2 + len(SELF_TEST_BAD)
+    print(f"doc-test self-test: {total - len(bad)} of {total} checks passed")
     return 1 if bad else 0
 
 
@@ -608,7 +843,9 @@ def main() -> int:
         for d, blocks in per_doc:
             for b in blocks:
                 marks = ([f"skip ({b.skip})"] if b.skip else []) + [f"needs {f}" for f in b.needs] + \
-                        [f'replace "{o}" "{n}"' for o, n in b.replace] + [f"env {k}" for k in b.env]
+                        [f'replace "{o}" "{n}"' for o, n in b.replace] + [f"env {k}" for k in b.env] + \
+                        ([f"name {b.name}"] if b.name else []) + \
+                        ([f"quotes{' from ' + b.source if b.source else ''} {' '.join(b.quotes)}"] if b.quotes else [])
                 print(f"{b.doc}:{b.line}\t{b.kind}\t{'; '.join(marks)}")
         return 0
 
@@ -628,11 +865,15 @@ def main() -> int:
             took = f" [{b.seconds:.1f} s]" if b.seconds else ""
             print(f"  {b.doc}:{b.line:<4} {b.kind:<7} {b.status}{took}", flush=True)
     counts: dict[str, int] = {}
+    prose: dict[str, int] = {}
     for _, blocks in per_doc:
         for b in blocks:
             key = next((k for k in ("not a command", "not run", "not checked") if b.status.startswith(k)),
                        b.status.split(" ")[0].rstrip(":"))
-            counts[key] = counts.get(key, 0) + 1
+            tally = prose if b.kind == "quotes" else counts
+            tally[key] = tally.get(key, 0) + 1
+    numbers = sum(len(b.quotes) for _, blocks in per_doc for b in blocks
+                  if b.kind == "quotes" and b.status.startswith("checked"))
     if runner.updates:
         by_doc: dict[str, list[tuple[int, str, str]]] = {}
         for doc, n, old, new in runner.updates:
@@ -647,7 +888,9 @@ def main() -> int:
                 print(f"doc-test: updated {doc}:{n + 1}\n    - {old.strip()}\n    + {new.strip()}")
             path.write_text("\n".join(lines), encoding="utf-8")
     summary = ", ".join(f"{v} {k}" for k, v in sorted(counts.items()))
-    print(f"doc-test: {summary} in {time.monotonic() - t0:.0f} s")
+    prose_summary = ", ".join(f"{v} {k}" for k, v in sorted(prose.items())) or "none"
+    print(f"doc-test: blocks: {summary}; prose checks (quotes): {prose_summary}"
+          f" ({numbers} quoted figure(s) checked) in {time.monotonic() - t0:.0f} s")
     if runner.failures:
         print(f"doc-test: {len(runner.failures)} failure(s):", file=sys.stderr)
         for f in runner.failures:
