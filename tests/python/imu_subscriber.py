@@ -15,51 +15,16 @@ prints "subscribed")
 import ctypes
 import json
 import math
+import os
 import sys
 import time
 
 import iceoryx2 as iox2
 
-LAYOUT_VERSION = 3
-FLAG_END = 1
-FLAG_REFUSED = 4
-REASON_BYTES = 1024
-
-
-class ImuRecord(ctypes.Structure):
-    """rins::ImuRecord, 128 bytes (docs/transport.md)."""
-
-    _fields_ = [
-        ("tick", ctypes.c_uint64),
-        ("t_s", ctypes.c_double),
-        ("dtheta_rad", ctypes.c_double * 3),
-        ("dv_mps", ctypes.c_double * 3),
-        ("outer_rad", ctypes.c_double),
-        ("inner_rad", ctypes.c_double),
-        ("temps_c", ctypes.c_double * 6),
-    ]
-
-    @staticmethod
-    def type_name() -> str:
-        return "rins::ImuRecord"
-
-
-class TruthRecord(ctypes.Structure):
-    """rins::TruthRecord, 112 bytes: what really happened over a record (docs/transport.md).
-    For error measures only; a navigator must not use it."""
-
-    _fields_ = [
-        ("lat_rad", ctypes.c_double),
-        ("lon_rad", ctypes.c_double),
-        ("height_m", ctypes.c_double),
-        ("v_enu_mps", ctypes.c_double * 3),
-        ("q_cn", ctypes.c_double * 4),
-        ("q_bn", ctypes.c_double * 4),
-    ]
-
-    @staticmethod
-    def type_name() -> str:
-        return "rins::TruthRecord"
+# The wire types (every rins type, with its iceoryx2 type name and layout asserts) come from the
+# standalone module transport/wire/rins_wire.py, checked against the Rust definitions.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "transport", "wire"))
+from rins_wire import FLAG_END, FLAG_REFUSED, LAYOUT_VERSION, ImuBatch, ImuRecord  # noqa: E402
 
 
 TRUTH_COLUMNS = ["tick", "lat_rad", "lon_rad", "height_m", "v_e_mps", "v_n_mps", "v_u_mps",
@@ -70,47 +35,6 @@ def truth_row(tick, t):
     """One truth record as CSV fields (repr: shortest round trip)."""
     values = [t.lat_rad, t.lon_rad, t.height_m, *t.v_enu_mps, *t.q_cn, *t.q_bn]
     return ",".join([str(tick)] + [repr(v) for v in values])
-
-
-class StartRecord(ctypes.Structure):
-    """rins::StartRecord, 96 bytes (layout version 3): the navigation state at the start of the
-    batch's first record, where a navigator that begins with this batch starts (a real one gets
-    it from GNSS and its initial alignment; docs/transport.md, "Start state")."""
-
-    _fields_ = [
-        ("tick", ctypes.c_uint64),
-        ("t_s", ctypes.c_double),
-        ("lat_rad", ctypes.c_double),
-        ("lon_rad", ctypes.c_double),
-        ("height_m", ctypes.c_double),
-        ("v_enu_mps", ctypes.c_double * 3),
-        ("q_bn", ctypes.c_double * 4),
-    ]
-
-    @staticmethod
-    def type_name() -> str:
-        return "rins::StartRecord"
-
-
-class ImuBatch(ctypes.Structure):
-    """rins::ImuBatch: 24-byte header, 64 records, the truth block (64 truth records), the start
-    state and the plant's reason when it refused a command (flag 4; UTF-8, NUL-padded)."""
-
-    _fields_ = [
-        ("layout_version", ctypes.c_uint32),
-        ("record_size", ctypes.c_uint32),
-        ("seq", ctypes.c_uint64),
-        ("count", ctypes.c_uint32),
-        ("flags", ctypes.c_uint32),
-        ("records", ImuRecord * 64),
-        ("truth", TruthRecord * 64),
-        ("start", StartRecord),
-        ("reason", ctypes.c_char * REASON_BYTES),
-    ]
-
-    @staticmethod
-    def type_name() -> str:
-        return "rins::ImuBatch"
 
 
 def position(outer: float, inner: float) -> str:

@@ -17,7 +17,10 @@ import sys
 RINS, WORK = sys.argv[1:3]
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from imu_subscriber import DwellMeans, ImuBatch, StartRecord, TruthRecord  # noqa: E402
+# The wire types from the standalone module the Rust tests check against transport/src/layout.rs.
+sys.path.insert(0, os.path.join(HERE, "..", "..", "transport", "wire"))
+from imu_subscriber import DwellMeans  # noqa: E402
+from rins_wire import ImuBatch, StartRecord, TruthRecord  # noqa: E402
 
 DURATION = "4320"  # one 16-position cycle at 100 Hz: 432,000 samples
 
