@@ -8,11 +8,12 @@ use std::time::Instant;
 
 use rins_experiments::NavRunConfig;
 use rins_experiments::session::SessionError;
+use rins_plant::PlantConfig;
 use rins_plant::params::ParamValue;
 use rins_verify::paper::{Band, EndFigures, Table4Options};
 
 use super::result::{OutputInfo, ParameterInfo, PointResult, SeedResult, SweepReport};
-use super::spec::{Point, SweepPlan};
+use super::spec::{Align, Point, SweepPlan};
 
 /// A swept value in the JSON: a number, a switch or a name.
 pub fn json_value(v: &ParamValue) -> serde_json::Value {
@@ -31,21 +32,39 @@ pub fn point_figures(
     point: &Point,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Vec<SeedResult>, SessionError> {
+    seed_figures(
+        &point.plant,
+        &plan.seeds,
+        plan.duration_s,
+        plan.alignment,
+        progress,
+    )
+}
+
+/// Each seed's end figures for one point's plant (a [`Point::plant`], alignment time already
+/// prepended), in the order of `seeds`. A seed's figures do not depend on the other seeds run
+/// with it, so the seeds of a point may be split into batches run anywhere (the Python
+/// package's Dask tasks) and give the same bits as [`point_figures`].
+pub fn seed_figures(
+    plant: &PlantConfig,
+    seeds: &[u64],
+    duration_s: f64,
+    alignment: Align,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Vec<SeedResult>, SessionError> {
     let opt = Table4Options {
-        plant: point.plant.clone(),
-        runs: plan.seeds.len(),
-        duration_s: plan.duration_s,
+        plant: plant.clone(),
+        runs: seeds.len(),
+        duration_s,
         compensation: None,
         nav: NavRunConfig {
-            alignment: plan.alignment.nav(),
+            alignment: alignment.nav(),
             ..NavRunConfig::default()
         },
     };
-    let navs = rins_verify::paper::paired_navs(&opt, &point.plant);
-    let runs =
-        rins_experiments::run_seeds(&point.plant, &plan.seeds, plan.duration_s, &navs, progress)?;
-    Ok(plan
-        .seeds
+    let navs = rins_verify::paper::paired_navs(&opt, plant);
+    let runs = rins_experiments::run_seeds(plant, seeds, duration_s, &navs, progress)?;
+    Ok(seeds
         .iter()
         .zip(runs)
         .map(|(&seed, r)| SeedResult {
@@ -59,9 +78,29 @@ pub fn point_figures(
 /// Runs every point of `plan` in order; `progress` receives samples done.
 pub fn run(plan: &SweepPlan, progress: &(dyn Fn(u64) + Sync)) -> Result<SweepReport, SessionError> {
     let t0 = Instant::now();
+    let per_point = plan
+        .points
+        .iter()
+        .map(|point| point_figures(plan, point, progress))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(report(plan, per_point, t0.elapsed().as_secs_f64()))
+}
+
+/// The report of `plan` from each point's per-seed figures (one list per entry of
+/// `plan.points`, each in the order of `plan.seeds`, as [`point_figures`] returns them): the
+/// medians and bands of the chosen outputs, the swept values and the file's settings.
+/// `wall_s` is the time the runs took.
+///
+/// # Panics
+/// If `per_point` does not have one list per point (a caller's mistake, not an input's).
+pub fn report(plan: &SweepPlan, per_point: Vec<Vec<SeedResult>>, wall_s: f64) -> SweepReport {
+    assert_eq!(
+        per_point.len(),
+        plan.points.len(),
+        "one list of seed figures per point"
+    );
     let mut points = Vec::with_capacity(plan.points.len());
-    for point in &plan.points {
-        let per_seed = point_figures(plan, point, progress)?;
+    for (point, per_seed) in plan.points.iter().zip(per_point) {
         let bands = |nav: usize| -> BTreeMap<String, Band> {
             plan.outputs
                 .iter()
@@ -79,7 +118,7 @@ pub fn run(plan: &SweepPlan, progress: &(dyn Fn(u64) + Sync)) -> Result<SweepRep
             per_seed,
         });
     }
-    Ok(SweepReport {
+    SweepReport {
         name: plan.name.clone(),
         description: plan.description.clone(),
         sweep_file: plan.source.clone(),
@@ -108,6 +147,6 @@ pub fn run(plan: &SweepPlan, progress: &(dyn Fn(u64) + Sync)) -> Result<SweepRep
             })
             .collect(),
         points,
-        wall_s: t0.elapsed().as_secs_f64(),
-    })
+        wall_s,
+    }
 }
