@@ -2,8 +2,9 @@
 
 Load a scenario (a file path, ``"builtin:NAME"``, or a dict laid out like the TOML file), run
 it to numpy arrays (``run``, or chunk by chunk with ``Simulation``), run the reference
-navigator on it (``navigate``), and run Monte Carlo seeds in-process or on a Dask cluster
-(``montecarlo``, ``sweep``). Rust runs with the GIL released. See docs/python.md.
+navigator on it (``navigate``), run Monte Carlo seeds (``montecarlo``, ``sweep``) and sweep
+files as ``rins sweep FILE`` runs them (``sweep_file``), in-process or on a Dask cluster. Rust
+runs with the GIL released. See docs/python.md.
 """
 
 from ._rins import (  # noqa: F401
@@ -14,6 +15,8 @@ from ._rins import (  # noqa: F401
     Scenario,
     ScenarioError,
     Simulation,
+    SweepError,
+    SweepPlan,
     __version__,
     builtin_toml,
     builtins,
@@ -23,6 +26,7 @@ from ._rins import (  # noqa: F401
     to_toml,
 )
 from .montecarlo import montecarlo, sweep, table4  # noqa: F401
+from .sweep_file import sweep_file  # noqa: F401
 
 __all__ = [
     "FIGURES",
@@ -32,6 +36,8 @@ __all__ = [
     "Scenario",
     "ScenarioError",
     "Simulation",
+    "SweepError",
+    "SweepPlan",
     "builtin_toml",
     "builtins",
     "end_figures",
@@ -39,6 +45,7 @@ __all__ = [
     "navigate",
     "run",
     "sweep",
+    "sweep_file",
     "table4",
     "to_toml",
 ]

@@ -1,6 +1,7 @@
 //! The package's exceptions: `rins.ScenarioError` (a `ValueError` whose message names the file,
-//! line and field and the allowed range) and `rins.NavigationError` (a navigation run that
-//! could not be made, e.g. the table moved during self-alignment).
+//! line and field and the allowed range), `rins.SweepError` (a `ScenarioError` for a sweep
+//! file) and `rins.NavigationError` (a navigation run that could not be made, e.g. the table
+//! moved during self-alignment).
 
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -11,6 +12,13 @@ create_exception!(
     ScenarioError,
     PyValueError,
     "A scenario could not be loaded: the message names the file, line and field and the allowed range."
+);
+
+create_exception!(
+    rins,
+    SweepError,
+    ScenarioError,
+    "A sweep file could not be loaded: the message names the file, line, column and key and what is allowed, as `rins sweep` words it."
 );
 
 create_exception!(

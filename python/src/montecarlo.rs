@@ -21,7 +21,8 @@ pub const FIGURES: [&str; 5] = [
     "up_att_mean_deg",
 ];
 
-fn figures(e: &EndFigures) -> [f64; 5] {
+/// The figures of `e` in the order of [`FIGURES`].
+pub fn figures(e: &EndFigures) -> [f64; 5] {
     [
         e.lat_nm,
         e.lon_nm,
@@ -29,6 +30,18 @@ fn figures(e: &EndFigures) -> [f64; 5] {
         e.trms_nm,
         e.up_att_mean_deg,
     ]
+}
+
+/// [`figures`] back to the struct (a Dask task's numbers, exact: the same five `f64`).
+pub fn from_figures(f: [f64; 5]) -> EndFigures {
+    let [lat_nm, lon_nm, horizontal_nm, trms_nm, up_att_mean_deg] = f;
+    EndFigures {
+        lat_nm,
+        lon_nm,
+        horizontal_nm,
+        trms_nm,
+        up_att_mean_deg,
+    }
 }
 
 /// The study options of `rins paper table4` for this scenario: self-alignment prepends its

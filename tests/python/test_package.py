@@ -10,6 +10,11 @@
   `rins.navigate` agrees with them; `rins.table4` equals the CLI's study.
 - Dask: a sweep of 2 parameter points x 8 seeds on a LocalCluster(n_workers=2, processes=True)
   equals the in-process run bit for bit.
+- Sweep files: `rins.sweep_file` of docs/examples/sweep-dbeta-dwell.toml shortened (4 points,
+  2 seeds, 0.05 days) equals `rins sweep FILE --json` bit for bit (swept values, per-seed
+  figures of both navigators, medians and bands); the same on a LocalCluster(n_workers=2,
+  processes=True) equals the in-process result bit for bit; a bad sweep file raises
+  rins.SweepError naming the file, line and key with the CLI's words.
 
 Usage: python test_package.py RINS_BINARY WORK_DIR
 """
@@ -254,6 +259,139 @@ def test_dask_sweep():
           f"in-process sweep bit for bit ({t_remote:.1f} s vs {t_local:.1f} s in-process)")
 
 
+EXAMPLE_SWEEP = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "examples",
+                             "sweep-dbeta-dwell.toml")
+
+
+def short_sweep_file():
+    """docs/examples/sweep-dbeta-dwell.toml shortened: 2 x 2 points, 2 seeds, 0.05 days."""
+    with open(EXAMPLE_SWEEP, "rb") as f:
+        d = tomllib.load(f)
+    d["sweep"]["days"] = DAYS
+    d["sweep"]["seeds"] = 2
+    d["parameter"][0]["values"] = d["parameter"][0]["values"][::2]  # delta-beta_z 0 and 0.02 deg/h
+    assert [len(p["values"]) for p in d["parameter"]] == [2, 2], d["parameter"]
+    path = os.path.join(WORK, "sweep-short.toml")
+    with open(path, "w") as f:
+        f.write(rins.to_toml(d))
+    return path
+
+
+def test_sweep_file_equals_cli():
+    """Returns the sweep file and its in-process result (test_dask_sweep_file compares with it)."""
+    path = short_sweep_file()
+    t0 = time.perf_counter()
+    cli = json.loads(subprocess.run([RINS, "sweep", path, "--json", "--out", os.path.join(WORK, "sweep-cli")],
+                                    check=True, capture_output=True, text=True).stdout)
+    t_cli = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    r = rins.sweep_file(path)
+    t_py = time.perf_counter() - t0
+    pts = cli["points"]
+    n_pts, n_seeds = len(pts), len(cli["seeds"])
+    assert (n_pts, n_seeds) == (4, 2), (n_pts, n_seeds)
+    for key in ("name", "description", "sweep_file", "scenario", "duration_s", "days", "alignment", "combine",
+                "parameters", "outputs"):
+        assert r[key] == cli[key], (key, r[key], cli[key])
+    np.testing.assert_array_equal(r["seeds"], np.array(cli["seeds"], dtype=np.uint64))
+    assert r["labels"] == [p["label"] for p in pts]
+    for i, par in enumerate(cli["parameters"]):
+        same_bits(r["points"][par["key"]], [p["values"][i] for p in pts], f"points {par['key']}")
+    compared = 0
+    for nav in ("uncompensated", "compensated"):
+        for name in rins.FIGURES:
+            a = r["per_seed"][nav][name]
+            assert a.shape == (n_pts, n_seeds), a.shape
+            same_bits(a, [[s[nav][name] for s in p["per_seed"]] for p in pts], f"per_seed {nav} {name}")
+            # A real sweep: every point x seed gives its own figure.
+            assert len(set(a.ravel().tolist())) == a.size, f"{nav} {name}: repeated values"
+            compared += a.size
+        for o in cli["outputs"]:
+            for q in ("median", "p05", "p95"):
+                same_bits(r["summary"][nav][o["name"]][q], [p[nav][o["name"]][q] for p in pts],
+                          f"summary {nav} {o['name']} {q}")
+                compared += n_pts
+            # The bands against numpy's percentiles of the per-seed figures (linear, as documented).
+            xs = r["per_seed"][nav][o["name"]]
+            for q, pct in (("median", 50), ("p05", 5), ("p95", 95)):
+                np.testing.assert_allclose(r["summary"][nav][o["name"]][q], np.percentile(xs, pct, axis=1),
+                                           rtol=1e-12, err_msg=f"{nav} {o['name']} {q} vs numpy")
+    print(f"sweep_file: {n_pts} points x {n_seeds} seeds, {compared} numbers equal `rins sweep --json` bit for bit "
+          f"({t_py:.1f} s in-process vs {t_cli:.1f} s for the CLI with its files and figures)")
+    return path, r
+
+
+def test_dask_sweep_file(path, local):
+    from dask.distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            Client(cluster) as client:
+        t0 = time.perf_counter()
+        remote = rins.sweep_file(path, client=client, seeds_per_task=1)
+        t_remote = time.perf_counter() - t0
+        workers = len(client.scheduler_info()["workers"])
+    assert workers == 2, workers
+    for key in ("name", "sweep_file", "duration_s", "parameters", "outputs", "labels"):
+        assert remote[key] == local[key], key
+    np.testing.assert_array_equal(remote["seeds"], local["seeds"])
+    for key, v in local["points"].items():
+        np.testing.assert_array_equal(remote["points"][key], v)
+    for nav in ("uncompensated", "compensated"):
+        for name in rins.FIGURES:
+            same_bits(remote["per_seed"][nav][name], local["per_seed"][nav][name], f"dask per_seed {nav} {name}")
+        for o, qs in local["summary"][nav].items():
+            for q, v in qs.items():
+                same_bits(remote["summary"][nav][o][q], v, f"dask summary {nav} {o} {q}")
+    print(f"dask: the sweep file's {len(local['labels'])} points x {len(local['seeds'])} seeds (one seed per task) on "
+          f"LocalCluster(n_workers=2, processes=True) equal the in-process result bit for bit ({t_remote:.1f} s, "
+          f"{local['wall_s']:.1f} s in-process)")
+
+
+def test_sweep_file_errors():
+    path = os.path.join(WORK, "bad-sweep.toml")
+    with open(path, "w") as f:
+        f.write('[sweep]\nscenario = "builtin:paper-16pos-week"\ndays = 0.05\nseeds = 2\noutputs = ["lon_nm"]\n\n'
+                '[[parameter]]\nkey = "scheme.dwel_s"\nvalues = [180.0]\n\n'
+                '[[parameter]]\nkey = "site.lat_deg"\nvalues = [36.6, 123.0]\n')
+    try:
+        rins.sweep_file(path)
+        raise AssertionError("an unknown key and latitude 123 were accepted")
+    except rins.SweepError as e:
+        msg = str(e)
+    assert isinstance(rins.SweepError("x"), rins.ScenarioError) and isinstance(rins.SweepError("x"), ValueError)
+    for part in (path, "line 8, column 7: parameter[0].key", '"scheme.dwel_s"', "scheme.dwell_s",
+                 "line 13", "parameter[1].values[1]: site.lat_deg", "got 123"):
+        assert part in msg, (part, msg)
+    # The CLI says the same.
+    cli = subprocess.run([RINS, "sweep", path, "--out", os.path.join(WORK, "bad-sweep-out")],
+                         capture_output=True, text=True)
+    assert cli.returncode != 0
+    for line in msg.splitlines():
+        assert line.strip() in cli.stderr, (line, cli.stderr)
+    print(f"bad sweep file -> rins.SweepError, the CLI's words: {msg.splitlines()[1].strip()}")
+    # A dict sweep: lines refer to rins.to_toml(d); a TOML syntax error names its line too.
+    with open(EXAMPLE_SWEEP, "rb") as f:
+        d = tomllib.load(f)
+    d["sweep"]["outputs"] = ["lon_nmi"]
+    try:
+        rins.sweep_file(d)
+        raise AssertionError("an unknown output was accepted")
+    except rins.SweepError as e:
+        assert str(e).startswith("dict:") and "sweep.outputs[0]" in str(e) and "lon_nmi" in str(e), str(e)
+    with open(path, "w") as f:
+        f.write('[sweep]\nscenario = "builtin:paper-16pos-week"\nseeds = [1, 2\n')
+    try:
+        rins.sweep_file(path)
+        raise AssertionError("a broken list was accepted")
+    except rins.SweepError as e:
+        assert path in str(e) and "line 3" in str(e), str(e)
+    try:
+        rins.sweep_file(3)
+        raise AssertionError("a number was accepted as a sweep file")
+    except TypeError:
+        pass
+
+
 if __name__ == "__main__":
     os.makedirs(WORK, exist_ok=True)
     test_hour_equals_csv()
@@ -261,4 +399,7 @@ if __name__ == "__main__":
     test_errors()
     test_montecarlo_equals_cli()
     test_dask_sweep()
+    sweep_path, sweep_local = test_sweep_file_equals_cli()
+    test_dask_sweep_file(sweep_path, sweep_local)
+    test_sweep_file_errors()
     print("test_package.py: all passed")
