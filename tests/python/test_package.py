@@ -318,19 +318,38 @@ def test_sweep_file_equals_cli():
                                            rtol=1e-12, err_msg=f"{nav} {o['name']} {q} vs numpy")
     print(f"sweep_file: {n_pts} points x {n_seeds} seeds, {compared} numbers equal `rins sweep --json` bit for bit "
           f"({t_py:.1f} s in-process vs {t_cli:.1f} s for the CLI with its files and figures)")
+    # The GIL is released while the sweep runs: this thread keeps stamping meanwhile.
+    done, stamps, again = threading.Event(), [], {}
+    th = threading.Thread(target=lambda: (again.update(r=rins.sweep_file(path, as_json=True)), done.set()))
+    t0 = time.perf_counter()
+    th.start()
+    while not done.is_set():
+        stamps.append(time.perf_counter())
+    th.join()
+    wall = time.perf_counter() - t0
+    gap = np.diff(stamps).max() if len(stamps) > 1 else float("inf")
+    assert gap < 0.5 * wall, f"the main thread stalled {gap:.3f} s of {wall:.3f} s: the GIL was held"
+    assert again["r"]["points"] == cli["points"], "the JSON form differs from the CLI's"
+    print(f"sweep_file: the main thread's longest pause during the {wall:.2f} s sweep: {gap * 1e3:.1f} ms; "
+          f"as_json=True equals the CLI's points")
     return path, r
 
 
 def test_dask_sweep_file(path, local):
-    from dask.distributed import Client, LocalCluster
+    from dask.distributed import Client, LocalCluster, get_task_stream
 
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
             Client(cluster) as client:
         t0 = time.perf_counter()
-        remote = rins.sweep_file(path, client=client, seeds_per_task=1)
+        with get_task_stream(client) as ts:
+            remote = rins.sweep_file(path, client=client, seeds_per_task=1)
         t_remote = time.perf_counter() - t0
         workers = len(client.scheduler_info()["workers"])
     assert workers == 2, workers
+    # The work ran on the workers: one task per point x seed, on both of them.
+    tasks = [t for t in ts.data if t["key"].startswith("_task")]
+    assert len(tasks) == len(local["labels"]) * len(local["seeds"]), len(tasks)
+    assert len({t["worker"] for t in tasks}) == 2, {t["worker"] for t in tasks}
     for key in ("name", "sweep_file", "duration_s", "parameters", "outputs", "labels"):
         assert remote[key] == local[key], key
     np.testing.assert_array_equal(remote["seeds"], local["seeds"])
