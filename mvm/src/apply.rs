@@ -337,7 +337,7 @@ pub(crate) fn apply_groups(
 /// order the data support, coefficients written only when determined.
 pub fn apply_with_parents(
     model: &PlantConfig,
-    h: &crate::History,
+    h: &(impl crate::Rows + ?Sized),
     opts: &crate::Options,
     names: &[String],
     discovery: Option<&crate::discover::DiscoveryReport>,

@@ -12,6 +12,7 @@ use rins_plant::thermal::node;
 use rins_plant::units::{DPH, PPM, UG};
 
 use crate::history::{Attitude, History};
+use crate::rows::RowsInfo;
 
 /// Half-width of the central difference that gives a temperature reading's rate, s: wide
 /// enough to average a quantised, held housekeeping channel, narrow against thermal time
@@ -102,13 +103,11 @@ pub fn declared(model: &PlantConfig) -> Vec<CustomRef> {
     v
 }
 
-/// Why `h` cannot form the signals of effect `index` of `m`, if it cannot.
-pub fn unavailable(m: &CustomModel, index: usize, h: &History) -> Option<String> {
+/// Why data with `info` cannot form the signals of effect `index` of `m`, if they cannot.
+pub fn unavailable(m: &CustomModel, index: usize, info: &RowsInfo) -> Option<String> {
     let e = &m.effects()[index];
     for s in e.signals() {
-        if matches!(s, Signal::Outer | Signal::Inner)
-            && !matches!(h.attitude, Attitude::Gimbal { .. })
-        {
+        if matches!(s, Signal::Outer | Signal::Inner) && !info.gimbal {
             return Some(
                 "needs gimbal angles (outer_deg, inner_deg), the log has quaternions".into(),
             );
@@ -120,7 +119,7 @@ pub fn unavailable(m: &CustomModel, index: usize, h: &History) -> Option<String>
                         "needs the board temperature, which the log does not carry".into(),
                     );
                 }
-                if n == node::HOUSING && h.housing_temp_c.is_none() {
+                if n == node::HOUSING && !info.housing {
                     return Some("needs a housing temperature (temp_housing_c)".into());
                 }
             }
@@ -147,8 +146,9 @@ pub struct RowSignals {
 }
 
 impl RowSignals {
-    /// Prepares the rates the declared effects of `models` read.
-    pub fn new(models: [&CustomModel; 2], h: &History) -> Self {
+    /// Prepares the rates the declared effects of `models` read, on chunk `h` of data whose
+    /// runs start at `run_start_s` ([`RowsInfo::run_start_s`]).
+    pub fn new(models: [&CustomModel; 2], h: &History, run_start_s: &[f64]) -> Self {
         let mut need = [false; node::COUNT];
         for m in models {
             for e in m.effects() {
@@ -162,26 +162,20 @@ impl RowSignals {
             }
         }
         let rates = std::array::from_fn(|n| need[n].then(|| rate_of(h, n)));
-        let mut run_start_s = vec![f64::NAN; h.run_names.len().max(1)];
-        for seg in &h.segments {
-            let r = h.run[seg.start] as usize;
-            let dt0 = if seg.len() > 1 {
-                h.t_s[seg.start + 1] - h.t_s[seg.start]
-            } else {
-                0.0
-            };
-            let t0 = h.t_s[seg.start] - dt0;
-            if !(run_start_s[r] <= t0) {
-                run_start_s[r] = t0;
-            }
+        Self {
+            rates,
+            run_start_s: run_start_s.to_vec(),
         }
-        Self { rates, run_start_s }
     }
 
     /// Prepares the rates of every measured node (the gyro blocks, the accelerometer cluster
     /// and, when measured, the housing): the signals discovery ([`crate::discover`]) reads.
-    pub fn all(h: &History) -> Self {
-        let mut s = Self::new([&CustomModel::default(), &CustomModel::default()], h);
+    pub fn all(h: &History, run_start_s: &[f64]) -> Self {
+        let mut s = Self::new(
+            [&CustomModel::default(), &CustomModel::default()],
+            h,
+            run_start_s,
+        );
         for n in node::GYRO_X..node::COUNT {
             if n != node::HOUSING || h.housing_temp_c.is_some() {
                 s.rates[n] = Some(rate_of(h, n));
@@ -260,29 +254,32 @@ fn rate_of(h: &History, n: usize) -> Vec<f64> {
     out
 }
 
-/// The model's declared effects, compiled, with the per-row signals of the history.
+/// The model's declared effects, compiled.
 pub(crate) struct Declared {
     pub(crate) gyro: CustomModel,
     pub(crate) accel: CustomModel,
     pub(crate) refs: Vec<CustomRef>,
-    pub(crate) signals: RowSignals,
     pub(crate) any: bool,
 }
 
 impl Declared {
-    pub(crate) fn new(model: &PlantConfig, h: &History) -> Self {
+    pub(crate) fn new(model: &PlantConfig) -> Self {
         // The model was validated when it was loaded; an invalid list contributes nothing.
         let gyro = CustomModel::new(&model.sensor.gyro.custom, false).unwrap_or_default();
         let accel = CustomModel::new(&model.sensor.accel.custom, true).unwrap_or_default();
         let refs = declared(model);
-        let signals = RowSignals::new([&gyro, &accel], h);
         Self {
             any: !refs.is_empty(),
             gyro,
             accel,
             refs,
-            signals,
         }
+    }
+
+    /// The per-row signals the declared effects read on chunk `h` of data whose runs start at
+    /// `run_start_s`.
+    pub(crate) fn signals(&self, h: &History, run_start_s: &[f64]) -> RowSignals {
+        RowSignals::new([&self.gyro, &self.accel], h, run_start_s)
     }
 
     pub(crate) fn model(&self, accel: bool) -> &CustomModel {

@@ -69,7 +69,18 @@ impl History {
 /// axis), the gradient as gyro − `temp_housing_c` when a housing temperature is present, and
 /// `temp_accel_c` (else the first gyro column) for the accelerometers. The columns are moved
 /// out of the measurement, not copied. `source` names the data in messages and reports.
-pub fn to_history(mut m: Measurement, source: &str) -> Result<History, MeasurementError> {
+pub fn to_history(m: Measurement, source: &str) -> Result<History, MeasurementError> {
+    chunk_to_history(m, source, &mut Vec::new())
+}
+
+/// [`to_history`] of one chunk of a file read in chunks: its runs are looked up in (and new
+/// ones added to) `run_names`, the runs of the chunks before it, so `run` indexes the whole
+/// file's list; the history's `run_names` is a copy of it.
+pub(crate) fn chunk_to_history(
+    mut m: Measurement,
+    source: &str,
+    run_names: &mut Vec<String>,
+) -> Result<History, MeasurementError> {
     let n = m.rows;
     // The reader has checked the columns; a missing one here means a hand-built measurement.
     let missing = |c: &str| MeasurementError {
@@ -145,7 +156,6 @@ pub fn to_history(mut m: Measurement, source: &str) -> Result<History, Measureme
     };
     let housing_temp_c = housing;
     let accel_temp_c = accel.unwrap_or_else(|| gyro_temp_c[0].clone());
-    let mut run_names: Vec<String> = Vec::new();
     let mut run = vec![0u32; n];
     let mut segments = Vec::new();
     for (r, _, a, b) in &segs {
@@ -165,7 +175,7 @@ pub fn to_history(mut m: Measurement, source: &str) -> Result<History, Measureme
         housing_temp_c,
         accel_temp_c,
         run,
-        run_names,
+        run_names: run_names.clone(),
         segments,
         source: source.into(),
     })
@@ -193,13 +203,23 @@ pub fn check_model(model: &PlantConfig) -> Result<(), String> {
 /// a note. The reader has checked the columns against the model's `[site]` ranges
 /// ([`crate::ranges`]), so the site is one the model accepts.
 pub fn with_data_site(model: &PlantConfig, m: &Measurement) -> (PlantConfig, Option<String>) {
-    let mut cfg = model.clone();
     let get = |c: &str| m.col(c).and_then(|v| v.first().copied());
+    let site = get("lat_deg").zip(get("lon_deg"));
+    with_site(model, site.map(|(lat, lon)| (lat, lon, get("height_m"))))
+}
+
+/// [`with_data_site`] from the first row's (lat_deg, lon_deg, height_m), when the data have
+/// them (a [`crate::row_cache::RowCache`] keeps them).
+pub fn with_site(
+    model: &PlantConfig,
+    first: Option<(f64, f64, Option<f64>)>,
+) -> (PlantConfig, Option<String>) {
+    let mut cfg = model.clone();
     let mut note = None;
-    if let (Some(lat), Some(lon)) = (get("lat_deg"), get("lon_deg")) {
+    if let Some((lat, lon, height)) = first {
         cfg.site.lat_deg = lat;
         cfg.site.lon_deg = lon;
-        if let Some(h) = get("height_m") {
+        if let Some(h) = height {
             cfg.site.height_m = h;
         }
         if cfg.site != model.site {

@@ -20,10 +20,10 @@ use serde::Serialize;
 use crate::apply::{Coefficient, apply_groups};
 use crate::fit::{ChannelData, Gate, cv_rmse, design, nested_test, wls};
 use crate::heredity::{Parent, declare, parents};
-use crate::history::History;
 use crate::prepare::{Prepared, prepare};
 use crate::replay::{CHANNELS, Effect, Group};
 use crate::report::{Cell, CompareReport, unit_of};
+use crate::rows::Rows;
 use crate::{Analysis, Options, analyse, swap};
 
 /// Seed of the run resampling of the joint-fit check.
@@ -343,7 +343,7 @@ fn replacement_pass(
 /// Iterates `model` on `h` to the noise floor (see the module docs).
 pub fn iterate(
     model: &PlantConfig,
-    h: &History,
+    h: &(impl Rows + ?Sized),
     opts: &Options,
     it: &IterateOptions,
 ) -> Result<Iteration, String> {
@@ -379,7 +379,7 @@ pub fn iterate(
                       m: PlantConfig| {
             Ok(Iteration {
                 report: IterationReport {
-                    source: h.source.clone(),
+                    source: h.info().source,
                     steps,
                     reached_floor: reached,
                     stop,

@@ -35,6 +35,8 @@ pub mod ranges;
 pub mod reader;
 pub mod replay;
 pub mod report;
+pub mod row_cache;
+pub mod rows;
 pub mod selection;
 pub mod stats;
 mod swap;
@@ -43,13 +45,15 @@ use rins_plant::PlantConfig;
 
 pub use apply::{Applied, Coefficient, Fate};
 pub use fit::ChannelData;
-pub use history::{Attitude, History, to_history, with_data_site};
+pub use history::{Attitude, History, to_history, with_data_site, with_site};
 pub use iterate::{IterateOptions, Iteration, IterationReport, iterate};
 pub use replay::{CHANNELS, Effect, Group, Replay};
 pub use report::{
     Cell, ChannelSummary, CompareReport, Confusable, Correlation, DiagnoseReport, NavComparison,
     NoiseFloor, RankedEffect,
 };
+pub use row_cache::RowCache;
+pub use rows::{Rows, RowsInfo};
 pub use selection::Diagnosis;
 
 /// What to compute and how.
@@ -132,21 +136,22 @@ impl Analysis {
     }
 }
 
-/// Replays `model` on `h` once and computes what `opts` asks: the comparison of the model as
+/// Replays `model` on `h` (a [`History`] in memory or a [`RowCache`]) once and computes what `opts` asks: the comparison of the model as
 /// given, and with `opts.diagnose` the ranking, forward selection, fitted predictions and the
 /// comparison after them, and with `opts.apply` the model with those effects fitted.
-pub fn analyse(model: &PlantConfig, h: &History, opts: &Options) -> Analysis {
+pub fn analyse(model: &PlantConfig, h: &(impl Rows + ?Sized), opts: &Options) -> Analysis {
+    let source = h.info().source;
     let mut p = prepare::prepare(model, h, opts);
-    let comparison = p.compare_report(&h.source, &p.zero_pred());
+    let comparison = p.compare_report(&source, &p.zero_pred());
     let mut diagnosis = opts
         .diagnose
-        .then(|| selection::diagnose(&p, &h.source, &comparison));
+        .then(|| selection::diagnose(&p, &source, &comparison));
     if let Some(first) = diagnosis.as_mut().filter(|_| opts.discover) {
         // The search runs on the catalogue's remainder; its proposals then join the ranking
         // and the forward selection as declared candidates.
         let found = discover::search(model, h, &p, &first.selected);
         if found.augment(model, &mut p) {
-            let mut again = selection::diagnose(&p, &h.source, &comparison);
+            let mut again = selection::diagnose(&p, &source, &comparison);
             let report = found.finish(first, &mut again);
             again.report.discovery = Some(report);
             *first = again;
@@ -164,7 +169,7 @@ pub fn analyse(model: &PlantConfig, h: &History, opts: &Options) -> Analysis {
         runs,
     } = p;
     Analysis {
-        source: h.source.clone(),
+        source,
         run_names,
         replay,
         noise,

@@ -23,7 +23,7 @@ use rayon::prelude::*;
 
 use crate::colmap::ColumnMap;
 use crate::header::{Kind, Layout};
-use crate::reader::{Acc, LabelColumn, Measurement, MeasurementError, finish};
+use crate::reader::{Acc, ChunkSink, Chunker, LabelColumn, Measurement, MeasurementError};
 
 /// Whether the file starts with the Parquet magic bytes.
 pub fn is_parquet(path: &Path) -> bool {
@@ -178,7 +178,9 @@ const PREALLOC_ROWS: usize = 1 << 22;
 
 /// One column read: numbers (with the first row's time in ns for a time type) or labels.
 enum Col {
-    Num(Vec<f64>, Option<i64>),
+    Num(Vec<f64>),
+    /// A time type's integer ticks and ticks per second.
+    Ticks(Vec<i64>, i64),
     Label(LabelColumn),
     Skip,
 }
@@ -207,11 +209,12 @@ fn page_error(
     )
 }
 
-/// Reads column `i` (all row groups); rows are numbered from 1 across row groups.
+/// Reads column `i` of row group `g`, whose first row follows `before` rows of the file (rows
+/// are numbered from 1 across row groups).
 fn read_column(
     path: &Path,
     source: &str,
-    i: usize,
+    (i, g, before): (usize, usize, usize),
     name: &str,
     kind: Kind,
 ) -> Result<Col, MeasurementError> {
@@ -228,7 +231,7 @@ fn read_column(
     } else {
         Decode::Plain
     };
-    let total = md.file_metadata().num_rows().max(0) as usize;
+    let total = md.row_group(g).num_rows().max(0) as usize;
     let mut nums: Vec<f64> = Vec::with_capacity(if kind == Kind::Num {
         total.min(PREALLOC_ROWS)
     } else {
@@ -236,9 +239,11 @@ fn read_column(
     });
     let mut ticks: Vec<i64> = Vec::new();
     let mut labs = LabelColumn::default();
-    let mut row0 = 0usize;
+    let mut row0 = before;
     let mut defs: Vec<i16> = Vec::new();
-    for g in 0..md.num_row_groups() {
+    // One row group per call: the reader streams the file group by group.
+    #[allow(clippy::never_loop)]
+    for g in [g] {
         let n = md.row_group(g).num_rows().max(0) as usize;
         let pe = |e| page_error(source, name, g, row0 + 1, row0 + n, e);
         let rg = reader.get_row_group(g).map_err(pe)?;
@@ -361,19 +366,10 @@ fn read_column(
         row0 += n;
     }
     if let Decode::Time { per_s, .. } = decode {
-        // Seconds since the first row, from exact integer differences.
-        let t0 = ticks.first().copied().unwrap_or(0);
-        let nums = ticks
-            .iter()
-            .map(|&t| (i128::from(t) - i128::from(t0)) as f64 / per_s as f64)
-            .collect();
-        return Ok(Col::Num(
-            nums,
-            Some(t0.saturating_mul(1_000_000_000 / per_s)),
-        ));
+        return Ok(Col::Ticks(ticks, per_s));
     }
     Ok(match kind {
-        Kind::Num => Col::Num(nums, None),
+        Kind::Num => Col::Num(nums),
         _ => Col::Label(labs),
     })
 }
@@ -463,15 +459,30 @@ fn no_panic<T>(
 
 /// Reads a Parquet measurement file; `map` names and converts its columns as for CSV.
 pub fn read(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, MeasurementError> {
-    let source = path.display().to_string();
-    no_panic(&source, "", || read_checked(path, &source, map))
+    crate::reader::read_with(path, map)
 }
 
-fn read_checked(
+/// Reads a Parquet measurement file one row group at a time (its columns on both cores) and
+/// hands the rows to `sink` in chunks of whole segments ([`crate::reader::stream_with`]).
+pub(crate) fn stream(
+    path: &Path,
+    map: Option<&ColumnMap>,
+    chunk_rows: usize,
+    sink: &mut ChunkSink<'_>,
+) -> Result<(), MeasurementError> {
+    let source = path.display().to_string();
+    no_panic(&source, "", || {
+        stream_checked(path, &source, map, chunk_rows, sink)
+    })
+}
+
+fn stream_checked(
     path: &Path,
     source: &str,
     map: Option<&ColumnMap>,
-) -> Result<Measurement, MeasurementError> {
+    chunk_rows: usize,
+    sink: &mut ChunkSink<'_>,
+) -> Result<(), MeasurementError> {
     let source = source.to_string();
     let file = File::open(path).map_err(|e| error(&source, 0, "", format!("cannot read: {e}")))?;
     let reader = SerializedFileReader::new(file)
@@ -491,63 +502,82 @@ fn read_checked(
     }
     let layout = Layout::from_names(names, &source, map)?;
     check_columns(&reader, &layout)?;
-    let rows = reader.metadata().file_metadata().num_rows().max(0) as usize;
-    let results: Vec<Result<Col, MeasurementError>> = (0..layout.raw.len())
-        .into_par_iter()
-        .map(|i| {
-            no_panic(&source, &layout.raw[i], || {
-                read_column(path, &source, i, &layout.raw[i], layout.kind[i])
+    let md = reader.metadata();
+    let groups = md.num_row_groups();
+    let mut chunker = Chunker::new(layout, chunk_rows, sink);
+    // The first row's time, in ticks, for a `t_s` stored as a time type.
+    let mut t0_tick: Option<i64> = None;
+    let mut before = 0usize;
+    for g in 0..groups {
+        let rows = md.row_group(g).num_rows().max(0) as usize;
+        let layout = chunker.layout();
+        let results: Vec<Result<Col, MeasurementError>> = (0..layout.raw.len())
+            .into_par_iter()
+            .map(|i| {
+                no_panic(&source, &layout.raw[i], || {
+                    read_column(
+                        path,
+                        &source,
+                        (i, g, before),
+                        &layout.raw[i],
+                        layout.kind[i],
+                    )
+                })
             })
-        })
-        .collect();
-    // The earliest row wins, then the column first in the file (not whichever thread
-    // finished first).
-    if let Some(e) = results
-        .iter()
-        .enumerate()
-        .filter_map(|(i, r)| r.as_ref().err().map(|e| (e.row, i, e)))
-        .min_by_key(|(row, i, _)| (*row, *i))
-    {
-        return Err(e.2.clone());
-    }
-    let mut acc = Acc::new(&layout);
-    acc.rows = rows;
-    let mut t0_ns = None;
-    for (i, c) in results.into_iter().enumerate() {
-        match c? {
-            Col::Num(v, t0) => {
-                if v.len() != rows {
-                    return Err(error(
-                        &source,
-                        0,
-                        &layout.raw[i],
-                        format!(
-                            "{} values, the file says {rows} rows: the file is corrupt",
-                            v.len()
-                        ),
-                    ));
-                }
-                acc.nums[i] = v;
-                t0_ns = t0_ns.or(t0);
-            }
-            Col::Label(l) => {
-                if l.index.len() != rows {
-                    return Err(error(
-                        &source,
-                        0,
-                        &layout.raw[i],
-                        format!(
-                            "{} labels, the file says {rows} rows: the file is corrupt",
-                            l.index.len()
-                        ),
-                    ));
-                }
-                acc.labs[i] = l
-            }
-            Col::Skip => {}
+            .collect();
+        // The earliest row wins, then the column first in the file (not whichever thread
+        // finished first).
+        if let Some(e) = results
+            .iter()
+            .enumerate()
+            .filter_map(|(i, r)| r.as_ref().err().map(|e| (e.row, i, e)))
+            .min_by_key(|(row, i, _)| (*row, *i))
+        {
+            return Err(e.2.clone());
         }
+        let mut acc = Acc::new(layout);
+        acc.rows = rows;
+        let count = |n: usize, what: &str, i: usize| {
+            if n == rows {
+                Ok(())
+            } else {
+                Err(error(
+                    &source,
+                    0,
+                    &layout.raw[i],
+                    format!("{n} {what}, row group {g} says {rows} rows: the file is corrupt"),
+                ))
+            }
+        };
+        let mut t0_ns = None;
+        for (i, c) in results.into_iter().enumerate() {
+            match c? {
+                Col::Num(v) => {
+                    count(v.len(), "values", i)?;
+                    acc.nums[i] = v;
+                }
+                Col::Ticks(ticks, per_s) => {
+                    count(ticks.len(), "values", i)?;
+                    // Seconds since the file's first row, from exact integer differences.
+                    let t0 = *t0_tick.get_or_insert(ticks.first().copied().unwrap_or(0));
+                    acc.nums[i] = ticks
+                        .iter()
+                        .map(|&t| (i128::from(t) - i128::from(t0)) as f64 / per_s as f64)
+                        .collect();
+                    t0_ns = Some(t0.saturating_mul(1_000_000_000 / per_s));
+                }
+                Col::Label(l) => {
+                    count(l.index.len(), "labels", i)?;
+                    acc.labs[i] = l
+                }
+                Col::Skip => {}
+            }
+        }
+        chunker.set_t0_ns(t0_ns);
+        chunker.push(acc)?;
+        before += rows;
     }
-    finish(layout, acc, t0_ns)
+    chunker.end().map(|_| ())
 }
 
 /// Rows per row group written.

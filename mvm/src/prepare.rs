@@ -10,9 +10,9 @@ use rins_plant::units::{DPSH, UG};
 
 use crate::Options;
 use crate::fit::ChannelData;
-use crate::history::History;
 use crate::replay::{CHANNELS, Replay, replay};
 use crate::report::{NoiseFloor, unit_of};
+use crate::rows::{Rows, RowsInfo};
 use crate::stats;
 
 /// `model` replayed on a history, with per-channel data for the fits.
@@ -56,27 +56,23 @@ const RESOLUTION_ABS: f64 = 1e-15;
 /// and angles of order one: ~1e-16 absolute), so on noise-free data the residual is rounding,
 /// and a floor at the rounding level would make a column of rounding noise look informative.
 /// The floor, 1e-9 of the RMS increment plus 1e-15, is far below any real sensor's noise.
-fn resolution_density(h: &History) -> [f64; 6] {
-    let rms = |v: &[Vec<f64>; 3]| {
-        let n = v[0].len().max(1) as f64;
-        ((0..v[0].len())
-            .map(|k| v[0][k] * v[0][k] + v[1][k] * v[1][k] + v[2][k] * v[2][k])
-            .sum::<f64>()
-            / n)
-            .sqrt()
-    };
-    let dt = (h.t_s.last().copied().unwrap_or(1.0) - h.t_s.first().copied().unwrap_or(0.0))
-        / h.len().saturating_sub(1).max(1) as f64;
-    let (g, a) = (rms(&h.dtheta_rad), rms(&h.dv_mps));
+fn resolution_density(info: &RowsInfo) -> [f64; 6] {
+    let dt = info.mean_dt_s;
+    let (g, a) = (info.rms_dtheta_rad, info.rms_dv_mps);
     let f = |r: f64| (RESOLUTION_REL * r + RESOLUTION_ABS) / dt.abs().max(1e-9).sqrt();
     [f(g), f(g), f(g), f(a), f(a), f(a)]
 }
 
-/// Replays `model` on `h` (one pass over the rows) and sets up the noise floors and folds.
-pub(crate) fn prepare(model: &PlantConfig, h: &History, opts: &Options) -> Prepared {
-    let rep = replay(model, h, opts.window_s);
-    let floor = resolution_density(h);
-    let runs = h.run_names.len();
+/// Replays `model` on `rows` (one pass over the rows) and sets up the noise floors and folds.
+pub(crate) fn prepare(
+    model: &PlantConfig,
+    rows: &(impl Rows + ?Sized),
+    opts: &Options,
+) -> Prepared {
+    let rep = replay(model, rows, opts.window_s);
+    let info = rows.info();
+    let floor = resolution_density(&info);
+    let runs = info.run_names.len();
     let mut noise = Vec::new();
     let mut data = Vec::new();
     // Folds: leave one run out with three runs or more, else five contiguous blocks.
@@ -141,7 +137,7 @@ pub(crate) fn prepare(model: &PlantConfig, h: &History, opts: &Options) -> Prepa
         });
     }
     Prepared {
-        run_names: h.run_names.clone(),
+        run_names: info.run_names,
         replay: rep,
         noise,
         data,

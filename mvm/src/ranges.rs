@@ -203,7 +203,11 @@ fn first_bad_value(v: &[f64], b: Bound) -> Bad {
 
 /// Checks every value against its column's fixed range (not the per-row increment bounds);
 /// reports the earliest bad row (ties: header order).
-pub(crate) fn check_values(m: &Measurement, layout: &Layout) -> Result<(), MeasurementError> {
+pub(crate) fn check_values(
+    m: &Measurement,
+    layout: &Layout,
+    row0: usize,
+) -> Result<(), MeasurementError> {
     use rayon::prelude::*;
     let bad: Vec<(usize, String, String)> = m
         .columns
@@ -213,7 +217,7 @@ pub(crate) fn check_values(m: &Measurement, layout: &Layout) -> Result<(), Measu
             Some((k, name.clone(), msg))
         })
         .collect();
-    report(bad, layout)
+    report(bad, layout, row0)
 }
 
 /// Checks the row intervals and the increments against [`MAX_RATE_DPS`] and [`MAX_ACCEL_G`]
@@ -223,6 +227,7 @@ pub(crate) fn check_rows(
     m: &Measurement,
     layout: &Layout,
     dt_s: &[f64],
+    row0: usize,
 ) -> Result<(), MeasurementError> {
     use rayon::prelude::*;
     let mut bad: Vec<(usize, String, String)> = Vec::new();
@@ -284,18 +289,23 @@ pub(crate) fn check_rows(
             ));
         }
     }
-    report(bad, layout)
+    report(bad, layout, row0)
 }
 
-/// The error for the earliest bad row (ties: the column first in the header).
-fn report(mut bad: Vec<(usize, String, String)>, layout: &Layout) -> Result<(), MeasurementError> {
+/// The error for the earliest bad row (ties: the column first in the header); the rows of `m`
+/// follow `row0` rows of the file.
+fn report(
+    mut bad: Vec<(usize, String, String)>,
+    layout: &Layout,
+    row0: usize,
+) -> Result<(), MeasurementError> {
     let order = |name: &str| layout.header.iter().position(|h| h == name);
     bad.sort_by_key(|(k, name, _)| (*k, order(name)));
     match bad.into_iter().next() {
         None => Ok(()),
         Some((k, name, msg)) => {
             let (raw, note) = source_of(layout, &name);
-            Err(layout.err(k + 1, &raw, format!("{msg}{note}")))
+            Err(layout.err(row0 + k + 1, &raw, format!("{msg}{note}")))
         }
     }
 }

@@ -311,28 +311,191 @@ impl Acc {
         }
     }
 
-    /// Parses the complete lines of `chunk`, in two halves on both cores.
-    fn add(&mut self, l: &Layout, chunk: &str) -> Result<(), MeasurementError> {
+    /// The first `k` rows, which leave `self`.
+    fn split_front(&mut self, k: usize) -> Acc {
+        let front = |v: &mut Vec<f64>| {
+            if v.is_empty() {
+                return Vec::new();
+            }
+            let back = v.split_off(k);
+            std::mem::replace(v, back)
+        };
+        let nums = self.nums.iter_mut().map(front).collect();
+        let labs = self
+            .labs
+            .iter_mut()
+            .map(|l| {
+                if l.index.is_empty() {
+                    return LabelColumn::default();
+                }
+                let back = l.index.split_off(k);
+                LabelColumn {
+                    names: l.names.clone(),
+                    index: std::mem::replace(&mut l.index, back),
+                }
+            })
+            .collect();
+        self.rows -= k;
+        Acc {
+            nums,
+            labs,
+            rows: k,
+        }
+    }
+
+    /// Appends the rows of `other`.
+    pub(crate) fn append(&mut self, other: Acc) {
+        for (x, y) in self.nums.iter_mut().zip(other.nums) {
+            x.extend(y);
+        }
+        for (x, y) in self.labs.iter_mut().zip(other.labs) {
+            x.append(y);
+        }
+        self.rows += other.rows;
+    }
+
+    /// Parses the complete lines of `chunk`, in two halves on both cores; `before` rows of the
+    /// file precede these rows (for error rows).
+    fn add_from(&mut self, l: &Layout, chunk: &str, before: usize) -> Result<(), MeasurementError> {
         let mid = chunk.len() / 2;
         let cut = chunk[mid..].find('\n').map_or(chunk.len(), |k| mid + k + 1);
         let (first, second) = chunk.split_at(cut);
-        let row0 = self.rows;
+        let row0 = before + self.rows;
         let (a, b) = rayon::join(
             || parse_rows(first, row0, &l.raw, &l.kind, &l.source),
             // Row numbers of the second half continue the first half's.
             || parse_rows(second, row0 + count_rows(first), &l.raw, &l.kind, &l.source),
         );
         for (nums, labs, rows) in [a?, b?] {
-            for (x, y) in self.nums.iter_mut().zip(nums) {
-                x.extend(y);
-            }
-            for (x, y) in self.labs.iter_mut().zip(labs) {
-                x.append(y);
-            }
-            self.rows += rows;
+            self.append(Acc { nums, labs, rows });
         }
         Ok(())
     }
+}
+
+/// What receives a file's rows, chunk after chunk in file order: each chunk a checked
+/// measurement of whole segments.
+pub type ChunkSink<'a> = dyn FnMut(Measurement) -> Result<(), MeasurementError> + 'a;
+
+/// Rows parsed but not yet handed on: whole segments leave in chunks of at least `chunk_rows`
+/// rows (the last may be shorter), each checked by [`finish`]; the rows of the segment that
+/// may go on in the next piece stay.
+pub(crate) struct Chunker<'s, 'a> {
+    layout: Layout,
+    pending: Acc,
+    /// Rows handed on so far (error rows count across chunks).
+    row0: usize,
+    chunk_rows: usize,
+    t0_ns: Option<i64>,
+    sink: &'s mut ChunkSink<'a>,
+    /// Columns of the run and segment labels.
+    keys: [Option<usize>; 2],
+    /// Start of the last segment among the pending rows.
+    last_start: usize,
+}
+
+impl<'s, 'a> Chunker<'s, 'a> {
+    pub(crate) fn new(layout: Layout, chunk_rows: usize, sink: &'s mut ChunkSink<'a>) -> Self {
+        let key = |name: &str| {
+            layout
+                .header
+                .iter()
+                .zip(&layout.kind)
+                .position(|(h, k)| h == name && *k == Kind::Label)
+        };
+        let keys = [key("run"), key("segment")];
+        Self {
+            pending: Acc::new(&layout),
+            layout,
+            row0: 0,
+            chunk_rows: chunk_rows.max(1),
+            t0_ns: None,
+            sink,
+            keys,
+            last_start: 0,
+        }
+    }
+
+    /// The layout the rows are read with.
+    pub(crate) fn layout(&self) -> &Layout {
+        &self.layout
+    }
+
+    /// Sets the origin of a `t_s` read from a Parquet time type.
+    pub(crate) fn set_t0_ns(&mut self, t0_ns: Option<i64>) {
+        self.t0_ns = self.t0_ns.or(t0_ns);
+    }
+
+    /// Whether rows `i − 1` and `i` of the pending rows belong to different segments.
+    fn boundary(&self, i: usize) -> bool {
+        self.keys
+            .iter()
+            .flatten()
+            .any(|&c| self.pending.labs[c].index[i] != self.pending.labs[c].index[i - 1])
+    }
+
+    /// Adds parsed rows and hands on every whole chunk.
+    pub(crate) fn push(&mut self, rows: Acc) -> Result<(), MeasurementError> {
+        let old = self.pending.rows;
+        self.pending.append(rows);
+        // Rows before the start of the last segment are complete (it may go on in the next
+        // piece); only the new rows are scanned.
+        for i in old.max(1)..self.pending.rows {
+            if self.boundary(i) {
+                self.last_start = i;
+            }
+        }
+        while self.last_start >= self.chunk_rows {
+            let cut = (self.chunk_rows..=self.last_start)
+                .find(|&i| self.boundary(i))
+                .expect("the last segment's start is a boundary");
+            self.hand_on(cut)?;
+            self.last_start -= cut;
+        }
+        Ok(())
+    }
+
+    /// Hands on the first `k` pending rows.
+    fn hand_on(&mut self, k: usize) -> Result<(), MeasurementError> {
+        let front = self.pending.split_front(k);
+        let m = finish(&self.layout, front, self.t0_ns, self.row0)?;
+        self.row0 += k;
+        (self.sink)(m)
+    }
+
+    /// Hands on the rest at the end of the file; the total rows handed on.
+    pub(crate) fn end(mut self) -> Result<usize, MeasurementError> {
+        if self.pending.rows > 0 {
+            self.hand_on(self.pending.rows)?;
+        }
+        if self.row0 < 2 {
+            return Err(self
+                .layout
+                .err(self.row0, "t_s", "need at least two data rows".into()));
+        }
+        Ok(self.row0)
+    }
+}
+
+/// Appends chunk `m` (the rows after those of `into`) to `into`.
+fn append_chunk(into: &mut Measurement, m: Measurement) {
+    if into.rows == 0 {
+        *into = m;
+        return;
+    }
+    let r0 = into.rows;
+    for (name, v) in m.columns {
+        into.columns.entry(name).or_default().extend(v);
+    }
+    for (name, l) in m.labels {
+        into.labels.entry(name).or_default().append(l);
+    }
+    into.segments.extend(
+        m.segments
+            .into_iter()
+            .map(|(r, s, a, b)| (r, s, a + r0, b + r0)),
+    );
+    into.rows += m.rows;
 }
 
 /// Parses measurement CSV text; `source_name` appears in every error.
@@ -372,18 +535,28 @@ pub fn parse_with(
     })?;
     let layout = Layout::new(header_line, source_name, map)?;
     let mut acc = Acc::new(&layout);
-    acc.add(&layout, &text[offset..])?;
-    finish(layout, acc, None)
+    acc.add_from(&layout, &text[offset..], 0)?;
+    let mut all = Measurement::default();
+    let mut sink = |m| {
+        append_chunk(&mut all, m);
+        Ok(())
+    };
+    let mut chunker = Chunker::new(layout, usize::MAX, &mut sink);
+    chunker.push(acc)?;
+    chunker.end()?;
+    Ok(all)
 }
 
-/// Builds the measurement from the parsed columns and checks segments, time and the physical
-/// ranges ([`ranges`]); `t0_ns` is the origin of a `t_s` read from a Parquet time type.
+/// Builds the measurement from the parsed columns of whole segments and checks segments, time
+/// and the physical ranges ([`ranges`]); `t0_ns` is the origin of a `t_s` read from a Parquet
+/// time type; the rows follow `row0` rows of the file (for error rows).
 pub(crate) fn finish(
-    layout: Layout,
+    layout: &Layout,
     acc: Acc,
     t0_ns: Option<i64>,
+    row0: usize,
 ) -> Result<Measurement, MeasurementError> {
-    let err = |row: usize, column: &str, message: String| layout.err(row, column, message);
+    let err = |row: usize, column: &str, message: String| layout.err(row0 + row, column, message);
     let mut m = Measurement {
         rows: acc.rows,
         t0_ns,
@@ -419,10 +592,7 @@ pub(crate) fn finish(
     }
     // Values out of their physical range, before time is looked at (a t_s of 1e30 is a unit
     // mistake, not a gap).
-    ranges::check_values(&m, &layout)?;
-    if m.rows < 2 {
-        return Err(err(m.rows, "t_s", "need at least two data rows".into()));
-    }
+    ranges::check_values(&m, layout, row0)?;
     // Segments: consecutive rows with the same (run, segment) labels.
     let label = |name: &str, i: usize| m.labels.get(name).map_or(u32::MAX, |c| c.index[i]);
     let name = |col: &str, i: usize| {
@@ -443,7 +613,7 @@ pub(crate) fn finish(
     }
     m.segments = segments;
     // Time strictly increasing within a segment, and evenly spaced (a gap means lost samples).
-    let t_col = ranges::source_of(&layout, "t_s").0;
+    let t_col = ranges::source_of(layout, "t_s").0;
     let t = &m.columns["t_s"];
     // Each row's interval; a segment's first row takes the segment's median interval (a
     // one-row segment the longest interval accepted).
@@ -486,21 +656,41 @@ pub(crate) fn finish(
             }
         }
     }
-    ranges::check_rows(&m, &layout, &dt_s)?;
+    ranges::check_rows(&m, layout, &dt_s, row0)?;
     Ok(m)
 }
 
-/// Reads and parses a measurement file, streaming it in 64 MB pieces (a multi-GB file is never
-/// held in memory as text).
+/// Reads and parses a measurement file, streaming it in [`PIECE`]-byte pieces (a multi-GB
+/// file is never held in memory as text).
 pub fn read(path: &Path) -> Result<Measurement, MeasurementError> {
     read_with(path, None)
 }
 
 /// Reads a measurement file whose columns are named and converted by `map`: CSV, or Parquet
-/// when the file starts with the Parquet magic bytes (`PAR1`).
+/// when the file starts with the Parquet magic bytes (`PAR1`). The whole file is returned;
+/// [`stream_with`] hands it on in chunks instead.
 pub fn read_with(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, MeasurementError> {
+    let mut all = Measurement::default();
+    stream_with(path, map, usize::MAX, &mut |m| {
+        append_chunk(&mut all, m);
+        Ok(())
+    })?;
+    Ok(all)
+}
+
+/// Reads a measurement file (CSV or Parquet, columns named and converted by `map`) and hands
+/// its rows to `sink` in chunks of whole segments, each of at least `chunk_rows` rows (the
+/// last may be shorter), checked as [`read_with`] checks them (error rows count from the
+/// file's first). Memory holds one piece of text, the rows of the segment being read and one
+/// chunk; a Parquet file is read one row group at a time.
+pub fn stream_with(
+    path: &Path,
+    map: Option<&ColumnMap>,
+    chunk_rows: usize,
+    sink: &mut ChunkSink<'_>,
+) -> Result<(), MeasurementError> {
     if crate::parquet::is_parquet(path) {
-        return crate::parquet::read(path, map);
+        return crate::parquet::stream(path, map, chunk_rows, sink);
     }
     let source = path.display().to_string();
     let f = std::fs::File::open(path).map_err(|e| MeasurementError {
@@ -509,20 +699,37 @@ pub fn read_with(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, Me
         column: String::new(),
         message: format!("cannot read: {e}"),
     })?;
-    read_from(f, &source, map)
+    stream_from(f, &source, map, chunk_rows, sink)
 }
 
-/// Bytes read and parsed at a time by [`read_from`].
-const PIECE: usize = 64 << 20;
+/// Bytes read and parsed at a time by [`stream_from`].
+pub const PIECE: usize = 16 << 20;
 
-/// Reads measurement CSV from a stream (a file, a pipe, `/dev/zero`), 64 MB at a time: memory
-/// stays below two pieces whatever the input, and a line longer than [`MAX_LINE`] stops the read
-/// at once. `source_name` appears in every error.
+/// Reads measurement CSV from a stream (a file, a pipe, `/dev/zero`), [`PIECE`] bytes at a time:
+/// memory stays below two pieces whatever the input, and a line longer than [`MAX_LINE`] stops
+/// the read at once. `source_name` appears in every error. The whole stream is returned.
 pub fn read_from(
-    mut input: impl Read,
+    input: impl Read,
     source_name: &str,
     map: Option<&ColumnMap>,
 ) -> Result<Measurement, MeasurementError> {
+    let mut all = Measurement::default();
+    stream_from(input, source_name, map, usize::MAX, &mut |m| {
+        append_chunk(&mut all, m);
+        Ok(())
+    })?;
+    Ok(all)
+}
+
+/// [`read_from`] handing the rows on to `sink` in chunks of whole segments of at least
+/// `chunk_rows` rows ([`stream_with`]).
+pub fn stream_from(
+    mut input: impl Read,
+    source_name: &str,
+    map: Option<&ColumnMap>,
+    chunk_rows: usize,
+    sink: &mut ChunkSink<'_>,
+) -> Result<(), MeasurementError> {
     let source = source_name.to_string();
     let error = |row: usize, message: String| MeasurementError {
         source_name: source.clone(),
@@ -531,8 +738,9 @@ pub fn read_from(
         message,
     };
     let mut buf: Vec<u8> = Vec::with_capacity(PIECE + MAX_LINE + 1);
-    let mut layout: Option<Layout> = None;
-    let mut acc: Option<Acc> = None;
+    let mut chunker: Option<Chunker> = None;
+    // Rows parsed so far (for the row of a UTF-8 error or an over-long line).
+    let mut rows = 0usize;
     // Bytes of the file before `buf`, for error positions.
     let mut consumed: u64 = 0;
     loop {
@@ -554,12 +762,12 @@ pub fn read_from(
                     &buf[..end],
                     e,
                     consumed,
-                    acc.as_ref().map(|a| a.rows),
+                    chunker.as_ref().map(|_| rows),
                     &source,
                 )
             })?;
             let mut body = text;
-            if layout.is_none() {
+            if chunker.is_none() {
                 let mut offset = 0;
                 for line in text.split_inclusive('\n') {
                     if line.len() > MAX_LINE {
@@ -568,15 +776,17 @@ pub fn read_from(
                     offset += line.len();
                     if is_data(line) {
                         let l = Layout::new(line, &source, map)?;
-                        acc = Some(Acc::new(&l));
-                        layout = Some(l);
+                        chunker = Some(Chunker::new(l, chunk_rows, &mut *sink));
                         break;
                     }
                 }
                 body = &text[offset..];
             }
-            if let (Some(l), Some(a)) = (&layout, &mut acc) {
-                a.add(l, body)?;
+            if let Some(c) = &mut chunker {
+                let mut acc = Acc::new(c.layout());
+                acc.add_from(c.layout(), body, rows)?;
+                rows += acc.rows;
+                c.push(acc)?;
             }
             buf.drain(..end);
             consumed += end as u64;
@@ -584,7 +794,7 @@ pub fn read_from(
         // What is left is a partial line, which may only grow to MAX_LINE.
         if buf.len() > MAX_LINE {
             return Err(error(
-                acc.as_ref().map_or(0, |a| a.rows + 1),
+                chunker.as_ref().map_or(0, |_| rows + 1),
                 format!(
                     "{} (at byte {consumed} of the file)",
                     long_line(&format!("more than {}", buf.len()), &start_of(&buf))
@@ -595,9 +805,8 @@ pub fn read_from(
             break;
         }
     }
-    let layout = layout.ok_or_else(|| error(0, "empty file: expected a header row".into()))?;
-    let acc = acc.expect("created with the layout");
-    finish(layout, acc, None)
+    let chunker = chunker.ok_or_else(|| error(0, "empty file: expected a header row".into()))?;
+    chunker.end().map(|_| ())
 }
 
 /// The error for a piece that is not UTF-8: the file byte offset of the bad byte (`piece`

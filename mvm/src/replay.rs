@@ -18,6 +18,7 @@ use rins_plant::table::{GimbalAngles, body_to_nav};
 
 use crate::custom::{CustomRef, Declared};
 use crate::history::{Attitude, History};
+use crate::rows::{Rows, RowsInfo};
 use crate::stats::AllanAcc;
 
 /// The six measured channels.
@@ -199,9 +200,9 @@ fn layout(
     gyro: &GyroModel,
     accel: &AccelModel,
     declared: &Declared,
-    h: &History,
+    info: &RowsInfo,
 ) -> (Vec<Group>, Vec<(String, String)>) {
-    let has_gradient = h.housing_temp_c.is_some();
+    let has_gradient = info.housing;
     let mut groups = Vec::new();
     let mut unavailable = Vec::new();
     let mut offset = 0;
@@ -221,7 +222,7 @@ fn layout(
     {
         if let Effect::Custom(c) = e {
             let m = declared.model(c.accel);
-            if let Some(why) = crate::custom::unavailable(m, c.index as usize, h) {
+            if let Some(why) = crate::custom::unavailable(m, c.index as usize, info) {
                 unavailable.push((e.name(), why));
                 continue;
             }
@@ -358,28 +359,17 @@ impl Kinematics {
     }
 }
 
-fn median_dt(h: &History) -> f64 {
-    let mut d: Vec<f64> = h
-        .segments
-        .iter()
-        .flat_map(|s| (s.start + 1..s.end).map(|k| h.t_s[k] - h.t_s[k - 1]))
-        .collect();
-    if d.is_empty() {
-        return 1.0;
-    }
-    let m = d.len() / 2;
-    *d.select_nth_unstable_by(m, f64::total_cmp).1
-}
-
-/// Replays `model` on `h`, summing rows into windows of at most `window_s` seconds.
-pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
+/// Replays `model` on `rows`, summing rows into windows of at most `window_s` seconds: one
+/// pass over the chunks, the segments of a chunk side by side on both cores.
+pub fn replay(model: &PlantConfig, rows: &(impl Rows + ?Sized), window_s: f64) -> Replay {
     let gyro = GyroModel::new(&model.sensor.gyro);
     let accel = AccelModel::new(&model.sensor.accel);
     let kin = Kinematics::new(model);
-    let declared = Declared::new(model, h);
-    let (groups, unavailable) = layout(&gyro, &accel, &declared, h);
+    let declared = Declared::new(model);
+    let info = rows.info();
+    let (groups, unavailable) = layout(&gyro, &accel, &declared, &info);
     let nx = groups.iter().map(|g| g.len).sum::<usize>();
-    let row_dt_s = median_dt(h);
+    let row_dt_s = info.median_dt_s;
 
     let site_state = |c_bn: Matrix3<f64>| rins_nav::strapdown::NavState {
         q_bn: rins_plant::attitude::quaternion_of(&c_bn),
@@ -391,10 +381,10 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
     let vertical = rins_nav::strapdown::VerticalChannel::Hold {
         ref_height_m: model.site.height_m,
     };
-    let per_segment: Vec<(Vec<Window>, Vec<AllanAcc>, NavTrack)> = h
-        .segments
-        .par_iter()
-        .map(|seg| {
+    let mut per_segment: Vec<(Vec<Window>, Vec<AllanAcc>, NavTrack)> = Vec::new();
+    rows.for_each_chunk(&mut |h| {
+        let signals = declared.any.then(|| declared.signals(h, &info.run_start_s));
+        per_segment.par_extend(h.segments.par_iter().map(|seg| {
             let mut windows = Vec::new();
             let mut allan: Vec<AllanAcc> = (0..6).map(|_| AllanAcc::new()).collect();
             let run_start = h.t_s[seg.start];
@@ -471,9 +461,7 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                 let mut ge = gyro.increment_error(&ctx, &mut gterms);
                 let mut ae = accel.increment_error(&ctx, &mut aterms);
                 // Declared effects: the model's own contribution, and the candidates' regressors.
-                let frame = declared
-                    .any
-                    .then(|| declared.signals.frame(h, k, dt, &c_nb, &dtheta));
+                let frame = signals.as_ref().map(|s| s.frame(h, k, dt, &c_nb, &dtheta));
                 if let Some(f) = &frame {
                     ge += declared.gyro.increment_error(f, dt, &dtheta);
                     ae += declared.accel.increment_error(f, dt, &dv);
@@ -565,8 +553,8 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
                 windows.push(finish(w));
             }
             (windows, allan, track)
-        })
-        .collect();
+        }));
+    });
 
     let mut windows = Vec::new();
     let mut nav = Vec::new();
@@ -585,7 +573,7 @@ pub fn replay(model: &PlantConfig, h: &History, window_s: f64) -> Replay {
         allan,
         row_dt_s,
         nav,
-        rows: h.len(),
+        rows: info.rows,
     }
 }
 

@@ -29,8 +29,9 @@ use rins_plant::effects::custom::signals::{
 use rins_plant::thermal::node;
 
 use crate::custom::RowSignals;
-use crate::history::{Attitude, History};
+use crate::history::History;
 use crate::replay::{Kinematics, Window};
+use crate::rows::{Rows, RowsInfo};
 
 /// Weights a signal is summed with: Δt, Δθ_x..z, Δv_x..z.
 const WEIGHTS: usize = 7;
@@ -198,13 +199,13 @@ impl Term {
 
 /// The signals the library is built from on a history (the housing's only when measured, the
 /// gimbal angles only with a gimbal attitude).
-pub fn library_signals(h: &History) -> Vec<Signal> {
+pub fn library_signals(info: &RowsInfo) -> Vec<Signal> {
     let housing = NodeRef::Node(node::HOUSING);
     let mut v = vec![
         Signal::Temp(NodeRef::Block),
         Signal::TempRate(NodeRef::Block),
     ];
-    if h.housing_temp_c.is_some() {
+    if info.housing {
         v.extend([
             Signal::Temp(housing),
             Signal::TempRate(housing),
@@ -214,7 +215,7 @@ pub fn library_signals(h: &History) -> Vec<Signal> {
     v.extend((0..3).map(Signal::Up));
     v.extend((0..3).map(Signal::Rate));
     v.extend((0..3).map(Signal::AbsRate));
-    if matches!(h.attitude, Attitude::Gimbal { .. }) {
+    if info.gimbal {
         v.extend([Signal::Outer, Signal::Inner]);
     }
     v.push(Signal::Time);
@@ -273,24 +274,57 @@ pub struct Moments {
     pub up: Vec<[f64; 3]>,
 }
 
-/// Sums the signals of `h` over the replay's `windows` (one pass over the rows, in parallel over
-/// segments; the windows follow the segments in order, each row after a segment's first in the
-/// next window until its `rows` are used).
-pub(crate) fn moments(kin: &Kinematics, h: &History, windows: &[Window]) -> Moments {
-    let rs = RowSignals::all(h);
-    // The first window of each segment.
-    let mut first = Vec::with_capacity(h.segments.len());
+/// Sums the signals of `rows` over the replay's `windows` (one pass over the chunks, in
+/// parallel over a chunk's segments; the windows follow the segments in order, each row after a
+/// segment's first in the next window until its `rows` are used).
+pub(crate) fn moments(
+    kin: &Kinematics,
+    rows: &(impl Rows + ?Sized),
+    windows: &[Window],
+) -> Moments {
+    let info = rows.info();
+    let mut per: Vec<Vec<(Vec<f64>, [f64; 9])>> = Vec::new();
+    // The next segment's first window.
     let mut w = 0usize;
-    for seg in &h.segments {
-        first.push(w);
-        let mut rows = seg.len().saturating_sub(1);
-        while rows > 0 && w < windows.len() {
-            rows = rows.saturating_sub(windows[w].rows as usize);
-            w += 1;
+    rows.for_each_chunk(&mut |h| {
+        let rs = RowSignals::all(h, &info.run_start_s);
+        // The first window of each segment.
+        let mut first = Vec::with_capacity(h.segments.len());
+        for seg in &h.segments {
+            first.push(w);
+            let mut rows = seg.len().saturating_sub(1);
+            while rows > 0 && w < windows.len() {
+                rows = rows.saturating_sub(windows[w].rows as usize);
+                w += 1;
+            }
         }
+        per.par_extend(chunk_moments(kin, h, &rs, windows, &first));
+    });
+    let mut m = Vec::with_capacity(windows.len());
+    let mut uu = Vec::with_capacity(windows.len());
+    for (a, u) in per.into_iter().flatten() {
+        m.push(a);
+        uu.push(u);
     }
-    let per: Vec<Vec<(Vec<f64>, [f64; 9])>> = h
-        .segments
+    let up = m
+        .iter()
+        .map(|a| {
+            let d = a[SLOTS * WEIGHTS].max(f64::MIN_POSITIVE);
+            [0, 1, 2].map(|i| a[(UP + i) * WEIGHTS] / d)
+        })
+        .collect();
+    Moments { m, uu, up }
+}
+
+/// Per segment of chunk `h` (whose first windows are `first`), the per-window sums.
+fn chunk_moments<'a>(
+    kin: &'a Kinematics,
+    h: &'a History,
+    rs: &'a RowSignals,
+    windows: &'a [Window],
+    first: &'a [usize],
+) -> impl IndexedParallelIterator<Item = Vec<(Vec<f64>, [f64; 9])>> + 'a {
+    h.segments
         .par_iter()
         .zip(first.par_iter())
         .map(|(seg, &w0)| {
@@ -346,21 +380,6 @@ pub(crate) fn moments(kin: &Kinematics, h: &History, windows: &[Window]) -> Mome
             }
             out
         })
-        .collect();
-    let mut m = Vec::with_capacity(windows.len());
-    let mut uu = Vec::with_capacity(windows.len());
-    for (a, u) in per.into_iter().flatten() {
-        m.push(a);
-        uu.push(u);
-    }
-    let up = m
-        .iter()
-        .map(|a| {
-            let d = a[SLOTS * WEIGHTS].max(f64::MIN_POSITIVE);
-            [0, 1, 2].map(|i| a[(UP + i) * WEIGHTS] / d)
-        })
-        .collect();
-    Moments { m, uu, up }
 }
 
 /// The frame slot(s) of a signal on `axis` of the gyros (`accel = false`) or accelerometers:

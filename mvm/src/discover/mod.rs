@@ -23,10 +23,10 @@ use serde::Serialize;
 
 use crate::custom::CustomRef;
 use crate::fit::{Gate, design};
-use crate::history::History;
 use crate::prepare::Prepared;
 use crate::replay::{CHANNELS, Effect, Group, Kinematics};
 use crate::report::Confusable;
+use crate::rows::Rows;
 use crate::selection::Diagnosis;
 use library::{Term, file_unit_si};
 
@@ -303,13 +303,13 @@ fn tested(
 /// groups per channel).
 pub(crate) fn search(
     model: &PlantConfig,
-    h: &History,
+    rows: &(impl Rows + ?Sized),
     a: &Prepared,
     selected: &[Vec<Group>],
 ) -> Search {
     let ws = &a.replay.windows;
-    let mom = library::moments(&Kinematics::new(model), h, ws);
-    let sig = library::library_signals(h);
+    let mom = library::moments(&Kinematics::new(model), rows, ws);
+    let sig = library::library_signals(&rows.info());
     let mut terms = library::product_terms(&sig);
     terms.extend(
         mom.positions(ws, MAX_POSITIONS)

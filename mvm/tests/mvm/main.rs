@@ -10,3 +10,4 @@ mod correlations;
 mod measurement_bytes;
 mod reader;
 mod reader_fuzz;
+mod row_cache;

@@ -1,5 +1,5 @@
 //! A measurement file that is not text is refused with the file byte offset and the data row of
-//! the first bad byte, also past the first 64 MB piece the reader parses at a time.
+//! the first bad byte, also past the first piece (`reader::PIECE`) the reader parses at a time.
 
 use std::io::Write;
 
@@ -68,9 +68,9 @@ fn a_bad_byte_in_the_header_is_row_0() {
 
 #[test]
 fn a_bad_byte_after_the_first_64_mb_names_its_row_and_file_offset() {
-    // Rows of 40 to 47 bytes: the bad one is past the first piece of 64 MB.
+    // Rows of 40 to 47 bytes: the bad one is past the first piece.
     let offset = check("large", 1_700_000, 1_650_000);
-    assert!(offset > 64 << 20, "{offset}");
+    assert!(offset > rins_mvm::reader::PIECE as u64, "{offset}");
 }
 
 /// A reader that counts the bytes taken from `inner` and gives at most `chunk` per read (as a
@@ -93,7 +93,8 @@ impl<R: std::io::Read> std::io::Read for Counted<R> {
 #[test]
 fn an_endless_stream_without_line_breaks_stops_at_once_with_bounded_reading() {
     use std::io::Read;
-    // 1 TB of NUL bytes, as /dev/zero: the reader takes one 64 MB piece and stops.
+    // 1 TB of NUL bytes, as /dev/zero: the reader takes one piece and stops.
+    let piece = rins_mvm::reader::PIECE;
     let mut zeros = Counted {
         inner: std::io::repeat(0).take(1 << 40),
         taken: 0,
@@ -103,7 +104,7 @@ fn an_endless_stream_without_line_breaks_stops_at_once_with_bounded_reading() {
     let e = rins_mvm::reader::read_from(&mut zeros, "zeros", None).expect_err("no lines");
     assert_eq!(e.row, 0, "{e}");
     assert!(
-        e.message.contains("more than 67108864 bytes") && e.message.contains("65536"),
+        e.message.contains(&format!("more than {piece} bytes")) && e.message.contains("65536"),
         "{e}"
     );
     // The start is quoted escaped and cut at 80 characters.
@@ -113,7 +114,7 @@ fn an_endless_stream_without_line_breaks_stops_at_once_with_bounded_reading() {
     );
     assert!(e.to_string().len() < 700, "{} bytes", e.to_string().len());
     assert!(
-        zeros.taken <= (64 << 20) + (64 << 10),
+        zeros.taken <= piece as u64 + (64 << 10),
         "{} bytes read",
         zeros.taken
     );
@@ -134,7 +135,7 @@ fn an_endless_stream_without_line_breaks_stops_at_once_with_bounded_reading() {
     );
     assert!(e.to_string().len() < 500, "{} bytes", e.to_string().len());
     assert!(
-        long.taken <= (64 << 20) + (64 << 10),
+        long.taken <= rins_mvm::reader::PIECE as u64 + (64 << 10),
         "{} bytes read",
         long.taken
     );

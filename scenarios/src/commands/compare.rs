@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use rins_mvm::{Analysis, History, Options};
+use rins_mvm::{Analysis, Options, RowCache, Rows};
 use rins_plant::PlantConfig;
 
 use super::args::{RerunArgs, positive};
@@ -52,8 +52,10 @@ pub struct CompareArgs {
     pub data: DataArgs,
 }
 
-/// The model (at the data's site), the measured history and the analysis options.
-pub fn load_data(a: &DataArgs) -> Result<(PlantConfig, History, Options)> {
+/// The model (at the data's site), the measured rows and the analysis options. The data are
+/// streamed into a row cache (`rins_mvm::RowCache`): memory holds a few segments at a time,
+/// whatever the file's length.
+pub fn load_data(a: &DataArgs) -> Result<(PlantConfig, RowCache, Options)> {
     let sc = crate::file::Scenario::load(&a.model)?;
     // The replay represents a static carrier on a table only: a moving one is refused.
     rins_mvm::history::check_model(&sc.plant)
@@ -63,12 +65,11 @@ pub fn load_data(a: &DataArgs) -> Result<(PlantConfig, History, Options)> {
         .as_deref()
         .map(|p| rins_mvm::colmap::ColumnMap::load(p, rins_mvm::reader::classify))
         .transpose()?;
-    let m = rins_mvm::reader::read_with(&a.data, map.as_ref())?;
-    let (model, note) = rins_mvm::with_data_site(&sc.plant, &m);
+    let h = RowCache::read(&a.data, map.as_ref(), rins_mvm::row_cache::CHUNK_ROWS)?;
+    let (model, note) = rins_mvm::with_site(&sc.plant, h.first_site());
     if let Some(n) = note {
         eprintln!("{}", n);
     }
-    let h = rins_mvm::to_history(m, &a.data.display().to_string())?;
     let opts = Options {
         window_s: positive("--window-s", a.window_s)?,
         temp_bin_k: positive("--temp-bin-k", a.temp_bin_k)?,
@@ -89,7 +90,7 @@ pub fn run(a: &CompareArgs) -> Result<()> {
         &an,
         None,
         None,
-        &h.source,
+        &h.info().source,
         &serde_json::to_string_pretty(report)?,
     )?;
     if let Some(dir) = &a.data.report {

@@ -9,6 +9,7 @@ use rins_mvm::Effect;
 
 use super::compare::{DataArgs, load_data, record_analysis};
 use crate::report::RenderText;
+use rins_mvm::Rows;
 
 /// Arguments of `rins diagnose`.
 #[derive(clap::Args, Debug)]
@@ -104,7 +105,7 @@ pub fn run(a: &DiagnoseArgs) -> Result<()> {
             report.discovery.as_ref(),
         )
         .map_err(anyhow::Error::msg)?;
-        write_applied(a, &applied, &h.source)?;
+        write_applied(a, &applied, &h.info().source)?;
     }
     if a.data.report.is_some() || a.data.viz.rerun.is_some() {
         record_analysis(
@@ -112,7 +113,7 @@ pub fn run(a: &DiagnoseArgs) -> Result<()> {
             &an,
             an.predictions(),
             None,
-            &h.source,
+            &h.info().source,
             &serde_json::to_string_pretty(report)?,
         )?;
     }
@@ -137,7 +138,7 @@ pub fn run(a: &DiagnoseArgs) -> Result<()> {
 fn iterate(
     a: &DiagnoseArgs,
     model: &rins_plant::PlantConfig,
-    h: &rins_mvm::History,
+    h: &rins_mvm::RowCache,
     opts: &rins_mvm::Options,
 ) -> Result<()> {
     let it = rins_mvm::iterate(
@@ -160,7 +161,7 @@ fn iterate(
         &format!(
             "{} iterated to the floor on {} ({}): {}",
             a.data.model.display(),
-            h.source,
+            h.info().source,
             it.report.steps.len() - 1,
             it.report.stop
         ),
@@ -183,7 +184,7 @@ fn iterate(
             &it.last,
             it.last.predictions(),
             Some(&it.report),
-            &h.source,
+            &h.info().source,
             &json,
         )?;
     }
