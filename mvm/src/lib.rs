@@ -6,7 +6,10 @@
 //!
 //! The steps, each in its own module: [`reader`] (the strict measurement CSV reader,
 //! docs/measurement-format.md), [`colmap`] (column maps for a logger's own names and units),
-//! [`parquet`] (the same format in Parquet), [`history`] (the measured rows in SI), [`replay`] (model
+//! [`parquet`] (the same format in Parquet), [`history`] (the measured rows in SI), [`rows`] (the
+//! rows walked chunk by chunk of whole segments), [`row_cache`] (a file streamed once into a
+//! temporary file and walked back by every pass, so memory does not grow with the file),
+//! [`replay`] (model
 //! expectation, residual and regressors per row, summed into windows, in one pass over the
 //! rows), [`fit`] (weighted least squares, candidate tests, gate, collinearity), [`stats`]
 //! (Allan variance, correlations, test distributions), `prepare` (noise floors and folds),
