@@ -26,7 +26,7 @@ pub mod slots;
 pub mod ssv;
 mod table;
 
-use outputs::{Record, View, outputs};
+use outputs::{View, outputs};
 use table::{Input, Role, table};
 
 /// File name of the shared library cargo builds for `version` (the crates `rins-imu-fmi2` /
@@ -461,8 +461,9 @@ impl Model for RinsImu {
         self.sample = if fields.is_empty() {
             None
         } else {
-            // A sample of the right shape, then every field the outputs carry.
-            let mut s = Record::template(&cfg)?.sample;
+            // A sample of the right shape, then every field the outputs carry (the model reads
+            // its last sample by these fields only).
+            let mut s = ImuSample::default();
             for (o, i, x) in fields {
                 let f = o.sample_field.as_ref().expect("filtered on sample fields");
                 (f.set)(&mut s, i, x);

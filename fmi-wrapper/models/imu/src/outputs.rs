@@ -8,9 +8,12 @@ use std::sync::{Arc, OnceLock};
 
 use nalgebra::Vector3;
 use rins_fmi::vars::{Kind, OutputDecl, Value};
+use rins_plant::carrier::run::CarrierRun;
+use rins_plant::carrier::{Carrier, CarrierState, CarrierTruth};
+use rins_plant::earth::Site;
 use rins_plant::effects::{AccelTerm, GyroTerm};
 use rins_plant::thermal::node;
-use rins_plant::{ImuSample, Plant, PlantConfig, Truth};
+use rins_plant::{ConfigError, ImuSample, Plant, PlantConfig, Truth};
 
 /// What a row reads: the plant after the last communication step.
 pub struct View<'a> {
@@ -48,21 +51,62 @@ pub struct Record {
 }
 
 impl Record {
-    /// A record of the right shape for `cfg` (its first sample and truth), to be overwritten
-    /// by the outputs each step: every field the FMU outputs is stored by a row.
+    /// A record of the right shape for `cfg`, to be overwritten by the outputs each step; built
+    /// from the configuration alone (nothing runs). Every field a row stores starts at its
+    /// default ([`ImuSample::default`], [`Truth::default`]) and is stored by the first step's
+    /// outputs. The fields no row stores keep what the configuration fixes: the carrier at the
+    /// start (the static carrier's site and `[vehicle]` attitude, which every step's truth
+    /// holds; a moving carrier's state before its first tick), the table's step index (0: the
+    /// first step is in the lead dwell or the first segment) and the declared effects' sums
+    /// (zero: no output carries them).
+    ///
+    /// Errors: `cfg` out of range, or its trajectory file unreadable, worded as [`Plant::new`]
+    /// words them.
     pub fn template(cfg: &PlantConfig) -> Result<Self, String> {
-        let mut p = Plant::new(cfg).map_err(|e| {
+        cfg.validate().map_err(|e| {
             e.iter()
                 .map(|x| x.to_string())
                 .collect::<Vec<_>>()
                 .join("; ")
         })?;
-        let sample = p.step();
         Ok(Self {
-            sample,
-            truth: p.truth(),
+            sample: ImuSample::default(),
+            truth: Truth {
+                carrier: start_carrier(cfg)?,
+                ..Truth::default()
+            },
         })
     }
+}
+
+/// The carrier's truth at the start of a run of `cfg`, from the configuration alone. The static
+/// carrier's is the site at rest in the `[vehicle]` attitude, what the plant's truth holds at
+/// every step. No output carries a moving carrier's truth (`rins fmu run` refuses one), so
+/// its record keeps the carrier's state before the first tick, as an unstepped plant's truth.
+fn start_carrier(cfg: &PlantConfig) -> Result<CarrierTruth, String> {
+    // The plant's tick: a ship's waves and a trajectory's sampling are built on it.
+    let tick_s = 1.0 / (cfg.rate_hz * cfg.substeps as f64);
+    let carrier = Carrier::new(&cfg.carrier, cfg.seed, tick_s).map_err(|e| {
+        ConfigError {
+            path: "carrier.trajectory.file".into(),
+            expected: "a readable, valid trajectory file (docs/carrier.md)".into(),
+            got: e,
+        }
+        .to_string()
+    })?;
+    Ok(match carrier {
+        None => {
+            let site = Site::new(&cfg.site, &cfg.earth);
+            CarrierState::at_rest(
+                site.lat_rad,
+                site.lon_rad,
+                site.height_m,
+                cfg.vehicle.c_vn(),
+            )
+            .truth()
+        }
+        Some(c) => CarrierRun::new(c, cfg).state().truth(),
+    })
 }
 
 /// How a row reads element `i`.

@@ -1,6 +1,8 @@
 //! Unit tests of the parameter mapping and the output table.
 
 use super::*;
+use crate::outputs::Record;
+use rins_plant::Truth;
 use rins_plant::params;
 
 #[test]
@@ -41,6 +43,114 @@ fn docs_fmu_md_lists_the_current_variables() {
         doc.contains(&list),
         "docs/fmu.md is out of date: regenerate with `cargo run -p rins-imu-fmu --example variable_list`"
     );
+}
+
+/// The record the old `Record::template` gave, kept as the reference: a plant built and
+/// stepped once for its first sample and truth.
+fn stepped_template(cfg: &PlantConfig) -> Record {
+    let mut p = Plant::new(cfg).unwrap();
+    let sample = p.step();
+    Record {
+        sample,
+        truth: p.truth(),
+    }
+}
+
+/// Stores into `rec` every output row of `plant` after its step gave `sample` (what an importer
+/// does with the outputs of one communication step of one sample).
+fn store_rows(rec: &mut Record, plant: &Plant, sample: &ImuSample) {
+    let view = View {
+        plant,
+        truth: plant.truth(),
+        sample: Some(sample),
+        true_sums: None,
+    };
+    for o in outputs() {
+        if let Some(store) = &o.store {
+            for i in 0..o.decl.count() {
+                store(rec, i, (o.read)(&view, i));
+            }
+        }
+    }
+}
+
+/// The template is built without running a plant, yet the records the output rows rebuild from
+/// it are those they rebuilt from the old one (a plant stepped once), every field bit for bit
+/// (Debug text, which tells -0.0 from 0.0), on the static carrier and on a ship at sea. The one
+/// field no row stores that differs is a ship's carrier: the old template held the carrier after
+/// the first step, the new one holds it before (an unstepped plant's); no output carries it,
+/// and `rins fmu run` refuses moving carriers.
+#[test]
+fn the_template_rebuilds_the_records_of_the_stepped_plant_template() {
+    use rins_plant::carrier::{CarrierKind, SpectrumKind};
+    let still = rins_plant::presets::paper_16pos_config();
+    let mut ship = still.clone();
+    ship.carrier.kind = CarrierKind::Ship;
+    ship.carrier.ship.sea.spectrum = SpectrumKind::PiersonMoskowitz;
+    ship.carrier.ship.sea.sea_state = 5;
+    for (name, cfg) in [("static", still), ("ship", ship)] {
+        let mut old = stepped_template(&cfg);
+        let mut new = Record::template(&cfg).unwrap();
+        let mut plant = Plant::new(&cfg).unwrap();
+        let start = plant.truth().carrier;
+        assert_eq!(
+            new.truth.carrier, start,
+            "{name}: the carrier before the first step"
+        );
+        for k in 0..300 {
+            let s = plant.step();
+            store_rows(&mut old, &plant, &s);
+            store_rows(&mut new, &plant, &s);
+            // The stepped plant's own sample and truth, with the carrier before the first step
+            // (the static carrier's never changes).
+            let truth = plant.truth();
+            assert_eq!(truth.carrier != start, name == "ship", "{name}: step {k}");
+            let own = Record {
+                sample: s,
+                truth: Truth {
+                    carrier: start,
+                    ..truth
+                },
+            };
+            assert_eq!(format!("{own:?}"), format!("{new:?}"), "{name}: step {k}");
+            // The old template's record: the same but for a ship's carrier, which it held after
+            // the first step.
+            assert_eq!(
+                old.truth.carrier != start,
+                name == "ship",
+                "{name}: step {k}"
+            );
+            let old_ref = Record {
+                truth: Truth {
+                    carrier: start,
+                    ..old.truth
+                },
+                ..old
+            };
+            assert_eq!(
+                format!("{old_ref:?}"),
+                format!("{new:?}"),
+                "{name}: step {k}"
+            );
+        }
+    }
+}
+
+/// A configuration out of range is refused by the template as by the plant, naming the key.
+#[test]
+fn the_template_refuses_an_out_of_range_configuration_as_the_plant_does() {
+    let mut cfg = rins_plant::presets::paper_16pos_config();
+    cfg.rate_hz = -1.0;
+    let e = Record::template(&cfg).unwrap_err();
+    let plant = Plant::new(&cfg)
+        .err()
+        .unwrap()
+        .iter()
+        .map(|x| x.to_string())
+        .collect::<Vec<_>>()
+        .join("; ");
+    assert_eq!(e, plant);
+    assert!(e.contains("rate_hz"), "{e}");
 }
 
 /// Reading every output row and storing it back rebuilds exactly the sample and truth the
