@@ -156,7 +156,8 @@ fn set_parameters(fmu: &Fmu2, inst: &Instance2<'_>, cfg: &PlantConfig) -> Result
         if p.path.starts_with("sensor.gyro.custom[") || p.path.starts_with("sensor.accel.custom[") {
             continue;
         }
-        let name = p.path.replace("][", ",");
+        // The FMU's own naming of a parameter path (one definition, shared with the models).
+        let name = rins_fmi_plant::parameter::variable_name(&p.path);
         let vr = fmu.vr(&name).map_err(anyhow::Error::msg)?;
         let r = match &p.value {
             ParamValue::Real(x) => inst.set_real(&[vr], &[*x]),

@@ -356,6 +356,17 @@ pub mod published_table5 {
     pub const TRMS_NM: [f64; 2] = [2.4603, 1.2921];
 }
 
+/// The column header of the Table 4 and Table 5 text: an empty quantity column `label_w`
+/// characters wide (its two-space indent included), the paper's two columns and our two bands.
+/// One definition, so the two tables (and `rins paper table4`, which prints Table 4 from
+/// rins-scenarios) cannot drift apart.
+pub fn paired_table_header(label_w: usize) -> String {
+    format!(
+        "{:<label_w$} {:>9} {:>9}   {:>27}   {:>27}\n",
+        "", "paper unc", "paper comp", "ours uncompensated median [5%, 95%]", "ours compensated"
+    )
+}
+
 impl Table4Report {
     /// The Table 5 side-by-side table (same runner, fitted compensation).
     pub fn to_text_table5(&self) -> String {
@@ -368,17 +379,10 @@ impl Table4Report {
             )
         };
         let mut s = format!(
-            "Table 5: {} seeds x {:.2} days, 16-position RINS, compensation from the fitted dbeta(T) (wall {:.1} s)\n\
-             {:<26} {:>9} {:>9}   {:>27}   {:>27}\n",
-            self.runs,
-            self.days,
-            self.wall_s,
-            "",
-            "paper unc",
-            "paper comp",
-            "ours uncompensated median [5%, 95%]",
-            "ours compensated"
+            "Table 5: {} seeds x {:.2} days, 16-position RINS, compensation from the fitted dbeta(T) (wall {:.1} s)\n",
+            self.runs, self.days, self.wall_s,
         );
+        s += &paired_table_header(26);
         s += &row("latitude error (nmi)", p::LAT_NM, &u.lat_nm, &c.lat_nm);
         s += &row("longitude error (nmi)", p::LON_NM, &u.lon_nm, &c.lon_nm);
         s += &row(
