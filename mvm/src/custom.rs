@@ -6,7 +6,9 @@
 
 use rins_plant::PlantConfig;
 use rins_plant::effects::custom::signals::{self, Frame, SLOTS, Signal};
-use rins_plant::effects::custom::{CustomKind, CustomModel, custom_coefficient_key};
+use rins_plant::effects::custom::{
+    CustomKind, CustomModel, FastInputs, Needs, custom_coefficient_key, fill_fast,
+};
 use rins_plant::table::GimbalAngles;
 use rins_plant::thermal::node;
 use rins_plant::units::{DPH, PPM, UG};
@@ -107,7 +109,7 @@ pub fn declared(model: &PlantConfig) -> Vec<CustomRef> {
 pub fn unavailable(m: &CustomModel, index: usize, info: &RowsInfo) -> Option<String> {
     let e = &m.effects()[index];
     for s in e.signals() {
-        if matches!(s, Signal::Outer | Signal::Inner) && !info.gimbal {
+        if s.family().needs_gimbal && !info.gimbal {
             return Some(
                 "needs gimbal angles (outer_deg, inner_deg), the log has quaternions".into(),
             );
@@ -184,9 +186,9 @@ impl RowSignals {
         s
     }
 
-    /// The frame of row `k` (interval `dt_s`, true increment `dtheta`, mid attitude C_n^b
-    /// `c_nb`: its columns are east, north and up in body axes).
-    #[allow(clippy::too_many_arguments)]
+    /// The frame of row `k` (interval `dt_s`, true increments `dtheta` and `dv`, mid attitude
+    /// C_n^b `c_nb`: its columns are east, north and up in body axes): the readings, then
+    /// every fast signal from the same inputs the plant fills them from.
     pub fn frame(
         &self,
         h: &History,
@@ -194,9 +196,8 @@ impl RowSignals {
         dt_s: f64,
         c_nb: &nalgebra::Matrix3<f64>,
         dtheta: &nalgebra::Vector3<f64>,
+        dv: &nalgebra::Vector3<f64>,
     ) -> Frame {
-        let up_b = &c_nb.column(2).into_owned();
-        let north_east_b = [c_nb.column(1).into_owned(), c_nb.column(0).into_owned()];
         let mut f = [0.0; SLOTS];
         for n in 0..node::COUNT {
             f[signals::TEMP + n] = reading(h, n, k);
@@ -204,7 +205,7 @@ impl RowSignals {
                 f[signals::DTEMP + n] = r[k];
             }
         }
-        let mid = match &h.attitude {
+        let gimbal_mid = match &h.attitude {
             Attitude::Gimbal {
                 outer_rad,
                 inner_rad,
@@ -214,17 +215,16 @@ impl RowSignals {
             ),
             Attitude::Quaternion(_) => GimbalAngles::new(0.0, 0.0),
         };
-        let t_mid = h.t_s[k] - 0.5 * dt_s - self.run_start_s[h.run[k] as usize];
-        rins_plant::effects::custom::fill_fast(
-            &mut f,
-            rins_plant::effects::custom::Needs::ALL,
-            up_b,
-            &north_east_b,
-            dtheta,
-            dt_s,
-            mid,
-            t_mid,
-        );
+        let x = FastInputs {
+            up_b: c_nb.column(2).into_owned(),
+            north_east_b: [c_nb.column(1).into_owned(), c_nb.column(0).into_owned()],
+            dtheta_rad: *dtheta,
+            dv_mps: *dv,
+            h_s: dt_s,
+            gimbal_mid,
+            t_mid_s: h.t_s[k] - 0.5 * dt_s - self.run_start_s[h.run[k] as usize],
+        };
+        fill_fast(&mut f, Needs::ALL, &x);
         f
     }
 }

@@ -461,7 +461,9 @@ pub fn replay(model: &PlantConfig, rows: &(impl Rows + ?Sized), window_s: f64) -
                 let mut ge = gyro.increment_error(&ctx, &mut gterms);
                 let mut ae = accel.increment_error(&ctx, &mut aterms);
                 // Declared effects: the model's own contribution, and the candidates' regressors.
-                let frame = signals.as_ref().map(|s| s.frame(h, k, dt, &c_nb, &dtheta));
+                let frame = signals
+                    .as_ref()
+                    .map(|s| s.frame(h, k, dt, &c_nb, &dtheta, &dv));
                 if let Some(f) = &frame {
                     ge += declared.gyro.increment_error(f, dt, &dtheta);
                     ae += declared.accel.increment_error(f, dt, &dv);

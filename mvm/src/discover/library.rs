@@ -1,7 +1,8 @@
 //! The library of candidate regressors discovery searches, and their window sums.
 //!
-//! The terms are built from the documented signals a declared effect reads
-//! ([`rins_plant::effects::custom::signals`]): the acting axis's block temperature and the
+//! The terms are built from the documented signals a declared effect reads, as the signals
+//! table ([`rins_plant::effects::custom::signals::FAMILIES`]) lists them and says how the
+//! library uses each (a new signal there is in the library with no change here): the acting axis's block temperature and the
 //! housing's, their time derivatives, the block-to-housing gradient, the body up direction
 //! u_x, u_y, u_z, the body rates and their absolute values, the gimbal angles and the time since
 //! the run's start; every one of them and every product of two (squares included), each as a
@@ -23,8 +24,10 @@
 
 use rayon::prelude::*;
 use rins_plant::effects::custom::CustomKind;
+#[cfg(doc)]
+use rins_plant::effects::custom::signals::Family;
 use rins_plant::effects::custom::signals::{
-    ABS_RATE, DTEMP, EAST, INNER, NORTH, NodeRef, OUTER, RATE, SLOTS, Signal, TEMP, TIME, UP, Unit,
+    ArgKind, Args, FAMILIES, Library, NodeRef, SLOTS, Signal, UP, Unit,
 };
 use rins_plant::thermal::node;
 
@@ -56,60 +59,7 @@ pub enum Term {
 
 /// Regressor notation of a signal, as a declared effect writes it.
 pub fn signal_name(s: Signal) -> String {
-    let node = |n: NodeRef| match n {
-        NodeRef::Block => "block".to_string(),
-        NodeRef::Node(i) => node::NAMES[i].to_string(),
-    };
-    let axis = |i: usize| ["x", "y", "z"][i];
-    match s {
-        Signal::Temp(n) => format!("temp:{}", node(n)),
-        Signal::TempRate(n) => format!("dtemp_dt:{}", node(n)),
-        Signal::Gradient(a, b) => format!("grad:{}-{}", node(a), node(b)),
-        Signal::Up(i) => format!("u_{}", axis(i)),
-        Signal::Rate(i) => format!("w_{}", axis(i)),
-        Signal::AbsRate(i) => format!("abs_w_{}", axis(i)),
-        Signal::Outer => "gimbal_outer".into(),
-        Signal::Inner => "gimbal_inner".into(),
-        Signal::Time => "time".into(),
-        Signal::North(i) => format!("n_{}", axis(i)),
-        Signal::East(i) => format!("e_{}", axis(i)),
-    }
-}
-
-/// A short name part of a signal (for proposal names of at most 32 characters).
-fn short(s: Signal) -> String {
-    let node = |n: NodeRef| match n {
-        NodeRef::Block => "block".to_string(),
-        NodeRef::Node(i) => node::NAMES[i].to_string(),
-    };
-    let axis = |i: usize| ["x", "y", "z"][i];
-    match s {
-        Signal::Temp(n) => format!("t_{}", node(n)),
-        Signal::TempRate(n) => format!("dtdt_{}", node(n)),
-        Signal::Gradient(..) => "grad_bh".into(),
-        Signal::Up(i) => format!("u_{}", axis(i)),
-        Signal::Rate(i) => format!("w_{}", axis(i)),
-        Signal::AbsRate(i) => format!("aw_{}", axis(i)),
-        Signal::Outer => "outer".into(),
-        Signal::Inner => "inner".into(),
-        Signal::Time => "time".into(),
-        Signal::North(i) => format!("n_{}", axis(i)),
-        Signal::East(i) => format!("e_{}", axis(i)),
-    }
-}
-
-/// Whether a signal stays constant while the table dwells (attitude and rate signals).
-fn dwell_constant(s: Signal) -> bool {
-    matches!(
-        s,
-        Signal::Up(_)
-            | Signal::North(_)
-            | Signal::East(_)
-            | Signal::Rate(_)
-            | Signal::AbsRate(_)
-            | Signal::Outer
-            | Signal::Inner
-    )
+    s.name()
 }
 
 impl Term {
@@ -162,8 +112,8 @@ impl Term {
             Term::Product { factors, kind } => {
                 let k = if *kind == CustomKind::Bias { "b" } else { "sf" };
                 let f = match factors.as_slice() {
-                    [a, b] if a == b => format!("{}_sq", short(*a)),
-                    f => f.iter().map(|s| short(*s)).collect::<Vec<_>>().join("_"),
+                    [a, b] if a == b => format!("{}_sq", a.short()),
+                    f => f.iter().map(|s| s.short()).collect::<Vec<_>>().join("_"),
                 };
                 format!("{k}_{f}")
             }
@@ -197,48 +147,55 @@ impl Term {
     }
 }
 
-/// The signals the library is built from on a history (the housing's only when measured, the
-/// gimbal angles only with a gimbal attitude).
+/// The signals the library is built from on a history, from the signals table
+/// ([`FAMILIES`]) in its order: the temperature families of the acting axis's block, then,
+/// when the housing is measured, the housing's and the block-to-housing difference; then every
+/// [`Library::Products`] family over its axes, those that [`Family::needs_gimbal`] only with a
+/// gimbal attitude.
 pub fn library_signals(info: &RowsInfo) -> Vec<Signal> {
     let housing = NodeRef::Node(node::HOUSING);
-    let mut v = vec![
-        Signal::Temp(NodeRef::Block),
-        Signal::TempRate(NodeRef::Block),
-    ];
+    let products = || {
+        FAMILIES
+            .iter()
+            .enumerate()
+            .filter(|(_, f)| f.library == Library::Products)
+    };
+    let mut v: Vec<Signal> = products()
+        .filter(|(_, f)| f.arg == ArgKind::Node)
+        .filter_map(|(i, _)| Signal::from_parts(i, Args::Node(NodeRef::Block)))
+        .collect();
     if info.housing {
-        v.extend([
-            Signal::Temp(housing),
-            Signal::TempRate(housing),
-            Signal::Gradient(NodeRef::Block, housing),
-        ]);
+        v.extend(products().filter_map(|(i, f)| match f.arg {
+            ArgKind::Node => Signal::from_parts(i, Args::Node(housing)),
+            ArgKind::NodePair => Signal::from_parts(i, Args::NodePair(NodeRef::Block, housing)),
+            _ => None,
+        }));
     }
-    v.extend((0..3).map(Signal::Up));
-    v.extend((0..3).map(Signal::Rate));
-    v.extend((0..3).map(Signal::AbsRate));
-    if info.gimbal {
-        v.extend([Signal::Outer, Signal::Inner]);
+    for (i, f) in products() {
+        if matches!(f.arg, ArgKind::Axis | ArgKind::None) && (info.gimbal || !f.needs_gimbal) {
+            v.extend(Signal::all_of(i));
+        }
     }
-    v.push(Signal::Time);
     v
 }
 
-/// Signals the library holds alone, not in products: the body components of north and east.
-/// A field fixed in the navigation frame (the Earth's magnetic field an RLG's bias is sensitive
-/// to) acts through K·C_n^b·m^n, linear in them; their products would multiply the library for
-/// no physics.
-pub const LINEAR_ONLY: [Signal; 6] = [
-    Signal::North(0),
-    Signal::North(1),
-    Signal::North(2),
-    Signal::East(0),
-    Signal::East(1),
-    Signal::East(2),
-];
+/// Signals the library holds alone, as biases, not in products: the [`Library::LinearOnly`]
+/// families (the body components of north and east), which every attitude history can form
+/// (the table's test checks none [`Family::needs_gimbal`]).
+pub fn linear_only() -> Vec<Signal> {
+    FAMILIES
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| f.library == Library::LinearOnly)
+        .flat_map(|(i, _)| Signal::all_of(i))
+        .collect()
+}
 
 /// Every product term of the library over `sig`: each signal, each product of two (squares
-/// included), as a bias and as a scale factor; and the [`LINEAR_ONLY`] signals as biases.
+/// included), as a bias and as a scale factor; and, first, the [`linear_only`] signals as
+/// biases.
 pub fn product_terms(sig: &[Signal]) -> Vec<Term> {
-    let mut out: Vec<Term> = LINEAR_ONLY
+    let mut out: Vec<Term> = linear_only()
         .iter()
         .map(|s| Term::Product {
             factors: vec![*s],
@@ -348,7 +305,7 @@ fn chunk_moments<'a>(
                 left -= 1;
                 let dt = h.t_s[k] - h.t_s[k - 1];
                 let r = kin.row(h, k, dt);
-                let f = rs.frame(h, k, dt, &r.c_nb, &r.dtheta_rad);
+                let f = rs.frame(h, k, dt, &r.c_nb, &r.dtheta_rad, &r.dv_mps);
                 let wts = [
                     dt,
                     r.dtheta_rad[0],
@@ -382,32 +339,11 @@ fn chunk_moments<'a>(
         })
 }
 
-/// The frame slot(s) of a signal on `axis` of the gyros (`accel = false`) or accelerometers:
-/// `(a, Some(b))` for a difference a − b.
-fn slots_of(s: Signal, accel: bool, axis: usize) -> (usize, Option<usize>) {
-    match s {
-        Signal::Temp(n) => (TEMP + n.resolve(accel, axis), None),
-        Signal::TempRate(n) => (DTEMP + n.resolve(accel, axis), None),
-        Signal::Gradient(a, b) => (
-            TEMP + a.resolve(accel, axis),
-            Some(TEMP + b.resolve(accel, axis)),
-        ),
-        Signal::Up(i) => (UP + i, None),
-        Signal::Rate(i) => (RATE + i, None),
-        Signal::AbsRate(i) => (ABS_RATE + i, None),
-        Signal::Outer => (OUTER, None),
-        Signal::Inner => (INNER, None),
-        Signal::Time => (TIME, None),
-        Signal::North(i) => (NORTH + i, None),
-        Signal::East(i) => (EAST + i, None),
-    }
-}
-
 impl Moments {
     /// Σ signal·weight over window `w`.
     fn lin(&self, w: usize, s: Signal, accel: bool, axis: usize, weight: usize) -> f64 {
         let m = &self.m[w];
-        let (a, b) = slots_of(s, accel, axis);
+        let (a, b) = s.slots(accel, axis);
         let v = m[a * WEIGHTS + weight];
         b.map_or(v, |b| v - m[b * WEIGHTS + weight])
     }
@@ -440,7 +376,7 @@ impl Moments {
                     }
                     [a, b] => {
                         // The dwell-constant factor as the window mean.
-                        let (var, mean) = if dwell_constant(*a) {
+                        let (var, mean) = if a.family().dwell_constant {
                             (*b, *a)
                         } else {
                             (*a, *b)

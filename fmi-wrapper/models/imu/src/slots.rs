@@ -4,15 +4,16 @@
 //! ([`CustomSpec`]) alone.
 //!
 //! A slot holds one declared effect whose regressor has at most [`FACTORS`] factors: per
-//! factor an Integer signal code (the rows of [`SIGNAL_DOCS`], numbered from 1; 0 = no
-//! factor), the node or axis it reads, the second node of a gradient and the power. A slot
+//! factor an Integer signal code (the rows of the signals table [`FAMILIES`], numbered from 1;
+//! 0 = no factor; the codes follow the table, so a new signal has its code with no change
+//! here), the node or axis it reads, the second node of a gradient and the power. A slot
 //! converts to and from the [`CustomSpec`] of a scenario file ([`Slot::to_spec`],
 //! [`Slot::from_spec`]): the plant compiles and evaluates it with the same code as a declared
 //! effect read from a file, so a slot and the same `[[sensor.gyro.custom]]` block simulate the
 //! same numbers.
 
 use rins_plant::effects::Axes3;
-use rins_plant::effects::custom::signals::{NodeRef, SIGNAL_DOCS, Signal};
+use rins_plant::effects::custom::signals::{ArgKind, Args, FAMILIES, NodeRef};
 use rins_plant::effects::custom::{
     Axis, CustomKind, CustomSpec, MAX_POWER, parse_regressor, unit_of,
 };
@@ -20,16 +21,16 @@ use rins_plant::thermal::node;
 
 /// Factors per slot.
 pub const FACTORS: usize = 2;
-/// Highest signal code (the rows of [`SIGNAL_DOCS`]).
-pub const SIGNAL_CODE_MAX: u64 = SIGNAL_DOCS.len() as u64;
+/// Highest signal code (the rows of the signals table [`FAMILIES`]).
+pub const SIGNAL_CODE_MAX: u64 = FAMILIES.len() as u64;
 /// The node code of `block` (the acting axis's own block); 0…5 are the nodes of [`node`].
 pub const BLOCK_CODE: u64 = node::COUNT as u64;
 
 /// One factor of a slot, as numbers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct SlotFactor {
-    /// Signal: 0 none, else the row of [`SIGNAL_DOCS`] + 1 (1 temp, 2 dtemp_dt, 3 grad, 4 u,
-    /// 5 w, 6 abs_w, 7 gimbal_outer, 8 gimbal_inner, 9 time, 10 n, 11 e).
+    /// Signal: 0 none, else the row of [`FAMILIES`] + 1 (1 temp, 2 dtemp_dt, 3 grad, 4 u,
+    /// 5 w, 6 abs_w, 7 gimbal_outer, 8 gimbal_inner, 9 time, 10 n, 11 e: [`signal_codes`]).
     pub signal: u64,
     /// Node (0 board, 1 gyro_x, 2 gyro_y, 3 gyro_z, 4 accel, 5 housing, 6 block) for temp,
     /// dtemp_dt and the first node of grad; axis (0 x, 1 y, 2 z) for u, w, abs_w, n and e.
@@ -112,31 +113,29 @@ impl Slot {
                     )
                 })
             };
-            let name = match f.signal {
-                1 => format!("temp:{}", node(f.node_or_axis, "node_or_axis")?),
-                2 => format!("dtemp_dt:{}", node(f.node_or_axis, "node_or_axis")?),
-                3 => format!(
-                    "grad:{}-{}",
+            let Some(family) = (f.signal as usize)
+                .checked_sub(1)
+                .filter(|i| *i < FAMILIES.len())
+            else {
+                return Err(bad(
+                    "signal",
+                    format!(
+                        "= {} is not a signal code (valid: 0…{SIGNAL_CODE_MAX}: {})",
+                        f.signal,
+                        signal_codes()
+                    ),
+                ));
+            };
+            let p = FAMILIES[family].prefix;
+            let name = match FAMILIES[family].arg {
+                ArgKind::None => p.to_string(),
+                ArgKind::Node => format!("{p}{}", node(f.node_or_axis, "node_or_axis")?),
+                ArgKind::NodePair => format!(
+                    "{p}{}-{}",
                     node(f.node_or_axis, "node_or_axis")?,
                     node(f.node_b, "node_b")?
                 ),
-                4 => format!("u_{}", axis(f.node_or_axis)?),
-                5 => format!("w_{}", axis(f.node_or_axis)?),
-                6 => format!("abs_w_{}", axis(f.node_or_axis)?),
-                7 => "gimbal_outer".into(),
-                8 => "gimbal_inner".into(),
-                9 => "time".into(),
-                10 => format!("n_{}", axis(f.node_or_axis)?),
-                11 => format!("e_{}", axis(f.node_or_axis)?),
-                c => {
-                    return Err(bad(
-                        "signal",
-                        format!(
-                            "= {c} is not a signal code (valid: 0…{SIGNAL_CODE_MAX}: {})",
-                            signal_codes()
-                        ),
-                    ));
-                }
+                ArgKind::Axis => format!("{p}{}", axis(f.node_or_axis)?),
             };
             if !(1..=MAX_POWER as u64).contains(&f.power) {
                 return Err(bad(
@@ -214,19 +213,14 @@ impl Slot {
             ..Slot::default()
         };
         for (f, out) in factors.iter().zip(slot.factors.iter_mut()) {
-            let (signal, a, b) = match f.signal {
-                Signal::Temp(n) => (1, node_code(n), 0),
-                Signal::TempRate(n) => (2, node_code(n), 0),
-                Signal::Gradient(x, y) => (3, node_code(x), node_code(y)),
-                Signal::Up(i) => (4, i as u64, 0),
-                Signal::Rate(i) => (5, i as u64, 0),
-                Signal::AbsRate(i) => (6, i as u64, 0),
-                Signal::Outer => (7, 0, 0),
-                Signal::Inner => (8, 0, 0),
-                Signal::Time => (9, 0, 0),
-                Signal::North(i) => (10, i as u64, 0),
-                Signal::East(i) => (11, i as u64, 0),
+            let (family, args) = f.signal.parts();
+            let (a, b) = match args {
+                Args::None => (0, 0),
+                Args::Node(n) => (node_code(n), 0),
+                Args::NodePair(x, y) => (node_code(x), node_code(y)),
+                Args::Axis(i) => (i as u64, 0),
             };
+            let signal = family as u64 + 1;
             *out = SlotFactor {
                 signal,
                 node_or_axis: a,
@@ -240,10 +234,10 @@ impl Slot {
 
 /// `1 temp:NODE, 2 dtemp_dt:NODE, …`: the signal codes, for messages and docs.
 pub fn signal_codes() -> String {
-    SIGNAL_DOCS
+    FAMILIES
         .iter()
         .enumerate()
-        .map(|(i, (n, _, _))| format!("{} {n}", i + 1))
+        .map(|(i, f)| format!("{} {}", i + 1, f.doc_name))
         .collect::<Vec<_>>()
         .join(", ")
 }
@@ -252,6 +246,7 @@ pub fn signal_codes() -> String {
 mod tests {
     use super::*;
     use rins_plant::effects::custom::CustomModel;
+    use rins_plant::effects::custom::signals::Signal;
 
     fn spec(regressor: &str, kind: CustomKind) -> CustomSpec {
         CustomSpec {
@@ -289,6 +284,26 @@ mod tests {
                 .unwrap_err()
                 .contains("at most 2")
         );
+    }
+
+    /// Every signal of the signals table has a slot code (its row + 1) and comes back from a
+    /// slot as itself: a signal added to the table needs no change here.
+    #[test]
+    fn every_signal_of_the_table_has_a_slot_code() {
+        for family in 0..FAMILIES.len() {
+            for sig in Signal::all_of(family) {
+                let s = spec(&sig.name(), CustomKind::Bias);
+                let slot = Slot::from_spec(&s).unwrap();
+                assert_eq!(slot.factors[0].signal, family as u64 + 1, "{}", sig.name());
+                assert_eq!(slot.to_spec("t").unwrap(), s, "{}", sig.name());
+            }
+        }
+        // The codes are an interface: a new signal is appended, the existing ones keep theirs.
+        assert!(signal_codes().starts_with(
+            "1 temp:NODE, 2 dtemp_dt:NODE, 3 grad:A-B, 4 u_x, u_y, u_z, 5 w_x, w_y, w_z, \
+             6 abs_w_x, abs_w_y, abs_w_z, 7 gimbal_outer, 8 gimbal_inner, 9 time, \
+             10 n_x, n_y, n_z, 11 e_x, e_y, e_z"
+        ));
     }
 
     #[test]

@@ -214,3 +214,73 @@ fn two_settling_temperatures_miss_exactly_their_covariance() {
         );
     }
 }
+
+fn info(gimbal: bool, housing: bool) -> crate::rows::RowsInfo {
+    crate::rows::RowsInfo {
+        source: "t".into(),
+        run_names: vec!["r".into()],
+        rows: 2,
+        gimbal,
+        housing,
+        median_dt_s: DT_S,
+        mean_dt_s: DT_S,
+        rms_dtheta_rad: 0.0,
+        rms_dv_mps: 0.0,
+        run_start_s: vec![0.0],
+    }
+}
+
+/// The library's signals as the table derives them, against the list written out here (the
+/// order the search's terms come in): with housing and gimbal angles, without either.
+#[test]
+fn library_signals_follow_the_table_in_its_order() {
+    let names = |gimbal, housing| -> Vec<String> {
+        super::library_signals(&info(gimbal, housing))
+            .into_iter()
+            .map(Signal::name)
+            .collect()
+    };
+    let fast = "u_x u_y u_z w_x w_y w_z abs_w_x abs_w_y abs_w_z";
+    assert_eq!(
+        names(true, true).join(" "),
+        format!(
+            "temp:block dtemp_dt:block temp:housing dtemp_dt:housing grad:block-housing {fast} \
+             gimbal_outer gimbal_inner time"
+        )
+    );
+    assert_eq!(
+        names(false, false).join(" "),
+        format!("temp:block dtemp_dt:block {fast} time")
+    );
+    let linear: Vec<String> = super::linear_only().into_iter().map(Signal::name).collect();
+    assert_eq!(linear.join(" "), "n_x n_y n_z e_x e_y e_z");
+}
+
+/// Every fast signal of the table is in the library when the data can form it (with gimbal
+/// angles, every one; with quaternions, every one that does not need gimbal angles), alone as
+/// a bias at least, so a new signal in the table is searched for with no change here.
+#[test]
+fn every_fast_signal_is_in_the_library_when_its_data_are_there() {
+    use rins_plant::effects::custom::signals::FAMILIES;
+    for gimbal in [true, false] {
+        let sig = super::library_signals(&info(gimbal, true));
+        let terms = super::product_terms(&sig);
+        for (i, f) in FAMILIES.iter().enumerate() {
+            if f.fill.is_none() {
+                continue;
+            }
+            for s in Signal::all_of(i) {
+                let alone = Term::Product {
+                    factors: vec![s],
+                    kind: CustomKind::Bias,
+                };
+                assert_eq!(
+                    terms.contains(&alone),
+                    gimbal || !f.needs_gimbal,
+                    "{} (gimbal data: {gimbal})",
+                    s.name()
+                );
+            }
+        }
+    }
+}

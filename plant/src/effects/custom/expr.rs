@@ -1,6 +1,6 @@
 //! The regressor notation: documented signals joined by `*`, each with an optional `^N`.
 
-use super::signals::{SIGNAL_DOCS, Signal, Unit};
+use super::signals::{FAMILIES, Signal, Unit};
 
 /// Highest power a factor may carry.
 pub const MAX_POWER: i32 = 8;
@@ -44,7 +44,7 @@ pub fn parse_regressor(text: &str) -> Result<Vec<Factor>, String> {
             None => (f, 1),
         };
         let Some(signal) = Signal::parse(name) else {
-            let known: Vec<&str> = SIGNAL_DOCS.iter().map(|(n, _, _)| *n).collect();
+            let known: Vec<&str> = FAMILIES.iter().map(|f| f.doc_name).collect();
             return Err(format!(
                 "unknown signal {name:?}; the signals are {}",
                 known.join(", ")

@@ -28,7 +28,7 @@ use serde::{Deserialize, Serialize};
 pub use expr::{Factor, MAX_POWER, parse_regressor, unit_of};
 pub use model::{CompiledEffect, CustomModel, custom_coefficient_key};
 pub use plant_side::{Declared, Needs, fill_fast};
-pub use signals::{Frame, Signal, Unit};
+pub use signals::{FAMILIES, Family, FastInputs, Frame, Signal, Unit};
 
 use super::Axes3;
 

@@ -7,7 +7,7 @@ use nalgebra::Vector3;
 
 use super::expr::{Factor, bound_of, parse_regressor, unit_of};
 use super::plan::{FactorRef, Plan, PlanBuilder};
-use super::signals::{Frame, SLOTS, Signal, TEMP, Unit};
+use super::signals::{Frame, SLOTS, Signal, Unit};
 use super::{CustomKind, CustomSpec};
 use crate::config::ConfigError;
 use crate::units::{DPH, PPM, UG};
@@ -73,23 +73,8 @@ fn resolve(factors: &[Factor], accel: bool, axis: usize) -> Vec<Slot> {
     factors
         .iter()
         .map(|f| {
-            let (a, b, diff) = match f.signal {
-                Signal::Temp(n) => (TEMP + n.resolve(accel, axis), 0, false),
-                Signal::TempRate(n) => (super::signals::DTEMP + n.resolve(accel, axis), 0, false),
-                Signal::Gradient(x, y) => (
-                    TEMP + x.resolve(accel, axis),
-                    TEMP + y.resolve(accel, axis),
-                    true,
-                ),
-                Signal::Up(i) => (super::signals::UP + i, 0, false),
-                Signal::Rate(i) => (super::signals::RATE + i, 0, false),
-                Signal::AbsRate(i) => (super::signals::ABS_RATE + i, 0, false),
-                Signal::Outer => (super::signals::OUTER, 0, false),
-                Signal::Inner => (super::signals::INNER, 0, false),
-                Signal::Time => (super::signals::TIME, 0, false),
-                Signal::North(i) => (super::signals::NORTH + i, 0, false),
-                Signal::East(i) => (super::signals::EAST + i, 0, false),
-            };
+            let (a, b) = f.signal.slots(accel, axis);
+            let (b, diff) = (b.unwrap_or(0), b.is_some());
             Slot {
                 a: a as u8,
                 b: b as u8,

@@ -4,7 +4,9 @@
 use nalgebra::Vector3;
 
 use super::CustomModel;
-use super::signals::{self, DTEMP, Frame, SLOTS, TEMP, wrap_deg};
+#[cfg(doc)]
+use super::signals::Family;
+use super::signals::{self, DTEMP, FAMILIES, FastInputs, Frame, SLOTS, TEMP};
 use crate::effects::{AccelSpec, GyroSpec};
 use crate::table::GimbalAngles;
 use crate::thermal::node;
@@ -25,44 +27,46 @@ pub struct Declared {
     needs: Needs,
 }
 
-/// Which per-interval signals a plan reads (the others are not computed).
+/// Which per-interval signals a plan reads (the others are not computed), by family of the
+/// signals table.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Needs {
-    /// Up direction.
-    pub up: bool,
-    /// Body rate or its magnitude.
-    pub rate: bool,
-    /// Gimbal angles.
-    pub gimbal: bool,
-    /// Time.
+    /// Time: a needed family [`Family::reads_time`] (the plant computes it only then).
     pub time: bool,
-    /// North and east directions in body axes.
+    /// North and east directions in body axes: a needed family [`Family::reads_heading`].
     pub heading: bool,
+    /// Bit i: row i of [`FAMILIES`] is filled.
+    fast: u32,
 }
+
+// One bit per family in `Needs::fast`.
+const _: () = assert!(FAMILIES.len() <= u32::BITS as usize);
 
 impl Needs {
     /// Everything (the diagnosis fills every slot).
     pub const ALL: Needs = Needs {
-        up: true,
-        rate: true,
-        gimbal: true,
         time: true,
         heading: true,
+        fast: u32::MAX,
     };
+
+    /// Whether row `family` of [`FAMILIES`] is filled.
+    #[inline]
+    pub fn fills(self, family: usize) -> bool {
+        self.fast & (1 << family) != 0
+    }
 
     fn of(models: [&CustomModel; 2]) -> Self {
         let mut n = Needs::default();
         for m in models {
             for e in m.effects().iter().filter(|e| e.enabled) {
                 for s in e.signals() {
-                    use super::Signal as S;
-                    match s {
-                        S::Up(_) => n.up = true,
-                        S::Rate(_) | S::AbsRate(_) => n.rate = true,
-                        S::Outer | S::Inner => n.gimbal = true,
-                        S::Time => n.time = true,
-                        S::North(_) | S::East(_) => n.heading = true,
-                        _ => {}
+                    let i = s.parts().0;
+                    let f = &FAMILIES[i];
+                    if f.fill.is_some() {
+                        n.fast |= 1 << i;
+                        n.time |= f.reads_time;
+                        n.heading |= f.reads_heading;
                     }
                 }
             }
@@ -143,16 +147,16 @@ impl Declared {
         let frame: &mut Frame = (&mut self.values[..SLOTS])
             .try_into()
             .expect("the value array starts with the frame");
-        fill_fast(
-            frame,
-            self.needs,
-            up_b,
-            north_east_b,
-            dtheta,
+        let x = FastInputs {
+            up_b: *up_b,
+            north_east_b: *north_east_b,
+            dtheta_rad: *dtheta,
+            dv_mps: *dv,
             h_s,
-            mid,
+            gimbal_mid: mid,
             t_mid_s,
-        );
+        };
+        fill_fast(frame, self.needs, &x);
         self.evaluate(dtheta, dv, h_s)
     }
 
@@ -199,42 +203,16 @@ impl Declared {
     }
 }
 
-/// Fills the per-interval slots of `f` that `needs` asks for: up direction, north and east
-/// directions, body rate (from the increment over `h_s`), its magnitude per axis, gimbal
-/// angles and time.
+/// Fills the per-interval slots of `f` that `needs` asks for, each family with its own fill
+/// from the signals table over the inputs `x`: a new fast signal changes no caller.
 #[inline]
-#[allow(clippy::too_many_arguments)]
-pub fn fill_fast(
-    f: &mut Frame,
-    needs: Needs,
-    up_b: &Vector3<f64>,
-    north_east_b: &[Vector3<f64>; 2],
-    dtheta: &Vector3<f64>,
-    h_s: f64,
-    mid: GimbalAngles,
-    t_mid_s: f64,
-) {
-    if needs.up {
-        f[signals::UP..signals::UP + 3].copy_from_slice(up_b.as_slice());
-    }
-    if needs.heading {
-        f[signals::NORTH..signals::NORTH + 3].copy_from_slice(north_east_b[0].as_slice());
-        f[signals::EAST..signals::EAST + 3].copy_from_slice(north_east_b[1].as_slice());
-    }
-    if needs.rate {
-        let to_dps = 180.0 / std::f64::consts::PI / h_s;
-        for i in 0..3 {
-            let w = dtheta[i] * to_dps;
-            f[signals::RATE + i] = w;
-            f[signals::ABS_RATE + i] = w.abs();
+pub fn fill_fast(f: &mut Frame, needs: Needs, x: &FastInputs) {
+    for (i, family) in FAMILIES.iter().enumerate() {
+        if let Some(fill) = family.fill
+            && needs.fills(i)
+        {
+            fill(x, f);
         }
-    }
-    if needs.gimbal {
-        f[signals::OUTER] = wrap_deg(mid.outer_rad.to_degrees());
-        f[signals::INNER] = wrap_deg(mid.inner_rad.to_degrees());
-    }
-    if needs.time {
-        f[signals::TIME] = t_mid_s;
     }
 }
 

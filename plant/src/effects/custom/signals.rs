@@ -9,7 +9,17 @@
 //!
 //! This is the same split as the catalogue effects (they use true temperatures in the plant and
 //! the readings in the replay of a measured log).
+//!
+//! Every signal is defined once, in the table [`FAMILIES`]: its name, unit, bound, frame slot,
+//! how it is computed per interval from [`FastInputs`] (the same function in the plant and the
+//! diagnosis), which inputs it reads and where discovery's library uses it. The plant's
+//! [`super::Needs`] and [`super::fill_fast`], the diagnosis's frame, the FMU slot codes (row + 1:
+//! append new rows) and the discovery library derive their lists from it, so a new signal
+//! computed from [`FastInputs`] is added in this file alone.
 
+use nalgebra::Vector3;
+
+use crate::table::GimbalAngles;
 use crate::thermal::node;
 
 /// Number of values in a [`Frame`].
@@ -198,138 +208,623 @@ pub enum Signal {
     East(usize),
 }
 
-/// Every signal name with its unit and description, for messages and docs/effects.md.
-pub const SIGNAL_DOCS: [(&str, &str, &str); 11] = [
-    (
+/// What follows a family's prefix in a signal name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ArgKind {
+    /// Nothing: the prefix is the whole name (`time`).
+    None,
+    /// A node or `block` (`temp:housing`).
+    Node,
+    /// Two nodes `A-B` (`grad:block-housing`).
+    NodePair,
+    /// An axis `x`, `y` or `z` (`u_x`).
+    Axis,
+}
+
+/// The argument of one signal of a family.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Args {
+    /// No argument.
+    None,
+    /// A node.
+    Node(NodeRef),
+    /// Two nodes, A − B.
+    NodePair(NodeRef, NodeRef),
+    /// An axis 0–2.
+    Axis(usize),
+}
+
+/// Where the discovery library uses a family's signals.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Library {
+    /// Alone and in every product of two, as biases and scale factors (node families: the
+    /// acting block, and the housing and the block-to-housing difference when it is measured).
+    Products,
+    /// Alone as biases only: the components of a field fixed in the navigation frame act
+    /// through K·C_n^b·m^n, linear in them; their products would multiply the library for no
+    /// physics.
+    LinearOnly,
+}
+
+/// Everything a fast signal (one filled per interval, not per thermal step) can be computed
+/// from. The plant fills it from the true motion, the diagnosis from the measured log; a new
+/// fast signal reads these and no caller changes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FastInputs {
+    /// Body up direction u^b (1).
+    pub up_b: Vector3<f64>,
+    /// Body north and east directions n^b, e^b (1); the plant computes them only when a
+    /// needed family [`Family::reads_heading`].
+    pub north_east_b: [Vector3<f64>; 2],
+    /// Angle increment over the interval, rad.
+    pub dtheta_rad: Vector3<f64>,
+    /// Velocity increment over the interval, m/s.
+    pub dv_mps: Vector3<f64>,
+    /// Interval, s.
+    pub h_s: f64,
+    /// Gimbal angles at mid-interval (zero when the data carry quaternions: a family that
+    /// reads them is [`Family::needs_gimbal`]).
+    pub gimbal_mid: GimbalAngles,
+    /// Mid-interval time since the start of the run, s; the plant computes it only when a
+    /// needed family [`Family::reads_time`].
+    pub t_mid_s: f64,
+}
+
+/// One row of the signals table: a family of signals (`u_x, u_y, u_z`) and every property the
+/// plant, the diagnosis, the FMU slots and the discovery library read, so a signal is defined
+/// once.
+#[derive(Clone, Copy, Debug)]
+pub struct Family {
+    /// The name as documented (`u_x, u_y, u_z`, `temp:NODE`).
+    pub doc_name: &'static str,
+    /// The name up to its argument (`u_`, `temp:`), or the whole name when it has none.
+    pub prefix: &'static str,
+    /// What follows the prefix.
+    pub arg: ArgKind,
+    /// Unit.
+    pub unit: Unit,
+    /// Description, for messages and docs/effects.md.
+    pub description: &'static str,
+    /// The largest magnitude the signal can take in a valid scenario (temperatures within the
+    /// thermal model's range, table rates within `scheme.rate_dps`, runs within
+    /// `scenario.duration_s`): the bound of the non-finite check.
+    pub bound: f64,
+    /// First frame slot (a node's or axis's slot is this plus its index).
+    pub slot: usize,
+    /// Short name part for discovery's proposal names (≤ 32 characters in all); a node pair's
+    /// is the whole part.
+    pub short: &'static str,
+    /// Constant while the table dwells (attitude and rate signals): discovery forms a product
+    /// with it as the window mean.
+    pub dwell_constant: bool,
+    /// Formed from gimbal angles, which a log with quaternions does not carry.
+    pub needs_gimbal: bool,
+    /// Reads the north/east directions (the plant computes them only then).
+    pub reads_heading: bool,
+    /// Reads the time (the plant computes it only then).
+    pub reads_time: bool,
+    /// How discovery's library uses it.
+    pub library: Library,
+    /// Fills the family's slots once per interval; `None` for the slow (thermal) families,
+    /// which the plant sets at thermal steps and the diagnosis from the readings.
+    pub fill: Option<fn(&FastInputs, &mut Frame)>,
+}
+
+const K: Unit = Unit { k: 1, s: 0, deg: 0 };
+const K_PER_S: Unit = Unit {
+    k: 1,
+    s: -1,
+    deg: 0,
+};
+const DEG: Unit = Unit { k: 0, s: 0, deg: 1 };
+const DEG_PER_S: Unit = Unit {
+    k: 0,
+    s: -1,
+    deg: 1,
+};
+const SECOND: Unit = Unit { k: 0, s: 1, deg: 0 };
+
+/// A slow family (filled at thermal steps / from readings).
+const fn slow(
+    doc_name: &'static str,
+    prefix: &'static str,
+    arg: ArgKind,
+    unit: Unit,
+    description: &'static str,
+    bound: f64,
+    slot: usize,
+    short: &'static str,
+) -> Family {
+    Family {
+        doc_name,
+        prefix,
+        arg,
+        unit,
+        description,
+        bound,
+        slot,
+        short,
+        dwell_constant: false,
+        needs_gimbal: false,
+        reads_heading: false,
+        reads_time: false,
+        library: Library::Products,
+        fill: None,
+    }
+}
+
+/// A fast family with its fill; the flags default to false and [`Library::Products`].
+const fn fast(
+    doc_name: &'static str,
+    prefix: &'static str,
+    arg: ArgKind,
+    unit: Unit,
+    description: &'static str,
+    bound: f64,
+    slot: usize,
+    short: &'static str,
+    fill: fn(&FastInputs, &mut Frame),
+) -> Family {
+    Family {
+        fill: Some(fill),
+        ..slow(doc_name, prefix, arg, unit, description, bound, slot, short)
+    }
+}
+
+/// Body rate component i, °/s: one expression for `w_*` and `abs_w_*` (same bits).
+#[inline]
+fn rate_dps(x: &FastInputs, i: usize) -> f64 {
+    let to_dps = 180.0 / std::f64::consts::PI / x.h_s;
+    x.dtheta_rad[i] * to_dps
+}
+
+/// The signals table: one row per family; a row's position + 1 is its FMU signal code, and
+/// the discovery library takes its families in this order.
+pub const FAMILIES: [Family; 11] = [
+    slow(
         "temp:NODE",
-        "degC",
+        "temp:",
+        ArgKind::Node,
+        K,
         "temperature of NODE (board, gyro_x, gyro_y, gyro_z, accel, housing, or block = the acting axis's block)",
+        130.0,
+        TEMP,
+        "t_",
     ),
-    ("dtemp_dt:NODE", "K/s", "time derivative of temp:NODE"),
-    ("grad:A-B", "K", "temp:A − temp:B"),
-    (
-        "u_x, u_y, u_z",
-        "1",
-        "body components of the up direction (specific force at rest / g)",
+    slow(
+        "dtemp_dt:NODE",
+        "dtemp_dt:",
+        ArgKind::Node,
+        K_PER_S,
+        "time derivative of temp:NODE",
+        10.0,
+        DTEMP,
+        "dtdt_",
     ),
-    ("w_x, w_y, w_z", "deg/s", "body rate"),
-    ("abs_w_x, abs_w_y, abs_w_z", "deg/s", "absolute body rate"),
-    (
-        "gimbal_outer",
-        "deg",
-        "outer gimbal angle, wrapped to [-180, 180)",
+    slow(
+        "grad:A-B",
+        "grad:",
+        ArgKind::NodePair,
+        K,
+        "temp:A − temp:B",
+        260.0,
+        TEMP,
+        "grad_bh",
     ),
-    (
-        "gimbal_inner",
-        "deg",
-        "inner gimbal angle, wrapped to [-180, 180)",
-    ),
-    ("time", "s", "time since the start of the run"),
-    (
-        "n_x, n_y, n_z",
-        "1",
-        "body components of the local north direction (a field fixed in the navigation frame)",
-    ),
-    (
-        "e_x, e_y, e_z",
-        "1",
-        "body components of the local east direction",
-    ),
+    Family {
+        dwell_constant: true,
+        ..fast(
+            "u_x, u_y, u_z",
+            "u_",
+            ArgKind::Axis,
+            Unit::ONE,
+            "body components of the up direction (specific force at rest / g)",
+            1.0,
+            UP,
+            "u_",
+            |x, f| f[UP..UP + 3].copy_from_slice(x.up_b.as_slice()),
+        )
+    },
+    Family {
+        dwell_constant: true,
+        ..fast(
+            "w_x, w_y, w_z",
+            "w_",
+            ArgKind::Axis,
+            DEG_PER_S,
+            "body rate",
+            100.0,
+            RATE,
+            "w_",
+            |x, f| {
+                for i in 0..3 {
+                    f[RATE + i] = rate_dps(x, i);
+                }
+            },
+        )
+    },
+    Family {
+        dwell_constant: true,
+        ..fast(
+            "abs_w_x, abs_w_y, abs_w_z",
+            "abs_w_",
+            ArgKind::Axis,
+            DEG_PER_S,
+            "absolute body rate",
+            100.0,
+            ABS_RATE,
+            "aw_",
+            |x, f| {
+                for i in 0..3 {
+                    f[ABS_RATE + i] = rate_dps(x, i).abs();
+                }
+            },
+        )
+    },
+    Family {
+        dwell_constant: true,
+        needs_gimbal: true,
+        ..fast(
+            "gimbal_outer",
+            "gimbal_outer",
+            ArgKind::None,
+            DEG,
+            "outer gimbal angle, wrapped to [-180, 180)",
+            180.0,
+            OUTER,
+            "outer",
+            |x, f| f[OUTER] = wrap_deg(x.gimbal_mid.outer_rad.to_degrees()),
+        )
+    },
+    Family {
+        dwell_constant: true,
+        needs_gimbal: true,
+        ..fast(
+            "gimbal_inner",
+            "gimbal_inner",
+            ArgKind::None,
+            DEG,
+            "inner gimbal angle, wrapped to [-180, 180)",
+            180.0,
+            INNER,
+            "inner",
+            |x, f| f[INNER] = wrap_deg(x.gimbal_mid.inner_rad.to_degrees()),
+        )
+    },
+    Family {
+        reads_time: true,
+        ..fast(
+            "time",
+            "time",
+            ArgKind::None,
+            SECOND,
+            "time since the start of the run",
+            1e7,
+            TIME,
+            "time",
+            |x, f| f[TIME] = x.t_mid_s,
+        )
+    },
+    Family {
+        dwell_constant: true,
+        reads_heading: true,
+        library: Library::LinearOnly,
+        ..fast(
+            "n_x, n_y, n_z",
+            "n_",
+            ArgKind::Axis,
+            Unit::ONE,
+            "body components of the local north direction (a field fixed in the navigation frame)",
+            1.0,
+            NORTH,
+            "n_",
+            |x, f| f[NORTH..NORTH + 3].copy_from_slice(x.north_east_b[0].as_slice()),
+        )
+    },
+    Family {
+        dwell_constant: true,
+        reads_heading: true,
+        library: Library::LinearOnly,
+        ..fast(
+            "e_x, e_y, e_z",
+            "e_",
+            ArgKind::Axis,
+            Unit::ONE,
+            "body components of the local east direction",
+            1.0,
+            EAST,
+            "e_",
+            |x, f| f[EAST..EAST + 3].copy_from_slice(x.north_east_b[1].as_slice()),
+        )
+    },
 ];
 
+const AXIS_NAMES: [&str; 3] = ["x", "y", "z"];
+
 fn axis_of(c: &str) -> Option<usize> {
-    match c {
-        "x" => Some(0),
-        "y" => Some(1),
-        "z" => Some(2),
-        _ => None,
+    AXIS_NAMES.iter().position(|a| *a == c)
+}
+
+fn node_name(n: NodeRef) -> &'static str {
+    match n {
+        NodeRef::Block => "block",
+        NodeRef::Node(i) => node::NAMES[i],
     }
 }
 
 impl Signal {
+    /// The signal's family (its row of [`FAMILIES`]) and argument: with
+    /// [`Signal::from_parts`], the only places that name the variants.
+    pub fn parts(self) -> (usize, Args) {
+        match self {
+            Signal::Temp(n) => (0, Args::Node(n)),
+            Signal::TempRate(n) => (1, Args::Node(n)),
+            Signal::Gradient(a, b) => (2, Args::NodePair(a, b)),
+            Signal::Up(i) => (3, Args::Axis(i)),
+            Signal::Rate(i) => (4, Args::Axis(i)),
+            Signal::AbsRate(i) => (5, Args::Axis(i)),
+            Signal::Outer => (6, Args::None),
+            Signal::Inner => (7, Args::None),
+            Signal::Time => (8, Args::None),
+            Signal::North(i) => (9, Args::Axis(i)),
+            Signal::East(i) => (10, Args::Axis(i)),
+        }
+    }
+
+    /// The signal of row `family` of [`FAMILIES`] with argument `args`, if they fit.
+    pub fn from_parts(family: usize, args: Args) -> Option<Signal> {
+        Some(match (family, args) {
+            (0, Args::Node(n)) => Signal::Temp(n),
+            (1, Args::Node(n)) => Signal::TempRate(n),
+            (2, Args::NodePair(a, b)) => Signal::Gradient(a, b),
+            (3, Args::Axis(i)) if i < 3 => Signal::Up(i),
+            (4, Args::Axis(i)) if i < 3 => Signal::Rate(i),
+            (5, Args::Axis(i)) if i < 3 => Signal::AbsRate(i),
+            (6, Args::None) => Signal::Outer,
+            (7, Args::None) => Signal::Inner,
+            (8, Args::None) => Signal::Time,
+            (9, Args::Axis(i)) if i < 3 => Signal::North(i),
+            (10, Args::Axis(i)) if i < 3 => Signal::East(i),
+            _ => return None,
+        })
+    }
+
+    /// The signal's row of [`FAMILIES`].
+    pub fn family(self) -> &'static Family {
+        &FAMILIES[self.parts().0]
+    }
+
     /// Parses a signal name (`dtemp_dt:block`, `u_x`, `grad:gyro_z-housing`, …).
     pub fn parse(s: &str) -> Option<Signal> {
-        if let Some(n) = s.strip_prefix("temp:") {
-            return NodeRef::parse(n).map(Signal::Temp);
+        FAMILIES.iter().enumerate().find_map(|(i, f)| {
+            let args = match f.arg {
+                ArgKind::None => (s == f.prefix).then_some(Args::None)?,
+                ArgKind::Node => Args::Node(NodeRef::parse(s.strip_prefix(f.prefix)?)?),
+                ArgKind::NodePair => {
+                    let (a, b) = s.strip_prefix(f.prefix)?.split_once('-')?;
+                    Args::NodePair(NodeRef::parse(a)?, NodeRef::parse(b)?)
+                }
+                ArgKind::Axis => Args::Axis(axis_of(s.strip_prefix(f.prefix)?)?),
+            };
+            Signal::from_parts(i, args)
+        })
+    }
+
+    /// The name as a declared effect's regressor writes it (`u_x`, `grad:block-housing`).
+    pub fn name(self) -> String {
+        let (i, args) = self.parts();
+        let p = FAMILIES[i].prefix;
+        match args {
+            Args::None => p.to_string(),
+            Args::Node(n) => format!("{p}{}", node_name(n)),
+            Args::NodePair(a, b) => format!("{p}{}-{}", node_name(a), node_name(b)),
+            Args::Axis(a) => format!("{p}{}", AXIS_NAMES[a]),
         }
-        if let Some(n) = s.strip_prefix("dtemp_dt:") {
-            return NodeRef::parse(n).map(Signal::TempRate);
-        }
-        if let Some(n) = s.strip_prefix("grad:") {
-            let (a, b) = n.split_once('-')?;
-            let (a, b) = (NodeRef::parse(a)?, NodeRef::parse(b)?);
-            return Some(Signal::Gradient(a, b));
-        }
-        if let Some(a) = s.strip_prefix("abs_w_") {
-            return axis_of(a).map(Signal::AbsRate);
-        }
-        if let Some(a) = s.strip_prefix("w_") {
-            return axis_of(a).map(Signal::Rate);
-        }
-        if let Some(a) = s.strip_prefix("u_") {
-            return axis_of(a).map(Signal::Up);
-        }
-        if let Some(a) = s.strip_prefix("n_") {
-            return axis_of(a).map(Signal::North);
-        }
-        if let Some(a) = s.strip_prefix("e_") {
-            return axis_of(a).map(Signal::East);
-        }
-        match s {
-            "gimbal_outer" => Some(Signal::Outer),
-            "gimbal_inner" => Some(Signal::Inner),
-            "time" => Some(Signal::Time),
-            _ => None,
+    }
+
+    /// A short name part (discovery's proposal names): the family's short part and the
+    /// node or axis (a node pair's short part stands alone).
+    pub fn short(self) -> String {
+        let (i, args) = self.parts();
+        let p = FAMILIES[i].short;
+        match args {
+            Args::None | Args::NodePair(..) => p.to_string(),
+            Args::Node(n) => format!("{p}{}", node_name(n)),
+            Args::Axis(a) => format!("{p}{}", AXIS_NAMES[a]),
         }
     }
 
     /// The signal's unit.
     pub fn unit(self) -> Unit {
-        let k = Unit { k: 1, ..Unit::ONE };
-        let dps = Unit {
-            deg: 1,
-            s: -1,
-            k: 0,
-        };
-        match self {
-            Signal::Temp(_) | Signal::Gradient(..) => k,
-            Signal::TempRate(_) => Unit {
-                k: 1,
-                s: -1,
-                deg: 0,
-            },
-            Signal::Up(_) | Signal::North(_) | Signal::East(_) => Unit::ONE,
-            Signal::Rate(_) | Signal::AbsRate(_) => dps,
-            Signal::Outer | Signal::Inner => Unit {
-                deg: 1,
-                ..Unit::ONE
-            },
-            Signal::Time => Unit { s: 1, ..Unit::ONE },
-        }
+        self.family().unit
     }
 
-    /// The largest magnitude the signal can take in a valid scenario (temperatures within the
-    /// thermal model's range, table rates within `scheme.rate_dps`, runs within
-    /// `scenario.duration_s`): the bound of the non-finite check.
+    /// The largest magnitude the signal can take in a valid scenario: [`Family::bound`].
     pub fn bound(self) -> f64 {
-        match self {
-            Signal::Temp(_) => 130.0,
-            Signal::Gradient(..) => 260.0,
-            Signal::TempRate(_) => 10.0,
-            Signal::Up(_) | Signal::North(_) | Signal::East(_) => 1.0,
-            Signal::Rate(_) | Signal::AbsRate(_) => 100.0,
-            Signal::Outer | Signal::Inner => 180.0,
-            Signal::Time => 1e7,
+        self.family().bound
+    }
+
+    /// The frame slot(s) of the signal on `axis` of the gyros (`accel = false`) or the
+    /// accelerometers: `(a, Some(b))` for a difference a − b.
+    pub fn slots(self, accel: bool, axis: usize) -> (usize, Option<usize>) {
+        let (i, args) = self.parts();
+        let base = FAMILIES[i].slot;
+        match args {
+            Args::None => (base, None),
+            Args::Node(n) => (base + n.resolve(accel, axis), None),
+            Args::NodePair(a, b) => (
+                base + a.resolve(accel, axis),
+                Some(base + b.resolve(accel, axis)),
+            ),
+            Args::Axis(a) => (base + a, None),
         }
     }
 
     /// The temperature nodes the signal reads on `axis` of the gyros (`accel = false`) or the
     /// accelerometers.
     pub fn nodes(self, accel: bool, axis: usize) -> Vec<usize> {
-        match self {
-            Signal::Temp(n) | Signal::TempRate(n) => vec![n.resolve(accel, axis)],
-            Signal::Gradient(a, b) => vec![a.resolve(accel, axis), b.resolve(accel, axis)],
+        match self.parts().1 {
+            Args::Node(n) => vec![n.resolve(accel, axis)],
+            Args::NodePair(a, b) => vec![a.resolve(accel, axis), b.resolve(accel, axis)],
             _ => Vec::new(),
+        }
+    }
+
+    /// Every signal of row `family` of [`FAMILIES`] over the axes (for a node family, over the
+    /// nodes and `block`).
+    pub fn all_of(family: usize) -> Vec<Signal> {
+        let nodes = || {
+            (0..node::COUNT)
+                .map(NodeRef::Node)
+                .chain([NodeRef::Block])
+                .collect::<Vec<_>>()
+        };
+        let args: Vec<Args> = match FAMILIES[family].arg {
+            ArgKind::None => vec![Args::None],
+            ArgKind::Axis => (0..3).map(Args::Axis).collect(),
+            ArgKind::Node => nodes().into_iter().map(Args::Node).collect(),
+            ArgKind::NodePair => nodes()
+                .into_iter()
+                .flat_map(|a| nodes().into_iter().map(move |b| Args::NodePair(a, b)))
+                .collect(),
+        };
+        args.into_iter()
+            .filter_map(|a| Signal::from_parts(family, a))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn inputs() -> FastInputs {
+        FastInputs {
+            up_b: Vector3::new(0.1, -0.2, 0.97),
+            north_east_b: [Vector3::new(0.3, 0.9, 0.1), Vector3::new(0.95, -0.3, 0.02)],
+            dtheta_rad: Vector3::new(1e-6, -2e-4, 3e-4),
+            dv_mps: Vector3::new(0.01, 0.02, 0.098),
+            h_s: 0.01,
+            gimbal_mid: GimbalAngles::new(3.5, -1.2),
+            t_mid_s: 100.005,
+        }
+    }
+
+    /// Every signal of every family: its name parses back to it, its slots lie in the frame,
+    /// its unit is the family's.
+    #[test]
+    fn every_signal_parses_back_and_has_slots_in_the_frame() {
+        let mut count = 0;
+        for i in 0..FAMILIES.len() {
+            let all = Signal::all_of(i);
+            assert!(!all.is_empty(), "{}", FAMILIES[i].doc_name);
+            for s in all {
+                count += 1;
+                assert_eq!(s.parts().0, i);
+                assert_eq!(Signal::parse(&s.name()), Some(s), "{}", s.name());
+                assert_eq!(s.unit(), FAMILIES[i].unit);
+                for axis in 0..3 {
+                    let (a, b) = s.slots(true, axis);
+                    assert!(a < SLOTS && b.is_none_or(|b| b < SLOTS), "{}", s.name());
+                }
+            }
+        }
+        // temp and dtemp_dt over 7 nodes (6 and block), grad over 49 pairs, u, w, abs_w, n, e
+        // over 3 axes, and 3 single signals.
+        assert_eq!(count, 7 + 7 + 49 + 5 * 3 + 3);
+        assert_eq!(Signal::parse("u_w"), None);
+        assert_eq!(Signal::parse("gimbal_outer_x"), None);
+        assert_eq!(Signal::parse("grad:block"), None);
+    }
+
+    /// A fast family's fill writes exactly its own slots (three for an axis family, one
+    /// otherwise), so the fast families never overwrite one another and none writes the slow
+    /// slots the thermal steps set; no two families share a slot except the gradient, which
+    /// reads the temperatures' slots.
+    #[test]
+    fn each_fill_writes_exactly_its_own_slots() {
+        let mut owner = [None::<usize>; SLOTS];
+        for (i, f) in FAMILIES.iter().enumerate() {
+            let width = match f.arg {
+                ArgKind::None => 1,
+                ArgKind::Axis => 3,
+                ArgKind::Node => node::COUNT,
+                ArgKind::NodePair => continue,
+            };
+            for s in f.slot..f.slot + width {
+                assert_eq!(owner[s], None, "slot {s} of {} taken", f.doc_name);
+                owner[s] = Some(i);
+            }
+            let Some(fill) = f.fill else {
+                assert_eq!(
+                    f.arg,
+                    ArgKind::Node,
+                    "{}: only node families are slow",
+                    f.doc_name
+                );
+                continue;
+            };
+            let mut frame = [f64::NAN; SLOTS];
+            fill(&inputs(), &mut frame);
+            let written: Vec<usize> = (0..SLOTS).filter(|s| !frame[*s].is_nan()).collect();
+            assert_eq!(
+                written,
+                (f.slot..f.slot + width).collect::<Vec<_>>(),
+                "{}",
+                f.doc_name
+            );
+        }
+        assert!(owner.iter().all(|o| o.is_some()), "every slot has a family");
+    }
+
+    /// The fills against the definitions written out here.
+    #[test]
+    fn fills_equal_their_definitions() {
+        let x = inputs();
+        let mut f = [0.0; SLOTS];
+        for fam in &FAMILIES {
+            if let Some(fill) = fam.fill {
+                fill(&x, &mut f);
+            }
+        }
+        let dps = |i: usize| x.dtheta_rad[i] * (180.0 / std::f64::consts::PI / x.h_s);
+        for i in 0..3 {
+            assert_eq!(f[UP + i], x.up_b[i]);
+            assert_eq!(f[NORTH + i], x.north_east_b[0][i]);
+            assert_eq!(f[EAST + i], x.north_east_b[1][i]);
+            assert_eq!(f[RATE + i].to_bits(), dps(i).to_bits());
+            assert_eq!(f[ABS_RATE + i].to_bits(), dps(i).abs().to_bits());
+        }
+        assert_eq!(f[RATE + 1], -2e-4 / 0.01 * 180.0 / std::f64::consts::PI);
+        // 3.5 rad = 200.535…° wraps to −159.46…°.
+        assert!((f[OUTER] - (3.5f64.to_degrees() - 360.0)).abs() < 1e-12);
+        assert!((f[INNER] - (-1.2f64).to_degrees()).abs() < 1e-12);
+        assert_eq!(f[TIME], 100.005);
+    }
+
+    /// The properties the plant and discovery rely on: the heading and time families ask for
+    /// their inputs, the gimbal families are marked as needing gimbal data, and a
+    /// linear-only family needs none (discovery holds those on every history).
+    #[test]
+    fn table_flags_match_the_inputs_the_fills_read() {
+        for f in &FAMILIES {
+            assert_eq!(
+                f.reads_heading,
+                matches!(f.prefix, "n_" | "e_"),
+                "{}",
+                f.doc_name
+            );
+            assert_eq!(f.reads_time, f.prefix == "time", "{}", f.doc_name);
+            assert_eq!(
+                f.needs_gimbal,
+                f.prefix.starts_with("gimbal_"),
+                "{}",
+                f.doc_name
+            );
+            if f.library == Library::LinearOnly {
+                assert!(!f.needs_gimbal, "{}", f.doc_name);
+            }
+            assert!(f.bound > 0.0 && !f.description.is_empty());
         }
     }
 }
