@@ -353,8 +353,6 @@ mod tests {
     }
 }
 
-// The Python and C mirrors of these types (transport/wire) checked against them; the test
-// lives beside the mirrors it reads.
+// The Python and C mirrors of these types (transport/wire) checked against them.
 #[cfg(test)]
-#[path = "../wire/mirror_check.rs"]
 mod wire;

@@ -14,8 +14,8 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
 
-const PY: &str = include_str!("rins_wire.py");
-const H: &str = include_str!("rins_wire.h");
+const PY: &str = include_str!("../../wire/rins_wire.py");
+const H: &str = include_str!("../../wire/rins_wire.h");
 
 /// One field as a language states it: name, offset (bytes) and type in Rust spelling
 /// (`u64`, `[f64; 3]`, `[ImuRecord; 64]`).
