@@ -10,6 +10,8 @@ pub mod calibration;
 pub mod campaign;
 pub mod montecarlo;
 pub mod session;
+pub mod tracker;
 
 pub use montecarlo::run_seeds;
-pub use session::{Alignment, NavRecord, NavRun, NavRunConfig, Tracker, run};
+pub use session::{Alignment, NavRecord, NavRun, NavRunConfig, run};
+pub use tracker::Tracker;

@@ -7,7 +7,11 @@
 //! A seed's runs are bit-identical to [`crate::run`] of that seed alone with each navigator:
 //! the samples are (the batch's guarantee) and each navigator sees them in the same order.
 
+use nalgebra::Vector3;
 use rayon::prelude::*;
+use rins_nav::errors::NavRecord;
+use rins_nav::strapdown::Strapdown;
+use rins_nav::strapdown_lanes::{LANES, StrapdownLanes};
 use rins_plant::{PlantConfig, SeedBatch};
 
 use crate::session::{
@@ -82,6 +86,8 @@ pub fn run_seeds(
 }
 
 /// One batch: the seeds of `chunk` stepped together, each feeding every navigator of `navs`.
+/// The navigators of all seeds run side by side in vector lanes ([`StrapdownLanes`]); each
+/// keeps its own compensation and error records ([`crate::tracker::Bookkeeping`]).
 fn run_batch(
     cfg: &PlantConfig,
     chunk: &[u64],
@@ -91,36 +97,52 @@ fn run_batch(
 ) -> Vec<Vec<NavRun>> {
     let mut batch = SeedBatch::new(cfg, chunk).expect("validated configuration");
     let lanes = chunk.len();
-    // The navigators start aligned from truth, which is the same for every lane when they
-    // share the physics; a plant per seed starts each from its own.
-    let mut trackers: Vec<Vec<_>> = (0..lanes)
-        .map(|k| {
-            let plant = batch.plant(k);
-            let init = initial_state(plant);
-            navs.iter()
-                .map(|n| tracker_for(plant, init, init.height_m, n))
-                .collect()
+    // One slot per seed and navigator, seed-major. The navigators start aligned from truth,
+    // which is the same for every lane when they share the physics; a plant per seed starts
+    // each from its own.
+    let mut seed_of = Vec::new();
+    let mut books = Vec::new();
+    let mut navigators = Vec::new();
+    for k in 0..lanes {
+        let plant = batch.plant(k);
+        let init = initial_state(plant);
+        for n in navs {
+            let (nav, book) = tracker_for(plant, init, init.height_m, n).into_parts();
+            seed_of.push(k);
+            books.push(book);
+            navigators.push(nav);
+        }
+    }
+    let mut groups: Vec<(StrapdownLanes, Vec<usize>)> = lane_groups(&navigators)
+        .into_iter()
+        .map(|slots| {
+            let members: Vec<Strapdown> = slots.iter().map(|&i| navigators[i].clone()).collect();
+            let lanes = StrapdownLanes::new(&members).expect("grouped alike");
+            (lanes, slots)
         })
         .collect();
     let dt = batch.first().dt_s();
     let samples = (nav_s / dt).round() as u64;
-    let mut records: Vec<Vec<Vec<_>>> = trackers
+    let mut records: Vec<Vec<NavRecord>> = books
         .iter()
-        .map(|t| {
-            t.iter()
-                .map(|t| Vec::with_capacity((samples / t.record_interval() + 1) as usize))
-                .collect()
-        })
+        .map(|b| Vec::with_capacity((samples / b.record_interval() + 1) as usize))
         .collect();
+    let (mut dth, mut dv) = ([Vector3::zeros(); LANES], [Vector3::zeros(); LANES]);
     let mut reported = 0;
     for k in 1..=samples {
         batch.step();
-        for (lane, s) in batch.samples().iter().enumerate() {
-            for (t, rec) in trackers[lane].iter_mut().zip(&mut records[lane]) {
-                if let Some(r) = t.push(s, || batch.truth(lane)) {
-                    rec.push(r);
-                } else if k == samples {
-                    rec.push(t.record(&batch.truth(lane)));
+        let out = batch.samples();
+        for (g, slots) in &mut groups {
+            for (j, &i) in slots.iter().enumerate() {
+                let s = &out[seed_of[i]];
+                dth[j] = books[i].dtheta(s, || g.state(j).q_bn);
+                dv[j] = s.dv_mps;
+            }
+            g.update(&dth[..slots.len()], &dv[..slots.len()]);
+            for (j, &i) in slots.iter().enumerate() {
+                let lane = seed_of[i];
+                if books[i].advance(&out[lane]) || k == samples {
+                    records[i].push(books[i].record(&g.state(j), &batch.truth(lane)));
                 }
             }
         }
@@ -129,32 +151,43 @@ fn run_batch(
             reported = k;
         }
     }
-    trackers
-        .into_iter()
-        .zip(records)
-        .map(|(ts, rs)| {
-            ts.into_iter()
-                .zip(rs)
-                .map(|(t, records)| NavRun {
-                    records,
-                    alignment: None,
-                    up_att_mean_abs_rad: t.up_att_mean_abs_rad(),
-                })
-                .collect()
-        })
+    let mut runs = books.iter().zip(records).map(|(b, records)| NavRun {
+        records,
+        alignment: None,
+        up_att_mean_abs_rad: b.up_att_mean_abs_rad(),
+    });
+    (0..lanes)
+        .map(|_| runs.by_ref().take(navs.len()).collect())
         .collect()
+}
+
+/// The navigators' indices in groups of at most [`LANES`] that can share lanes (the same
+/// update interval and vertical channel), in order.
+fn lane_groups(navigators: &[Strapdown]) -> Vec<Vec<usize>> {
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for (i, n) in navigators.iter().enumerate() {
+        let alike = |g: &&mut Vec<usize>| {
+            let first = &navigators[g[0]];
+            g.len() < LANES && first.dt_s() == n.dt_s() && first.vertical() == n.vertical()
+        };
+        match groups.iter_mut().find(alike) {
+            Some(g) => g.push(i),
+            None => groups.push(vec![i]),
+        }
+    }
+    groups
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rins_nav::VerticalChannel;
     use rins_plant::Plant;
     use rins_plant::carrier::{CarrierKind, SpectrumKind};
 
     /// Each seed's runs through the engine equal `run` of that seed alone with each navigator,
     /// record for record, bit for bit.
     fn check(cfg: &PlantConfig, nav_s: f64) {
-        let seeds = [3, 4, 9];
         let navs = [
             NavRunConfig {
                 record_every_s: 20.0,
@@ -166,7 +199,11 @@ mod tests {
                 ..NavRunConfig::default()
             },
         ];
-        let got = run_seeds(cfg, &seeds, nav_s, &navs, &|_| {}).unwrap();
+        check_with(cfg, &[3, 4, 9], &navs, nav_s);
+    }
+
+    fn check_with(cfg: &PlantConfig, seeds: &[u64], navs: &[NavRunConfig], nav_s: f64) {
+        let got = run_seeds(cfg, seeds, nav_s, navs, &|_| {}).unwrap();
         assert_eq!(got.len(), seeds.len());
         for (seed, runs) in seeds.iter().zip(&got) {
             for (n, r) in navs.iter().zip(runs) {
@@ -192,6 +229,59 @@ mod tests {
         let e = run_seeds(&c, &[1, 2], 10.0, &[NavRunConfig::default()], &|_| {}).unwrap_err();
         assert!(matches!(e, SessionError::InvalidConfig(_)), "{e:?}");
         assert!(e.to_string().contains("rate_hz"), "{e}");
+    }
+
+    /// One batch of five seeds with three navigators each, one of them with a damped vertical
+    /// channel: fifteen navigators in three lane groups (eight and two held, five damped).
+    #[test]
+    fn navigators_in_several_lane_groups_equal_their_runs_alone() {
+        let cfg = rins_plant::presets::paper_16pos_config();
+        let navs = [
+            NavRunConfig::default(),
+            NavRunConfig {
+                compensation: Some(cfg.sensor.gyro.position_bias),
+                ..NavRunConfig::default()
+            },
+            NavRunConfig {
+                vertical: VerticalChannel::Damped {
+                    ref_height_m: 0.0,
+                    tau_s: 50.0,
+                },
+                record_every_s: 10.0,
+                ..NavRunConfig::default()
+            },
+        ];
+        let one_batch = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        one_batch.install(|| check_with(&cfg, &[1, 2, 3, 4, 5], &navs, 200.0));
+        let at = rins_nav::NavState {
+            q_bn: nalgebra::UnitQuaternion::identity(),
+            v_n: Vector3::zeros(),
+            lat_rad: 0.6,
+            lon_rad: 2.0,
+            height_m: 0.0,
+        };
+        let held: Vec<Strapdown> = (0..10)
+            .map(|_| Strapdown::new(at, 0.01, VerticalChannel::Hold { ref_height_m: 0.0 }))
+            .collect();
+        let mut mixed = held.clone();
+        mixed.insert(
+            3,
+            Strapdown::new(
+                at,
+                0.01,
+                VerticalChannel::Damped {
+                    ref_height_m: 0.0,
+                    tau_s: 50.0,
+                },
+            ),
+        );
+        assert_eq!(
+            lane_groups(&mixed),
+            vec![vec![0, 1, 2, 4, 5, 6, 7, 8], vec![3], vec![9, 10]]
+        );
     }
 
     #[test]

@@ -2,17 +2,17 @@
 //! and error records against the plant's truth. The navigator sees only the samples (increments,
 //! encoder angles, temperature readings); the truth is read here, for the error records.
 
-use nalgebra::{Matrix3, Vector2, Vector3};
-use rins_plant::earth::Site;
+use nalgebra::{Vector2, Vector3};
 use rins_plant::effects::gyro::PositionBiasSpec;
 use rins_plant::units::{DPSH, UG};
-use rins_plant::{ImuSample, Plant, Truth};
+use rins_plant::{ImuSample, Plant};
+
+use crate::tracker::Tracker;
 
 pub use rins_nav::alignment::Alignment;
 use rins_nav::alignment::{FineAlignment, coarse, correct_attitude};
-use rins_nav::compensation::PositionBiasCompensation;
+use rins_nav::errors::attitude_error;
 pub use rins_nav::errors::{NavRecord, vehicle_attitude};
-use rins_nav::errors::{Trms, attitude_error, position_error_m};
 use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
 
 /// Options of a navigation run.
@@ -92,179 +92,6 @@ pub enum SessionError {
     InvalidConfig(String),
 }
 
-/// The reference navigator fed one sample at a time, with error records against the plant's
-/// truth every `record_every_s`: what [`run`] does inside its loop, usable from any sink that
-/// sees the plant's samples and truth (the Rerun sink, the CLI).
-pub struct Tracker {
-    nav: Strapdown,
-    comp: Option<PositionBiasCompensation>,
-    dt_s: f64,
-    site: Site,
-    c_vn: Matrix3<f64>,
-    every: u64,
-    k: u64,
-    trms: Trms,
-    up_sum: f64,
-    records: u64,
-    /// Encoder angles of the last pushed sample: the navigator's view of the table.
-    encoder: rins_plant::table::GimbalAngles,
-    /// On a moving carrier: the table mount C_v^c; the errors are then taken against the
-    /// carrier's truth (position, velocity, attitude) instead of the site.
-    moving_mount: Option<Matrix3<f64>>,
-}
-
-impl Tracker {
-    /// A navigator started at `init` (aligned already) at the plant's `site` and mount `c_vn`,
-    /// with optional δβ compensation (Eq. 9 with the navigator's own up direction).
-    pub fn new(
-        init: NavState,
-        dt_s: f64,
-        vertical: VerticalChannel,
-        site: Site,
-        c_vn: Matrix3<f64>,
-        compensation: Option<&PositionBiasSpec>,
-        record_every_s: f64,
-    ) -> Self {
-        Self {
-            nav: Strapdown::new(init, dt_s, vertical),
-            comp: compensation.map(PositionBiasCompensation::new),
-            dt_s,
-            site,
-            c_vn,
-            every: ((record_every_s / dt_s).round() as u64).max(1),
-            k: 0,
-            trms: Trms::default(),
-            up_sum: 0.0,
-            records: 0,
-            encoder: rins_plant::table::GimbalAngles::default(),
-            moving_mount: None,
-        }
-    }
-
-    /// The same tracker on a moving carrier with table mount `mount` (C_v^c): errors against the
-    /// carrier's truth (reference point position and velocity, C_c^n·C_v^c·R_z·R_x attitude).
-    pub fn on_moving_carrier(mut self, mount: Matrix3<f64>) -> Self {
-        self.moving_mount = Some(mount);
-        self
-    }
-
-    /// A navigator aligned to the truth of a freshly built plant (before its first step), at rest,
-    /// with the vertical channel held at the site height.
-    pub fn at_truth(plant: &Plant, record_every_s: f64) -> Self {
-        let site = *plant.site();
-        let init = initial_state(plant);
-        let t = Self::new(
-            init,
-            plant.dt_s(),
-            VerticalChannel::Hold {
-                ref_height_m: init.height_m,
-            },
-            site,
-            plant.vehicle_to_nav(),
-            None,
-            record_every_s,
-        );
-        if plant.moving_carrier() {
-            t.on_moving_carrier(plant.config().vehicle.c_vn())
-        } else {
-            t
-        }
-    }
-
-    /// Integrates one sample; returns the error record when one is due, against the truth
-    /// `truth` gives (asked for then only: on a moving carrier the truth is interpolated when
-    /// asked for, and a record is due once in many samples).
-    pub fn push(&mut self, s: &ImuSample, truth: impl FnOnce() -> Truth) -> Option<NavRecord> {
-        let mut dtheta = s.dtheta_rad;
-        if let Some(c) = &self.comp {
-            let up_b = self
-                .nav
-                .state()
-                .q_bn
-                .inverse_transform_vector(&Vector3::z());
-            dtheta -= c.correction(self.dt_s, &up_b, &s.gyro_temps_c());
-        }
-        self.nav.update(&dtheta, &s.dv_mps);
-        self.encoder = s.encoder;
-        self.k += 1;
-        self.k
-            .is_multiple_of(self.every)
-            .then(|| self.record(&truth()))
-    }
-
-    /// The error record now, against `truth` (the plant's truth after the last pushed sample).
-    pub fn record(&mut self, truth: &Truth) -> NavRecord {
-        let st = self.nav.state();
-        if let Some(mount) = self.moving_mount {
-            return self.record_moving(truth, &mount);
-        }
-        let c_bn_true = rins_plant::table::body_to_nav(&self.c_vn, truth.gimbal.angles);
-        let c_bn_nav = st.q_bn.to_rotation_matrix().into_inner();
-        let phi = attitude_error(&c_bn_nav, &c_bn_true);
-        // The carrier attitude as the navigation computer knows it: through the encoders.
-        let c_vn_nav = vehicle_attitude(&c_bn_nav, self.encoder);
-        let phi_v = attitude_error(&c_vn_nav, &self.c_vn);
-        let (north, east) =
-            position_error_m(st, self.site.lat_rad, self.site.lon_rad, self.site.height_m);
-        let horizontal = north.hypot(east);
-        self.trms.push(horizontal);
-        self.up_sum += phi.z.abs();
-        self.records += 1;
-        NavRecord {
-            t_s: self.k as f64 * self.dt_s,
-            att_err_rad: phi.into(),
-            vehicle_att_err_rad: phi_v.into(),
-            vel_err_mps: st.v_n.into(),
-            north_m: north,
-            east_m: east,
-            horizontal_m: horizontal,
-            trms_m: self.trms.value(),
-        }
-    }
-
-    /// [`Tracker::record`] on a moving carrier.
-    fn record_moving(&mut self, truth: &Truth, mount: &Matrix3<f64>) -> NavRecord {
-        let st = self.nav.state();
-        let c = &truth.carrier;
-        let c_vn = c.q_cn.to_rotation_matrix().into_inner() * mount;
-        let c_bn_true = rins_plant::table::body_to_nav(&c_vn, truth.gimbal.angles);
-        let c_bn_nav = st.q_bn.to_rotation_matrix().into_inner();
-        let phi = attitude_error(&c_bn_nav, &c_bn_true);
-        let c_vn_nav = vehicle_attitude(&c_bn_nav, self.encoder);
-        let phi_v = attitude_error(&c_vn_nav, &c_vn);
-        let (north, east) = position_error_m(st, c.lat_rad, c.lon_rad, c.height_m);
-        let horizontal = north.hypot(east);
-        self.trms.push(horizontal);
-        self.up_sum += phi.z.abs();
-        self.records += 1;
-        NavRecord {
-            t_s: self.k as f64 * self.dt_s,
-            att_err_rad: phi.into(),
-            vehicle_att_err_rad: phi_v.into(),
-            vel_err_mps: (st.v_n - c.v_n).into(),
-            north_m: north,
-            east_m: east,
-            horizontal_m: horizontal,
-            trms_m: self.trms.value(),
-        }
-    }
-
-    /// Samples between error records.
-    pub fn record_interval(&self) -> u64 {
-        self.every
-    }
-
-    /// Mean of |φ_U| over the records so far, rad.
-    pub fn up_att_mean_abs_rad(&self) -> f64 {
-        self.up_sum / self.records.max(1) as f64
-    }
-
-    /// The navigation state now.
-    pub fn state(&self) -> &NavState {
-        self.nav.state()
-    }
-}
-
 /// Aligns (if asked) and navigates for `nav_s` seconds, stepping `plant` as it goes.
 pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, SessionError> {
     if !(nav_s > 0.0 && cfg.record_every_s > 0.0) {
@@ -294,7 +121,7 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
     }
     let mut tracker = tracker_for(plant, init, ref_height_m, cfg);
     let samples = (nav_s / dt).round() as u64;
-    let mut records = Vec::with_capacity((samples / tracker.every + 1) as usize);
+    let mut records = Vec::with_capacity((samples / tracker.record_interval() + 1) as usize);
     for k in 1..=samples {
         let s = plant.step();
         if let Some(r) = tracker.push(&s, || plant.truth()) {

@@ -4,8 +4,8 @@
 //! compensation and the effect share one definition.
 
 use nalgebra::Vector3;
-use rins_plant::effects::gyro::{GYRO_TERMS, PositionBiasSpec};
-use rins_plant::effects::{GyroModel, GyroSpec, GyroTerm, TermContext};
+use rins_plant::effects::gyro::PositionBiasSpec;
+use rins_plant::effects::{GyroModel, GyroSpec};
 
 /// δβ compensation from a (known or fitted) position-bias model.
 #[derive(Clone, Debug)]
@@ -29,25 +29,64 @@ impl PositionBiasCompensation {
     }
 
     /// The correction to subtract from Δθ over `dt_s`, given the navigator's body up direction
-    /// and the gyro block temperatures.
+    /// and the gyro block temperatures: the position term of
+    /// [`GyroModel::increment_error`] alone, δβ(T)·(w(u)·Δt), with its operations (the same
+    /// bits; the other terms are off here and need not be evaluated every sample).
+    #[inline]
     pub fn correction(
         &self,
         dt_s: f64,
         up_b: &Vector3<f64>,
         gyro_temp_c: &Vector3<f64>,
     ) -> Vector3<f64> {
-        let ctx = TermContext {
-            dt_s,
-            dtheta_rad: Vector3::zeros(),
-            dv_mps: Vector3::zeros(),
-            f_b_mps2: Vector3::zeros(),
-            up_b: *up_b,
-            gyro_temp_c: *gyro_temp_c,
-            gyro_gradient_k: Vector3::zeros(),
-            accel_temp_c: 25.0,
-        };
-        let mut terms = [Vector3::zeros(); GYRO_TERMS];
-        self.model.increment_error(&ctx, &mut terms);
-        terms[GyroTerm::PositionBias as usize]
+        self.model.position_bias_rps(gyro_temp_c) * (self.model.position_weight(up_b) * dt_s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rins_plant::effects::gyro::{GYRO_TERMS, Transition};
+    use rins_plant::effects::{GyroTerm, TermContext};
+
+    /// The correction equals the position term of the whole gyro model's increment error,
+    /// bit for bit, for both transition models and up directions all round.
+    #[test]
+    fn the_correction_is_the_models_position_term() {
+        for transition in [Transition::Cosine, Transition::Step] {
+            let spec = PositionBiasSpec {
+                enabled: true,
+                dph: [0.005, -0.003, 0.007],
+                dph_per_k: [1e-4, 2e-4, -1e-4],
+                dph_per_k3: [1e-7, 0.0, 3e-7],
+                transition,
+                ..PositionBiasSpec::default()
+            };
+            let comp = PositionBiasCompensation::new(&spec);
+            for k in 0..200 {
+                let a = k as f64 * 0.1;
+                let up_b = Vector3::new(a.sin() * 0.6, a.cos() * 0.6, (a * 0.7).cos()).normalize();
+                let temps = Vector3::new(20.0 + a, 31.0 - a * 0.5, 25.0 + a * 0.25);
+                let ctx = TermContext {
+                    dt_s: 0.01,
+                    dtheta_rad: Vector3::zeros(),
+                    dv_mps: Vector3::zeros(),
+                    f_b_mps2: Vector3::zeros(),
+                    up_b,
+                    gyro_temp_c: temps,
+                    gyro_gradient_k: Vector3::zeros(),
+                    accel_temp_c: 25.0,
+                };
+                let mut terms = [Vector3::zeros(); GYRO_TERMS];
+                comp.model.increment_error(&ctx, &mut terms);
+                let whole = terms[GyroTerm::PositionBias as usize];
+                assert_eq!(
+                    comp.correction(0.01, &up_b, &temps),
+                    whole,
+                    "{transition:?}, {k}"
+                );
+                assert!(whole.norm() > 0.0 || up_b.z > 0.0);
+            }
+        }
     }
 }

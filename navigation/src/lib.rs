@@ -8,13 +8,18 @@
 //! are in rins-experiments.
 
 pub mod alignment;
+#[cfg(target_arch = "x86_64")]
+mod avx512_lanes;
 pub mod calibration;
 pub mod campaign;
 pub mod compensation;
 pub mod errors;
 pub mod fit;
+mod mechanisation;
 pub mod strapdown;
+pub mod strapdown_lanes;
 
 pub use alignment::Alignment;
 pub use errors::NavRecord;
 pub use strapdown::{NavState, Strapdown, VerticalChannel};
+pub use strapdown_lanes::StrapdownLanes;

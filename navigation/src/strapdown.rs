@@ -7,9 +7,11 @@
 //! (I − ½[ζ×])·C_b^n(k−1), plus (g^n − (2ω_ie^n + ω_en^n) × v^n)·Δt.
 //! The vertical channel of a free inertial navigator is unstable; see [`VerticalChannel`].
 
-use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
-use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity_sin2, radii_of_curvature_sin2};
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use rins_plant::earth::{OMEGA_IE_RPS, radii_of_curvature_sin2};
 use serde::{Deserialize, Serialize};
+
+use crate::mechanisation::Solution;
 
 /// How the unstable vertical channel is handled.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -58,31 +60,6 @@ pub fn quat_from_rotvec(v: &Vector3<f64>) -> UnitQuaternion<f64> {
     UnitQuaternion::new_unchecked(Quaternion::new(c, s * v.x, s * v.y, s * v.z))
 }
 
-/// The latitude's terms one update uses.
-struct Latitude {
-    sin: f64,
-    cos: f64,
-    sin2: f64,
-    rm: f64,
-    rn: f64,
-}
-
-impl Latitude {
-    #[inline]
-    fn of(lat_rad: f64) -> Self {
-        let (sin, cos) = lat_rad.sin_cos();
-        let sin2 = sin.powi(2);
-        let (rm, rn) = radii_of_curvature_sin2(sin2);
-        Self {
-            sin,
-            cos,
-            sin2,
-            rm,
-            rn,
-        }
-    }
-}
-
 /// The strapdown navigator.
 #[derive(Clone, Debug)]
 pub struct Strapdown {
@@ -127,18 +104,108 @@ impl Strapdown {
         self.steps
     }
 
+    /// Update interval, s.
+    pub fn dt_s(&self) -> f64 {
+        self.dt_s
+    }
+
     /// Vertical-channel handling.
     pub fn vertical(&self) -> VerticalChannel {
         self.vertical
     }
 
-    /// Earth rate ω_ie^n and transport rate ω_en^n at the current solution, rad/s.
+    /// Earth rate ω_ie^n and transport rate ω_en^n at the current solution, rad/s (the terms
+    /// of [`crate::mechanisation`]).
     pub fn frame_rates(&self) -> (Vector3<f64>, Vector3<f64>) {
-        self.frame_rates_at(&Latitude::of(self.state.lat_rad))
+        let s = &self.state;
+        let (sl, cl) = s.lat_rad.sin_cos();
+        let (rm, rn) = radii_of_curvature_sin2(sl * sl);
+        let w_ie = Vector3::new(0.0, OMEGA_IE_RPS * cl, OMEGA_IE_RPS * sl);
+        let rnh = rn + s.height_m;
+        let w_en = Vector3::new(
+            -s.v_n.y / (rm + s.height_m),
+            s.v_n.x / rnh,
+            s.v_n.x * sl / cl / rnh,
+        );
+        (w_ie, w_en)
     }
 
-    fn frame_rates_at(&self, l: &Latitude) -> (Vector3<f64>, Vector3<f64>) {
+    /// Consumes one interval's increments Δθ (rad) and Δv (m/s) (the equations of
+    /// [`crate::mechanisation`]).
+    pub fn update(&mut self, dtheta: &Vector3<f64>, dv: &Vector3<f64>) {
+        let mut m = self.solution();
+        crate::mechanisation::update(
+            &mut m,
+            &(*dtheta).into(),
+            &(*dv).into(),
+            self.dt_s,
+            self.vertical,
+        );
+        self.set_solution(&m);
+        self.steps += 1;
+    }
+
+    /// The solution and the previous increments as the equations use them.
+    pub(crate) fn solution(&self) -> Solution<f64> {
         let s = &self.state;
+        Solution {
+            q: s.q_bn.coords.into(),
+            v: s.v_n.into(),
+            lat: s.lat_rad,
+            lon: s.lon_rad,
+            h: s.height_m,
+            prev_dtheta: self.prev_dtheta.into(),
+            prev_dv: self.prev_dv.into(),
+        }
+    }
+
+    fn set_solution(&mut self, m: &Solution<f64>) {
+        self.state = NavState {
+            q_bn: UnitQuaternion::new_unchecked(Quaternion::from(nalgebra::Vector4::from(m.q))),
+            v_n: m.v.into(),
+            lat_rad: m.lat,
+            lon_rad: m.lon,
+            height_m: m.h,
+        };
+        self.prev_dtheta = m.prev_dtheta.into();
+        self.prev_dv = m.prev_dv.into();
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+    use nalgebra::Matrix3;
+    use rins_plant::earth::normal_gravity_sin2;
+
+    /// The latitude's terms, as the reference update computed them.
+    struct Latitude {
+        sin: f64,
+        cos: f64,
+        sin2: f64,
+        rm: f64,
+        rn: f64,
+    }
+
+    impl Latitude {
+        #[inline]
+        fn of(lat_rad: f64) -> Self {
+            let (sin, cos) = lat_rad.sin_cos();
+            let sin2 = sin.powi(2);
+            let (rm, rn) = radii_of_curvature_sin2(sin2);
+            Self {
+                sin,
+                cos,
+                sin2,
+                rm,
+                rn,
+            }
+        }
+    }
+
+    fn frame_rates_at(nav: &Strapdown, l: &Latitude) -> (Vector3<f64>, Vector3<f64>) {
+        let s = &nav.state;
         let (rm, rn, sl, cl) = (l.rm, l.rn, l.sin, l.cos);
         let w_ie = Vector3::new(0.0, OMEGA_IE_RPS * cl, OMEGA_IE_RPS * sl);
         let rnh = rn + s.height_m;
@@ -150,20 +217,22 @@ impl Strapdown {
         (w_ie, w_en)
     }
 
-    /// Consumes one interval's increments Δθ (rad) and Δv (m/s).
-    pub fn update(&mut self, dtheta: &Vector3<f64>, dv: &Vector3<f64>) {
-        let dt = self.dt_s;
-        let (pth, pdv) = (self.prev_dtheta, self.prev_dv);
+    /// The update as first written, with nalgebra's types: the reference the equations of
+    /// [`crate::mechanisation`] are checked against bit for bit.
+    fn reference_update(nav: &mut Strapdown, dtheta: &Vector3<f64>, dv: &Vector3<f64>) {
+        let dt = nav.dt_s;
+        let (pth, pdv) = (nav.prev_dtheta, nav.prev_dv);
         let phi = dtheta + pth.cross(dtheta) / 12.0;
         let dv_sf_b = dv + 0.5 * dtheta.cross(dv) + (pth.cross(dv) + pdv.cross(dtheta)) / 12.0;
-        self.prev_dtheta = *dtheta;
-        self.prev_dv = *dv;
+        nav.prev_dtheta = *dtheta;
+        nav.prev_dv = *dv;
 
-        let s = self.state;
+        let s = nav.state;
         // The latitude's sine, cosine and radii once per update (the same bits as computing
         // them where each is used).
         let l = Latitude::of(s.lat_rad);
-        let (w_ie, w_en) = self.frame_rates_at(&l);
+        let (w_ie, w_en) = frame_rates_at(nav, &l);
+        assert_eq!((w_ie, w_en), nav.frame_rates());
         let w_in = w_ie + w_en;
         let zeta = w_in * dt;
         let c_bn = s.q_bn.to_rotation_matrix().into_inner();
@@ -173,7 +242,7 @@ impl Strapdown {
 
         let (rm, rn) = (l.rm, l.rn);
         let mut h = s.height_m;
-        match self.vertical {
+        match nav.vertical {
             VerticalChannel::Hold { ref_height_m } => {
                 v.z = 0.0;
                 h = ref_height_m;
@@ -193,21 +262,80 @@ impl Strapdown {
 
         let mut q = quat_from_rotvec(&(-zeta)) * s.q_bn * quat_from_rotvec(&phi);
         q.renormalize_fast();
-        self.state = NavState {
+        nav.state = NavState {
             q_bn: q,
             v_n: v,
             lat_rad: lat,
             lon_rad: lon,
             height_m: h,
         };
-        self.steps += 1;
+        nav.steps += 1;
     }
-}
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use approx::assert_relative_eq;
+    /// A navigator's state as bits, for exact comparisons.
+    pub(crate) fn bits(n: &Strapdown) -> Vec<u64> {
+        let s = n.state();
+        s.q_bn
+            .coords
+            .iter()
+            .chain(s.v_n.iter())
+            .chain([s.lat_rad, s.lon_rad, s.height_m].iter())
+            .chain(n.prev_dtheta.iter())
+            .chain(n.prev_dv.iter())
+            .map(|x| x.to_bits())
+            .collect()
+    }
+
+    /// Increments of a turning, accelerating IMU: Earth rate and gravity plus a few deg/s and
+    /// m/s² of motion and noise, and every 97th interval a turn large enough (> 1e-2 rad) for
+    /// the closed-form quaternion.
+    pub(crate) fn increments(k: u64) -> (Vector3<f64>, Vector3<f64>) {
+        let t = k as f64 * 0.01;
+        let wobble = |a: f64, f: f64| a * (f * t).sin();
+        let mut dth = Vector3::new(
+            wobble(2e-4, 0.7) + 1e-7,
+            wobble(-3e-4, 1.3) + 5e-7,
+            wobble(5e-4, 0.2) + 6e-7,
+        );
+        if k % 97 == 0 {
+            dth.z += 0.02;
+        }
+        let dv = Vector3::new(
+            wobble(0.02, 0.5),
+            wobble(0.03, 0.9),
+            0.098 + wobble(0.01, 2.1),
+        );
+        (dth, dv)
+    }
+
+    #[test]
+    fn the_equations_give_the_reference_bits() {
+        for vertical in [
+            VerticalChannel::Hold { ref_height_m: 12.0 },
+            VerticalChannel::Damped {
+                ref_height_m: 12.0,
+                tau_s: 100.0,
+            },
+        ] {
+            let init = NavState {
+                q_bn: UnitQuaternion::from_euler_angles(0.01, -0.02, 1.1),
+                v_n: Vector3::new(3.0, -4.0, 0.1),
+                lat_rad: 0.64,
+                lon_rad: 2.15,
+                height_m: 15.0,
+            };
+            let mut a = Strapdown::new(init, 0.01, vertical);
+            let mut b = a.clone();
+            for k in 1..=20_000 {
+                let (dth, dv) = increments(k);
+                a.update(&dth, &dv);
+                reference_update(&mut b, &dth, &dv);
+                assert_eq!(bits(&a), bits(&b), "{vertical:?}, step {k}");
+            }
+            // The run went somewhere: 200 s at ~5 m/s.
+            assert!((a.state().lat_rad - 0.64).abs() > 1e-5);
+        }
+    }
 
     #[test]
     fn series_quaternion_matches_exact() {

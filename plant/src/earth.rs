@@ -3,6 +3,7 @@
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
+use crate::real::{Divisor, Real};
 use crate::units::DEG;
 
 /// WGS-84 semi-major axis, m.
@@ -106,11 +107,12 @@ pub fn radii_of_curvature(lat_rad: f64) -> (f64, f64) {
 }
 
 /// [`radii_of_curvature`] from sin²(latitude) (a caller that has the sine already).
-#[inline]
-pub fn radii_of_curvature_sin2(s2: f64) -> (f64, f64) {
-    let w = (1.0 - WGS84_E2 * s2).sqrt();
-    let rn = WGS84_A_M / w;
-    let rm = WGS84_A_M * (1.0 - WGS84_E2) / (w * w * w);
+/// Generic over [`Real`], so a navigator in vector lanes computes each lane's bits.
+#[inline(always)]
+pub fn radii_of_curvature_sin2<T: Real>(s2: T) -> (T, T) {
+    let w = (T::splat(1.0) - T::splat(WGS84_E2) * s2).sqrt();
+    let rn = T::splat(WGS84_A_M) / w;
+    let rm = T::splat(WGS84_A_M * (1.0 - WGS84_E2)) / (w * w * w);
     (rm, rn)
 }
 
@@ -120,17 +122,26 @@ pub fn normal_gravity(lat_rad: f64, height_m: f64) -> f64 {
     normal_gravity_sin2(lat_rad.sin().powi(2), height_m)
 }
 
-/// [`normal_gravity`] from sin²(latitude).
-#[inline]
-pub fn normal_gravity_sin2(s2: f64, height_m: f64) -> f64 {
-    let gamma0 = GAMMA_E_MPS2 * (1.0 + SOMIGLIANA_K * s2) / (1.0 - WGS84_E2 * s2).sqrt();
+/// [`normal_gravity`] from sin²(latitude). Generic over [`Real`], so a navigator in vector
+/// lanes computes each lane's bits.
+#[inline(always)]
+pub fn normal_gravity_sin2<T: Real>(s2: T, height_m: T) -> T {
+    let one = T::splat(1.0);
+    let gamma0 = T::splat(GAMMA_E_MPS2) * (one + T::splat(SOMIGLIANA_K) * s2)
+        / (one - T::splat(WGS84_E2) * s2).sqrt();
     let b = WGS84_A_M * (1.0 - WGS84_F);
     let m = OMEGA_IE_RPS * OMEGA_IE_RPS * WGS84_A_M * WGS84_A_M * b / WGS84_GM;
     let h = height_m;
     gamma0
-        * (1.0 - 2.0 / WGS84_A_M * (1.0 + WGS84_F + m - 2.0 * WGS84_F * s2) * h
-            + 3.0 * h * h / (WGS84_A_M * WGS84_A_M))
+        * (one
+            - T::splat(2.0 / WGS84_A_M)
+                * (T::splat(1.0 + WGS84_F + m) - T::splat(2.0 * WGS84_F) * s2)
+                * h
+            + (T::splat(3.0) * h * h).div_by(A_SQUARED))
 }
+
+/// a² of [`normal_gravity_sin2`]'s height term, as a divisor.
+const A_SQUARED: Divisor = Divisor::new(WGS84_A_M * WGS84_A_M);
 
 /// Somigliana's constant k of [`normal_gravity`] (TR8350.2 Eq. 4-1).
 const SOMIGLIANA_K: f64 = 0.001_931_852_652_41;

@@ -25,6 +25,7 @@ pub mod output;
 pub mod params;
 pub mod plant;
 pub mod presets;
+pub mod real;
 mod simd;
 mod stages;
 pub mod state;

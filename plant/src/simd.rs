@@ -19,7 +19,9 @@ use crate::carrier::waves::JET_LEN;
 pub(crate) const LANES: usize = 8;
 
 /// Compiles `$body` for AVX-512F and AVX2 as well and runs the widest the CPU supports; with
-/// `use $wide` the AVX-512F build is the hand-written function `$wide` instead.
+/// `use $wide` the AVX-512F build is the hand-written function `$wide` instead. Exported for
+/// the navigator in vector lanes (rins-nav), whose bits likewise do not depend on the choice.
+#[macro_export]
 macro_rules! multiversion {
     ($(#[$doc:meta])* $vis:vis fn $name:ident($($a:ident: $t:ty),*) $(-> $r:ty)?
         = $body:ident, $wide:ident, $avx2:ident) => {
@@ -29,7 +31,7 @@ macro_rules! multiversion {
             $body($($a),*)
         }
 
-        multiversion! {
+        $crate::multiversion! {
             $(#[$doc])* $vis fn $name($($a: $t),*) $(-> $r)? = $body, use $wide, $avx2
         }
     };
