@@ -7,7 +7,7 @@
 //! trackers side by side in vector lanes ([`rins_nav::StrapdownLanes`]) and keeps each one's
 //! bookkeeping here, so a tracker gives the same records whichever way its navigator runs.
 
-use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, Vector3};
 use rins_nav::compensation::PositionBiasCompensation;
 use rins_nav::errors::{NavRecord, Trms, attitude_error, position_error_m, vehicle_attitude};
 use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
@@ -105,7 +105,10 @@ impl Tracker {
     /// `truth` gives (asked for then only: on a moving carrier the truth is interpolated when
     /// asked for, and a record is due once in many samples).
     pub fn push(&mut self, s: &ImuSample, truth: impl FnOnce() -> Truth) -> Option<NavRecord> {
-        let dtheta = self.book.dtheta(s, || self.nav.state().q_bn);
+        let nav = &self.nav;
+        let dtheta = self.book.dtheta(s, || {
+            nav.state().q_bn.inverse_transform_vector(&Vector3::z())
+        });
         self.nav.update(&dtheta, &s.dv_mps);
         self.book
             .advance(s)
@@ -141,19 +144,23 @@ impl Tracker {
 
 impl Bookkeeping {
     /// The sample's Δθ as the navigator integrates it: less the δβ correction (Eq. 9) with the
-    /// up direction of the navigator's attitude `q_bn` (asked for only when compensating).
+    /// navigator's body up direction `up_b` (asked for only when compensating).
     #[inline]
     pub(crate) fn dtheta(
-        &self,
+        &mut self,
         s: &ImuSample,
-        q_bn: impl FnOnce() -> UnitQuaternion<f64>,
+        up_b: impl FnOnce() -> Vector3<f64>,
     ) -> Vector3<f64> {
         let mut dtheta = s.dtheta_rad;
-        if let Some(c) = &self.comp {
-            let up_b = q_bn().inverse_transform_vector(&Vector3::z());
-            dtheta -= c.correction(self.dt_s, &up_b, &s.gyro_temps_c());
+        if let Some(c) = &mut self.comp {
+            dtheta -= c.correction(self.dt_s, &up_b(), &s.gyro_temps_c());
         }
         dtheta
+    }
+
+    /// Whether Δθ is compensated (then [`Self::dtheta`] needs the up direction).
+    pub(crate) fn compensates(&self) -> bool {
+        self.comp.is_some()
     }
 
     /// Counts the sample the navigator has just integrated; true when an error record is due.

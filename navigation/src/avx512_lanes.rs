@@ -13,10 +13,11 @@
 #![allow(unsafe_code)]
 
 use std::arch::x86_64::{
-    __m512d, _CMP_EQ_OQ, _CMP_GT_OQ, _mm512_add_pd, _mm512_castpd_si512, _mm512_castsi512_pd,
+    __m512d, _CMP_EQ_OQ, _CMP_GT_OQ, _CMP_LE_OQ, _CMP_NEQ_UQ, _MM_FROUND_NO_EXC,
+    _MM_FROUND_TO_ZERO, _mm512_add_pd, _mm512_and_si512, _mm512_castpd_si512, _mm512_castsi512_pd,
     _mm512_cmp_pd_mask, _mm512_div_pd, _mm512_fmadd_pd, _mm512_fnmadd_pd, _mm512_loadu_pd,
-    _mm512_mask_blend_pd, _mm512_mul_pd, _mm512_set1_epi64, _mm512_set1_pd, _mm512_sqrt_pd,
-    _mm512_storeu_pd, _mm512_sub_pd, _mm512_xor_si512,
+    _mm512_mask_blend_pd, _mm512_mul_pd, _mm512_roundscale_pd, _mm512_set1_epi64, _mm512_set1_pd,
+    _mm512_sqrt_pd, _mm512_storeu_pd, _mm512_sub_pd, _mm512_xor_si512,
 };
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -117,6 +118,28 @@ impl Real for F64x8 {
         })
     }
     #[inline(always)]
+    fn all_within(self, x: f64) -> bool {
+        // SAFETY: AVX-512F is enabled where F64x8 is used (module docs).
+        unsafe {
+            let magnitude = _mm512_castsi512_pd(_mm512_and_si512(
+                _mm512_castpd_si512(self.0),
+                _mm512_set1_epi64(i64::MAX),
+            ));
+            _mm512_cmp_pd_mask::<_CMP_LE_OQ>(magnitude, _mm512_set1_pd(x)) == 0xff
+        }
+    }
+    #[inline(always)]
+    fn differs(self, other: Self) -> bool {
+        // SAFETY: AVX-512F is enabled where F64x8 is used (module docs).
+        unsafe { _mm512_cmp_pd_mask::<_CMP_NEQ_UQ>(self.0, other.0) != 0 }
+    }
+    /// Exact truncation (the same as `x as i64 as f64` below 2⁶³ in magnitude).
+    #[inline(always)]
+    fn trunc(self) -> Self {
+        // SAFETY: AVX-512F is enabled where F64x8 is used (module docs).
+        Self(unsafe { _mm512_roundscale_pd::<{ _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC }>(self.0) })
+    }
+    #[inline(always)]
     fn any_above(self, x: f64) -> bool {
         // SAFETY: AVX-512F is enabled where F64x8 is used (module docs).
         unsafe { _mm512_cmp_pd_mask::<_CMP_GT_OQ>(self.0, _mm512_set1_pd(x)) != 0 }
@@ -136,6 +159,50 @@ mod tests {
             out.push(F64x8::load(x).div_by(d).store());
         }
         out
+    }
+
+    #[target_feature(enable = "avx512f")]
+    fn grid_sin_cos_all(x: &[Lanes<8>]) -> Vec<(Lanes<8>, Lanes<8>)> {
+        let mut trig = rins_plant::trig::GridTrig::<F64x8>::default();
+        let mut out = Vec::with_capacity(x.len());
+        for v in x {
+            let (s, c) = trig.sin_cos(F64x8::load(v));
+            out.push((s.store(), c.store()));
+        }
+        out
+    }
+
+    /// The grid sines and cosines in AVX-512 registers (truncation, comparisons and the
+    /// out-of-reach test as vector operations) give each lane the bits of its angle alone,
+    /// across grid points, for a NaN lane and for a lane beyond the grid's reach.
+    #[test]
+    fn grid_sines_in_registers_are_each_angles_alone() {
+        if !std::arch::is_x86_feature_detected!("avx512f") {
+            eprintln!("no AVX-512F on this CPU: nothing to check");
+            return;
+        }
+        let x: Vec<Lanes<8>> = (0..5_000)
+            .map(|k| {
+                Lanes(std::array::from_fn(|l| match (l, k % 7) {
+                    (6, 3) => f64::NAN,
+                    (7, _) => 1e15 + k as f64,
+                    _ => (k as f64 * 3.7e-4 - 0.9) * (l as f64 - 3.5),
+                }))
+            })
+            .collect();
+        // SAFETY: the CPU has AVX-512F (checked above).
+        let got = unsafe { grid_sin_cos_all(&x) };
+        let mut alone = [rins_plant::trig::GridTrig::<f64>::default(); 8];
+        for (k, (v, (s, c))) in x.iter().zip(&got).enumerate() {
+            for l in 0..8 {
+                let (sa, ca) = alone[l].sin_cos(v.0[l]);
+                assert_eq!(
+                    (s.0[l].to_bits(), c.0[l].to_bits()),
+                    (sa.to_bits(), ca.to_bits()),
+                    "lane {l}, step {k}"
+                );
+            }
+        }
     }
 
     /// Markstein's route gives the bits of `/` for every divisor the equations use: on

@@ -11,6 +11,9 @@ use rins_plant::effects::{GyroModel, GyroSpec};
 #[derive(Clone, Debug)]
 pub struct PositionBiasCompensation {
     model: GyroModel,
+    /// δβ(T) at the last temperatures asked for: the readings change once per thermal update,
+    /// the up direction every sample.
+    last: Option<(Vector3<f64>, Vector3<f64>)>,
 }
 
 impl PositionBiasCompensation {
@@ -25,6 +28,7 @@ impl PositionBiasCompensation {
         };
         Self {
             model: GyroModel::new(&g),
+            last: None,
         }
     }
 
@@ -34,12 +38,20 @@ impl PositionBiasCompensation {
     /// bits; the other terms are off here and need not be evaluated every sample).
     #[inline]
     pub fn correction(
-        &self,
+        &mut self,
         dt_s: f64,
         up_b: &Vector3<f64>,
         gyro_temp_c: &Vector3<f64>,
     ) -> Vector3<f64> {
-        self.model.position_bias_rps(gyro_temp_c) * (self.model.position_weight(up_b) * dt_s)
+        let rate = match self.last {
+            Some((t, rate)) if t == *gyro_temp_c => rate,
+            _ => {
+                let rate = self.model.position_bias_rps(gyro_temp_c);
+                self.last = Some((*gyro_temp_c, rate));
+                rate
+            }
+        };
+        rate * (self.model.position_weight(up_b) * dt_s)
     }
 }
 
@@ -62,7 +74,7 @@ mod tests {
                 transition,
                 ..PositionBiasSpec::default()
             };
-            let comp = PositionBiasCompensation::new(&spec);
+            let mut comp = PositionBiasCompensation::new(&spec);
             for k in 0..200 {
                 let a = k as f64 * 0.1;
                 let up_b = Vector3::new(a.sin() * 0.6, a.cos() * 0.6, (a * 0.7).cos()).normalize();

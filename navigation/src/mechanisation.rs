@@ -12,6 +12,7 @@
 use nalgebra::{UnitQuaternion, Vector3};
 use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity_sin2, radii_of_curvature_sin2};
 use rins_plant::real::{Divisor, Real};
+use rins_plant::trig::GridTrig;
 
 use crate::strapdown::VerticalChannel;
 
@@ -33,6 +34,8 @@ pub(crate) struct Solution<T> {
     pub prev_dtheta: [T; 3],
     /// Δv of the previous interval, m/s.
     pub prev_dv: [T; 3],
+    /// The latitude's grid point for its sine and cosine.
+    pub lat_trig: GridTrig<T>,
 }
 
 #[inline(always)]
@@ -131,6 +134,23 @@ fn mat_vec<T: Real>(m: &[[T; 3]; 3], x: &[T; 3]) -> [T; 3] {
     [dot(&m[0], x), dot(&m[1], x), dot(&m[2], x)]
 }
 
+/// The body up direction C_n^b·(0, 0, 1) of attitude q: the operations of nalgebra's
+/// `q.inverse_transform_vector(&Vector3::z())` (t = 2·(q̄_v × u), u + w·t + q̄_v × t with the
+/// conjugate's vector part q̄_v = −q_v), so the same bits.
+#[inline(always)]
+pub(crate) fn up_in_body<T: Real>(q: &[T; 4]) -> [T; 3] {
+    let (zero, one, two) = (T::splat(0.0), T::splat(1.0), T::splat(2.0));
+    let qv = [-q[0], -q[1], -q[2]];
+    let up = [zero, zero, one];
+    let t = scale(&cross(&qv, &up), two);
+    let c = cross(&qv, &t);
+    [
+        t[0] * q[3] + c[0] + up[0],
+        t[1] * q[3] + c[1] + up[1],
+        t[2] * q[3] + c[2] + up[2],
+    ]
+}
+
 /// Integrates one interval's increments Δθ (rad) and Δv (m/s) over `dt_s` (the equations of
 /// [`crate::strapdown`]).
 #[inline(always)]
@@ -153,8 +173,10 @@ pub(crate) fn update<T: Real>(
     s.prev_dtheta = *dtheta;
     s.prev_dv = *dv;
 
-    // The latitude's terms (`Latitude::of`): WGS-84 radii of curvature and normal gravity.
-    let (sl, cl) = s.lat.sin_cos();
+    // The latitude's terms: WGS-84 radii of curvature and normal gravity. Its sine and cosine
+    // step from a grid point ([`GridTrig`]: libm there, a series from it): vector operations
+    // in every lane, the same bits in a lane as alone, within an ulp of libm.
+    let (sl, cl) = s.lat_trig.sin_cos(s.lat);
     let sin2 = sl * sl;
     let (rm, rn) = radii_of_curvature_sin2(sin2);
     let h0 = s.h;

@@ -9,6 +9,7 @@
 
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use rins_plant::earth::{OMEGA_IE_RPS, radii_of_curvature_sin2};
+use rins_plant::trig::GridTrig;
 use serde::{Deserialize, Serialize};
 
 use crate::mechanisation::Solution;
@@ -68,6 +69,7 @@ pub struct Strapdown {
     dt_s: f64,
     prev_dtheta: Vector3<f64>,
     prev_dv: Vector3<f64>,
+    lat_trig: GridTrig,
     steps: u64,
 }
 
@@ -80,6 +82,7 @@ impl Strapdown {
             dt_s,
             prev_dtheta: Vector3::zeros(),
             prev_dv: Vector3::zeros(),
+            lat_trig: GridTrig::default(),
             steps: 0,
         };
         if let VerticalChannel::Hold { ref_height_m } = vertical {
@@ -118,7 +121,7 @@ impl Strapdown {
     /// of [`crate::mechanisation`]).
     pub fn frame_rates(&self) -> (Vector3<f64>, Vector3<f64>) {
         let s = &self.state;
-        let (sl, cl) = s.lat_rad.sin_cos();
+        let (sl, cl) = GridTrig::default().sin_cos(s.lat_rad);
         let (rm, rn) = radii_of_curvature_sin2(sl * sl);
         let w_ie = Vector3::new(0.0, OMEGA_IE_RPS * cl, OMEGA_IE_RPS * sl);
         let rnh = rn + s.height_m;
@@ -156,6 +159,7 @@ impl Strapdown {
             h: s.height_m,
             prev_dtheta: self.prev_dtheta.into(),
             prev_dv: self.prev_dv.into(),
+            lat_trig: self.lat_trig,
         }
     }
 
@@ -169,6 +173,7 @@ impl Strapdown {
         };
         self.prev_dtheta = m.prev_dtheta.into();
         self.prev_dv = m.prev_dv.into();
+        self.lat_trig = m.lat_trig;
     }
 }
 
@@ -191,7 +196,7 @@ pub(crate) mod tests {
     impl Latitude {
         #[inline]
         fn of(lat_rad: f64) -> Self {
-            let (sin, cos) = lat_rad.sin_cos();
+            let (sin, cos) = GridTrig::default().sin_cos(lat_rad);
             let sin2 = sin.powi(2);
             let (rm, rn) = radii_of_curvature_sin2(sin2);
             Self {

@@ -7,6 +7,7 @@
 
 use nalgebra::{Quaternion, UnitQuaternion, Vector3, Vector4};
 use rins_plant::real::{Lanes, Real};
+use rins_plant::trig::GridTrig;
 
 use crate::mechanisation::{Solution, update};
 use crate::strapdown::{NavState, Strapdown, VerticalChannel};
@@ -67,6 +68,8 @@ impl StrapdownLanes {
                 h: gather(|s| s.h),
                 prev_dtheta: gather3(|s| s.prev_dtheta),
                 prev_dv: gather3(|s| s.prev_dv),
+                // The sine and cosine depend on the latitude alone: no grid point to carry.
+                lat_trig: GridTrig::default(),
             },
             dt_s: first.dt_s(),
             vertical: first.vertical(),
@@ -114,12 +117,11 @@ impl StrapdownLanes {
         }
     }
 
-    /// Navigator `lane`'s body up direction, C_n^b·(0, 0, 1): the third row of C_b^n
-    /// (`UnitQuaternion::inverse_transform_vector` of the unit up vector, the same bits).
-    pub fn up_b(&self, lane: usize) -> Vector3<f64> {
-        self.state(lane)
-            .q_bn
-            .inverse_transform_vector(&Vector3::z())
+    /// Every navigator's body up direction C_n^b·(0, 0, 1), in lane order (the bits of
+    /// `q_bn.inverse_transform_vector(&Vector3::z())`); lanes past [`Self::len`] are unused.
+    pub fn up_b(&self) -> [Vector3<f64>; LANES] {
+        let u = crate::mechanisation::up_in_body(&self.m.q);
+        std::array::from_fn(|l| Vector3::new(u[0].0[l], u[1].0[l], u[2].0[l]))
     }
 
     /// Increments consumed so far.
@@ -183,6 +185,7 @@ fn update_avx512(
         h: F64x8::load(&m.h),
         prev_dtheta: load3(&m.prev_dtheta),
         prev_dv: load3(&m.prev_dv),
+        lat_trig: GridTrig::from_parts(load3(&m.lat_trig.into_parts())),
     };
     update(&mut r, &load3(dtheta), &load3(dv), dt_s, vertical);
     *m = Solution {
@@ -198,6 +201,7 @@ fn update_avx512(
         h: r.h.store(),
         prev_dtheta: store3(&r.prev_dtheta),
         prev_dv: store3(&r.prev_dv),
+        lat_trig: GridTrig::from_parts(store3(&r.lat_trig.into_parts())),
     };
 }
 
@@ -255,7 +259,7 @@ mod tests {
                         "{vertical:?}, {used} lanes, lane {k}"
                     );
                     assert_eq!(
-                        lanes.up_b(k),
+                        lanes.up_b()[k],
                         n.state().q_bn.inverse_transform_vector(&Vector3::z())
                     );
                 }

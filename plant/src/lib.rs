@@ -31,7 +31,7 @@ mod stages;
 pub mod state;
 pub mod table;
 pub mod thermal;
-mod trig;
+pub mod trig;
 pub mod units;
 
 pub use batch::SeedBatch;

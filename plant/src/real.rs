@@ -33,6 +33,13 @@ pub trait Real:
     fn set_lane(&mut self, i: usize, x: f64);
     /// Whether any lane exceeds `x`.
     fn any_above(self, x: f64) -> bool;
+    /// Whether every lane lies within ±`x` (false for a NaN lane).
+    fn all_within(self, x: f64) -> bool;
+    /// Whether any lane differs from `other`'s (as `!=`: a NaN differs from everything).
+    fn differs(self, other: Self) -> bool;
+    /// Each lane rounded towards zero, for |lanes| < 2⁶³ (as `x as i64 as f64`, which on the
+    /// baseline x86-64 needs no libm call).
+    fn trunc(self) -> Self;
     /// Each lane divided by the constant `d`, correctly rounded: the bits of `/`. A vector
     /// build with fused multiply-add may take the route through the reciprocal that needs no
     /// division ([`Divisor`]).
@@ -102,6 +109,18 @@ impl Real for f64 {
     fn any_above(self, x: f64) -> bool {
         self > x
     }
+    #[inline(always)]
+    fn all_within(self, x: f64) -> bool {
+        self.abs() <= x
+    }
+    #[inline(always)]
+    fn differs(self, other: Self) -> bool {
+        self != other
+    }
+    #[inline(always)]
+    fn trunc(self) -> Self {
+        (self as i64) as f64
+    }
 }
 
 /// `N` numbers side by side, one per navigator; each operation acts lane by lane.
@@ -161,6 +180,18 @@ impl<const N: usize> Real for Lanes<N> {
     #[inline(always)]
     fn any_above(self, x: f64) -> bool {
         self.0.iter().any(|&v| v > x)
+    }
+    #[inline(always)]
+    fn all_within(self, x: f64) -> bool {
+        self.0.iter().all(|&v| v.abs() <= x)
+    }
+    #[inline(always)]
+    fn differs(self, other: Self) -> bool {
+        self.0.iter().zip(&other.0).any(|(a, b)| a != b)
+    }
+    #[inline(always)]
+    fn trunc(self) -> Self {
+        Lanes(self.0.map(|v| (v as i64) as f64))
     }
 }
 

@@ -1,18 +1,22 @@
 //! Sines and cosines without libm where an angle moves by small steps: the ship's composition
-//! angles from tick to tick and the gimbal angles between a tick's two quadrature points.
+//! angles from tick to tick and the gimbal angles between a tick's two quadrature points, and
+//! a navigator's latitude from update to update.
+
+use crate::real::Real;
 
 /// Largest step [`sin_cos_step`] covers, rad: its series (sin δ to δ⁵, cos δ to δ⁶) then errs
 /// by < δ⁷/7! ≈ 2e-18, a fiftieth of an ulp of 1.
-pub(crate) const SMALL_STEP_RAD: f64 = 0.01;
+pub const SMALL_STEP_RAD: f64 = 0.01;
 
 /// sin and cos of a₀ + δ from s₀ = sin a₀ and c₀ = cos a₀ by the addition theorem with the
 /// series of the small step δ (|δ| ≤ [`SMALL_STEP_RAD`]).
-#[inline]
-pub(crate) fn sin_cos_step(s0: f64, c0: f64, d: f64) -> (f64, f64) {
+#[inline(always)]
+pub fn sin_cos_step<T: Real>(s0: T, c0: T, d: T) -> (T, T) {
     // Multiplications by constant reciprocals: a division would lengthen the chain.
+    let k = T::splat;
     let d2 = d * d;
-    let sd = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0)));
-    let cd = 1.0 + d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0)));
+    let sd = d * (k(1.0) + d2 * (k(-1.0 / 6.0) + d2 * k(1.0 / 120.0)));
+    let cd = k(1.0) + d2 * (k(-0.5) + d2 * (k(1.0 / 24.0) + d2 * k(-1.0 / 720.0)));
     (s0 * cd + c0 * sd, c0 * cd - s0 * sd)
 }
 
@@ -40,46 +44,80 @@ pub(crate) fn sin_cos_step_wide(s0: f64, c0: f64, d: f64) -> (f64, f64) {
 /// it, inside [`SMALL_STEP_RAD`]).
 const GRID_RAD: f64 = 0.01;
 
-/// Sines and cosines of angles that move a little every tick (a turning gimbal): libm at the
-/// grid point of a 0.01 rad grid towards zero (held while the angle stays near it), the series of
-/// [`sin_cos_step`] from there. The result is a function of the angle alone, whatever came
-/// before, so a restored plant gets the same bits.
+/// Sines and cosines of angles that move a little every tick (a turning gimbal, a navigator's
+/// latitude): libm at the grid point of a 0.01 rad grid towards zero (held while the angle stays
+/// near it), the series of [`sin_cos_step`] from there. The result is a function of the angle
+/// alone, whatever came before, so a restored plant gets the same bits. Generic over [`Real`]:
+/// each lane of [`crate::real::Lanes`] holds its own grid point and gets the bits of one
+/// angle alone.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct GridTrig {
-    k: f64,
-    sin: f64,
-    cos: f64,
+pub struct GridTrig<T = f64> {
+    k: T,
+    sin: T,
+    cos: T,
 }
 
-impl Default for GridTrig {
+impl<T: Real> Default for GridTrig<T> {
     /// No grid point yet.
     fn default() -> Self {
         Self {
-            k: f64::NAN,
-            sin: f64::NAN,
-            cos: f64::NAN,
+            k: T::splat(f64::NAN),
+            sin: T::splat(f64::NAN),
+            cos: T::splat(f64::NAN),
         }
     }
 }
 
-impl GridTrig {
+impl<T: Real> GridTrig<T> {
+    /// The held grid point (index k of k·0.01 rad) and its sine and cosine.
+    pub fn into_parts(self) -> [T; 3] {
+        [self.k, self.sin, self.cos]
+    }
+
+    /// A grid point held by [`Self::into_parts`] (of any lane type).
+    pub fn from_parts([k, sin, cos]: [T; 3]) -> Self {
+        Self { k, sin, cos }
+    }
+
     /// sin and cos of `a`.
-    #[inline]
-    pub(crate) fn sin_cos(&mut self, a: f64) -> (f64, f64) {
+    #[inline(always)]
+    pub fn sin_cos(&mut self, a: T) -> (T, T) {
         // Truncation, not `round` (a libm call on the baseline x86-64): steps stay below one
         // grid spacing, still within the series' reach.
-        let k = ((a * (1.0 / GRID_RAD)) as i64) as f64;
-        let g = k * GRID_RAD;
+        let k = (a * T::splat(1.0 / GRID_RAD)).trunc();
+        let g = k * T::splat(GRID_RAD);
         let d = a - g;
-        if !(d.abs() <= SMALL_STEP_RAD) {
-            return a.sin_cos();
-        }
-        if k != self.k {
-            (self.sin, self.cos) = g.sin_cos();
-            self.k = k;
+        let far = !d.all_within(SMALL_STEP_RAD);
+        if k.differs(self.k) || far {
+            self.new_grid_points(k, g);
         }
         // a and g are within a factor of two of each other (or both tiny): the step is exact.
-        sin_cos_step(self.sin, self.cos, d)
+        let (mut s, mut c) = sin_cos_step(self.sin, self.cos, d);
+        if far {
+            // Beyond the series' reach (a huge or non-finite angle): libm for that lane.
+            for l in 0..T::LANES {
+                let dl = d.lane(l);
+                if !(dl.abs() <= SMALL_STEP_RAD) {
+                    let (sl, cl) = a.lane(l).sin_cos();
+                    s.set_lane(l, sl);
+                    c.set_lane(l, cl);
+                }
+            }
+        }
+        (s, c)
+    }
+
+    /// libm's sine and cosine at the grid point of each lane whose point changed.
+    #[inline(never)]
+    fn new_grid_points(&mut self, k: T, g: T) {
+        for l in 0..T::LANES {
+            if k.lane(l) != self.k.lane(l) {
+                let (s, c) = g.lane(l).sin_cos();
+                self.sin.set_lane(l, s);
+                self.cos.set_lane(l, c);
+                self.k.set_lane(l, k.lane(l));
+            }
+        }
     }
 }
 
@@ -159,6 +197,32 @@ mod tests {
             assert_eq!(GridTrig::default().sin_cos(x), (s, c));
         }
         assert!(worst < 4.5e-16, "{worst:e}");
+    }
+
+    /// Eight angles side by side, each lane moving on its own (crossing grid points at
+    /// different steps, one lane NaN at times, one far beyond the grid), give each lane the
+    /// bits of that angle alone.
+    #[test]
+    fn each_lane_gets_the_bits_of_its_angle_alone() {
+        use crate::real::Lanes;
+        let mut lanes = GridTrig::<Lanes<8>>::default();
+        let mut alone = [GridTrig::<f64>::default(); 8];
+        for k in 0..5_000 {
+            let x = Lanes(std::array::from_fn(|l| match (l, k % 7) {
+                (6, 3) => f64::NAN,
+                (7, _) => 1e17 + k as f64,
+                _ => (k as f64 * 3.7e-4 - 0.9) * (l as f64 - 3.5),
+            }));
+            let (s, c) = lanes.sin_cos(x);
+            for l in 0..8 {
+                let (sa, ca) = alone[l].sin_cos(x.0[l]);
+                assert_eq!(
+                    (s.0[l].to_bits(), c.0[l].to_bits()),
+                    (sa.to_bits(), ca.to_bits()),
+                    "lane {l}, step {k}"
+                );
+            }
+        }
     }
 
     #[test]
