@@ -31,6 +31,9 @@ pub(crate) struct Bookkeeping {
     c_vn: Matrix3<f64>,
     every: u64,
     k: u64,
+    /// Samples left until the next record (a countdown: `k % every` costs a division every
+    /// sample).
+    until_record: u64,
     trms: Trms,
     up_sum: f64,
     records: u64,
@@ -62,6 +65,7 @@ impl Tracker {
                 c_vn,
                 every: ((record_every_s / dt_s).round() as u64).max(1),
                 k: 0,
+                until_record: ((record_every_s / dt_s).round() as u64).max(1),
                 trms: Trms::default(),
                 up_sum: 0.0,
                 records: 0,
@@ -168,7 +172,11 @@ impl Bookkeeping {
     pub(crate) fn advance(&mut self, s: &ImuSample) -> bool {
         self.encoder = s.encoder;
         self.k += 1;
-        self.k.is_multiple_of(self.every)
+        self.until_record -= 1;
+        if self.until_record == 0 {
+            self.until_record = self.every;
+        }
+        self.until_record == self.every
     }
 
     /// Samples between error records.

@@ -10,8 +10,8 @@
 //! its vector operations would become calls.
 
 use nalgebra::{UnitQuaternion, Vector3};
-use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity_sin2, radii_of_curvature_sin2};
-use rins_plant::real::{Divisor, Real};
+use rins_plant::earth::{OMEGA_IE_RPS, radii_and_gravity_sin2};
+use rins_plant::real::{Divisor, Real, Reciprocal};
 use rins_plant::trig::GridTrig;
 
 use crate::strapdown::VerticalChannel;
@@ -178,7 +178,7 @@ pub(crate) fn update<T: Real>(
     // in every lane, the same bits in a lane as alone, within an ulp of libm.
     let (sl, cl) = s.lat_trig.sin_cos(s.lat);
     let sin2 = sl * sl;
-    let (rm, rn) = radii_of_curvature_sin2(sin2);
+    let (rm, rn, g) = radii_and_gravity_sin2(sin2, s.h);
     let h0 = s.h;
     let v0 = s.v;
 
@@ -189,8 +189,14 @@ pub(crate) fn update<T: Real>(
         T::splat(OMEGA_IE_RPS) * cl,
         T::splat(OMEGA_IE_RPS) * sl,
     ];
-    let rnh = rn + h0;
-    let w_en = [-v0[1] / (rm + h0), v0[0] / rnh, v0[0] * sl / cl / rnh];
+    // Divisors used twice: each divides through its reciprocal in a vector build.
+    let rmh = Reciprocal::of(rm + h0);
+    let rnh = Reciprocal::of(rn + h0);
+    let w_en = [
+        (-v0[1]).div_rec(&rmh),
+        v0[0].div_rec(&rnh),
+        (v0[0] * sl / cl).div_rec(&rnh),
+    ];
     let zeta = scale(&add(&w_ie, &w_en), dt);
 
     // Specific force to the navigation frame: (I − ½[ζ×])·C_b^n·Δv_sf.
@@ -204,7 +210,6 @@ pub(crate) fn update<T: Real>(
         [zero - half * -zeta[1], zero - hz[0], one - half * zero],
     ];
     let dv_sf_n = mat_vec(&turn, &f);
-    let g = normal_gravity_sin2(sin2, h0);
     let coriolis = cross(&add(&scale(&w_ie, two), &w_en), &v0);
     let g_n = [zero, zero, -g];
     let mut v = [
@@ -229,8 +234,8 @@ pub(crate) fn update<T: Real>(
         }
     }
     let (v_mid_e, v_mid_n) = (half * (v0[0] + v[0]), half * (v0[1] + v[1]));
-    s.lat = s.lat + v_mid_n / (rm + h0) * dt;
-    s.lon = s.lon + v_mid_e / ((rn + h0) * cl) * dt;
+    s.lat = s.lat + v_mid_n.div_rec(&rmh) * dt;
+    s.lon = s.lon + v_mid_e / (rnh.value * cl) * dt;
 
     let q = quat_mul(
         &quat_mul(&quat_from_rotvec(&[-zeta[0], -zeta[1], -zeta[2]]), &s.q),

@@ -9,7 +9,7 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3, Vector4};
 use rins_plant::real::{Lanes, Real};
 use rins_plant::trig::GridTrig;
 
-use crate::mechanisation::{Solution, update};
+use crate::mechanisation::{Solution, up_in_body, update};
 use crate::strapdown::{NavState, Strapdown, VerticalChannel};
 
 /// Navigators per [`StrapdownLanes`]: one AVX-512 vector of f64 (two AVX2 vectors).
@@ -32,6 +32,9 @@ pub enum LanesError {
 #[derive(Clone, Debug)]
 pub struct StrapdownLanes {
     m: Solution<Wide>,
+    /// Each navigator's body up direction at its current attitude (for the δβ compensation
+    /// of the next increments), taken with the update.
+    up: [Wide; 3],
     dt_s: f64,
     vertical: VerticalChannel,
     used: usize,
@@ -59,7 +62,9 @@ impl StrapdownLanes {
             std::array::from_fn(|c| Lanes(std::array::from_fn(|l| f(&each[l])[c])))
         };
         let gather = |f: fn(&Solution<f64>) -> f64| Lanes(std::array::from_fn(|l| f(&each[l])));
+        let q: [Wide; 4] = std::array::from_fn(|c| Lanes(std::array::from_fn(|l| each[l].q[c])));
         Ok(Self {
+            up: up_in_body(&q),
             m: Solution {
                 q: std::array::from_fn(|c| Lanes(std::array::from_fn(|l| each[l].q[c]))),
                 v: gather3(|s| s.v),
@@ -100,7 +105,14 @@ impl StrapdownLanes {
         };
         let dth: [Wide; 3] = std::array::from_fn(|c| pick(dtheta, c));
         let dvs: [Wide; 3] = std::array::from_fn(|c| pick(dv, c));
-        update_wide(&mut self.m, &dth, &dvs, self.dt_s, self.vertical);
+        update_wide(
+            &mut self.m,
+            &mut self.up,
+            &dth,
+            &dvs,
+            self.dt_s,
+            self.vertical,
+        );
         self.steps += 1;
     }
 
@@ -120,7 +132,7 @@ impl StrapdownLanes {
     /// Every navigator's body up direction C_n^b·(0, 0, 1), in lane order (the bits of
     /// `q_bn.inverse_transform_vector(&Vector3::z())`); lanes past [`Self::len`] are unused.
     pub fn up_b(&self) -> [Vector3<f64>; LANES] {
-        let u = crate::mechanisation::up_in_body(&self.m.q);
+        let u = &self.up;
         std::array::from_fn(|l| Vector3::new(u[0].0[l], u[1].0[l], u[2].0[l]))
     }
 
@@ -133,18 +145,21 @@ impl StrapdownLanes {
 #[inline(always)]
 fn update_body(
     m: &mut Solution<Wide>,
+    up: &mut [Wide; 3],
     dtheta: &[Wide; 3],
     dv: &[Wide; 3],
     dt_s: f64,
     vertical: VerticalChannel,
 ) {
     update(m, dtheta, dv, dt_s, vertical);
+    *up = up_in_body(&m.q);
 }
 
 rins_plant::multiversion! {
     /// [`update`] over [`LANES`] lanes, built for the widest vector unit the CPU has.
     fn update_wide(
         m: &mut Solution<Wide>,
+        up: &mut [Wide; 3],
         dtheta: &[Wide; 3],
         dv: &[Wide; 3],
         dt_s: f64,
@@ -158,6 +173,7 @@ rins_plant::multiversion! {
 #[target_feature(enable = "avx512f")]
 fn update_avx512(
     m: &mut Solution<Wide>,
+    up: &mut [Wide; 3],
     dtheta: &[Wide; 3],
     dv: &[Wide; 3],
     dt_s: f64,
@@ -188,6 +204,7 @@ fn update_avx512(
         lat_trig: GridTrig::from_parts(load3(&m.lat_trig.into_parts())),
     };
     update(&mut r, &load3(dtheta), &load3(dv), dt_s, vertical);
+    *up = store3(&up_in_body(&r.q));
     *m = Solution {
         q: [
             r.q[0].store(),

@@ -3,7 +3,7 @@
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use crate::real::{Divisor, Real};
+use crate::real::{Divisor, Real, Reciprocal};
 use crate::units::DEG;
 
 /// WGS-84 semi-major axis, m.
@@ -110,10 +110,28 @@ pub fn radii_of_curvature(lat_rad: f64) -> (f64, f64) {
 /// Generic over [`Real`], so a navigator in vector lanes computes each lane's bits.
 #[inline(always)]
 pub fn radii_of_curvature_sin2<T: Real>(s2: T) -> (T, T) {
-    let w = (T::splat(1.0) - T::splat(WGS84_E2) * s2).sqrt();
-    let rn = T::splat(WGS84_A_M) / w;
+    let w = Reciprocal::of((T::splat(1.0) - T::splat(WGS84_E2) * s2).sqrt());
+    radii_of_curvature_w(&w)
+}
+
+/// The radii from w = √(1 − e²·sin²L) (with its reciprocal, which a vector build shares with
+/// [`normal_gravity_w`]).
+#[inline(always)]
+fn radii_of_curvature_w<T: Real>(w: &Reciprocal<T>) -> (T, T) {
+    let rn = T::splat(WGS84_A_M).div_rec(w);
+    let w = w.value;
     let rm = T::splat(WGS84_A_M * (1.0 - WGS84_E2)) / (w * w * w);
     (rm, rn)
+}
+
+/// The radii of curvature (R_M, R_N) and normal gravity at sin²(latitude) `s2` and height
+/// `height_m` with one square root for both (the bits of [`radii_of_curvature_sin2`] and
+/// [`normal_gravity_sin2`]); what a navigator needs every update.
+#[inline(always)]
+pub fn radii_and_gravity_sin2<T: Real>(s2: T, height_m: T) -> (T, T, T) {
+    let w = Reciprocal::of((T::splat(1.0) - T::splat(WGS84_E2) * s2).sqrt());
+    let (rm, rn) = radii_of_curvature_w(&w);
+    (rm, rn, normal_gravity_w(s2, &w, height_m))
 }
 
 /// WGS-84 normal gravity: Somigliana's closed form on the ellipsoid with the second-order
@@ -126,9 +144,15 @@ pub fn normal_gravity(lat_rad: f64, height_m: f64) -> f64 {
 /// lanes computes each lane's bits.
 #[inline(always)]
 pub fn normal_gravity_sin2<T: Real>(s2: T, height_m: T) -> T {
+    let w = Reciprocal::of((T::splat(1.0) - T::splat(WGS84_E2) * s2).sqrt());
+    normal_gravity_w(s2, &w, height_m)
+}
+
+/// Normal gravity from sin²(latitude) and w = √(1 − e²·sin²L).
+#[inline(always)]
+fn normal_gravity_w<T: Real>(s2: T, w: &Reciprocal<T>, height_m: T) -> T {
     let one = T::splat(1.0);
-    let gamma0 = T::splat(GAMMA_E_MPS2) * (one + T::splat(SOMIGLIANA_K) * s2)
-        / (one - T::splat(WGS84_E2) * s2).sqrt();
+    let gamma0 = (T::splat(GAMMA_E_MPS2) * (one + T::splat(SOMIGLIANA_K) * s2)).div_rec(w);
     let b = WGS84_A_M * (1.0 - WGS84_F);
     let m = OMEGA_IE_RPS * OMEGA_IE_RPS * WGS84_A_M * WGS84_A_M * b / WGS84_GM;
     let h = height_m;

@@ -47,6 +47,37 @@ pub trait Real:
     fn div_by(self, d: Divisor) -> Self {
         self / Self::splat(d.value)
     }
+    /// Each lane divided by `d`'s lane, correctly rounded: the bits of `/`. A vector build with
+    /// fused multiply-add may divide through the reciprocal ([`Reciprocal`]).
+    #[inline(always)]
+    fn div_rec(self, d: &Reciprocal<Self>) -> Self {
+        self / d.value
+    }
+}
+
+/// A divisor b that several quotients share, with y = RN(1/b): one division, then each quotient
+/// a/b by Markstein's correction applied twice (q₀ = RN(a·y) may be off by more than an ulp
+/// when y's own rounding is near half an ulp; one correction brings it within an ulp, a
+/// faithful rounding, and the second gives RN(a/b) by the theorem of [`Divisor`]). Where `/`
+/// is the cheaper route ([`Real::div_rec`]'s default) the reciprocal is never used and the
+/// compiler drops it.
+#[derive(Clone, Copy, Debug)]
+pub struct Reciprocal<T> {
+    /// b.
+    pub value: T,
+    /// RN(1/b).
+    pub reciprocal: T,
+}
+
+impl<T: Real> Reciprocal<T> {
+    /// `b` and its reciprocal.
+    #[inline(always)]
+    pub fn of(b: T) -> Self {
+        Self {
+            value: b,
+            reciprocal: T::splat(1.0) / b,
+        }
+    }
 }
 
 /// A constant divisor b with its reciprocal y = RN(1/b), for dividing without a division:
