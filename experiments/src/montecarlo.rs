@@ -235,8 +235,8 @@ mod tests {
         assert!(e.to_string().contains("rate_hz"), "{e}");
     }
 
-    /// One batch of five seeds with three navigators each, one of them with a damped vertical
-    /// channel: fifteen navigators in three lane groups (eight and two held, five damped).
+    /// One batch of nine seeds with three navigators each, one of them with a damped vertical
+    /// channel: 27 navigators in several lane groups, some of them partly filled.
     #[test]
     fn navigators_in_several_lane_groups_equal_their_runs_alone() {
         let cfg = rins_plant::presets::paper_16pos_config();
@@ -259,7 +259,7 @@ mod tests {
             .num_threads(1)
             .build()
             .unwrap();
-        one_batch.install(|| check_with(&cfg, &[1, 2, 3, 4, 5], &navs, 200.0));
+        one_batch.install(|| check_with(&cfg, &[1, 2, 3, 4, 5, 6, 7, 8, 9], &navs, 200.0));
         let at = rins_nav::NavState {
             q_bn: nalgebra::UnitQuaternion::identity(),
             v_n: Vector3::zeros(),
@@ -282,10 +282,18 @@ mod tests {
                 },
             ),
         );
-        assert_eq!(
-            lane_groups(&mixed),
-            vec![vec![0, 1, 2, 4, 5, 6, 7, 8], vec![3], vec![9, 10]]
-        );
+        let mut held_slots: Vec<usize> = (0..11).filter(|&i| i != 3).collect();
+        let rest = held_slots.split_off(LANES.min(held_slots.len()));
+        let mut want = vec![held_slots, vec![3]];
+        if !rest.is_empty() {
+            want.push(rest);
+        }
+        assert_eq!(lane_groups(&mixed), want);
+        // More navigators than one group holds: the groups fill in order.
+        let many = vec![held[0].clone(); LANES + 3];
+        let groups = lane_groups(&many);
+        assert_eq!(groups.len(), 2);
+        assert_eq!(groups[1], (LANES..LANES + 3).collect::<Vec<_>>());
     }
 
     #[test]
