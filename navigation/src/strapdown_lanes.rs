@@ -188,37 +188,40 @@ fn update_avx512(
     fn store3(x: &[F64x8; 3]) -> [Wide; 3] {
         [x[0].store(), x[1].store(), x[2].store()]
     }
+    #[inline(always)]
+    fn load4(x: &[Wide; 4]) -> [F64x8; 4] {
+        [
+            F64x8::load(&x[0]),
+            F64x8::load(&x[1]),
+            F64x8::load(&x[2]),
+            F64x8::load(&x[3]),
+        ]
+    }
+    #[inline(always)]
+    fn store4(x: &[F64x8; 4]) -> [Wide; 4] {
+        [x[0].store(), x[1].store(), x[2].store(), x[3].store()]
+    }
     let mut r = Solution {
-        q: [
-            F64x8::load(&m.q[0]),
-            F64x8::load(&m.q[1]),
-            F64x8::load(&m.q[2]),
-            F64x8::load(&m.q[3]),
-        ],
+        q: load4(&m.q),
         v: load3(&m.v),
         lat: F64x8::load(&m.lat),
         lon: F64x8::load(&m.lon),
         h: F64x8::load(&m.h),
         prev_dtheta: load3(&m.prev_dtheta),
         prev_dv: load3(&m.prev_dv),
-        lat_trig: GridTrig::from_parts(load3(&m.lat_trig.into_parts())),
+        lat_trig: GridTrig::from_parts(load4(&m.lat_trig.into_parts())),
     };
     update(&mut r, &load3(dtheta), &load3(dv), dt_s, vertical);
     *up = store3(&up_in_body(&r.q));
     *m = Solution {
-        q: [
-            r.q[0].store(),
-            r.q[1].store(),
-            r.q[2].store(),
-            r.q[3].store(),
-        ],
+        q: store4(&r.q),
         v: store3(&r.v),
         lat: r.lat.store(),
         lon: r.lon.store(),
         h: r.h.store(),
         prev_dtheta: store3(&r.prev_dtheta),
         prev_dv: store3(&r.prev_dv),
-        lat_trig: GridTrig::from_parts(store3(&r.lat_trig.into_parts())),
+        lat_trig: GridTrig::from_parts(store4(&r.lat_trig.into_parts())),
     };
 }
 

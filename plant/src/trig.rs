@@ -53,6 +53,8 @@ const GRID_RAD: f64 = 0.01;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GridTrig<T = f64> {
     k: T,
+    /// The grid point k·0.01 rad.
+    g: T,
     sin: T,
     cos: T,
 }
@@ -62,6 +64,7 @@ impl<T: Real> Default for GridTrig<T> {
     fn default() -> Self {
         Self {
             k: T::splat(f64::NAN),
+            g: T::splat(f64::NAN),
             sin: T::splat(f64::NAN),
             cos: T::splat(f64::NAN),
         }
@@ -69,14 +72,14 @@ impl<T: Real> Default for GridTrig<T> {
 }
 
 impl<T: Real> GridTrig<T> {
-    /// The held grid point (index k of k·0.01 rad) and its sine and cosine.
-    pub fn into_parts(self) -> [T; 3] {
-        [self.k, self.sin, self.cos]
+    /// The held grid point: its index k (of k·0.01 rad), the point, its sine and cosine.
+    pub fn into_parts(self) -> [T; 4] {
+        [self.k, self.g, self.sin, self.cos]
     }
 
     /// A grid point held by [`Self::into_parts`] (of any lane type).
-    pub fn from_parts([k, sin, cos]: [T; 3]) -> Self {
-        Self { k, sin, cos }
+    pub fn from_parts([k, g, sin, cos]: [T; 4]) -> Self {
+        Self { k, g, sin, cos }
     }
 
     /// sin and cos of `a`.
@@ -85,12 +88,14 @@ impl<T: Real> GridTrig<T> {
         // Truncation, not `round` (a libm call on the baseline x86-64): steps stay below one
         // grid spacing, still within the series' reach.
         let k = (a * T::splat(1.0 / GRID_RAD)).trunc();
-        let g = k * T::splat(GRID_RAD);
-        let d = a - g;
-        let far = !d.all_within(SMALL_STEP_RAD);
-        if k.differs(self.k) || far {
-            self.new_grid_points(k, g);
+        if k.differs(self.k) {
+            self.new_grid_points(k);
         }
+        // The held point is k·0.01 now. Taking the step from it, not from k just computed,
+        // keeps the truncation off the chain of dependent operations (the check above is a
+        // branch the CPU predicts).
+        let d = a - self.g;
+        let far = !d.all_within(SMALL_STEP_RAD);
         // a and g are within a factor of two of each other (or both tiny): the step is exact.
         let (mut s, mut c) = sin_cos_step(self.sin, self.cos, d);
         if far {
@@ -107,14 +112,17 @@ impl<T: Real> GridTrig<T> {
         (s, c)
     }
 
-    /// libm's sine and cosine at the grid point of each lane whose point changed.
+    /// The grid point k·0.01 rad and libm's sine and cosine there, for each lane whose point
+    /// changed.
     #[inline(never)]
-    fn new_grid_points(&mut self, k: T, g: T) {
+    fn new_grid_points(&mut self, k: T) {
         for l in 0..T::LANES {
             if k.lane(l) != self.k.lane(l) {
-                let (s, c) = g.lane(l).sin_cos();
+                let g = k.lane(l) * GRID_RAD;
+                let (s, c) = g.sin_cos();
                 self.sin.set_lane(l, s);
                 self.cos.set_lane(l, c);
+                self.g.set_lane(l, g);
                 self.k.set_lane(l, k.lane(l));
             }
         }
