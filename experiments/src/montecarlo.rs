@@ -38,7 +38,9 @@ pub fn run_seeds(
             "navigation time {nav_s} s and record intervals must be > 0"
         )));
     }
-    // The configuration is checked here, once (every plant below is built from it).
+    // The configuration is checked here, once (every plant below is built from it). Seeds
+    // that share the physics: one batch per core; seeds that do not: one task per seed, so
+    // the cores stay busy to the end.
     let shared = rins_plant::Plant::new(cfg)
         .map_err(|e| {
             SessionError::InvalidConfig(
@@ -71,14 +73,10 @@ pub fn run_seeds(
             })
             .collect();
     }
-    // Seeds whose physics is shared: one batch per core. Seeds with a plant each (at sea):
-    // as many per batch as fill one lane group with their navigators, so the navigators still
-    // run side by side; equal seeds cost the same, so the cores stay busy to the end.
-    let per_core = seeds.len().div_ceil(rayon::current_num_threads().max(1));
     let lanes_per_batch = if shared {
-        per_core
+        seeds.len().div_ceil(rayon::current_num_threads().max(1))
     } else {
-        per_core.min((LANES / navs.len().max(1)).max(1))
+        1
     };
     let batches: Vec<Vec<Vec<NavRun>>> = seeds
         .par_chunks(lanes_per_batch.max(1))
