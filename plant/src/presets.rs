@@ -1,4 +1,6 @@
-//! Named sensor specifications.
+//! Named sensor specifications. A scenario file reads the same presets as TOML fragments
+//! (`scenarios/files/presets/NAME.toml`, laid under the file's own `[sensor]` keys); rins-scenarios
+//! tests each fragment equal to its constructor here, so a change goes to both.
 
 use crate::config::SensorSpec;
 

@@ -17,6 +17,13 @@ use rins_plant::effects::temp_sensor::TempSensorSpec;
 
 use crate::spans::SpanIndex;
 
+mod document;
+mod preset_fragments;
+mod whole_arrays;
+
+use document::{Document, Origin};
+use toml::de::DeValue;
+
 /// `[scenario]`: what the run is.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -62,24 +69,26 @@ impl Default for RunSpec {
     }
 }
 
-/// `[sensor]`: a named preset plus per-term overrides.
+/// `[sensor]`: a named preset plus per-term overrides. Read by [`Scenario::from_toml_with`],
+/// the terms hold the preset's values with the file's keys laid over them.
 #[derive(Clone, Debug, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SensorSection {
     /// Starting specification: `paper-table3`, `nav-grade-full` or `ideal` (default `ideal`).
     pub preset: Option<String>,
-    /// Gyro term overrides.
+    /// Gyro terms.
     pub gyro: GyroSpec,
-    /// Accelerometer term overrides.
+    /// Accelerometer terms.
     pub accel: AccelSpec,
-    /// Encoder term overrides.
+    /// Encoder terms.
     pub encoder: EncoderSpec,
-    /// Temperature-sensor term overrides.
+    /// Temperature-sensor terms.
     pub temperature: TempSensorSpec,
 }
 
-/// A value given on the command line for a scenario key (`--seed` → `run.seed`). It is laid
-/// over the file's text before the one validation, and errors about it name the flag.
+/// A value given on the command line for a scenario key (`--duration-s` →
+/// `scenario.duration_s`). It is laid into the file's document before the one typed read and
+/// the one validation, and errors about it name the flag.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Override {
     /// The flag as typed, e.g. `--duration-s`.
@@ -284,18 +293,26 @@ impl Scenario {
     }
 
     /// [`Scenario::from_toml`] with command-line overrides.
+    ///
+    /// The one path from text to configuration: the text is parsed once into a spanned
+    /// document; the overrides, then the sensor preset (as its TOML fragment, under the file's
+    /// own `[sensor]` keys) are laid into it; the typed scenario is read from it once (unknown
+    /// keys and wrong types refused with toml's line and column); then everything is
+    /// range-checked once, errors naming the line from the same document or the flag.
     pub fn from_toml_with(
         text: &str,
         source_name: &str,
         overrides: &[Override],
     ) -> Result<Self, ScenarioError> {
-        let parse_err = |e: toml::de::Error| ScenarioError::Parse {
+        let parse_err = |message: String| ScenarioError::Parse {
             source_name: source_name.into(),
-            message: e.to_string(),
+            message,
         };
-        // Pass 1 on the text itself: unknown keys and wrong types get toml's line and column.
-        let mut table: toml::Table = toml::from_str(text).map_err(parse_err)?;
-        if table.is_empty() {
+        // The overrides' values as TOML text, so they join the document as its own values; they
+        // live as long as the document that borrows them.
+        let override_texts: Vec<String> = overrides.iter().map(|o| o.value.to_string()).collect();
+        let mut doc = Document::parse(text).map_err(|e| parse_err(e.to_string()))?;
+        if doc.is_empty() {
             // An empty file would silently run every default: refuse it.
             return Err(ScenarioError::Invalid {
                 source_name: source_name.into(),
@@ -304,15 +321,30 @@ impl Scenario {
                 ],
             });
         }
-        let _: ScenarioFile = toml::from_str(text).map_err(parse_err)?;
-        for o in overrides {
-            set_path(&mut table, o.path, o.value.clone());
+        let spans = doc.spans();
+        let read_err = |(origin, e): (Origin, toml::de::Error)| {
+            parse_err(match origin {
+                Origin::Override(i) => format!("{}: {e}", overrides[i].flag),
+                Origin::File | Origin::Preset => e.to_string(),
+            })
+        };
+        // A flag that replaces a value the file writes must not hide a wrong type there: the
+        // file is then read on its own first (a second typed read, in this case only).
+        if overrides.iter().any(|o| spans.find(o.path).is_some()) {
+            doc.clone().read::<ScenarioFile>().map_err(read_err)?;
         }
-        let raw: ScenarioFile = table.clone().try_into().map_err(parse_err)?;
-        // Pass 2: lay the user's [sensor] over the preset, key by key.
-        let preset_name = raw.sensor.preset.clone().unwrap_or_else(|| "ideal".into());
-        let Some(preset) = presets::preset(&preset_name) else {
-            let line = SpanIndex::new(text)
+        for (i, (o, value)) in overrides.iter().zip(&override_texts).enumerate() {
+            let value = DeValue::parse(value).map_err(|e| parse_err(format!("{}: {e}", o.flag)))?;
+            doc.lay_override(i, o.path, value.into_inner());
+        }
+        let preset_name = doc.preset_name().unwrap_or("ideal").to_string();
+        let fragment = preset_fragments::fragment(&preset_name);
+        if let Some(fragment) = fragment {
+            doc.lay_preset(fragment);
+        }
+        let raw: ScenarioFile = doc.read().map_err(read_err)?;
+        if fragment.is_none() {
+            let line = spans
                 .find("sensor.preset")
                 .map(|p| format!("{p}: "))
                 .unwrap_or_default();
@@ -323,14 +355,13 @@ impl Scenario {
                     presets::PRESET_NAMES
                 )],
             });
-        };
-        let mut sensor = toml::Table::try_from(&preset).expect("presets serialise");
-        if let Some(toml::Value::Table(user)) = table.remove("sensor") {
-            let mut user = user;
-            user.remove("preset");
-            deep_merge(&mut sensor, user);
         }
-        let sensor: SensorSpec = sensor.try_into().map_err(parse_err)?;
+        let sensor = SensorSpec {
+            gyro: raw.sensor.gyro,
+            accel: raw.sensor.accel,
+            encoder: raw.sensor.encoder,
+            temperature: raw.sensor.temperature,
+        };
         let plant = PlantConfig {
             rate_hz: raw.run.rate_hz,
             substeps: raw.run.substeps,
@@ -350,18 +381,18 @@ impl Scenario {
             outputs: raw.outputs,
             campaign: raw.campaign,
         };
-        scenario.validate_at(Some(text), overrides)?;
+        scenario.validate_at(&spans, overrides)?;
         Ok(scenario)
     }
 
     /// Range-checks everything; `text` (when given) lets errors name the line.
     pub fn validate(&self, text: Option<&str>) -> Result<(), ScenarioError> {
-        self.validate_at(text, &[])
+        self.validate_at(&text.map(SpanIndex::new).unwrap_or_default(), &[])
     }
 
-    /// Range-checks everything; errors name the line and column in `text`, or the flag of an
-    /// override that set the key.
-    fn validate_at(&self, text: Option<&str>, overrides: &[Override]) -> Result<(), ScenarioError> {
+    /// Range-checks everything, the one place scenario values are checked; errors name the line
+    /// and column the file writes the key at (`spans`), or the flag of an override that set it.
+    fn validate_at(&self, spans: &SpanIndex, overrides: &[Override]) -> Result<(), ScenarioError> {
         let mut problems: Vec<(String, String)> = Vec::new();
         if !(self.meta.duration_s > 0.0 && self.meta.duration_s <= 1e7) {
             problems.push((
@@ -394,17 +425,22 @@ impl Scenario {
                 }
             }
         }
-        carrier_problems(&self.plant, self.meta.duration_s, &mut problems);
-        if let Err(errs) = self.plant.validate() {
-            problems.extend(
-                errs.into_iter()
-                    .map(|e| (e.path, format!("expected {}, got {}", e.expected, e.got))),
-            );
-        }
+        let plant_errors = self.plant.validate().err().unwrap_or_default();
+        let plant_valid = plant_errors.is_empty();
+        carrier_problems(
+            &self.plant,
+            plant_valid,
+            self.meta.duration_s,
+            &mut problems,
+        );
+        problems.extend(
+            plant_errors
+                .into_iter()
+                .map(|e| (e.path, format!("expected {}, got {}", e.expected, e.got))),
+        );
         if problems.is_empty() {
             return Ok(());
         }
-        let spans = text.map(SpanIndex::new).unwrap_or_default();
         let lines = problems
             .into_iter()
             .map(|(path, msg)| {
@@ -445,10 +481,16 @@ fn carrier_resolved(mut c: CarrierSpec, source_name: &str) -> CarrierSpec {
 /// A trajectory carrier's file must read and pass the trajectory rules (its errors name the
 /// row and column in the trajectory file) and last the run unless `after_end = "hold"`; a
 /// ship's last leg, continued to the end of the run, must stay within the polar limit (the
-/// plant's own validation checks the legs over their own durations).
-fn carrier_problems(plant: &PlantConfig, duration_s: f64, problems: &mut Vec<(String, String)>) {
+/// plant's own validation checks the legs over their own durations; `plant_valid` is its
+/// verdict, so the polar check runs only on legs that passed it).
+fn carrier_problems(
+    plant: &PlantConfig,
+    plant_valid: bool,
+    duration_s: f64,
+    problems: &mut Vec<(String, String)>,
+) {
     let c = &plant.carrier;
-    if c.kind == CarrierKind::Ship && plant.validate().is_ok() {
+    if c.kind == CarrierKind::Ship && plant_valid {
         let legs_s: f64 = c.ship.legs.iter().map(|l| l.duration_s).sum();
         if duration_s > legs_s
             && let Some((path, e, g)) =
@@ -475,36 +517,5 @@ fn carrier_problems(plant: &PlantConfig, duration_s: f64, problems: &mut Vec<(St
             ))
         }
         Ok(_) => {}
-    }
-}
-
-/// Sets the dotted `path` in `table`, creating tables on the way.
-fn set_path(table: &mut toml::Table, path: &str, value: toml::Value) {
-    let mut t = table;
-    let mut parts = path.split('.').peekable();
-    while let Some(p) = parts.next() {
-        if parts.peek().is_none() {
-            t.insert(p.to_string(), value);
-            return;
-        }
-        let next = t
-            .entry(p.to_string())
-            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-        if !next.is_table() {
-            *next = toml::Value::Table(toml::Table::new());
-        }
-        t = next.as_table_mut().expect("made a table");
-    }
-}
-
-/// Recursively lays `over` onto `base`: tables merge key by key, anything else replaces.
-pub fn deep_merge(base: &mut toml::Table, over: toml::Table) {
-    for (k, v) in over {
-        match (base.get_mut(&k), v) {
-            (Some(toml::Value::Table(b)), toml::Value::Table(o)) => deep_merge(b, o),
-            (_, v) => {
-                base.insert(k, v);
-            }
-        }
     }
 }

@@ -32,11 +32,17 @@ impl SpanIndex {
     /// Indexes `text`; a text the parser refuses gives an empty index (the parse error itself
     /// carries its position).
     pub fn new(text: &str) -> Self {
-        let mut at = HashMap::new();
-        if let Ok(doc) = DeTable::parse(text) {
-            let lines = LineStarts::new(text);
-            walk(&lines, "", doc.get_ref(), &mut at);
+        match DeTable::parse(text) {
+            Ok(doc) => Self::of_document(text, doc.get_ref()),
+            Err(_) => Self::default(),
         }
+    }
+
+    /// Indexes a document already parsed from `text` (its spans are byte offsets into `text`),
+    /// so a reader that holds the document does not parse the text again.
+    pub fn of_document(text: &str, doc: &DeTable<'_>) -> Self {
+        let mut at = HashMap::new();
+        walk(&LineStarts::new(text), "", doc, &mut at);
         Self { at }
     }
 

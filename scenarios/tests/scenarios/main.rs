@@ -15,6 +15,7 @@ mod figures;
 mod fmu_run;
 mod measurement;
 mod measurement_cli;
+mod preset_path;
 mod scenario_errors;
 mod scenario_files;
 mod scenario_fuzz;
