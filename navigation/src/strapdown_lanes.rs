@@ -35,6 +35,9 @@ pub enum LanesError {
 /// Navigators stepped together, each with its own increments.
 #[derive(Clone, Debug)]
 pub struct StrapdownLanes {
+    /// Up to [`ALONE_UP_TO`] navigators: themselves, updated one by one (then `m` and `up`
+    /// are not used).
+    alone: Vec<Strapdown>,
     m: Solution<Wide>,
     /// Each navigator's body up direction at its current attitude (for the δβ compensation
     /// of the next increments), taken with the update.
@@ -68,6 +71,11 @@ impl StrapdownLanes {
         let gather = |f: fn(&Solution<f64>) -> f64| Lanes(std::array::from_fn(|l| f(&each[l])));
         let q: [Wide; 4] = std::array::from_fn(|c| Lanes(std::array::from_fn(|l| each[l].q[c])));
         Ok(Self {
+            alone: if navs.len() <= ALONE_UP_TO {
+                navs.to_vec()
+            } else {
+                Vec::new()
+            },
             up: up_in_body(&q),
             m: Solution {
                 q: std::array::from_fn(|c| Lanes(std::array::from_fn(|l| each[l].q[c]))),
@@ -104,9 +112,9 @@ impl StrapdownLanes {
             dtheta.len() == self.used && dv.len() == self.used,
             "one increment per navigator"
         );
-        if self.used <= ALONE_UP_TO {
-            for l in 0..self.used {
-                self.update_lane(l, &dtheta[l], &dv[l]);
+        if !self.alone.is_empty() {
+            for (n, (a, v)) in self.alone.iter_mut().zip(dtheta.iter().zip(dv)) {
+                n.update(a, v);
             }
             self.steps += 1;
             return;
@@ -127,49 +135,11 @@ impl StrapdownLanes {
         self.steps += 1;
     }
 
-    /// One lane's update with the equations over `f64` (the same bits as in the vector).
-    fn update_lane(&mut self, l: usize, dtheta: &Vector3<f64>, dv: &Vector3<f64>) {
-        let m = &mut self.m;
-        let get3 = |x: &[Wide; 3]| [x[0].0[l], x[1].0[l], x[2].0[l]];
-        let [k, g, sin, cos] = m.lat_trig.into_parts();
-        let mut one = Solution {
-            q: [m.q[0].0[l], m.q[1].0[l], m.q[2].0[l], m.q[3].0[l]],
-            v: get3(&m.v),
-            lat: m.lat.0[l],
-            lon: m.lon.0[l],
-            h: m.h.0[l],
-            prev_dtheta: get3(&m.prev_dtheta),
-            prev_dv: get3(&m.prev_dv),
-            lat_trig: GridTrig::from_parts([k.0[l], g.0[l], sin.0[l], cos.0[l]]),
-        };
-        update(
-            &mut one,
-            &(*dtheta).into(),
-            &(*dv).into(),
-            self.dt_s,
-            self.vertical,
-        );
-        let up = up_in_body(&one.q);
-        let put3 = |x: &mut [Wide; 3], v: [f64; 3]| {
-            for c in 0..3 {
-                x[c].0[l] = v[c];
-            }
-        };
-        for c in 0..4 {
-            m.q[c].0[l] = one.q[c];
-        }
-        put3(&mut m.v, one.v);
-        put3(&mut m.prev_dtheta, one.prev_dtheta);
-        put3(&mut m.prev_dv, one.prev_dv);
-        put3(&mut self.up, up);
-        (m.lat.0[l], m.lon.0[l], m.h.0[l]) = (one.lat, one.lon, one.h);
-        let [mut k, mut g, mut sin, mut cos] = m.lat_trig.into_parts();
-        [k.0[l], g.0[l], sin.0[l], cos.0[l]] = one.lat_trig.into_parts();
-        m.lat_trig = GridTrig::from_parts([k, g, sin, cos]);
-    }
-
     /// Navigator `lane`'s solution.
     pub fn state(&self, lane: usize) -> NavState {
+        if let Some(n) = self.alone.get(lane) {
+            return *n.state();
+        }
         let m = &self.m;
         let q = Vector4::from(std::array::from_fn::<f64, 4, _>(|c| m.q[c].lane(lane)));
         NavState {
@@ -184,6 +154,13 @@ impl StrapdownLanes {
     /// Every navigator's body up direction C_n^b·(0, 0, 1), in lane order (the bits of
     /// `q_bn.inverse_transform_vector(&Vector3::z())`); lanes past [`Self::len`] are unused.
     pub fn up_b(&self) -> [Vector3<f64>; LANES] {
+        if !self.alone.is_empty() {
+            let mut up = [Vector3::zeros(); LANES];
+            for (u, n) in up.iter_mut().zip(&self.alone) {
+                *u = n.state().q_bn.inverse_transform_vector(&Vector3::z());
+            }
+            return up;
+        }
         let u = &self.up;
         std::array::from_fn(|l| Vector3::new(u[0].0[l], u[1].0[l], u[2].0[l]))
     }
