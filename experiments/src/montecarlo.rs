@@ -133,13 +133,9 @@ fn run_batch(
         batch.step();
         let out = batch.samples();
         for (g, slots) in &mut groups {
-            let ups = slots
-                .iter()
-                .any(|&i| books[i].compensates())
-                .then(|| g.up_b());
             for (j, &i) in slots.iter().enumerate() {
                 let s = &out[seed_of[i]];
-                dth[j] = books[i].dtheta(s, || ups.expect("asked for when compensating")[j]);
+                dth[j] = books[i].dtheta(s, || g.up_b(j));
                 dv[j] = s.dv_mps;
             }
             g.update(&dth[..slots.len()], &dv[..slots.len()]);

@@ -162,11 +162,6 @@ impl Bookkeeping {
         dtheta
     }
 
-    /// Whether Δθ is compensated (then [`Self::dtheta`] needs the up direction).
-    pub(crate) fn compensates(&self) -> bool {
-        self.comp.is_some()
-    }
-
     /// Counts the sample the navigator has just integrated; true when an error record is due.
     #[inline]
     pub(crate) fn advance(&mut self, s: &ImuSample) -> bool {

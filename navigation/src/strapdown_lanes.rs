@@ -151,18 +151,15 @@ impl StrapdownLanes {
         }
     }
 
-    /// Every navigator's body up direction C_n^b·(0, 0, 1), in lane order (the bits of
-    /// `q_bn.inverse_transform_vector(&Vector3::z())`); lanes past [`Self::len`] are unused.
-    pub fn up_b(&self) -> [Vector3<f64>; LANES] {
-        if !self.alone.is_empty() {
-            let mut up = [Vector3::zeros(); LANES];
-            for (u, n) in up.iter_mut().zip(&self.alone) {
-                *u = n.state().q_bn.inverse_transform_vector(&Vector3::z());
-            }
-            return up;
+    /// Navigator `lane`'s body up direction C_n^b·(0, 0, 1) (the bits of
+    /// `q_bn.inverse_transform_vector(&Vector3::z())`), kept from its last update.
+    #[inline]
+    pub fn up_b(&self, lane: usize) -> Vector3<f64> {
+        if let Some(n) = self.alone.get(lane) {
+            return n.state().q_bn.inverse_transform_vector(&Vector3::z());
         }
         let u = &self.up;
-        std::array::from_fn(|l| Vector3::new(u[0].0[l], u[1].0[l], u[2].0[l]))
+        Vector3::new(u[0].0[lane], u[1].0[lane], u[2].0[lane])
     }
 
     /// Increments consumed so far.
@@ -308,7 +305,7 @@ mod tests {
                         "{vertical:?}, {used} lanes, lane {k}"
                     );
                     assert_eq!(
-                        lanes.up_b()[k],
+                        lanes.up_b(k),
                         n.state().q_bn.inverse_transform_vector(&Vector3::z())
                     );
                 }
