@@ -60,9 +60,10 @@ fn check_refusal(e: &ScenarioError, name: &str, source: &str, ctx: &str) {
     match e {
         ScenarioError::Parse { message, .. } => {
             if let Some(key) = key_of(message) {
-                // Type errors inside [sensor] are found after the preset merge, where the
-                // text's spans are gone: they name the dotted key instead, whose last part is
-                // written in the file.
+                // An error that names a dotted key instead of a line (a value the preset laid
+                // into the document, which has no place in the text): its last part is
+                // written in the file. Since the one parse, type errors inside [sensor] carry
+                // their line like any other.
                 let last = key.rsplit('.').next().unwrap_or(key);
                 let last = last.split('[').next().unwrap_or(last);
                 assert!(
