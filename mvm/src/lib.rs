@@ -23,6 +23,7 @@
 //! commands, their figures and the Rerun recording use, so none of them recomputes anything.
 
 pub mod apply;
+mod chunks;
 pub mod colmap;
 mod compare;
 pub mod custom;
