@@ -33,38 +33,48 @@ pub fn run_seeds(
     navs: &[NavRunConfig],
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Vec<Vec<NavRun>>, SessionError> {
+    let members: Vec<PlantConfig> = seeds
+        .iter()
+        .map(|&seed| PlantConfig {
+            seed,
+            ..cfg.clone()
+        })
+        .collect();
+    run_members(&members, nav_s, navs, progress)
+}
+
+/// [`run_seeds`] over whole configurations: each member of `members` (a seed of a case, or the
+/// case with its noise off) feeds one navigator per entry of `navs`. Members that differ only
+/// in their seed and stochastic terms share one plant's physics ([`SeedBatch::of`]), so Table
+/// 4's noise-free pair rides in a batch with the seeds. Returns, per member in order, one run
+/// per navigator.
+pub fn run_members(
+    members: &[PlantConfig],
+    nav_s: f64,
+    navs: &[NavRunConfig],
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Vec<Vec<NavRun>>, SessionError> {
     if !(nav_s > 0.0 && navs.iter().all(|n| n.record_every_s > 0.0)) {
         return Err(SessionError::BadTimes(format!(
             "navigation time {nav_s} s and record intervals must be > 0"
         )));
     }
-    // The configuration is checked here, once (every plant below is built from it). Seeds
-    // that share the physics: one batch per core; seeds that do not: one task per seed, so
-    // the cores stay busy to the end.
-    let shared = rins_plant::Plant::new(cfg)
-        .map_err(|e| {
-            SessionError::InvalidConfig(
-                e.iter()
-                    .map(|x| x.to_string())
-                    .collect::<Vec<_>>()
-                    .join("; "),
-            )
-        })?
-        .shares_physics_across_seeds();
+    // The configurations are checked here, once (every plant below is built from them).
+    // Members that share the physics: one batch per core; members that do not: one task per
+    // member, so the cores stay busy to the end.
+    for m in members {
+        m.validate().map_err(invalid_config)?;
+    }
     if navs
         .iter()
         .any(|n| matches!(n.alignment, Alignment::SelfAlign { .. }))
     {
-        return seeds
+        return members
             .par_iter()
-            .map(|&seed| {
+            .map(|m| {
                 navs.iter()
                     .map(|n| {
-                        let mut p = rins_plant::Plant::new(&PlantConfig {
-                            seed,
-                            ..cfg.clone()
-                        })
-                        .expect("validated configuration");
+                        let mut p = rins_plant::Plant::new(m).expect("validated configuration");
                         let r = run(&mut p, nav_s, n);
                         progress((nav_s / p.dt_s()).round() as u64);
                         r
@@ -73,29 +83,29 @@ pub fn run_seeds(
             })
             .collect();
     }
-    let lanes_per_batch = if shared {
-        seeds.len().div_ceil(rayon::current_num_threads().max(1))
+    let shared = SeedBatch::shares(members).map_err(invalid_config)?;
+    let per_batch = if shared {
+        members.len().div_ceil(rayon::current_num_threads().max(1))
     } else {
         1
     };
-    let batches: Vec<Vec<Vec<NavRun>>> = seeds
-        .par_chunks(lanes_per_batch.max(1))
-        .map(|chunk| run_batch(cfg, chunk, nav_s, navs, progress))
-        .collect();
+    let batches: Vec<Vec<Vec<NavRun>>> = members
+        .par_chunks(per_batch.max(1))
+        .map(|chunk| run_batch(chunk, nav_s, navs, progress))
+        .collect::<Result<_, _>>()?;
     Ok(batches.into_iter().flatten().collect())
 }
 
-/// One batch: the seeds of `chunk` stepped together, each feeding every navigator of `navs`.
+/// One batch: the members of `chunk` stepped together, each feeding every navigator of `navs`.
 /// The navigators of all seeds run side by side in vector lanes ([`StrapdownLanes`]); each
 /// keeps its own compensation and error records ([`crate::tracker::Bookkeeping`]).
 fn run_batch(
-    cfg: &PlantConfig,
-    chunk: &[u64],
+    chunk: &[PlantConfig],
     nav_s: f64,
     navs: &[NavRunConfig],
     progress: &(dyn Fn(u64) + Sync),
-) -> Vec<Vec<NavRun>> {
-    let mut batch = SeedBatch::new(cfg, chunk).expect("validated configuration");
+) -> Result<Vec<Vec<NavRun>>, SessionError> {
+    let mut batch = SeedBatch::of(chunk).map_err(invalid_config)?;
     let lanes = chunk.len();
     // One slot per seed and navigator, seed-major. The navigators start aligned from truth,
     // which is the same for every lane when they share the physics; a plant per seed starts
@@ -156,9 +166,19 @@ fn run_batch(
         alignment: None,
         up_att_mean_abs_rad: b.up_att_mean_abs_rad(),
     });
-    (0..lanes)
+    Ok((0..lanes)
         .map(|_| runs.by_ref().take(navs.len()).collect())
-        .collect()
+        .collect())
+}
+
+/// The plant's configuration errors as the engine's error, in one line.
+fn invalid_config(e: Vec<rins_plant::ConfigError>) -> SessionError {
+    SessionError::InvalidConfig(
+        e.iter()
+            .map(|x| x.to_string())
+            .collect::<Vec<_>>()
+            .join("; "),
+    )
 }
 
 /// The navigators' indices in groups of at most [`LANES`] that can share lanes (the same
@@ -290,6 +310,56 @@ mod tests {
         let groups = lane_groups(&many);
         assert_eq!(groups.len(), 2);
         assert_eq!(groups[1], (LANES..LANES + 3).collect::<Vec<_>>());
+    }
+
+    /// A noise-free member rides in a batch with the seeds (Table 4's pair): every member's
+    /// runs equal `run` of its configuration alone, and the noise-free one's differ from the
+    /// seeds'.
+    #[test]
+    fn a_noise_free_member_in_a_batch_equals_its_run_alone() {
+        let cfg = rins_plant::presets::paper_16pos_config();
+        let mut quiet = cfg.clone();
+        for t in [
+            rins_plant::effects::GyroTerm::AngleRandomWalk,
+            rins_plant::effects::GyroTerm::BiasInstability,
+            rins_plant::effects::GyroTerm::RateRandomWalk,
+        ] {
+            quiet.sensor.gyro.set_enabled(t, false);
+        }
+        quiet.sensor.accel.velocity_random_walk.enabled = false;
+        let members = [
+            PlantConfig {
+                seed: 5,
+                ..cfg.clone()
+            },
+            PlantConfig {
+                seed: 6,
+                ..cfg.clone()
+            },
+            quiet,
+        ];
+        assert!(SeedBatch::shares(&members).unwrap());
+        let navs = [
+            NavRunConfig::default(),
+            NavRunConfig {
+                compensation: Some(cfg.sensor.gyro.position_bias),
+                ..NavRunConfig::default()
+            },
+        ];
+        let one_batch = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let got = one_batch
+            .install(|| run_members(&members, 300.0, &navs, &|_| {}))
+            .unwrap();
+        for (m, runs) in members.iter().zip(&got) {
+            for (n, r) in navs.iter().zip(runs) {
+                let alone = run(&mut Plant::new(m).unwrap(), 300.0, n).unwrap();
+                assert_eq!(r.records, alone.records, "seed {}", m.seed);
+            }
+        }
+        assert_ne!(got[2][0].end(), got[0][0].end());
     }
 
     #[test]

@@ -33,28 +33,43 @@ enum Kind {
 impl SeedBatch {
     /// The configuration `cfg` (its own seed ignored) for each of `seeds`.
     pub fn new(cfg: &PlantConfig, seeds: &[u64]) -> Result<Self, Vec<ConfigError>> {
-        if seeds.is_empty() {
+        let members: Vec<PlantConfig> = seeds
+            .iter()
+            .map(|&seed| PlantConfig {
+                seed,
+                ..cfg.clone()
+            })
+            .collect();
+        Self::of(&members)
+    }
+
+    /// One lane per configuration of `members`. They share one plant's physics when the
+    /// physics allows it ([`Plant::shares_physics_across_seeds`]) and they differ from the first
+    /// only in what the readout alone uses: the seed and the stochastic terms (angle and
+    /// velocity random walk, bias instability, rate random walk), so a noise-free member rides
+    /// with the seeds of its case. Otherwise each member runs its own plant.
+    pub fn of(members: &[PlantConfig]) -> Result<Self, Vec<ConfigError>> {
+        let Some(head) = members.first() else {
             return Err(vec![ConfigError {
                 path: "seeds".into(),
                 expected: "at least one seed".into(),
                 got: "none".into(),
             }]);
-        }
-        let of = |seed: u64| PlantConfig {
-            seed,
-            ..cfg.clone()
         };
-        let first = Plant::new(&of(seeds[0]))?;
-        let kind = if first.shares_physics_across_seeds() {
-            let lanes = seeds[1..].iter().map(|&s| first.lane_readout(s)).collect();
+        let first = Plant::new(head)?;
+        let kind = if Self::shared_by(&first, members) {
+            for m in &members[1..] {
+                m.validate()?;
+            }
+            let lanes = members[1..].iter().map(|m| first.lane_readout(m)).collect();
             Kind::Shared {
                 plant: Box::new(first),
                 lanes,
             }
         } else {
             let mut plants = vec![first];
-            for &s in &seeds[1..] {
-                plants.push(Plant::new(&of(s))?);
+            for m in &members[1..] {
+                plants.push(Plant::new(m)?);
             }
             Kind::Separate(plants)
         };
@@ -67,10 +82,26 @@ impl SeedBatch {
             temps_c: [0.0; crate::thermal::node::COUNT],
         };
         Ok(Self {
-            seeds: seeds.to_vec(),
+            seeds: members.iter().map(|m| m.seed).collect(),
             kind,
-            samples: vec![placeholder; seeds.len()],
+            samples: vec![placeholder; members.len()],
         })
+    }
+
+    /// True when `members` would share one plant's physics in a batch (see [`SeedBatch::of`]);
+    /// errors are the first member's configuration errors.
+    pub fn shares(members: &[PlantConfig]) -> Result<bool, Vec<ConfigError>> {
+        match members.first() {
+            None => Ok(true),
+            Some(head) => Ok(Self::shared_by(&Plant::new(head)?, members)),
+        }
+    }
+
+    fn shared_by(first: &Plant, members: &[PlantConfig]) -> bool {
+        first.shares_physics_across_seeds()
+            && members[1..]
+                .iter()
+                .all(|m| differs_in_readout_only(first.config(), m))
     }
 
     /// The seeds, in lane order.
@@ -128,6 +159,19 @@ impl SeedBatch {
     }
 }
 
+/// True when `b` is `a` but for the seed and the stochastic terms: what only the readout
+/// ([`Readout`]) uses, so `b`'s samples can be read out of `a`'s physics.
+fn differs_in_readout_only(a: &PlantConfig, b: &PlantConfig) -> bool {
+    let mut b = b.clone();
+    b.seed = a.seed;
+    let (g, ga) = (&mut b.sensor.gyro, &a.sensor.gyro);
+    g.angle_random_walk = ga.angle_random_walk;
+    g.bias_instability = ga.bias_instability;
+    g.rate_random_walk = ga.rate_random_walk;
+    b.sensor.accel.velocity_random_walk = a.sensor.accel.velocity_random_walk;
+    b == *a
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -182,6 +226,51 @@ mod tests {
         batch.step();
         let s = batch.samples();
         assert_ne!(s[0].dtheta_rad, s[1].dtheta_rad);
+    }
+
+    /// Every member's samples and final truth from the batch equal its plant run alone.
+    fn check_members(members: &[PlantConfig], shared: bool, samples: usize) {
+        let mut batch = SeedBatch::of(members).unwrap();
+        assert_eq!(batch.is_shared(), shared);
+        let mut alone: Vec<Plant> = members.iter().map(|m| Plant::new(m).unwrap()).collect();
+        for k in 0..samples {
+            batch.step();
+            for (lane, p) in alone.iter_mut().enumerate() {
+                assert_eq!(batch.samples()[lane], p.step(), "member {lane} sample {k}");
+            }
+        }
+        for (lane, p) in alone.iter().enumerate() {
+            assert_eq!(batch.truth(lane), p.truth(), "truth of member {lane}");
+        }
+    }
+
+    /// `cfg` with every stochastic term off (Table 4's noise-free pair).
+    fn noise_free(cfg: &PlantConfig) -> PlantConfig {
+        use crate::effects::GyroTerm;
+        let mut c = cfg.clone();
+        for t in [
+            GyroTerm::AngleRandomWalk,
+            GyroTerm::BiasInstability,
+            GyroTerm::RateRandomWalk,
+        ] {
+            c.sensor.gyro.set_enabled(t, false);
+        }
+        c.sensor.accel.velocity_random_walk.enabled = false;
+        c
+    }
+
+    #[test]
+    fn a_noise_free_member_rides_with_the_seeds_and_equals_its_run_alone() {
+        let c = config();
+        let nf = noise_free(&c);
+        let seeded = |seed| PlantConfig { seed, ..c.clone() };
+        check_members(&[seeded(7), nf.clone(), seeded(8)], true, 20_000);
+        // The noise-free member first: its plant carries the others' readouts.
+        check_members(&[nf.clone(), seeded(3)], true, 5_000);
+        // Another deterministic error is other physics: a plant per member.
+        let mut biased = seeded(9);
+        biased.sensor.gyro.bias.dph[2] += 0.01;
+        check_members(&[seeded(7), biased, nf], false, 3_000);
     }
 
     #[test]

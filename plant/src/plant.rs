@@ -294,14 +294,10 @@ impl Plant {
         }
     }
 
-    /// A readout of this plant's configuration for `seed`, at the plant's start (lanes of a
-    /// [`crate::SeedBatch`], built before the first step).
-    pub(crate) fn lane_readout(&self, seed: u64) -> Readout {
-        let cfg = PlantConfig {
-            seed,
-            ..self.cfg.clone()
-        };
-        Readout::new(&cfg, &self.truth.temps.nodes_c)
+    /// The readout of `cfg` (this plant's configuration but for its seed and noise terms, see
+    /// [`crate::SeedBatch`]) at the plant's start: a lane of a batch, built before the first step.
+    pub(crate) fn lane_readout(&self, cfg: &PlantConfig) -> Readout {
+        Readout::new(cfg, &self.truth.temps.nodes_c)
     }
 
     /// [`Plant::truth`] with `lane`'s noise and quantisation terms.

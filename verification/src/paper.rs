@@ -256,33 +256,29 @@ fn noise_free(cfg: &PlantConfig) -> PlantConfig {
 
 /// Runs the reproduction on every core: `runs` seeds × {uncompensated, compensated} with common
 /// random numbers (each seed's samples feed both navigators), plus the noise-free pair, through
-/// the Monte Carlo engine ([`rins_experiments::run_seeds`]). `progress` receives samples done.
+/// the Monte Carlo engine ([`rins_experiments::run_members`]). `progress` receives samples done.
 pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Report {
     let t0 = std::time::Instant::now();
     let seeds: Vec<u64> = (0..opt.runs as u64).map(|k| opt.plant.seed + k).collect();
-    let nf_cfg = noise_free(&opt.plant);
-    let (seeded, nf_runs) = rayon::join(
-        || {
-            rins_experiments::run_seeds(
-                &opt.plant,
-                &seeds,
-                opt.duration_s,
-                &paired_navs(opt, &opt.plant),
-                progress,
-            )
-            .expect("navigation runs")
-        },
-        || {
-            rins_experiments::run_seeds(
-                &nf_cfg,
-                &[opt.plant.seed],
-                opt.duration_s,
-                &paired_navs(opt, &nf_cfg),
-                progress,
-            )
-            .expect("navigation runs")
-        },
-    );
+    // The noise-free pair is one more member of the case: it shares the seeds' physics, so it
+    // rides in a batch with them and the cores carry equal work.
+    let mut members: Vec<PlantConfig> = seeds
+        .iter()
+        .map(|&seed| PlantConfig {
+            seed,
+            ..opt.plant.clone()
+        })
+        .collect();
+    members.push(noise_free(&opt.plant));
+    let mut runs = rins_experiments::run_members(
+        &members,
+        opt.duration_s,
+        &paired_navs(opt, &opt.plant),
+        progress,
+    )
+    .expect("navigation runs");
+    let nf_runs = runs.split_off(seeds.len());
+    let seeded = runs;
     let mut results: Vec<((Option<u64>, bool), rins_experiments::NavRun)> = Vec::new();
     for (seed, pair) in seeds.iter().zip(seeded) {
         for (comp, r) in [false, true].into_iter().zip(pair) {
