@@ -1,5 +1,5 @@
 //! The strapdown navigator alone, per update of one navigator: [`Strapdown`] one at a time
-//! against [`StrapdownLanes`] (eight side by side), on the same increments (Earth rate,
+//! against [`StrapdownLanes`] (eight side by side, and two), on the same increments (Earth rate,
 //! gravity, small noise-like wobbles). `cargo bench -p rins-nav --bench strapdown`.
 
 use criterion::{Criterion, Throughput};
@@ -60,6 +60,37 @@ fn main() {
             let (mut dth, mut dv) = ([Vector3::zeros(); LANES], [Vector3::zeros(); LANES]);
             for i in 0..STEPS {
                 for k in 0..LANES {
+                    (dth[k], dv[k]) = increments(i, k);
+                }
+                lanes.update(&dth, &dv);
+            }
+            black_box(lanes.state(0).lat_rad)
+        })
+    });
+    g.finish();
+    // Two navigators (a seed's uncompensated and compensated pair at sea): one by one against
+    // a pair of lanes.
+    let mut g = c.benchmark_group("strapdown pair");
+    g.throughput(Throughput::Elements(STEPS * 2));
+    g.bench_function("two one at a time (per navigator update)", |b| {
+        b.iter(|| {
+            let mut navs = navigators();
+            navs.truncate(2);
+            for i in 0..STEPS {
+                for (k, n) in navs.iter_mut().enumerate() {
+                    let (a, v) = increments(i, k);
+                    n.update(&a, &v);
+                }
+            }
+            black_box(navs[0].state().lat_rad)
+        })
+    });
+    g.bench_function("a pair of lanes (per navigator update)", |b| {
+        b.iter(|| {
+            let mut lanes = StrapdownLanes::new(&navigators()[..2]).expect("same navigators");
+            let (mut dth, mut dv) = ([Vector3::zeros(); 2], [Vector3::zeros(); 2]);
+            for i in 0..STEPS {
+                for k in 0..2 {
                     (dth[k], dv[k]) = increments(i, k);
                 }
                 lanes.update(&dth, &dv);

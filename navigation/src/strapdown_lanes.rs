@@ -17,9 +17,9 @@ pub const LANES: usize = 8;
 
 type Wide = Lanes<LANES>;
 
-/// Up to this many navigators a group updates them one by one: the vector update costs the same
-/// for eight lanes as for one, about as much as two navigators alone.
-const ALONE_UP_TO: usize = 2;
+/// Two navigators side by side: one 128-bit vector (SSE2, on every x86-64 CPU), about the cost
+/// of one navigator alone.
+type Pair = Lanes<2>;
 
 /// Why navigators cannot share lanes.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -35,23 +35,89 @@ pub enum LanesError {
 /// Navigators stepped together, each with its own increments.
 #[derive(Clone, Debug)]
 pub struct StrapdownLanes {
-    /// Up to [`ALONE_UP_TO`] navigators: themselves, updated one by one (then `m` and `up`
-    /// are not used).
-    alone: Vec<Strapdown>,
-    m: Solution<Wide>,
-    /// Each navigator's body up direction at its current attitude (for the δβ compensation
-    /// of the next increments), taken with the update.
-    up: [Wide; 3],
+    kept: Kept,
     dt_s: f64,
     vertical: VerticalChannel,
     used: usize,
     steps: u64,
 }
 
+/// How a group holds its navigators: the vector update costs the same for all its lanes
+/// whether they are used or not, so one navigator stays itself, two take a pair of lanes, and
+/// three to eight the widest vector.
+#[derive(Clone, Debug)]
+enum Kept {
+    One(Strapdown),
+    Pair(Side<2>),
+    Wide(Side<LANES>),
+}
+
+/// `N` navigators' solutions lane by lane, with each one's body up direction at its current
+/// attitude (for the δβ compensation of the next increments), taken with the update.
+#[derive(Clone, Debug)]
+struct Side<const N: usize> {
+    m: Solution<Lanes<N>>,
+    up: [Lanes<N>; 3],
+}
+
+impl<const N: usize> Side<N> {
+    /// The navigators `navs` (1 to `N`) from where each is now; lanes past the last repeat the
+    /// first (their results are never read).
+    fn gather(navs: &[Strapdown]) -> Self {
+        let first = &navs[0];
+        let each: [Solution<f64>; N] =
+            std::array::from_fn(|i| navs.get(i).unwrap_or(first).solution());
+        let gather3 = |f: fn(&Solution<f64>) -> [f64; 3]| -> [Lanes<N>; 3] {
+            std::array::from_fn(|c| Lanes(std::array::from_fn(|l| f(&each[l])[c])))
+        };
+        let gather = |f: fn(&Solution<f64>) -> f64| Lanes(std::array::from_fn(|l| f(&each[l])));
+        let q: [Lanes<N>; 4] =
+            std::array::from_fn(|c| Lanes(std::array::from_fn(|l| each[l].q[c])));
+        Self {
+            up: up_in_body(&q),
+            m: Solution {
+                q,
+                v: gather3(|s| s.v),
+                lat: gather(|s| s.lat),
+                lon: gather(|s| s.lon),
+                h: gather(|s| s.h),
+                prev_dtheta: gather3(|s| s.prev_dtheta),
+                prev_dv: gather3(|s| s.prev_dv),
+                // Every lane's grid point is taken afresh at the first update (the same bits:
+                // the point depends on the latitude only).
+                lat_trig: GridTrig::default(),
+            },
+        }
+    }
+
+    /// Component `c` of each navigator's increment; lanes past the last repeat the first.
+    #[inline(always)]
+    fn pick(x: &[Vector3<f64>], c: usize) -> Lanes<N> {
+        Lanes(std::array::from_fn(|l| x.get(l).unwrap_or(&x[0])[c]))
+    }
+
+    fn state(&self, lane: usize) -> NavState {
+        let m = &self.m;
+        let q = Vector4::from(std::array::from_fn::<f64, 4, _>(|c| m.q[c].lane(lane)));
+        NavState {
+            q_bn: UnitQuaternion::new_unchecked(Quaternion::from(q)),
+            v_n: Vector3::from(std::array::from_fn(|c| m.v[c].lane(lane))),
+            lat_rad: m.lat.lane(lane),
+            lon_rad: m.lon.lane(lane),
+            height_m: m.h.lane(lane),
+        }
+    }
+
+    #[inline(always)]
+    fn up_b(&self, lane: usize) -> Vector3<f64> {
+        let u = &self.up;
+        Vector3::new(u[0].0[lane], u[1].0[lane], u[2].0[lane])
+    }
+}
+
 impl StrapdownLanes {
     /// The navigators `navs` (1 to [`LANES`], the same interval and vertical channel), from
-    /// where each is now. Lanes past the last navigator repeat the first (their results are
-    /// never read).
+    /// where each is now.
     pub fn new(navs: &[Strapdown]) -> Result<Self, LanesError> {
         if navs.is_empty() || navs.len() > LANES {
             return Err(LanesError::Count(navs.len()));
@@ -63,31 +129,13 @@ impl StrapdownLanes {
         {
             return Err(LanesError::Differs(i));
         }
-        let lane = |i: usize| navs.get(i).unwrap_or(first).solution();
-        let each: [Solution<f64>; LANES] = std::array::from_fn(lane);
-        let gather3 = |f: fn(&Solution<f64>) -> [f64; 3]| -> [Wide; 3] {
-            std::array::from_fn(|c| Lanes(std::array::from_fn(|l| f(&each[l])[c])))
+        let kept = match navs.len() {
+            1 => Kept::One(first.clone()),
+            2 => Kept::Pair(Side::gather(navs)),
+            _ => Kept::Wide(Side::gather(navs)),
         };
-        let gather = |f: fn(&Solution<f64>) -> f64| Lanes(std::array::from_fn(|l| f(&each[l])));
-        let q: [Wide; 4] = std::array::from_fn(|c| Lanes(std::array::from_fn(|l| each[l].q[c])));
         Ok(Self {
-            alone: if navs.len() <= ALONE_UP_TO {
-                navs.to_vec()
-            } else {
-                Vec::new()
-            },
-            up: up_in_body(&q),
-            m: Solution {
-                q: std::array::from_fn(|c| Lanes(std::array::from_fn(|l| each[l].q[c]))),
-                v: gather3(|s| s.v),
-                lat: gather(|s| s.lat),
-                lon: gather(|s| s.lon),
-                h: gather(|s| s.h),
-                prev_dtheta: gather3(|s| s.prev_dtheta),
-                prev_dv: gather3(|s| s.prev_dv),
-                // The sine and cosine depend on the latitude alone: no grid point to carry.
-                lat_trig: GridTrig::default(),
-            },
+            kept,
             dt_s: first.dt_s(),
             vertical: first.vertical(),
             used: navs.len(),
@@ -100,80 +148,70 @@ impl StrapdownLanes {
         self.used
     }
 
-    /// Never true: a lane group holds at least one navigator.
+    /// True when no navigator is in use (never: [`StrapdownLanes::new`] refuses none).
     pub fn is_empty(&self) -> bool {
         self.used == 0
     }
 
-    /// Consumes one interval's increments Δθ (rad) and Δv (m/s) per navigator, in lane order
-    /// ([`Self::len`] of each).
+    /// Integrates one interval: navigator i takes `dtheta[i]` (rad) and `dv[i]` (m/s).
+    /// Panics unless both hold one increment per navigator in use.
     pub fn update(&mut self, dtheta: &[Vector3<f64>], dv: &[Vector3<f64>]) {
         assert!(
             dtheta.len() == self.used && dv.len() == self.used,
             "one increment per navigator"
         );
-        if !self.alone.is_empty() {
-            for (n, (a, v)) in self.alone.iter_mut().zip(dtheta.iter().zip(dv)) {
-                n.update(a, v);
+        let (dt_s, vertical) = (self.dt_s, self.vertical);
+        match &mut self.kept {
+            Kept::One(n) => n.update(&dtheta[0], &dv[0]),
+            Kept::Pair(p) => {
+                let dth: [Pair; 3] = std::array::from_fn(|c| Side::<2>::pick(dtheta, c));
+                let dvs: [Pair; 3] = std::array::from_fn(|c| Side::<2>::pick(dv, c));
+                // The baseline build: SSE2 takes the pair in one register, and the wider
+                // builds measured slower for two lanes.
+                update_body(&mut p.m, &mut p.up, &dth, &dvs, dt_s, vertical);
             }
-            self.steps += 1;
-            return;
+            Kept::Wide(w) => {
+                let dth: [Wide; 3] = std::array::from_fn(|c| Side::<LANES>::pick(dtheta, c));
+                let dvs: [Wide; 3] = std::array::from_fn(|c| Side::<LANES>::pick(dv, c));
+                update_wide(&mut w.m, &mut w.up, &dth, &dvs, dt_s, vertical);
+            }
         }
-        let pick = |x: &[Vector3<f64>], c: usize| -> Wide {
-            Lanes(std::array::from_fn(|l| x.get(l).unwrap_or(&x[0])[c]))
-        };
-        let dth: [Wide; 3] = std::array::from_fn(|c| pick(dtheta, c));
-        let dvs: [Wide; 3] = std::array::from_fn(|c| pick(dv, c));
-        update_wide(
-            &mut self.m,
-            &mut self.up,
-            &dth,
-            &dvs,
-            self.dt_s,
-            self.vertical,
-        );
         self.steps += 1;
     }
 
-    /// Navigator `lane`'s solution.
+    /// Navigator `lane`'s state.
     pub fn state(&self, lane: usize) -> NavState {
-        if let Some(n) = self.alone.get(lane) {
-            return *n.state();
-        }
-        let m = &self.m;
-        let q = Vector4::from(std::array::from_fn::<f64, 4, _>(|c| m.q[c].lane(lane)));
-        NavState {
-            q_bn: UnitQuaternion::new_unchecked(Quaternion::from(q)),
-            v_n: Vector3::from(std::array::from_fn(|c| m.v[c].lane(lane))),
-            lat_rad: m.lat.lane(lane),
-            lon_rad: m.lon.lane(lane),
-            height_m: m.h.lane(lane),
+        match &self.kept {
+            Kept::One(n) => *n.state(),
+            Kept::Pair(p) => p.state(lane),
+            Kept::Wide(w) => w.state(lane),
         }
     }
 
-    /// Navigator `lane`'s body up direction C_n^b·(0, 0, 1) (the bits of
-    /// `q_bn.inverse_transform_vector(&Vector3::z())`), kept from its last update.
+    /// Navigator `lane`'s body up direction C_n^b·(0, 0, 1) at its current attitude: the bits
+    /// of `state(lane).q_bn.inverse_transform_vector(&Vector3::z())`.
     #[inline]
     pub fn up_b(&self, lane: usize) -> Vector3<f64> {
-        if let Some(n) = self.alone.get(lane) {
-            return n.state().q_bn.inverse_transform_vector(&Vector3::z());
+        match &self.kept {
+            Kept::One(n) => n.state().q_bn.inverse_transform_vector(&Vector3::z()),
+            Kept::Pair(p) => p.up_b(lane),
+            Kept::Wide(w) => w.up_b(lane),
         }
-        let u = &self.up;
-        Vector3::new(u[0].0[lane], u[1].0[lane], u[2].0[lane])
     }
 
-    /// Increments consumed so far.
+    /// Updates made (those of the navigators before they joined, plus the group's).
     pub fn steps(&self) -> u64 {
         self.steps
     }
 }
 
+/// One update of `N` navigators side by side and their up directions.
 #[inline(always)]
-fn update_body(
-    m: &mut Solution<Wide>,
-    up: &mut [Wide; 3],
-    dtheta: &[Wide; 3],
-    dv: &[Wide; 3],
+fn update_body<const N: usize>(
+    m: &mut Solution<Lanes<N>>,
+    up: &mut [Lanes<N>; 3],
+    dtheta: &[Lanes<N>; 3],
+    dv: &[Lanes<N>; 3],
     dt_s: f64,
     vertical: VerticalChannel,
 ) {
@@ -278,7 +316,7 @@ mod tests {
                 tau_s: 100.0,
             },
         ] {
-            for used in [LANES, 3, ALONE_UP_TO, 1] {
+            for used in [LANES, 3, 2, 1] {
                 let mut alone: Vec<Strapdown> = (0..used)
                     .map(|k| Strapdown::new(start(k), 0.01, vertical))
                     .collect();
