@@ -248,8 +248,7 @@ impl Plant {
             encoder: self.readout.encoders(tr.gimbal.angles),
             temps_c: self.readout.temp_readings_c(),
         };
-        self.motion
-            .isolate(&sample.dtheta_rad, sample.encoder.inner_rad, tick);
+        self.motion.isolate(&sample.dtheta_rad, tick);
         sample
     }
 

@@ -2,11 +2,11 @@
 //! rotation scheme stays fixed in the navigation frame, as the table of a real RINS on a ship
 //! does (docs/carrier.md, "Azimuth isolation").
 //!
-//! The loop sees only what the navigation computer sees: the IMU's measured increments and the
-//! encoder reading of the inner gimbal (plus the scheme's own commanded outer angle). It keeps a
-//! measured attitude C_b^n by integrating the measured Δθ (two-sample coning correction, the
-//! navigation frame turned by ω_in^n), forms the measured azimuth of the outer gimbal frame
-//! C_o^n = C_b^n·R_x(inner)ᵀ, and counter-rotates its error from the scheme's azimuth exactly
+//! The loop sees only what the navigation computer sees: the IMU's measured increments (plus
+//! the scheme's own commanded outer angle). It keeps a measured attitude C_b^n by integrating
+//! the measured Δθ (two-sample coning correction, the navigation frame turned by ω_in^n), forms
+//! the measured azimuth of the outer gimbal frame C_o^n = C_b^n·R_x(inner)ᵀ (the x axis, which
+//! R_x leaves where it is: the inner encoder is not needed for it), and counter-rotates its error from the scheme's azimuth exactly
 //! over the next output interval (a one-sample servo: the outer offset ramps linearly from its
 //! value to the corrected one). The error left is the carrier's yaw during one interval,
 //! |ψ̇|·Δt, plus the drift of the measured attitude (the gyros' errors, as any heading).
@@ -26,6 +26,18 @@ use crate::table::gimbal::rot_x;
 /// horizontal projection.
 pub fn azimuth_rad(c: &Matrix3<f64>) -> f64 {
     c[(1, 0)].atan2(c[(0, 0)])
+}
+
+/// Azimuth of the outer gimbal frame C_o^n = C_b^n·R_x(inner)ᵀ of the body attitude `q_bn`
+/// ([`azimuth_rad`] of that product, bit for bit). Its x axis is the body's: R_x leaves the x
+/// axis where it is, so the product's first column is C_b^n's and the inner angle drops out.
+/// Only the two elements the azimuth reads are formed, with the operations of nalgebra's
+/// `UnitQuaternion::to_rotation_matrix` (C₀₀ = w² + i² − j² − k², C₁₀ = 2wk + 2ij).
+fn outer_azimuth_rad(q_bn: &UnitQuaternion<f64>) -> f64 {
+    let [i, j, k, w] = [q_bn.i, q_bn.j, q_bn.k, q_bn.w];
+    let c00 = w * w + i * i - j * j - k * k;
+    let c10 = w * k * 2.0 + i * j * 2.0;
+    c10.atan2(c00)
 }
 
 /// `x` wrapped into [-π, π).
@@ -125,14 +137,12 @@ impl Isolation {
     }
 
     /// One output interval of `dt_s` has ended at internal tick `tick`: integrates the
-    /// measured `dtheta_rad`, measures the outer frame's azimuth with the inner encoder reading
-    /// and sets the offset at the end of the next interval to cancel its error against the
+    /// measured `dtheta_rad`, measures the outer frame's azimuth and sets the offset at the end of the next interval to cancel its error against the
     /// scheme's commanded outer angle. `lat_rad`, `height_m`, `v_n` give ω_in^n.
     #[allow(clippy::too_many_arguments)]
     pub fn update(
         &mut self,
         dtheta_rad: &Vector3<f64>,
-        inner_enc_rad: f64,
         scheme_outer_rad: f64,
         lat_rad: f64,
         height_m: f64,
@@ -161,8 +171,7 @@ impl Isolation {
             * self.q_bn
             * UnitQuaternion::from_scaled_axis(phi);
         self.q_bn.renormalize_fast();
-        let c_on = self.q_bn.to_rotation_matrix().into_inner() * rot_x(inner_enc_rad).transpose();
-        let err = wrap(azimuth_rad(&c_on) - self.az0_rad - scheme_outer_rad);
+        let err = wrap(outer_azimuth_rad(&self.q_bn) - self.az0_rad - scheme_outer_rad);
         self.to_rad -= err;
         // The end rate: the interval's mean rate (the ramp of a one-sample servo).
         self.to_rps = (self.to_rad - self.from_rad) / dt_s;

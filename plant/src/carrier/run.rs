@@ -115,6 +115,16 @@ impl CarrierRun {
         }
     }
 
+    /// Latitude (rad), height (m) and velocity (ENU, m/s) now: those fields of
+    /// [`CarrierRun::state`], bit for bit, without interpolating the rest.
+    pub fn lat_height_velocity(&self) -> (f64, f64, Vector3<f64>) {
+        let of_now = || (self.now.lat_rad, self.now.height_m, self.now.v_n);
+        match &self.carrier {
+            Carrier::Ship(s) => s.segment_lat_height_velocity().unwrap_or_else(of_now),
+            _ => of_now(),
+        }
+    }
+
     /// C_v^n = C_c^n·C_v^c now.
     pub fn c_vn(&self) -> Matrix3<f64> {
         let c_cn = match &self.carrier {

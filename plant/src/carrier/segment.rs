@@ -482,6 +482,14 @@ impl SegmentRule {
         Self::combine(&self.at_w[i * self.n..(i + 1) * self.n], y, POINT_CHANNELS)
     }
 
+    /// The interpolated position and velocity (channels 9..15: Δlat, Δlon, h, v_n) at tick
+    /// boundary `i`: the same bits as those channels of [`SegmentRule::state_at`], without the
+    /// other eighteen.
+    #[inline]
+    pub fn position_velocity_at(&self, i: usize, y: &[[f64; CHANNELS]]) -> [f64; 6] {
+        Self::combine(&self.at_w[i * self.n..(i + 1) * self.n], y, POINT_CHANNELS)
+    }
+
     /// The interpolated C_c^n (channels 18..27, row by row) at tick boundary `i`: the same bits
     /// as those channels of [`SegmentRule::state_at`], without the other fifteen.
     #[inline]

@@ -269,6 +269,23 @@ impl Ship {
         Some(now)
     }
 
+    /// The interpolated latitude (rad), height (m) and velocity (ENU, m/s) at the current tick
+    /// (`None` as for [`Ship::segment_state`]): what the azimuth isolation loop needs every
+    /// sample, the bits of those fields of [`Ship::segment_state`] without the rest.
+    pub(in crate::carrier) fn segment_lat_height_velocity(
+        &self,
+    ) -> Option<(f64, f64, Vector3<f64>)> {
+        let seg = self.seg.as_ref().filter(|s| !s.exact)?;
+        let c = seg
+            .rule
+            .position_velocity_at((seg.tick - seg.start_tick) as usize, &seg.y);
+        Some((
+            seg.start_pos.lat_rad + c[0],
+            c[2],
+            Vector3::new(c[3], c[4], c[5]),
+        ))
+    }
+
     /// The interpolated C_c^n at the current tick (`None` as for [`Ship::segment_state`]): what
     /// the thermal network and the attitude accessors need, without the rest of the state.
     pub(in crate::carrier) fn segment_attitude(&self) -> Option<Matrix3<f64>> {

@@ -342,24 +342,15 @@ impl Motion {
     }
 
     /// Closes one output interval for the azimuth isolation loop at internal tick `tick`: feeds
-    /// it the measured angular increment and inner encoder reading, and the scheme's outer angle.
-    pub(crate) fn isolate(&mut self, dtheta_rad: &Vector3<f64>, encoder_inner_rad: f64, tick: u64) {
+    /// it the measured angular increment and the scheme's outer angle.
+    pub(crate) fn isolate(&mut self, dtheta_rad: &Vector3<f64>, tick: u64) {
         let (dt, outer) = (self.dt_s, self.gimbal_now.angles.outer_rad);
         let Some(run) = self.carrier.as_mut().filter(|r| r.isolation.is_some()) else {
             return;
         };
-        let now = run.state();
+        let (lat_rad, height_m, v_n) = run.lat_height_velocity();
         if let Some(i) = run.isolation.as_mut() {
-            i.update(
-                dtheta_rad,
-                encoder_inner_rad,
-                outer,
-                now.lat_rad,
-                now.height_m,
-                &now.v_n,
-                dt,
-                tick,
-            );
+            i.update(dtheta_rad, outer, lat_rad, height_m, &v_n, dt, tick);
         }
     }
 
