@@ -19,7 +19,7 @@
 
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 
-use crate::earth::{OMEGA_IE_RPS, radii_of_curvature};
+use crate::earth::{OMEGA_IE_RPS, radii_of_curvature_sin2};
 use crate::table::gimbal::rot_x;
 
 /// Azimuth (counter-clockwise from east, rad) of the x axis of the frame `c` (to ENU), from its
@@ -160,8 +160,9 @@ impl Isolation {
         // Two-sample coning correction (the wave motion cones at ~1e-3 rad/s).
         let phi = dtheta_rad + self.prev_dtheta.cross(dtheta_rad) / 12.0;
         self.prev_dtheta = *dtheta_rad;
-        let (rm, rn) = radii_of_curvature(lat_rad);
+        // One sine for both (`f64::sin_cos` is `(sin, cos)`: the radii's own `sin` bits).
         let (sl, cl) = lat_rad.sin_cos();
+        let (rm, rn) = radii_of_curvature_sin2(sl * sl);
         let w_in = Vector3::new(
             -v_n.y / (rm + height_m),
             OMEGA_IE_RPS * cl + v_n.x / (rn + height_m),
