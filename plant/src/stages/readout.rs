@@ -161,7 +161,7 @@ impl Readout {
 
     /// Adds the noise to the deterministic interval and quantises it; each term's contribution
     /// is kept ([`Readout::terms`]).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn measure(&mut self, x: &Interval) -> Measured {
         let dt = self.dt_s;
         let arw = if self.noise.has_arw() {
