@@ -1,11 +1,17 @@
 //! The flat parameter table: every scalar of a [`PlantConfig`] under its scenario-file key path
 //! (`site.lat_deg`, `sensor.gyro.bias.dph[2]`, …) with its unit and valid range. One table serves
 //! scenario validation, FMU parameter lists (name, unit, min, max) and tools that sweep
-//! parameters: a key's range is written once, here.
+//! parameters: a key's range is written once, here. The table is read and set through the typed
+//! walk of [`fields`] (no serialisation of the configuration).
 
-use ciborium::Value;
+use std::borrow::Cow;
+use std::collections::HashMap;
 
 use crate::config::PlantConfig;
+
+pub mod fields;
+
+use fields::{ParamFields, Slot};
 
 /// A scalar parameter value.
 #[derive(Clone, Debug, PartialEq)]
@@ -279,78 +285,57 @@ pub fn unit_for(path: &str) -> &'static str {
     }
 }
 
-/// Scenario-file path of a top-level `PlantConfig` field (`rate_hz` lives in `[run]`).
-fn section_of(field: &str) -> String {
-    match field {
-        "rate_hz" | "substeps" | "seed" => format!("run.{field}"),
-        _ => field.to_string(),
-    }
+/// Text that is structure or data rather than a parameter. A declared effect's name, kind,
+/// regressor, unit and axes are fixed when the model is built (like `scheme.steps`; its switch
+/// and coefficients are parameters), and a trajectory's file name and what to do after its end
+/// are data no FMU or sweep sets.
+fn structural_text(path: &str) -> bool {
+    path.contains(".custom[") || path.starts_with("carrier.trajectory.")
 }
 
-/// The configuration as a value tree. CBOR's data model keeps what JSON cannot: NaN and ±inf
-/// (`scheme.accel_dps2 = inf`) and the whole u64 range (`run.seed`), so the tree round-trips
-/// every configuration exactly.
-fn tree(cfg: &PlantConfig) -> Value {
-    Value::serialized(cfg).expect("PlantConfig serialises")
-}
-
-fn walk(prefix: &str, v: &Value, out: &mut Vec<Param>) {
-    let number = |value: ParamValue| Param {
-        path: prefix.into(),
-        value,
-        unit: unit_for(prefix),
-        range: range_for(prefix),
+/// The table's row for a place of the configuration, if it is a parameter.
+fn row(path: &str, slot: &Slot<'_>) -> Option<Param> {
+    // Only the run's seed and step count are shown as whole numbers; other whole-number fields
+    // (`sea_state`, `components`) are numbers like any other.
+    let whole = path == "run.seed" || path == "run.substeps";
+    let value = match slot {
+        Slot::Group => return None,
+        Slot::Real(x) => ParamValue::Real(**x),
+        Slot::Integer(u) if whole => ParamValue::Integer(**u),
+        Slot::Integer(u) => ParamValue::Real(**u as f64),
+        Slot::Count(u) if whole => ParamValue::Integer(u64::from(**u)),
+        Slot::Count(u) => ParamValue::Real(f64::from(**u)),
+        Slot::Bool(b) => {
+            return Some(Param {
+                path: path.into(),
+                value: ParamValue::Bool(**b),
+                unit: "1",
+                range: None,
+            });
+        }
+        Slot::Enum(_) | Slot::Text(_) if structural_text(path) => return None,
+        Slot::Enum(c) => ParamValue::Enum(c.name().into()),
+        Slot::Text(s) => ParamValue::Enum(s.to_string()),
     };
-    match v {
-        Value::Map(m) => {
-            for (k, v) in m {
-                let k = k.as_text().unwrap_or_default();
-                let p = if prefix.is_empty() {
-                    section_of(k)
-                } else {
-                    format!("{prefix}.{k}")
-                };
-                walk(&p, v, out);
-            }
-        }
-        Value::Array(a) => {
-            for (i, v) in a.iter().enumerate() {
-                walk(&format!("{prefix}[{i}]"), v, out);
-            }
-        }
-        Value::Bool(b) => out.push(Param {
-            path: prefix.into(),
-            value: ParamValue::Bool(*b),
-            unit: "1",
-            range: None,
-        }),
-        // A declared effect's name, kind, regressor, unit and axes are its structure, fixed
-        // when the model is built (like `scheme.steps`); its switch and coefficients are
-        // parameters.
-        Value::Text(_) if prefix.contains(".custom[") => {}
-        // A file name (and what to do after its end) is no parameter an FMU or a sweep can set
-        // (the trajectory is data).
-        Value::Text(_) if prefix.starts_with("carrier.trajectory.") => {}
-        Value::Text(s) => out.push(Param {
-            path: prefix.into(),
-            value: ParamValue::Enum(s.clone()),
-            unit: "1",
-            range: None,
-        }),
-        Value::Integer(i) => out.push(number(match u64::try_from(*i) {
-            Ok(u) if prefix == "run.seed" || prefix == "run.substeps" => ParamValue::Integer(u),
-            _ => ParamValue::Real(i128::from(*i) as f64),
-        })),
-        Value::Float(x) => out.push(number(ParamValue::Real(*x))),
-        // Nothing in a PlantConfig serialises to anything else.
-        _ => {}
-    }
+    let number = matches!(value, ParamValue::Real(_) | ParamValue::Integer(_));
+    Some(Param {
+        path: path.into(),
+        value,
+        unit: if number { unit_for(path) } else { "1" },
+        range: if number { range_for(path) } else { None },
+    })
 }
 
-/// Every scalar parameter of `cfg`, in a stable order.
+/// Every scalar parameter of `cfg`, in a stable order: the order of the fields in the
+/// configuration types (that of the scenario file), array elements in index order.
 pub fn flatten(cfg: &PlantConfig) -> Vec<Param> {
+    // The walk lends places mutably (one walk serves reading and setting); a copy is cheap
+    // next to the table it gives.
+    let mut cfg = cfg.clone();
     let mut out = Vec::new();
-    walk("", &tree(cfg), &mut out);
+    cfg.visit_fields(&mut String::new(), &mut |path, slot| {
+        out.extend(row(path, &slot));
+    });
     out
 }
 
@@ -375,99 +360,223 @@ pub fn set(cfg: &PlantConfig, path: &str, value: ParamValue) -> Result<PlantConf
     apply(cfg, std::iter::once((path, value)))
 }
 
-/// `cfg` with every `(path, value)` set, in one pass (an FMU sets all its parameters at once).
+/// `cfg` with every `(path, value)` set, in one pass over the configuration (an FMU sets all
+/// its parameters at once). A path may be given more than once: the last value stays. Errors
+/// are those of the first bad `(path, value)` in order; a value that is accepted but does not
+/// fit its field (a step count beyond u32, an unknown name for an enumeration outside
+/// [`ENUMS`]) is reported, with its path, only if no other value is bad and no later value of
+/// the same path replaces it.
 pub fn apply<'a>(
     cfg: &PlantConfig,
     values: impl IntoIterator<Item = (&'a str, ParamValue)>,
 ) -> Result<PlantConfig, ParamError> {
-    let mut v = tree(cfg);
-    let mut last = String::new();
-    for (path, value) in values {
-        set_node(&mut v, path, value)?;
-        last = path.to_string();
-    }
-    v.deserialized().map_err(|e| ParamError::Invalid {
-        path: last,
-        message: e.to_string(),
-    })
+    let values: Vec<(&str, ParamValue)> = values.into_iter().collect();
+    let mut scratch = String::new();
+    let keys: Vec<Option<Cow<'_, str>>> = values
+        .iter()
+        .map(|(path, _)| canonical(path, &mut scratch))
+        .collect();
+    apply_in_order(cfg, &values, &keys).unwrap_or_else(|| apply_any_order(cfg, &values, &keys))
 }
 
-fn set_node(v: &mut Value, path: &str, value: ParamValue) -> Result<(), ParamError> {
+/// [`apply`] for values in the table's order (as an FMU and a sweep give them): each is matched
+/// as the walk passes its place. `None` if a value is not met in that order (an unknown path, or
+/// values in another order), with nothing decided.
+fn apply_in_order(
+    cfg: &PlantConfig,
+    values: &[(&str, ParamValue)],
+    keys: &[Option<Cow<'_, str>>],
+) -> Option<Result<PlantConfig, ParamError>> {
+    let mut out = cfg.clone();
+    let mut next = 0;
+    let mut bad = None;
+    let mut misfit = None;
+    out.visit_fields(&mut String::new(), &mut |key, mut slot| {
+        if bad.is_some() {
+            return;
+        }
+        let mut last_misfit = None;
+        while let Some(Some(k)) = keys.get(next)
+            && k == key
+        {
+            let (path, value) = &values[next];
+            next += 1;
+            match put(path, &mut slot, value) {
+                Ok(()) => last_misfit = None,
+                // Every value before this one was met and taken: it is the first bad one.
+                Err(Put::Bad(e)) => {
+                    bad = Some(e);
+                    return;
+                }
+                Err(Put::Misfit(e)) => last_misfit = Some(e),
+            }
+        }
+        if misfit.is_none() {
+            misfit = last_misfit;
+        }
+    });
+    match (bad, misfit) {
+        (Some(e), _) => Some(Err(e)),
+        _ if next < values.len() => None,
+        (None, Some(e)) => Some(Err(e)),
+        (None, None) => Some(Ok(out)),
+    }
+}
+
+/// [`apply`] for values in any order: they are looked up by key path as the walk passes.
+fn apply_any_order(
+    cfg: &PlantConfig,
+    values: &[(&str, ParamValue)],
+    keys: &[Option<Cow<'_, str>>],
+) -> Result<PlantConfig, ParamError> {
+    // The first error in the order of `values`.
+    fn note(i: usize, e: ParamError, first: &mut Option<(usize, ParamError)>) {
+        if first.as_ref().is_none_or(|(j, _)| i < *j) {
+            *first = Some((i, e));
+        }
+    }
+    let mut first: Option<(usize, ParamError)> = None;
+    // Indices of the values for each place, by its key path as the walk spells it.
+    let mut wanted: HashMap<&str, Vec<usize>> = HashMap::with_capacity(values.len());
+    for (i, key) in keys.iter().enumerate() {
+        match key {
+            Some(key) => wanted.entry(key).or_default().push(i),
+            None => note(i, ParamError::Unknown(values[i].0.into()), &mut first),
+        }
+    }
+    let mut out = cfg.clone();
+    let mut found = vec![false; values.len()];
+    let mut misfit: Option<ParamError> = None;
+    out.visit_fields(&mut String::new(), &mut |key, mut slot| {
+        let Some(ix) = wanted.get(key) else {
+            return;
+        };
+        let mut last_misfit = None;
+        for &i in ix {
+            found[i] = true;
+            let (path, value) = &values[i];
+            match put(path, &mut slot, value) {
+                Ok(()) => last_misfit = None,
+                Err(Put::Bad(e)) => note(i, e, &mut first),
+                Err(Put::Misfit(e)) => last_misfit = Some(e),
+            }
+        }
+        if misfit.is_none() {
+            misfit = last_misfit;
+        }
+    });
+    for (i, (path, _)) in values.iter().enumerate() {
+        if !found[i] {
+            note(i, ParamError::Unknown((*path).into()), &mut first);
+        }
+    }
+    match (first, misfit) {
+        (Some((_, e)), _) | (None, Some(e)) => Err(e),
+        (None, None) => Ok(out),
+    }
+}
+
+/// `path` spelt as the walk spells it (`seed` → `run.seed`, `dph[02]` → `dph[2]`), or `None`
+/// if an index is no number. The grammar is that of the scenario keys: names joined by `.`,
+/// each with any number of `[i]`; the `run.` of the three run keys is optional. `scratch` is
+/// working space; a path already spelt so is returned as it is.
+fn canonical<'p>(path: &'p str, scratch: &mut String) -> Option<Cow<'p, str>> {
     let inner = path
         .strip_prefix("run.")
         .filter(|p| ["rate_hz", "substeps", "seed"].contains(p))
         .unwrap_or(path);
-    let mut node = v;
-    for part in inner.split('.') {
+    scratch.clear();
+    for (n, part) in inner.split('.').enumerate() {
         let (name, idx) = match part.find('[') {
             Some(i) => (&part[..i], &part[i..]),
             None => (part, ""),
         };
-        node = match node {
-            Value::Map(m) => m
-                .iter_mut()
-                .find(|(k, _)| k.as_text() == Some(name))
-                .map(|(_, v)| v),
-            _ => None,
+        if n > 0 {
+            scratch.push('.');
+        } else if matches!(name, "rate_hz" | "substeps" | "seed") {
+            // The run's keys without their table (the walk names them `run.*`).
+            scratch.push_str("run.");
         }
-        .ok_or_else(|| ParamError::Unknown(path.into()))?;
+        scratch.push_str(name);
         for ix in idx.split(']').filter(|s| !s.is_empty()) {
-            let i: usize = ix
-                .trim_start_matches('[')
-                .parse()
-                .map_err(|_| ParamError::Unknown(path.into()))?;
-            node = match node {
-                Value::Array(a) => a.get_mut(i),
-                _ => None,
-            }
-            .ok_or_else(|| ParamError::Unknown(path.into()))?;
+            fields::push_element(scratch, ix.trim_start_matches('[').parse().ok()?);
         }
     }
-    let kind_ok = matches!(
-        (&*node, &value),
-        (
-            Value::Integer(_) | Value::Float(_),
-            ParamValue::Real(_) | ParamValue::Integer(_)
-        ) | (Value::Bool(_), ParamValue::Bool(_))
-            | (Value::Text(_), ParamValue::Enum(_))
-    );
-    if !kind_ok {
-        let like = match &*node {
-            Value::Bool(_) => "a switch (true/false)",
-            Value::Text(_) => "an enumeration name",
-            Value::Integer(_) | Value::Float(_) => "a number",
-            _ => "a scalar",
-        };
-        return Err(ParamError::Invalid {
-            path: path.into(),
-            message: format!("expected {like}, got {value:?}"),
-        });
-    }
-    if let (ParamValue::Enum(name), Some(choices)) = (&value, enum_choices(path))
-        && !choices.contains(&name.as_str())
-    {
-        return Err(ParamError::Invalid {
-            path: path.into(),
-            message: format!("unknown variant {name:?}, expected one of {choices:?}"),
-        });
-    }
-    *node = match (value, &*node) {
-        // A whole-number field (`run.seed`, `run.substeps`) given as a real: only whole values.
-        (ParamValue::Real(x), Value::Integer(_)) => {
-            if !(x >= 0.0 && x.fract() == 0.0 && x <= u64::MAX as f64) {
-                return Err(ParamError::Invalid {
-                    path: path.into(),
-                    message: format!("expected a whole number ≥ 0, got {x}"),
+    Some(if scratch == path {
+        Cow::Borrowed(path)
+    } else {
+        Cow::Owned(scratch.clone())
+    })
+}
+
+/// Why a value was not put in its place.
+enum Put {
+    /// The value is of the wrong kind or refused outright.
+    Bad(ParamError),
+    /// The value is accepted but does not fit the field.
+    Misfit(ParamError),
+}
+
+/// Puts `value` in `slot` (the place `path` names).
+fn put(path: &str, slot: &mut Slot<'_>, value: &ParamValue) -> Result<(), Put> {
+    let invalid = |message: String| ParamError::Invalid {
+        path: path.into(),
+        message,
+    };
+    // A whole-number field given as a real: only whole values.
+    let whole = |x: f64| {
+        if x >= 0.0 && x.fract() == 0.0 && x <= u64::MAX as f64 {
+            // Saturating: 2^64, the one real above u64::MAX that passes, is u64::MAX.
+            Ok(x as u64)
+        } else {
+            Err(Put::Bad(invalid(format!(
+                "expected a whole number ≥ 0, got {x}"
+            ))))
+        }
+    };
+    // A whole number for a u32 field: the value is accepted, but must fit when it stays.
+    let fit = |u: u64| {
+        u32::try_from(u).map_err(|_| {
+            Put::Misfit(invalid(format!(
+                "expected a whole number in [0, {}], got {u}",
+                u32::MAX
+            )))
+        })
+    };
+    match (slot, value) {
+        (Slot::Real(x), ParamValue::Real(v)) => **x = *v,
+        (Slot::Real(x), ParamValue::Integer(u)) => **x = *u as f64,
+        (Slot::Integer(n), ParamValue::Real(v)) => **n = whole(*v)?,
+        (Slot::Integer(n), ParamValue::Integer(u)) => **n = *u,
+        (Slot::Count(n), ParamValue::Real(v)) => **n = fit(whole(*v)?)?,
+        (Slot::Count(n), ParamValue::Integer(u)) => **n = fit(*u)?,
+        (Slot::Bool(b), ParamValue::Bool(v)) => **b = *v,
+        (Slot::Enum(c), ParamValue::Enum(name)) => {
+            if !c.set_name(name) {
+                let e = |choices: &[&str]| {
+                    invalid(format!(
+                        "unknown variant {name:?}, expected one of {choices:?}"
+                    ))
+                };
+                // A scenario key's names are checked with the value; a structural
+                // enumeration's (a declared effect's axes) only when the value stays.
+                return Err(match enum_choices(path) {
+                    Some(choices) => Put::Bad(e(choices)),
+                    None => Put::Misfit(e(c.names())),
                 });
             }
-            Value::Integer((x as u64).into())
         }
-        (ParamValue::Real(x), _) => Value::Float(x),
-        (ParamValue::Integer(u), Value::Integer(_)) => Value::Integer(u.into()),
-        (ParamValue::Integer(u), _) => Value::Float(u as f64),
-        (ParamValue::Bool(b), _) => Value::Bool(b),
-        (ParamValue::Enum(s), _) => Value::Text(s),
-    };
+        (Slot::Text(t), ParamValue::Enum(s)) => s.clone_into(*t),
+        (slot, value) => {
+            let like = match slot {
+                Slot::Bool(_) => "a switch (true/false)",
+                Slot::Enum(_) | Slot::Text(_) => "an enumeration name",
+                Slot::Real(_) | Slot::Integer(_) | Slot::Count(_) => "a number",
+                Slot::Group => "a scalar",
+            };
+            return Err(Put::Bad(invalid(format!("expected {like}, got {value:?}"))));
+        }
+    }
     Ok(())
 }
 

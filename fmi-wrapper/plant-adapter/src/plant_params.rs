@@ -61,9 +61,9 @@ impl PlantParams {
 
     /// The configuration the values describe: the defaults with every parameter whose value
     /// differs from its start set through the plant's own parameter table
-    /// ([`params::apply`], whose value tree keeps ±inf, NaN and u64 exactly). `scalars` and
-    /// `values` are the whole table's, by slot. Not validated: the plant's constructors (or
-    /// [`PlantConfig::validate`]) say which field is out of range.
+    /// ([`params::apply`], which sets the typed fields and keeps ±inf, NaN and u64 exactly).
+    /// `scalars` and `values` are the whole table's, by slot. Not validated: the plant's
+    /// constructors (or [`PlantConfig::validate`]) say which field is out of range.
     pub fn config(&self, scalars: &[ScalarVar], values: &[Value]) -> Result<PlantConfig, String> {
         let changed = self.iter().filter_map(|(slot, path)| {
             let (s, v) = (&scalars[slot], values[slot]);

@@ -2,6 +2,9 @@
 
 use super::*;
 
+mod against_cbor;
+mod cbor_reference;
+
 #[test]
 fn non_finite_and_large_whole_values_keep_their_identity() {
     // NaN is reported as NaN (JSON made it null and the check said "inf").
