@@ -214,3 +214,29 @@ impl Isolation {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The azimuth from two elements of C_b^n is the azimuth of the whole outer frame
+    /// C_b^n·R_x(inner)ᵀ, bit for bit, for attitudes all round and any inner angle.
+    #[test]
+    fn the_outer_azimuth_from_two_elements_equals_the_whole_frames() {
+        for k in 0..20_000u32 {
+            let a = f64::from(k);
+            let q = UnitQuaternion::from_euler_angles(
+                (a * 0.61).sin() * 3.1,
+                (a * 0.37).cos() * 1.5,
+                (a * 0.13).sin() * 3.1,
+            );
+            let inner = (a * 0.07).sin() * 6.0;
+            let whole = q.to_rotation_matrix().into_inner() * rot_x(inner).transpose();
+            assert_eq!(
+                outer_azimuth_rad(&q).to_bits(),
+                azimuth_rad(&whole).to_bits(),
+                "{k}"
+            );
+        }
+    }
+}

@@ -185,3 +185,29 @@ fn the_chosen_rule_meets_the_bound_with_the_fewest_nodes_for_its_length() {
     // Motion too fast for any segment of 16 ticks or more: the exact path.
     assert_eq!(SegmentRule::choose(400.0, h), None);
 }
+
+/// The position and velocity channels alone are those channels of the whole state, bit for
+/// bit, at every tick boundary (the isolation loop reads them every sample).
+#[test]
+fn position_and_velocity_alone_equal_those_channels_of_the_state() {
+    let rule = SegmentRule::new(SEGMENT_NODES, 64);
+    // Node values that differ per node and channel, of mixed magnitude and sign.
+    let y: Vec<[f64; CHANNELS]> = (0..SEGMENT_NODES)
+        .map(|j| {
+            std::array::from_fn(|c| {
+                ((j * 31 + c * 7) as f64 * 0.37).sin() * 10f64.powi(c as i32 % 7 - 3)
+            })
+        })
+        .collect();
+    for i in 0..=64 {
+        let whole = rule.state_at(i, &y);
+        let part = rule.position_velocity_at(i, &y);
+        for c in 0..6 {
+            assert_eq!(
+                part[c].to_bits(),
+                whole[c].to_bits(),
+                "boundary {i}, channel {c}"
+            );
+        }
+    }
+}
