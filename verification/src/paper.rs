@@ -261,24 +261,23 @@ pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Rep
     let t0 = std::time::Instant::now();
     let seeds: Vec<u64> = (0..opt.runs as u64).map(|k| opt.plant.seed + k).collect();
     // The noise-free pair is one more member of the case: it shares the seeds' physics, so it
-    // rides in a batch with them and the cores carry equal work.
-    let mut members: Vec<PlantConfig> = seeds
-        .iter()
-        .map(|&seed| PlantConfig {
+    // rides in a batch with them and the cores carry equal work. It goes first: with an odd
+    // number of members the first batch holds one more, and the noise-free member's readout
+    // draws no normals.
+    let members: Vec<PlantConfig> = std::iter::once(noise_free(&opt.plant))
+        .chain(seeds.iter().map(|&seed| PlantConfig {
             seed,
             ..opt.plant.clone()
-        })
+        }))
         .collect();
-    members.push(noise_free(&opt.plant));
-    let mut runs = rins_experiments::run_members(
+    let mut seeded = rins_experiments::run_members(
         &members,
         opt.duration_s,
         &paired_navs(opt, &opt.plant),
         progress,
     )
     .expect("navigation runs");
-    let nf_runs = runs.split_off(seeds.len());
-    let seeded = runs;
+    let nf_runs: Vec<_> = seeded.drain(..1).collect();
     let mut results: Vec<((Option<u64>, bool), rins_experiments::NavRun)> = Vec::new();
     for (seed, pair) in seeds.iter().zip(seeded) {
         for (comp, r) in [false, true].into_iter().zip(pair) {
