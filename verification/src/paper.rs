@@ -1,7 +1,6 @@
 //! The paper's week-long simulation (Section 3.1, Table 4, Figures 2–3): uncompensated and
 //! compensated navigation of the 16-position RINS over several seeds, side by side with the paper.
 
-use rayon::prelude::*;
 use rins_experiments::{NavRecord, NavRunConfig, run};
 use rins_plant::effects::GyroTerm;
 use rins_plant::{Plant, PlantConfig};
@@ -472,31 +471,35 @@ pub fn sea(opt: &SeaOptions, progress: &(dyn Fn(u64) + Sync)) -> SeaReport {
             ..opt.paired.clone()
         }
     };
-    // The three cases side by side: the cores take their seeds as they come free.
-    let (static_reference, (ship, ship_isolated)) = rayon::join(
-        || table4(&opt.paired, progress),
+    // The three cases and the two ideal runs side by side: the cores take the runs as they come
+    // free (the ideal runs after the cases would leave one core idle while the isolated one,
+    // the longer, finishes).
+    let ideal_run = |iso: bool| {
+        let mut o = with(iso);
+        o.plant.sensor = PlantConfig::default().sensor;
+        IdealFigures::of(&one_run(&o.plant, &o, false, progress))
+    };
+    let ((static_reference, (ship, ship_isolated)), ideal) = rayon::join(
         || {
             rayon::join(
-                || table4(&with(false), progress),
-                || table4(&with(true), progress),
+                || table4(&opt.paired, progress),
+                || {
+                    rayon::join(
+                        || table4(&with(false), progress),
+                        || table4(&with(true), progress),
+                    )
+                },
             )
         },
+        || rayon::join(|| ideal_run(false), || ideal_run(true)),
     );
-    let ideal: Vec<IdealFigures> = [false, true]
-        .into_par_iter()
-        .map(|iso| {
-            let mut o = with(iso);
-            o.plant.sensor = PlantConfig::default().sensor;
-            IdealFigures::of(&one_run(&o.plant, &o, false, progress))
-        })
-        .collect();
     SeaReport {
         runs: opt.paired.runs,
         days: opt.paired.duration_s / 86_400.0,
         static_reference,
         ship,
         ship_isolated,
-        ideal: [ideal[0], ideal[1]],
+        ideal: [ideal.0, ideal.1],
         wall_s: t0.elapsed().as_secs_f64(),
     }
 }
