@@ -12,12 +12,14 @@ cargo fmt --all --check
 
 echo "== cargo build (the FMI shared libraries are loaded by the tests) =="
 cargo build --workspace --release "${features[@]}"
-# The in-process carrier -> IMU system test_masters.py compares the masters with.
-cargo build --release -p rins-imu-fmu --example carrier_imu
 target_dir="${CARGO_TARGET_DIR:-target}"
 bin="$target_dir/release"
 
 echo "== cargo test (release: the tests integrate hours to weeks of 100 Hz samples) =="
+# This also builds the examples into $bin/examples, among them carrier_imu: the in-process carrier
+# -> IMU system test_masters.py compares the masters with. (A separate `cargo build -p
+# rins-imu-fmu --example carrier_imu` resolved features for that package alone and recompiled
+# serde, zip and the plant a second time.)
 cargo test --workspace --release --no-fail-fast "${features[@]}"
 
 echo "== Python clients (pinned, in a venv this script creates) =="

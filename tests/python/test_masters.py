@@ -222,7 +222,7 @@ def in_process_system(steps, csv=True):
     connected in the masters' order: fmi-wrapper/models/imu/examples/carrier_imu.rs, built
     beside `rins` by tests/run-all.sh): imu.dtheta_rad after every step and the wall time."""
     exe = os.path.join(os.path.dirname(RINS), "examples", "carrier_imu")
-    assert os.path.exists(exe), f"{exe} missing: cargo build --release -p rins-imu-fmu --example carrier_imu"
+    assert os.path.exists(exe), f"{exe} missing: `cargo test --workspace --release` builds it (or cargo build --release -p rins-imu-fmu --example carrier_imu)"
     r = subprocess.run([exe, str(steps)] + (["--csv"] if csv else []), capture_output=True, text=True, check=True)
     wall = float(r.stderr.split("wall_s")[1].split()[0])
     rows = np.array([[float(x) for x in line.split(",")] for line in r.stdout.splitlines()]) if csv else None
