@@ -318,15 +318,7 @@ mod tests {
     #[test]
     fn a_noise_free_member_in_a_batch_equals_its_run_alone() {
         let cfg = rins_plant::presets::paper_16pos_config();
-        let mut quiet = cfg.clone();
-        for t in [
-            rins_plant::effects::GyroTerm::AngleRandomWalk,
-            rins_plant::effects::GyroTerm::BiasInstability,
-            rins_plant::effects::GyroTerm::RateRandomWalk,
-        ] {
-            quiet.sensor.gyro.set_enabled(t, false);
-        }
-        quiet.sensor.accel.velocity_random_walk.enabled = false;
+        let quiet = cfg.noise_free();
         let members = [
             PlantConfig {
                 seed: 5,

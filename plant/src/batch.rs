@@ -244,25 +244,10 @@ mod tests {
         }
     }
 
-    /// `cfg` with every stochastic term off (Table 4's noise-free pair).
-    fn noise_free(cfg: &PlantConfig) -> PlantConfig {
-        use crate::effects::GyroTerm;
-        let mut c = cfg.clone();
-        for t in [
-            GyroTerm::AngleRandomWalk,
-            GyroTerm::BiasInstability,
-            GyroTerm::RateRandomWalk,
-        ] {
-            c.sensor.gyro.set_enabled(t, false);
-        }
-        c.sensor.accel.velocity_random_walk.enabled = false;
-        c
-    }
-
     #[test]
     fn a_noise_free_member_rides_with_the_seeds_and_equals_its_run_alone() {
         let c = config();
-        let nf = noise_free(&c);
+        let nf = c.noise_free();
         let seeded = |seed| PlantConfig { seed, ..c.clone() };
         check_members(&[seeded(7), nf.clone(), seeded(8)], true, 20_000);
         // The noise-free member first: its plant carries the others' readouts.

@@ -136,6 +136,25 @@ impl PlantConfig {
         1.0 / self.rate_hz
     }
 
+    /// This configuration with its stochastic terms off: gyro angle random walk, bias
+    /// instability and rate random walk (Eq. 3's ε_g), accelerometer velocity random walk
+    /// (Eq. 4's ε_a). Every deterministic error, the quantisation and the temperature sensors
+    /// stay as they are: the paper's noise-free pair (Table 4). These are exactly the terms a
+    /// member of a [`crate::SeedBatch`] may switch off and still share the seeds' physics.
+    pub fn noise_free(&self) -> PlantConfig {
+        use crate::effects::GyroTerm;
+        let mut c = self.clone();
+        for t in [
+            GyroTerm::AngleRandomWalk,
+            GyroTerm::BiasInstability,
+            GyroTerm::RateRandomWalk,
+        ] {
+            c.sensor.gyro.set_enabled(t, false);
+        }
+        c.sensor.accel.velocity_random_walk.enabled = false;
+        c
+    }
+
     /// Checks every parameter against its range in [`crate::params::RANGES`] plus the structural
     /// rules (scheme steps, thermal step, chamber profile); returns all violations.
     pub fn validate(&self) -> Result<(), Vec<ConfigError>> {

@@ -2,7 +2,6 @@
 //! compensated navigation of the 16-position RINS over several seeds, side by side with the paper.
 
 use rins_experiments::{NavRecord, NavRunConfig, run};
-use rins_plant::effects::GyroTerm;
 use rins_plant::{Plant, PlantConfig};
 use serde::Serialize;
 
@@ -239,20 +238,6 @@ pub fn paired_navs(
     })
 }
 
-/// `cfg` with the stochastic terms off (ARW, bias instability, RRW, VRW): the noise-free case.
-fn noise_free(cfg: &PlantConfig) -> PlantConfig {
-    let mut cfg = cfg.clone();
-    for t in [
-        GyroTerm::AngleRandomWalk,
-        GyroTerm::BiasInstability,
-        GyroTerm::RateRandomWalk,
-    ] {
-        cfg.sensor.gyro.set_enabled(t, false);
-    }
-    cfg.sensor.accel.velocity_random_walk.enabled = false;
-    cfg
-}
-
 /// Runs the reproduction on every core: `runs` seeds × {uncompensated, compensated} with common
 /// random numbers (each seed's samples feed both navigators), plus the noise-free pair, through
 /// the Monte Carlo engine ([`rins_experiments::run_members`]). `progress` receives samples done.
@@ -263,7 +248,7 @@ pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Rep
     // rides in a batch with them and the cores carry equal work. It goes first: with an odd
     // number of members the first batch holds one more, and the noise-free member's readout
     // draws no normals.
-    let members: Vec<PlantConfig> = std::iter::once(noise_free(&opt.plant))
+    let members: Vec<PlantConfig> = std::iter::once(opt.plant.noise_free())
         .chain(seeds.iter().map(|&seed| PlantConfig {
             seed,
             ..opt.plant.clone()

@@ -442,6 +442,35 @@ fn switching_one_noise_term_off_leaves_the_others_realisation() {
     assert_eq!(a, arw(&cfg));
 }
 
+/// The noise-free configuration keeps no seed-dependent term: two seeds give the same
+/// increments bit for bit, while the full configuration's seeds differ, and the deterministic
+/// errors are still there (the samples differ from those of an ideal IMU).
+#[test]
+fn a_noise_free_configuration_gives_every_seed_the_same_increments() {
+    let mut cfg = rins_plant::presets::paper_16pos_config();
+    cfg.thermal.enabled = true;
+    let increments = |cfg: &PlantConfig, seed: u64| {
+        let mut p = Plant::new(&PlantConfig {
+            seed,
+            ..cfg.clone()
+        })
+        .unwrap();
+        (0..3000)
+            .map(|_| {
+                let s = p.step();
+                (s.dtheta_rad, s.dv_mps)
+            })
+            .collect::<Vec<_>>()
+    };
+    assert_ne!(increments(&cfg, 1), increments(&cfg, 2));
+    let quiet = cfg.noise_free();
+    let one = increments(&quiet, 1);
+    assert_eq!(one, increments(&quiet, 2));
+    let mut ideal = quiet.clone();
+    ideal.sensor = PlantConfig::default().sensor;
+    assert_ne!(one, increments(&ideal, 1));
+}
+
 #[test]
 fn true_increments_integrate_to_the_true_attitude_over_a_cycle() {
     // Second method: integrate the truth increments as rotation vectors and compare with the
