@@ -121,6 +121,7 @@ impl Plant {
 
     /// The temperature field's slow update when one is due; the stages that depend on the
     /// temperatures follow it. Returns the length of the thermal step taken, if one was.
+    #[inline]
     fn update_temperatures(&mut self) -> Option<f64> {
         let (t_s, tick) = (self.clock.time_s(), self.clock.tick());
         let motion = &self.motion;

@@ -75,11 +75,25 @@ impl TemperatureField {
 
     /// Starts an output sample at time `t_s`: advances the network when a step is due (or the
     /// chamber input changed), with the body up direction from `up_b` (asked for only then).
+    #[inline]
     pub(crate) fn begin_sample(
         &mut self,
         t_s: f64,
         up_b: impl FnOnce() -> Vector3<f64>,
     ) -> Option<ThermalEvent> {
+        // All but one sample of a thermal step only count down: inlined into the plant's step,
+        // where a call per sample cost about 3 % of the plant's time.
+        if !self.chamber_changed && self.slow_countdown != 0 {
+            self.slow_countdown -= 1;
+            return None;
+        }
+        self.update(t_s, up_b)
+    }
+
+    /// [`TemperatureField::begin_sample`] when a step is due or the chamber input changed.
+    #[cold]
+    #[inline(never)]
+    fn update(&mut self, t_s: f64, up_b: impl FnOnce() -> Vector3<f64>) -> Option<ThermalEvent> {
         let elapsed = self.slow_every - self.slow_countdown;
         let split = std::mem::take(&mut self.chamber_changed) && self.slow_countdown != 0;
         let event = if split && elapsed == 0 {
