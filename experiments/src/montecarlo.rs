@@ -2,7 +2,8 @@
 //! navigators (uncompensated and compensated, say) from one plant run. Seeds whose physics is
 //! the same share it ([`rins_plant::SeedBatch`]): the motion, the temperature field and the
 //! deterministic sensor errors are computed once per interval for a whole batch, the readout
-//! and the navigators once per seed. The seeds are split into one batch per core.
+//! and the navigators once per seed. The members' navigators are split into one batch per core
+//! (a member whose navigators fall in two batches is read out in both).
 //!
 //! A seed's runs are bit-identical to [`crate::run`] of that seed alone with each navigator:
 //! the samples are (the batch's guarantee) and each navigator sees them in the same order.
@@ -60,8 +61,6 @@ pub fn run_members(
         )));
     }
     // The configurations are checked here, once (every plant below is built from them).
-    // Members that share the physics: one batch per core; members that do not: one task per
-    // member, so the cores stay busy to the end.
     for m in members {
         m.validate().map_err(invalid_config)?;
     }
@@ -84,51 +83,86 @@ pub fn run_members(
             .collect();
     }
     let shared = SeedBatch::shares(members).map_err(invalid_config)?;
+    // The work is one slot per member and navigator, member-major. Members that share the
+    // physics: the slots split into one equal run of slots per core, so a member at a boundary
+    // has its navigators in two batches (each batch reads that member out, and runs only its own
+    // navigators): Table 4's 33 members × 2 navigators give each core 33 navigators, where whole
+    // members gave one core 34 and the other 32. Members that do not share: one task per
+    // member, so the cores stay busy to the end.
+    let slots: Vec<Slot> = (0..members.len())
+        .flat_map(|m| (0..navs.len()).map(move |n| Slot { member: m, nav: n }))
+        .collect();
     let per_batch = if shared {
-        members.len().div_ceil(rayon::current_num_threads().max(1))
+        slots.len().div_ceil(rayon::current_num_threads().max(1))
     } else {
-        1
+        navs.len()
     };
-    let batches: Vec<Vec<Vec<NavRun>>> = members
+    let batches: Vec<Vec<(Slot, NavRun)>> = slots
         .par_chunks(per_batch.max(1))
-        .map(|chunk| run_batch(chunk, nav_s, navs, progress))
+        .map(|chunk| run_batch(members, chunk, nav_s, navs, progress))
         .collect::<Result<_, _>>()?;
-    Ok(batches.into_iter().flatten().collect())
+    let mut runs: Vec<Vec<Option<NavRun>>> = members
+        .iter()
+        .map(|_| navs.iter().map(|_| None).collect())
+        .collect();
+    for (slot, run) in batches.into_iter().flatten() {
+        runs[slot.member][slot.nav] = Some(run);
+    }
+    Ok(runs
+        .into_iter()
+        .map(|r| r.into_iter().map(|x| x.expect("every slot ran")).collect())
+        .collect())
 }
 
-/// One batch: the members of `chunk` stepped together, each feeding every navigator of `navs`.
-/// The navigators of all seeds run side by side in vector lanes ([`StrapdownLanes`]); each
-/// keeps its own compensation and error records ([`crate::tracker::Bookkeeping`]).
+/// One member's run with one navigator: indices into the members and the navigators.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Slot {
+    member: usize,
+    nav: usize,
+}
+
+/// One batch: the members named by `slots` stepped together, each slot's member feeding that
+/// slot's navigator. The navigators of all slots run side by side in vector lanes
+/// ([`StrapdownLanes`]); each keeps its own compensation and error records
+/// ([`crate::tracker::Bookkeeping`]). Returns each slot's run.
 fn run_batch(
-    chunk: &[PlantConfig],
+    members: &[PlantConfig],
+    slots: &[Slot],
     nav_s: f64,
     navs: &[NavRunConfig],
     progress: &(dyn Fn(u64) + Sync),
-) -> Result<Vec<Vec<NavRun>>, SessionError> {
-    let mut batch = SeedBatch::of(chunk).map_err(invalid_config)?;
-    let lanes = chunk.len();
-    // One slot per seed and navigator, seed-major. The navigators start aligned from truth,
-    // which is the same for every lane when they share the physics; a plant per seed starts
-    // each from its own.
-    let mut seed_of = Vec::new();
+) -> Result<Vec<(Slot, NavRun)>, SessionError> {
+    // The batch's members in slot order, each once; `lane_of[i]` is slot i's member's lane.
+    let mut in_batch: Vec<usize> = Vec::new();
+    let lane_of: Vec<usize> = slots
+        .iter()
+        .map(|s| match in_batch.iter().position(|&m| m == s.member) {
+            Some(lane) => lane,
+            None => {
+                in_batch.push(s.member);
+                in_batch.len() - 1
+            }
+        })
+        .collect();
+    let chunk: Vec<PlantConfig> = in_batch.iter().map(|&m| members[m].clone()).collect();
+    let mut batch = SeedBatch::of(&chunk).map_err(invalid_config)?;
+    // The navigators start aligned from truth, which is the same for every lane when they
+    // share the physics; a plant per member starts each from its own.
     let mut books = Vec::new();
     let mut navigators = Vec::new();
-    for k in 0..lanes {
-        let plant = batch.plant(k);
+    for (s, &lane) in slots.iter().zip(&lane_of) {
+        let plant = batch.plant(lane);
         let init = initial_state(plant);
-        for n in navs {
-            let (nav, book) = tracker_for(plant, init, init.height_m, n).into_parts();
-            seed_of.push(k);
-            books.push(book);
-            navigators.push(nav);
-        }
+        let (nav, book) = tracker_for(plant, init, init.height_m, &navs[s.nav]).into_parts();
+        books.push(book);
+        navigators.push(nav);
     }
     let mut groups: Vec<(StrapdownLanes, Vec<usize>)> = lane_groups(&navigators)
         .into_iter()
-        .map(|slots| {
-            let members: Vec<Strapdown> = slots.iter().map(|&i| navigators[i].clone()).collect();
+        .map(|group| {
+            let members: Vec<Strapdown> = group.iter().map(|&i| navigators[i].clone()).collect();
             let lanes = StrapdownLanes::new(&members).expect("grouped alike");
-            (lanes, slots)
+            (lanes, group)
         })
         .collect();
     let dt = batch.first().dt_s();
@@ -142,32 +176,36 @@ fn run_batch(
     for k in 1..=samples {
         batch.step();
         let out = batch.samples();
-        for (g, slots) in &mut groups {
-            for (j, &i) in slots.iter().enumerate() {
-                let s = &out[seed_of[i]];
+        for (g, group) in &mut groups {
+            for (j, &i) in group.iter().enumerate() {
+                let s = &out[lane_of[i]];
                 dth[j] = books[i].dtheta(s, || g.up_b(j));
                 dv[j] = s.dv_mps;
             }
-            g.update(&dth[..slots.len()], &dv[..slots.len()]);
-            for (j, &i) in slots.iter().enumerate() {
-                let lane = seed_of[i];
+            g.update(&dth[..group.len()], &dv[..group.len()]);
+            for (j, &i) in group.iter().enumerate() {
+                let lane = lane_of[i];
                 if books[i].advance(&out[lane]) || k == samples {
                     records[i].push(books[i].record(&g.state(j), &batch.truth(lane)));
                 }
             }
         }
         if k % PROGRESS_EVERY == 0 || k == samples {
-            progress((k - reported) * (lanes * navs.len()) as u64);
+            progress((k - reported) * slots.len() as u64);
             reported = k;
         }
     }
-    let mut runs = books.iter().zip(records).map(|(b, records)| NavRun {
-        records,
-        alignment: None,
-        up_att_mean_abs_rad: b.up_att_mean_abs_rad(),
-    });
-    Ok((0..lanes)
-        .map(|_| runs.by_ref().take(navs.len()).collect())
+    Ok(slots
+        .iter()
+        .zip(books.iter().zip(records))
+        .map(|(s, (b, records))| {
+            let run = NavRun {
+                records,
+                alignment: None,
+                up_att_mean_abs_rad: b.up_att_mean_abs_rad(),
+            };
+            (*s, run)
+        })
         .collect())
 }
 
@@ -312,9 +350,9 @@ mod tests {
         assert_eq!(groups[1], (LANES..LANES + 3).collect::<Vec<_>>());
     }
 
-    /// A noise-free member rides in a batch with the seeds (Table 4's pair): every member's
-    /// runs equal `run` of its configuration alone, and the noise-free one's differ from the
-    /// seeds'.
+    /// A noise-free member rides in a batch with the seeds (Table 4's pair), and a member's
+    /// navigators may fall in two batches: every member's runs equal `run` of its
+    /// configuration alone, and the noise-free one's differ from the seeds'.
     #[test]
     fn a_noise_free_member_in_a_batch_equals_its_run_alone() {
         let cfg = rins_plant::presets::paper_16pos_config();
@@ -338,20 +376,28 @@ mod tests {
                 ..NavRunConfig::default()
             },
         ];
-        let one_batch = rayon::ThreadPoolBuilder::new()
-            .num_threads(1)
-            .build()
-            .unwrap();
-        let got = one_batch
-            .install(|| run_members(&members, 300.0, &navs, &|_| {}))
-            .unwrap();
-        for (m, runs) in members.iter().zip(&got) {
-            for (n, r) in navs.iter().zip(runs) {
-                let alone = run(&mut Plant::new(m).unwrap(), 300.0, n).unwrap();
-                assert_eq!(r.records, alone.records, "seed {}", m.seed);
+        // One batch; then two, where the six slots split three and three, so the middle
+        // member's two navigators run in different batches (each reading that member out).
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let got = pool
+                .install(|| run_members(&members, 300.0, &navs, &|_| {}))
+                .unwrap();
+            for (m, runs) in members.iter().zip(&got) {
+                for (n, r) in navs.iter().zip(runs) {
+                    let alone = run(&mut Plant::new(m).unwrap(), 300.0, n).unwrap();
+                    assert_eq!(
+                        r.records, alone.records,
+                        "seed {} ({threads} threads)",
+                        m.seed
+                    );
+                }
             }
+            assert_ne!(got[2][0].end(), got[0][0].end());
         }
-        assert_ne!(got[2][0].end(), got[0][0].end());
     }
 
     #[test]
