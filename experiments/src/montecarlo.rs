@@ -157,36 +157,49 @@ fn run_batch(
         books.push(book);
         navigators.push(nav);
     }
-    let mut groups: Vec<(StrapdownLanes, Vec<usize>)> = lane_groups(&navigators)
+    let dt = batch.first().dt_s();
+    let samples = (nav_s / dt).round() as u64;
+    // Each group holds its navigators' bookkeeping and records: the loop below walks them in
+    // lane order with no index into the batch-wide lists.
+    let mut books: Vec<Option<_>> = books.into_iter().map(Some).collect();
+    let mut groups: Vec<(StrapdownLanes, Vec<LaneBook>)> = lane_groups(&navigators)
         .into_iter()
         .map(|group| {
             let members: Vec<Strapdown> = group.iter().map(|&i| navigators[i].clone()).collect();
             let lanes = StrapdownLanes::new(&members).expect("grouped alike");
-            (lanes, group)
+            let books = group
+                .iter()
+                .map(|&i| {
+                    let book = books[i].take().expect("one group per navigator");
+                    let records =
+                        Vec::with_capacity((samples / book.record_interval() + 1) as usize);
+                    LaneBook {
+                        slot: i,
+                        member: lane_of[i],
+                        book,
+                        records,
+                    }
+                })
+                .collect();
+            (lanes, books)
         })
-        .collect();
-    let dt = batch.first().dt_s();
-    let samples = (nav_s / dt).round() as u64;
-    let mut records: Vec<Vec<NavRecord>> = books
-        .iter()
-        .map(|b| Vec::with_capacity((samples / b.record_interval() + 1) as usize))
         .collect();
     let (mut dth, mut dv) = ([Vector3::zeros(); LANES], [Vector3::zeros(); LANES]);
     let mut reported = 0;
     for k in 1..=samples {
         batch.step();
         let out = batch.samples();
-        for (g, group) in &mut groups {
-            for (j, &i) in group.iter().enumerate() {
-                let s = &out[lane_of[i]];
-                dth[j] = books[i].dtheta(s, || g.up_b(j));
+        for (g, lanes) in &mut groups {
+            for (j, l) in lanes.iter_mut().enumerate() {
+                let s = &out[l.member];
+                dth[j] = l.book.dtheta(s, || g.up_b(j));
                 dv[j] = s.dv_mps;
             }
-            g.update(&dth[..group.len()], &dv[..group.len()]);
-            for (j, &i) in group.iter().enumerate() {
-                let lane = lane_of[i];
-                if books[i].advance(&out[lane]) || k == samples {
-                    records[i].push(books[i].record(&g.state(j), &batch.truth(lane)));
+            g.update(&dth[..lanes.len()], &dv[..lanes.len()]);
+            for (j, l) in lanes.iter_mut().enumerate() {
+                if l.book.advance(&out[l.member]) || k == samples {
+                    let record = l.book.record(&g.state(j), &batch.truth(l.member));
+                    l.records.push(record);
                 }
             }
         }
@@ -195,18 +208,28 @@ fn run_batch(
             reported = k;
         }
     }
-    Ok(slots
-        .iter()
-        .zip(books.iter().zip(records))
-        .map(|(s, (b, records))| {
+    let mut done: Vec<LaneBook> = groups.into_iter().flat_map(|(_, l)| l).collect();
+    done.sort_by_key(|l| l.slot);
+    Ok(done
+        .into_iter()
+        .map(|l| {
             let run = NavRun {
-                records,
+                up_att_mean_abs_rad: l.book.up_att_mean_abs_rad(),
+                records: l.records,
                 alignment: None,
-                up_att_mean_abs_rad: b.up_att_mean_abs_rad(),
             };
-            (*s, run)
+            (slots[l.slot], run)
         })
         .collect())
+}
+
+/// A navigator's bookkeeping in its lane group: its slot in the batch, its member's lane in
+/// the batch's samples, its compensation and error records ([`crate::tracker::Bookkeeping`]).
+struct LaneBook {
+    slot: usize,
+    member: usize,
+    book: crate::tracker::Bookkeeping,
+    records: Vec<NavRecord>,
 }
 
 /// The plant's configuration errors as the engine's error, in one line.
