@@ -4,22 +4,13 @@ use rins_experiments::campaign::run_campaign;
 use rins_nav::calibration::CalibrationConfig;
 use rins_nav::campaign::CampaignError;
 use rins_plant::PlantConfig;
-use rins_plant::effects::GyroTerm;
 
 fn noise_free_full() -> PlantConfig {
-    let mut c = PlantConfig {
+    PlantConfig {
         sensor: rins_plant::presets::nav_grade_full(),
         ..PlantConfig::default()
-    };
-    for t in [
-        GyroTerm::AngleRandomWalk,
-        GyroTerm::BiasInstability,
-        GyroTerm::RateRandomWalk,
-    ] {
-        c.sensor.gyro.set_enabled(t, false);
     }
-    c.sensor.accel.velocity_random_walk.enabled = false;
-    c
+    .noise_free()
 }
 
 #[test]

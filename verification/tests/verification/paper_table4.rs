@@ -138,18 +138,11 @@ fn fitted_campaign_compensation_reduces_the_static_navigation_error() {
     // The fit captures every position-dependent term (g-sensitivity, scale factor and
     // misalignment on Earth rate, dbeta(T)), so compensating it must remove most of the
     // longitude drift that the uncompensated run shows.
-    let mut base = PlantConfig {
+    let base = PlantConfig {
         sensor: rins_plant::presets::nav_grade_full(),
         ..PlantConfig::default()
-    };
-    for t in [
-        GyroTerm::AngleRandomWalk,
-        GyroTerm::BiasInstability,
-        GyroTerm::RateRandomWalk,
-    ] {
-        base.sensor.gyro.set_enabled(t, false);
     }
-    base.sensor.accel.velocity_random_walk.enabled = false;
+    .noise_free();
     let temps: Vec<f64> = (0..7).map(|k| 10.0 + 40.0 * k as f64 / 6.0).collect();
     let camp = rins_experiments::campaign::run_campaign(
         &base,
