@@ -148,20 +148,24 @@ fn run_batch(
     let mut batch = SeedBatch::of(&chunk).map_err(invalid_config)?;
     // The navigators start aligned from truth, which is the same for every lane when they
     // share the physics; a plant per member starts each from its own.
+    // Each navigator's bookkeeping goes into its lane group below: the sample loop walks a
+    // group's books in lane order with no index into batch-wide lists.
+    let samples = (nav_s / batch.first().dt_s()).round() as u64;
     let mut books = Vec::new();
     let mut navigators = Vec::new();
-    for (s, &lane) in slots.iter().zip(&lane_of) {
+    for (i, (s, &lane)) in slots.iter().zip(&lane_of).enumerate() {
         let plant = batch.plant(lane);
         let init = initial_state(plant);
         let (nav, book) = tracker_for(plant, init, init.height_m, &navs[s.nav]).into_parts();
-        books.push(book);
+        let records = Vec::with_capacity((samples / book.record_interval() + 1) as usize);
+        books.push(Some(LaneBook {
+            slot: i,
+            member: lane,
+            book,
+            records,
+        }));
         navigators.push(nav);
     }
-    let dt = batch.first().dt_s();
-    let samples = (nav_s / dt).round() as u64;
-    // Each group holds its navigators' bookkeeping and records: the loop below walks them in
-    // lane order with no index into the batch-wide lists.
-    let mut books: Vec<Option<_>> = books.into_iter().map(Some).collect();
     let mut groups: Vec<(StrapdownLanes, Vec<LaneBook>)> = lane_groups(&navigators)
         .into_iter()
         .map(|group| {
@@ -169,17 +173,7 @@ fn run_batch(
             let lanes = StrapdownLanes::new(&members).expect("grouped alike");
             let books = group
                 .iter()
-                .map(|&i| {
-                    let book = books[i].take().expect("one group per navigator");
-                    let records =
-                        Vec::with_capacity((samples / book.record_interval() + 1) as usize);
-                    LaneBook {
-                        slot: i,
-                        member: lane_of[i],
-                        book,
-                        records,
-                    }
-                })
+                .map(|&i| books[i].take().expect("one group per navigator"))
                 .collect();
             (lanes, books)
         })
