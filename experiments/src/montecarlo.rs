@@ -87,19 +87,26 @@ pub fn run_members(
     // physics: the slots split into one equal run of slots per core, so a member at a boundary
     // has its navigators in two batches (each batch reads that member out, and runs only its own
     // navigators): Table 4's 33 members × 2 navigators give each core 33 navigators, where whole
-    // members gave one core 34 and the other 32. Members that do not share: one task per
-    // member, so the cores stay busy to the end.
+    // members gave one core 34 and the other 32. Members that do not share (a ship with
+    // azimuth isolation, say) each run their own plant, and whole members go to a batch: enough
+    // of them that their navigators fill a lane group, in a number of batches the cores divide.
     let slots: Vec<Slot> = (0..members.len())
         .flat_map(|m| (0..navs.len()).map(move |n| Slot { member: m, nav: n }))
         .collect();
-    let per_batch = if shared {
-        slots.len().div_ceil(rayon::current_num_threads().max(1))
+    let cores = rayon::current_num_threads().max(1);
+    let batches: Vec<std::ops::Range<usize>> = if shared {
+        even_split(slots.len(), cores)
     } else {
-        navs.len()
+        let per_group = (LANES / navs.len().max(1)).max(1);
+        let parts = members.len().div_ceil(per_group).div_ceil(cores) * cores;
+        even_split(members.len(), parts)
+            .into_iter()
+            .map(|m| m.start * navs.len()..m.end * navs.len())
+            .collect()
     };
-    let batches: Vec<Vec<(Slot, NavRun)>> = slots
-        .par_chunks(per_batch.max(1))
-        .map(|chunk| run_batch(members, chunk, nav_s, navs, progress))
+    let batches: Vec<Vec<(Slot, NavRun)>> = batches
+        .into_par_iter()
+        .map(|range| run_batch(members, &slots[range], nav_s, navs, progress))
         .collect::<Result<_, _>>()?;
     let mut runs: Vec<Vec<Option<NavRun>>> = members
         .iter()
@@ -112,6 +119,22 @@ pub fn run_members(
         .into_iter()
         .map(|r| r.into_iter().map(|x| x.expect("every slot ran")).collect())
         .collect())
+}
+
+/// `0..len` in `parts` consecutive ranges whose lengths differ by at most one (the longer
+/// first), none empty.
+fn even_split(len: usize, parts: usize) -> Vec<std::ops::Range<usize>> {
+    let parts = parts.clamp(1, len.max(1));
+    let (base, extra) = (len / parts, len % parts);
+    let mut start = 0;
+    (0..parts)
+        .map(|k| {
+            let n = base + usize::from(k < extra);
+            start += n;
+            start - n..start
+        })
+        .filter(|r| !r.is_empty())
+        .collect()
 }
 
 /// One member's run with one navigator: indices into the members and the navigators.
@@ -430,5 +453,31 @@ mod tests {
         c.carrier.ship.sea.spectrum = SpectrumKind::Jonswap;
         c.carrier.ship.sea.sea_state = 4;
         check(&c, 120.0);
+        // The isolation loop feeds each seed's measured increments back into its motion: a
+        // plant per seed, several seeds' navigators side by side in one lane group.
+        c.carrier.azimuth_isolation = true;
+        assert!(!SeedBatch::shares(&[c.clone()]).unwrap());
+        check(&c, 120.0);
+    }
+
+    /// The batches cover every index once, in order, with lengths at most one apart.
+    #[test]
+    fn an_even_split_covers_every_index_once_in_balanced_ranges() {
+        for len in 0..40 {
+            for parts in 1..12 {
+                let r = even_split(len, parts);
+                let flat: Vec<usize> = r.iter().cloned().flatten().collect();
+                assert_eq!(flat, (0..len).collect::<Vec<_>>(), "{len} in {parts}");
+                assert!(r.len() <= parts && r.iter().all(|x| !x.is_empty()));
+                let (lo, hi) = (
+                    r.iter().map(|x| x.len()).min(),
+                    r.iter().map(|x| x.len()).max(),
+                );
+                assert!(
+                    hi.unwrap_or(0) - lo.unwrap_or(0) <= 1,
+                    "{len} in {parts}: {r:?}"
+                );
+            }
+        }
     }
 }

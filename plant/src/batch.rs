@@ -273,4 +273,32 @@ mod tests {
         c.carrier.ship.sea.sea_state = 4;
         check(&c, false, 3_000);
     }
+
+    /// A sea drawn from its own seed is the same for every run seed: the seeds share the
+    /// ship's motion, and each still equals its run alone. The realisation is the one a run
+    /// whose own seed is that seed sails.
+    #[test]
+    fn a_fixed_sea_is_shared_by_the_seeds_and_is_the_sea_of_its_seed() {
+        let mut c = config();
+        c.carrier.kind = CarrierKind::Ship;
+        c.carrier.ship.sea.spectrum = SpectrumKind::Jonswap;
+        c.carrier.ship.sea.sea_state = 4;
+        let per_run = c.clone();
+        c.carrier.ship.sea.realisation = crate::carrier::SeaRealisation::Fixed;
+        c.carrier.ship.sea.seed = 11;
+        check(&c, true, 3_000);
+        // Seed 11's own sea (per run) and the fixed sea 11 under another run seed move the
+        // ship the same way; another sea does not.
+        let truth = |cfg: &PlantConfig, seed: u64| {
+            let mut p = Plant::new(&PlantConfig {
+                seed,
+                ..cfg.clone()
+            })
+            .unwrap();
+            (0..500).for_each(|_| drop(p.step()));
+            p.truth().dtheta_true_rad
+        };
+        assert_eq!(truth(&c, 5), truth(&per_run, 11));
+        assert_ne!(truth(&per_run, 5), truth(&per_run, 11));
+    }
 }

@@ -141,6 +141,7 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("carrier.ship.sea.heading_to_waves_deg", -360.0, 360.0),
     ("carrier.ship.sea.components", 1.0, 256.0),
     ("carrier.ship.sea.band", 0.1, 10.0),
+    ("carrier.ship.sea.seed", 0.0, u64::MAX as f64),
     ("carrier.ship.sea.rao.roll.gain", 0.0, 10.0),
     ("carrier.ship.sea.rao.roll.natural_period_s", 0.0, 100.0),
     ("carrier.ship.sea.rao.roll.damping", 0.01, 2.0),
@@ -182,6 +183,7 @@ pub const ENUMS: &[(&str, &[&str])] = &[
         "carrier.ship.sea.spectrum",
         &["none", "pierson-moskowitz", "jonswap"],
     ),
+    ("carrier.ship.sea.realisation", &["per-run", "fixed"]),
 ];
 
 /// The names `path` accepts, if it is an enumeration.
@@ -297,7 +299,7 @@ fn structural_text(path: &str) -> bool {
 fn row(path: &str, slot: &Slot<'_>) -> Option<Param> {
     // Only the run's seed and step count are shown as whole numbers; other whole-number fields
     // (`sea_state`, `components`) are numbers like any other.
-    let whole = path == "run.seed" || path == "run.substeps";
+    let whole = path == "run.seed" || path == "run.substeps" || path == "carrier.ship.sea.seed";
     let value = match slot {
         Slot::Group => return None,
         Slot::Real(x) => ParamValue::Real(**x),

@@ -22,8 +22,8 @@ pub mod waves;
 
 pub use carrier_state::{CarrierState, CarrierTruth};
 pub use spec::{
-    AfterEnd, CarrierKind, CarrierSpec, LegSpec, RaoSpec, SeaSpec, ShipRaoSpec, ShipSpec,
-    SpectrumKind, TrajectorySpec,
+    AfterEnd, CarrierKind, CarrierSpec, LegSpec, RaoSpec, SeaRealisation, SeaSpec, ShipRaoSpec,
+    ShipSpec, SpectrumKind, TrajectorySpec,
 };
 pub use trajectory::{Trajectory, TrajectoryError};
 
@@ -50,9 +50,10 @@ pub enum Carrier {
 }
 
 impl Carrier {
-    /// True when the carrier's motion depends on the run seed (a ship in a seeded sea state).
+    /// True when the carrier's motion depends on the run seed (a ship in a sea drawn from it,
+    /// [`SeaRealisation::PerRun`]).
     pub fn depends_on_seed(&self) -> bool {
-        matches!(self, Carrier::Ship(s) if s.waves.is_some())
+        matches!(self, Carrier::Ship(s) if s.waves.is_some() && s.waves_per_run)
     }
 
     /// The carrier of `spec` for ticks of `tick_s` (`None` for the static carrier). A

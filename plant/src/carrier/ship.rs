@@ -26,6 +26,8 @@ use crate::units::DEG;
 pub struct Ship {
     pub(super) track: Track,
     pub(super) waves: Option<Waves>,
+    /// True when the waves are drawn from the run's seed ([`super::SeaRealisation::PerRun`]).
+    pub(super) waves_per_run: bool,
     pub(super) height_m: f64,
     pub(super) tick_s: f64,
     pub(super) start: TrackPosition,
@@ -57,7 +59,7 @@ impl Ship {
             lat_rad: spec.lat_deg * DEG,
             lon_rad: spec.lon_deg * DEG,
         };
-        let waves = Waves::new(&spec.sea, seed, tick_s, &[]);
+        let waves = Waves::new(&spec.sea, spec.sea.realisation_seed(seed), tick_s, &[]);
         let jet_now = waves.as_ref().map(|w| w.jet(None)).unwrap_or_default();
         let h = tick_s;
         let scale = [
@@ -75,6 +77,7 @@ impl Ship {
         let mut me = Self {
             track: Track::new(spec),
             waves,
+            waves_per_run: spec.sea.realisation == super::SeaRealisation::PerRun,
             height_m: spec.height_m,
             tick_s,
             start,

@@ -69,6 +69,19 @@ pub enum SpectrumKind {
     Jonswap,
 }
 
+/// Which seed draws a sea's realisation (its components' frequencies and phases).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SeaRealisation {
+    /// The run's seed (`run.seed`): every seed of a Monte Carlo case sails its own sea.
+    #[default]
+    PerRun,
+    /// `carrier.ship.sea.seed`: every run seed sails the same sea, as every seed follows the
+    /// same route, so the seeds of a case differ in their sensors only (and a batch of them
+    /// shares the ship's motion, computed once).
+    Fixed,
+}
+
 /// Response of one degree of freedom to the waves: `gain` × direction factor × forcing ×
 /// H(ω), H(ω) = 1 / (1 − (ω/ω_n)² + 2iζ ω/ω_n), ω_n = 2π / `natural_period_s` (H = 1 when the
 /// natural period is 0). The forcing is the wave elevation (m) for heave, surge and sway and the
@@ -158,6 +171,10 @@ pub struct SeaSpec {
     pub band: [f64; 2],
     /// Vessel responses.
     pub rao: ShipRaoSpec,
+    /// Which seed draws the realisation: `per-run` (the run's) or `fixed` (`seed` below).
+    pub realisation: SeaRealisation,
+    /// Seed of the realisation when `realisation = "fixed"` (unused otherwise).
+    pub seed: u64,
 }
 
 impl Default for SeaSpec {
@@ -172,6 +189,8 @@ impl Default for SeaSpec {
             components: 16,
             band: [0.6, 3.0],
             rao: ShipRaoSpec::default(),
+            realisation: SeaRealisation::PerRun,
+            seed: 0,
         }
     }
 }
@@ -187,6 +206,14 @@ pub const MAX_STEEPNESS: f64 = 1.0 / 7.0;
 pub const G_WAVE_MPS2: f64 = 9.806_65;
 
 impl SeaSpec {
+    /// The seed that draws the realisation for a run of seed `run_seed`.
+    pub fn realisation_seed(&self, run_seed: u64) -> u64 {
+        match self.realisation {
+            SeaRealisation::PerRun => run_seed,
+            SeaRealisation::Fixed => self.seed,
+        }
+    }
+
     /// Significant steepness H_s/λ_p of the sea ([`MAX_STEEPNESS`]) after the preset.
     pub fn steepness(&self) -> f64 {
         let (hs, tp) = self.hs_tp();

@@ -9,8 +9,8 @@
 //! with the names serde reads and writes (`rename_all`), tested against serde.
 
 use crate::carrier::spec::{
-    AfterEnd, CarrierKind, CarrierSpec, LegSpec, RaoSpec, SeaSpec, ShipRaoSpec, ShipSpec,
-    SpectrumKind, TrajectorySpec,
+    AfterEnd, CarrierKind, CarrierSpec, LegSpec, RaoSpec, SeaRealisation, SeaSpec, ShipRaoSpec,
+    ShipSpec, SpectrumKind, TrajectorySpec,
 };
 use crate::config::{PlantConfig, SensorSpec, VehicleSpec};
 use crate::earth::{EarthSpec, SiteSpec};
@@ -252,6 +252,8 @@ param_fields! {
         components,
         band,
         rao,
+        realisation,
+        seed,
     }
     ShipSpec { lat_deg, lon_deg, height_m, legs, turn_rate_dps, accel_mps2, sea }
     TrajectorySpec { file, after_end }
@@ -393,6 +395,7 @@ enum_slot!(
     Transition,
     CarrierKind,
     SpectrumKind,
+    SeaRealisation,
     CustomKind,
     Axis,
     AfterEnd
@@ -494,6 +497,21 @@ impl Choice for SpectrumKind {
             name,
             &[Self::None, Self::PiersonMoskowitz, Self::Jonswap],
         )
+    }
+}
+
+impl Choice for SeaRealisation {
+    fn name(&self) -> &'static str {
+        match self {
+            Self::PerRun => "per-run",
+            Self::Fixed => "fixed",
+        }
+    }
+    fn names(&self) -> &'static [&'static str] {
+        listed("carrier.ship.sea.realisation")
+    }
+    fn set_name(&mut self, name: &str) -> bool {
+        pick(self, name, &[Self::PerRun, Self::Fixed])
     }
 }
 

@@ -50,6 +50,7 @@ fn every_number_has_a_unit_and_a_range() {
                 "amplitude_change",
                 "board_to_block_dir_body",
                 "sea.sea_state",
+                "sea.seed",
                 "sea.gamma",
                 "sea.components",
                 "sea.band",

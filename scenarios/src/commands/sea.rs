@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use plotters::style::RGBColor;
 use rins_nav::NavRecord;
+use rins_plant::carrier::SeaRealisation;
 use rins_verify::paper::{Band, SeaOptions, SeaReport, Table4Report};
 use serde::Serialize;
 
@@ -30,6 +31,11 @@ pub struct SeaArgs {
     /// Scenario with a moving carrier (default: the built-in ship week).
     #[arg(long, default_value = "builtin:ship-16pos-week")]
     pub scenario: PathBuf,
+    /// The sea of the seeds: `fixed` (one realisation for every seed, drawn from the
+    /// scenario's `carrier.ship.sea.seed` if it fixes one, else from its run seed: the seeds
+    /// differ in their sensors only, as over a route) or `per-run` (each seed draws its own sea).
+    #[arg(long, value_enum, default_value_t = SeaOfSeeds::Fixed)]
+    pub sea: SeaOfSeeds,
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
@@ -42,6 +48,16 @@ pub struct SeaArgs {
     /// `--rerun DEST` and its bucket length (not recorded for this study).
     #[command(flatten)]
     pub viz: RerunArgs,
+}
+
+/// Which sea the seeds of `rins paper sea` sail.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SeaOfSeeds {
+    /// One realisation for every seed: a batch computes the ship's motion once (the ship
+    /// without isolation), and the seeds' spread is the sensors'.
+    Fixed,
+    /// Each seed draws its own realisation from its run seed: the spread includes the sea's.
+    PerRun,
 }
 
 /// Uncompensated case.
@@ -80,10 +96,20 @@ pub fn run(a: &SeaArgs) -> Result<()> {
     if a.viz.target()?.is_some() {
         eprintln!("rins paper sea: --rerun is not recorded for this study");
     }
+    let mut ship = sc.plant.clone();
+    let sea = &mut ship.carrier.ship.sea;
+    match (a.sea, sea.realisation) {
+        (SeaOfSeeds::Fixed, SeaRealisation::PerRun) => {
+            sea.realisation = SeaRealisation::Fixed;
+            sea.seed = sc.plant.seed;
+        }
+        (SeaOfSeeds::Fixed, SeaRealisation::Fixed) => {}
+        (SeaOfSeeds::PerRun, _) => sea.realisation = SeaRealisation::PerRun,
+    }
     let mut reference = sc.plant.clone();
     reference.carrier = Default::default();
     let opt = SeaOptions {
-        ship: sc.plant.clone(),
+        ship,
         paired: rins_verify::paper::Table4Options {
             plant: reference,
             runs,

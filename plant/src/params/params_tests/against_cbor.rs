@@ -556,6 +556,7 @@ fn every_enumeration_of_the_walk_takes_its_names() {
         seen.into_iter().collect::<Vec<_>>(),
         [
             "carrier.kind",
+            "carrier.ship.sea.realisation",
             "carrier.ship.sea.spectrum",
             "carrier.trajectory.after_end",
             "scheme.axis",

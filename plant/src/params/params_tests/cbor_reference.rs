@@ -67,7 +67,14 @@ fn walk(prefix: &str, v: &Value, out: &mut Vec<Param>) {
             range: None,
         }),
         Value::Integer(i) => out.push(number(match u64::try_from(*i) {
-            Ok(u) if prefix == "run.seed" || prefix == "run.substeps" => ParamValue::Integer(u),
+            Ok(u)
+                if matches!(
+                    prefix,
+                    "run.seed" | "run.substeps" | "carrier.ship.sea.seed"
+                ) =>
+            {
+                ParamValue::Integer(u)
+            }
             _ => ParamValue::Real(i128::from(*i) as f64),
         })),
         Value::Float(x) => out.push(number(ParamValue::Real(*x))),
