@@ -49,17 +49,8 @@ pub struct NavState {
     pub height_m: f64,
 }
 
-/// Rotation-vector to quaternion by its series, exact to O(|v|⁶) (|v| ≤ 1e-2 rad per step).
-#[inline]
-pub fn quat_from_rotvec(v: &Vector3<f64>) -> UnitQuaternion<f64> {
-    let n2 = v.norm_squared();
-    if n2 > 1e-4 {
-        return UnitQuaternion::from_scaled_axis(*v);
-    }
-    let c = 1.0 - n2 / 8.0 + n2 * n2 / 384.0;
-    let s = 0.5 - n2 / 48.0 + n2 * n2 / 3840.0;
-    UnitQuaternion::new_unchecked(Quaternion::new(c, s * v.x, s * v.y, s * v.z))
-}
+/// Rotation-vector to quaternion by its series (the plant's isolation loop uses the same).
+pub use rins_plant::attitude::quat_from_rotvec;
 
 /// The strapdown navigator.
 #[derive(Clone, Debug)]

@@ -2,9 +2,11 @@
 //!
 //! Every place that turns a direction-cosine matrix (C_b^n, C_c^n, C_v^n) into a unit
 //! quaternion goes through [`quaternion_of`], so the CSV's `q_bn` columns, the Python arrays,
-//! the navigator's start state and the viewers agree bit for bit.
+//! the navigator's start state and the viewers agree bit for bit. A small rotation vector's
+//! quaternion goes through [`quat_from_rotvec`], shared by the navigator and the azimuth
+//! isolation loop.
 
-use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
+use nalgebra::{Matrix3, Quaternion, Rotation3, UnitQuaternion, Vector3};
 
 /// The unit quaternion of the rotation matrix `c` (orthonormal to rounding), in closed form
 /// (Shepperd's method: the root is taken of 1 + trace when the trace is positive, else of the
@@ -13,6 +15,21 @@ use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
 /// iterates from the identity, it does not stall at 180° and costs a few nanoseconds.
 pub fn quaternion_of(c: &Matrix3<f64>) -> UnitQuaternion<f64> {
     UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*c))
+}
+
+/// The quaternion of the rotation vector `v` by its series, exact to O(|v|⁶): cos(|v|/2) and
+/// sin(|v|/2)/|v| to their |v|⁴ terms (the next are below 1e-17 relative for |v| ≤ 1e-2 rad,
+/// a strapdown step's rotation); a larger rotation takes the closed form
+/// (`UnitQuaternion::from_scaled_axis`, a sine and a cosine).
+#[inline]
+pub fn quat_from_rotvec(v: &Vector3<f64>) -> UnitQuaternion<f64> {
+    let n2 = v.norm_squared();
+    if n2 > 1e-4 {
+        return UnitQuaternion::from_scaled_axis(*v);
+    }
+    let c = 1.0 - n2 / 8.0 + n2 * n2 / 384.0;
+    let s = 0.5 - n2 / 48.0 + n2 * n2 / 3840.0;
+    UnitQuaternion::new_unchecked(Quaternion::new(c, s * v.x, s * v.y, s * v.z))
 }
 
 #[cfg(test)]

@@ -295,7 +295,9 @@ mod tests {
                 ..cfg.clone()
             })
             .unwrap();
-            (0..500).for_each(|_| drop(p.step()));
+            (0..500).for_each(|_| {
+                p.step();
+            });
             p.truth().dtheta_true_rad
         };
         assert_eq!(truth(&c, 5), truth(&per_run, 11));

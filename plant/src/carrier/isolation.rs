@@ -19,6 +19,7 @@
 
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 
+use crate::attitude::quat_from_rotvec;
 use crate::earth::{OMEGA_IE_RPS, radii_of_curvature_sin2};
 use crate::table::gimbal::rot_x;
 
@@ -28,21 +29,39 @@ pub fn azimuth_rad(c: &Matrix3<f64>) -> f64 {
     c[(1, 0)].atan2(c[(0, 0)])
 }
 
-/// Azimuth of the outer gimbal frame C_o^n = C_b^n·R_x(inner)ᵀ of the body attitude `q_bn`
-/// ([`azimuth_rad`] of that product, bit for bit). Its x axis is the body's: R_x leaves the x
-/// axis where it is, so the product's first column is C_b^n's and the inner angle drops out.
-/// Only the two elements the azimuth reads are formed, with the operations of nalgebra's
+/// The horizontal components (C₀₀ east, C₁₀ north) of the x axis of the outer gimbal frame
+/// C_o^n = C_b^n·R_x(inner)ᵀ of the body attitude `q_bn`. Its x axis is the body's: R_x leaves
+/// the x axis where it is, so the product's first column is C_b^n's and the inner angle drops
+/// out. Only the two elements are formed, with the operations of nalgebra's
 /// `UnitQuaternion::to_rotation_matrix` (C₀₀ = w² + i² − j² − k², C₁₀ = 2wk + 2ij).
-fn outer_azimuth_rad(q_bn: &UnitQuaternion<f64>) -> f64 {
+fn outer_x_horizontal(q_bn: &UnitQuaternion<f64>) -> (f64, f64) {
     let [i, j, k, w] = [q_bn.i, q_bn.j, q_bn.k, q_bn.w];
-    let c00 = w * w + i * i - j * j - k * k;
-    let c10 = w * k * 2.0 + i * j * 2.0;
+    (w * w + i * i - j * j - k * k, w * k * 2.0 + i * j * 2.0)
+}
+
+/// Azimuth of the outer gimbal frame of `q_bn` ([`azimuth_rad`] of C_o^n, bit for bit).
+#[cfg(test)]
+fn outer_azimuth_rad(q_bn: &UnitQuaternion<f64>) -> f64 {
+    let (c00, c10) = outer_x_horizontal(q_bn);
     c10.atan2(c00)
 }
 
-/// `x` wrapped into [-π, π).
-fn wrap(x: f64) -> f64 {
-    (x + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
+/// Azimuth of the outer gimbal frame of `q_bn` ([`outer_x_horizontal`]) less `target_rad`,
+/// wrapped into (−π, π]: the angle of the frame's horizontal x direction turned back by the
+/// target. The loop holds that error to a yaw step (below 1e-2 rad), where an odd series of
+/// the arctangent to r⁹ (next term below 1e-20 relative) replaces atan2; larger errors take
+/// atan2.
+fn outer_azimuth_error_rad(q_bn: &UnitQuaternion<f64>, target_rad: f64) -> f64 {
+    let (c00, c10) = outer_x_horizontal(q_bn);
+    let (st, ct) = target_rad.sin_cos();
+    let (x, y) = (c00 * ct + c10 * st, c10 * ct - c00 * st);
+    if x > 0.0 && y.abs() <= 1e-2 * x {
+        let r = y / x;
+        let r2 = r * r;
+        r * (1.0 - r2 * (1.0 / 3.0 - r2 * (1.0 / 5.0 - r2 * (1.0 / 7.0 - r2 / 9.0))))
+    } else {
+        y.atan2(x)
+    }
 }
 
 /// The isolation loop's state.
@@ -168,11 +187,9 @@ impl Isolation {
             OMEGA_IE_RPS * cl + v_n.x / (rn + height_m),
             OMEGA_IE_RPS * sl + v_n.x * sl / cl / (rn + height_m),
         );
-        self.q_bn = UnitQuaternion::from_scaled_axis(-w_in * dt_s)
-            * self.q_bn
-            * UnitQuaternion::from_scaled_axis(phi);
+        self.q_bn = quat_from_rotvec(&(-w_in * dt_s)) * self.q_bn * quat_from_rotvec(&phi);
         self.q_bn.renormalize_fast();
-        let err = wrap(outer_azimuth_rad(&self.q_bn) - self.az0_rad - scheme_outer_rad);
+        let err = outer_azimuth_error_rad(&self.q_bn, self.az0_rad + scheme_outer_rad);
         self.to_rad -= err;
         // The end rate: the interval's mean rate (the ramp of a one-sample servo).
         self.to_rps = (self.to_rad - self.from_rad) / dt_s;
@@ -218,6 +235,37 @@ impl Isolation {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `x` wrapped into [-π, π).
+    fn wrap(x: f64) -> f64 {
+        (x + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
+    }
+
+    /// The azimuth error by the series equals the wrapped difference of the azimuths to a few
+    /// ulp of π, small and large, across the ±π seam.
+    #[test]
+    fn the_azimuth_error_is_the_wrapped_difference_of_the_azimuths() {
+        for k in 0..20_000u32 {
+            let a = f64::from(k);
+            let q = UnitQuaternion::from_euler_angles(
+                (a * 0.61).sin() * 0.2,
+                (a * 0.37).cos() * 0.2,
+                (a * 0.13).sin() * 3.14,
+            );
+            // Targets within a yaw step of the azimuth (the series), and anywhere (atan2).
+            let az = outer_azimuth_rad(&q);
+            for target in [
+                az + (a * 0.71).sin() * 1e-2,
+                az - 3e-5,
+                (a * 0.29).cos() * 3.2,
+            ] {
+                let want = wrap(az - target);
+                let got = outer_azimuth_error_rad(&q, target);
+                let d = wrap(got - want).abs();
+                assert!(d < 4e-15, "{k}: {got} against {want}");
+            }
+        }
+    }
 
     /// The azimuth from two elements of C_b^n is the azimuth of the whole outer frame
     /// C_b^n·R_x(inner)ᵀ, bit for bit, for attitudes all round and any inner angle.
