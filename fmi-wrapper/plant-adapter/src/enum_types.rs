@@ -17,6 +17,7 @@ pub const ENUM_TYPES: &[(&str, &str)] = &[
     ),
     ("carrier.kind", "CarrierKind"),
     ("carrier.ship.sea.spectrum", "WaveSpectrum"),
+    ("carrier.ship.sea.realisation", "SeaRealisation"),
 ];
 
 /// The FMI type name of the enumeration at key path `path` (array indices ignored), or `None`
@@ -80,6 +81,12 @@ mod tests {
         assert_eq!(
             enum_type_name("carrier.kind"),
             Some(last(std::any::type_name_of_val(&cfg.carrier.kind)))
+        );
+        assert_eq!(
+            enum_type_name("carrier.ship.sea.realisation"),
+            Some(last(std::any::type_name_of_val(
+                &cfg.carrier.ship.sea.realisation
+            )))
         );
     }
 }

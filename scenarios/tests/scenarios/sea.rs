@@ -13,6 +13,8 @@
 //! * The figure data file holds exactly the JSON's numbers, and the figures name the cases on
 //!   a categorical axis.
 //! * Isolation acts: the ship's per-seed figures differ with and without it.
+//! * One sea for every seed is the scenario seed's sea: the first seed's figures equal those
+//!   with a sea per seed (`--sea per-run`), the second seed's differ.
 
 use serde_json::Value;
 
@@ -155,6 +157,35 @@ fn sea_study_against_independent_references() {
         assert!(svg.contains(name), "category {name} on the axis");
     }
     assert!(sea_dir.join("sea_horizontal_error.svg").exists());
+
+    // One sea for every seed (the default) is the sea of the scenario's seed: the first seed
+    // (that seed) gives the same figures as with a sea per seed, the second does not.
+    let per_run = run(&[
+        "paper",
+        "sea",
+        "--runs",
+        "2",
+        "--days",
+        "0.05",
+        "--sea",
+        "per-run",
+        "--json",
+        "--out",
+        sea_dir.join("per-run").to_str().unwrap(),
+    ]);
+    for case in ["ship", "ship_isolated"] {
+        let of = |v: &Value, s: usize| f(v, &format!("{case}.per_seed.{s}.1.horizontal_nm"));
+        assert_eq!(
+            of(&sea, 0),
+            of(&per_run, 0),
+            "{case}: the scenario seed's sea"
+        );
+        assert_ne!(
+            of(&sea, 1),
+            of(&per_run, 1),
+            "{case}: the second seed's own sea"
+        );
+    }
 
     // Isolation acts on the ship.
     assert_ne!(
