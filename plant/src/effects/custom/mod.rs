@@ -22,6 +22,7 @@ mod model;
 mod plan;
 mod plant_side;
 pub mod signals;
+mod unit;
 
 use serde::{Deserialize, Serialize};
 
