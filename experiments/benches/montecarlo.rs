@@ -106,7 +106,9 @@ fn main() {
     g.finish();
     c.final_summary();
     // Thread CPU time per sample and seed, best of 3 interleaved repeats (robust to load).
-    let cases: [(&str, u64, Box<dyn Fn() + Sync>); 4] = [
+    // (name, seeds, one run of the case).
+    type Case<'a> = (&'a str, u64, Box<dyn Fn() + Sync + 'a>);
+    let cases: [Case; 4] = [
         (
             "naive (1 navigator)",
             1,

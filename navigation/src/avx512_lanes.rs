@@ -208,8 +208,8 @@ mod tests {
         let got = unsafe { grid_sin_cos_all(&x) };
         let mut alone = [rins_plant::trig::GridTrig::<f64>::default(); 8];
         for (k, (v, (s, c))) in x.iter().zip(&got).enumerate() {
-            for l in 0..8 {
-                let (sa, ca) = alone[l].sin_cos(v.0[l]);
+            for (l, one) in alone.iter_mut().enumerate() {
+                let (sa, ca) = one.sin_cos(v.0[l]);
                 assert_eq!(
                     (s.0[l].to_bits(), c.0[l].to_bits()),
                     (sa.to_bits(), ca.to_bits()),

@@ -293,7 +293,7 @@ pub(crate) mod tests {
             wobble(-3e-4, 1.3) + 5e-7,
             wobble(5e-4, 0.2) + 6e-7,
         );
-        if k % 97 == 0 {
+        if k.is_multiple_of(97) {
             dth.z += 0.02;
         }
         let dv = Vector3::new(

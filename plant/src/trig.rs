@@ -222,8 +222,8 @@ mod tests {
                 _ => (k as f64 * 3.7e-4 - 0.9) * (l as f64 - 3.5),
             }));
             let (s, c) = lanes.sin_cos(x);
-            for l in 0..8 {
-                let (sa, ca) = alone[l].sin_cos(x.0[l]);
+            for (l, one) in alone.iter_mut().enumerate() {
+                let (sa, ca) = one.sin_cos(x.0[l]);
                 assert_eq!(
                     (s.0[l].to_bits(), c.0[l].to_bits()),
                     (sa.to_bits(), ca.to_bits()),

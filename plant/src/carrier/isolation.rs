@@ -250,7 +250,7 @@ mod tests {
             let q = UnitQuaternion::from_euler_angles(
                 (a * 0.61).sin() * 0.2,
                 (a * 0.37).cos() * 0.2,
-                (a * 0.13).sin() * 3.14,
+                (a * 0.13).sin() * 3.1,
             );
             // Targets within a yaw step of the azimuth (the series), and anywhere (atan2).
             let az = outer_azimuth_rad(&q);

@@ -137,10 +137,10 @@ fn temperature_sensor_offset_noise_and_resolution_follow_the_closed_form() {
     for _ in 0..50_000 {
         let s = p.step();
         let tr = p.truth().temps.nodes_c;
-        for i in 0..node::COUNT {
-            let counts = s.temps_c[i] / 0.0625;
+        for (reading, truth) in s.temps_c.iter().zip(&tr) {
+            let counts = reading / 0.0625;
             assert_eq!(counts, counts.round());
-            assert!((s.temps_c[i] - tr[i]).abs() <= 0.03125);
+            assert!((reading - truth).abs() <= 0.03125);
         }
     }
 }

@@ -230,6 +230,8 @@ const DEG_PER_S: Unit = Unit {
 const SECOND: Unit = Unit { k: 0, s: 1, deg: 0 };
 
 /// A slow family (filled at thermal steps / from readings).
+// A row of FAMILIES: the arguments are its columns, in the order the table reads them.
+#[allow(clippy::too_many_arguments)]
 const fn slow(
     doc_name: &'static str,
     prefix: &'static str,
@@ -259,6 +261,7 @@ const fn slow(
 }
 
 /// A fast family with its fill; the flags default to false and [`Library::Products`].
+#[allow(clippy::too_many_arguments)]
 const fn fast(
     doc_name: &'static str,
     prefix: &'static str,
