@@ -34,13 +34,7 @@ pub fn run_seeds(
     navs: &[NavRunConfig],
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Vec<Vec<NavRun>>, SessionError> {
-    let members: Vec<PlantConfig> = seeds
-        .iter()
-        .map(|&seed| PlantConfig {
-            seed,
-            ..cfg.clone()
-        })
-        .collect();
+    let members: Vec<PlantConfig> = seeds.iter().map(|&s| cfg.with_seed(s)).collect();
     run_members(&members, nav_s, navs, progress)
 }
 

@@ -33,13 +33,7 @@ enum Kind {
 impl SeedBatch {
     /// The configuration `cfg` (its own seed ignored) for each of `seeds`.
     pub fn new(cfg: &PlantConfig, seeds: &[u64]) -> Result<Self, Vec<ConfigError>> {
-        let members: Vec<PlantConfig> = seeds
-            .iter()
-            .map(|&seed| PlantConfig {
-                seed,
-                ..cfg.clone()
-            })
-            .collect();
+        let members: Vec<PlantConfig> = seeds.iter().map(|&s| cfg.with_seed(s)).collect();
         Self::of(&members)
     }
 

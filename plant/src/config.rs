@@ -136,6 +136,14 @@ impl PlantConfig {
         1.0 / self.rate_hz
     }
 
+    /// This configuration run with seed `seed` (a member of a Monte Carlo case).
+    pub fn with_seed(&self, seed: u64) -> PlantConfig {
+        PlantConfig {
+            seed,
+            ..self.clone()
+        }
+    }
+
     /// This configuration with its stochastic terms off: gyro angle random walk, bias
     /// instability and rate random walk (Eq. 3's ε_g), accelerometer velocity random walk
     /// (Eq. 4's ε_a). Every deterministic error, the quantisation and the temperature sensors

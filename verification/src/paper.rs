@@ -249,10 +249,7 @@ pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Rep
     // navigators evenly over the cores, so with two cores the member at the boundary is read
     // out in both batches, and the noise-free one's readout draws no normals.
     let mid = seeds.len() / 2;
-    let seeded_cfg = |&seed: &u64| PlantConfig {
-        seed,
-        ..opt.plant.clone()
-    };
+    let seeded_cfg = |&seed: &u64| opt.plant.with_seed(seed);
     let members: Vec<PlantConfig> = seeds[..mid]
         .iter()
         .map(seeded_cfg)
