@@ -431,6 +431,9 @@ pub struct SeaReport {
     pub ship_isolated: Table4Report,
     /// Ideal IMU on the ship (isolation off, on), uncompensated.
     pub ideal: [IdealFigures; 2],
+    /// The seed of the one sea every seed sails (`carrier.ship.sea.realisation = "fixed"`), or
+    /// `None` when each seed draws its own from its run seed.
+    pub sea_seed: Option<u64>,
     /// Wall time, s.
     pub wall_s: f64,
 }
@@ -487,6 +490,10 @@ pub fn sea(opt: &SeaOptions, progress: &(dyn Fn(u64) + Sync)) -> SeaReport {
         ship,
         ship_isolated,
         ideal: [ideal.0, ideal.1],
+        sea_seed: {
+            let sea = &opt.ship.carrier.ship.sea;
+            (sea.realisation == rins_plant::carrier::SeaRealisation::Fixed).then_some(sea.seed)
+        },
         wall_s: t0.elapsed().as_secs_f64(),
     }
 }

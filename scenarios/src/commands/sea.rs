@@ -287,8 +287,13 @@ pub fn report(r: &SeaReport, fig_dir: &Path, out: &Path) -> Result<PathBuf> {
     page.text(
         "Setup",
         &format!(
-            "{} seeds x {:.2} days. The paper's 16-position scheme and Table 3 sensors on a ship at 10-15 kn with course changes in sea state 4-5, beside the same sensors on the static carrier. The navigator starts aligned from truth on the moving base; delta-beta is compensated with the plant's own coefficients.",
-            r.runs, r.days
+            "{} seeds x {:.2} days. The paper's 16-position scheme and Table 3 sensors on a ship at 10-15 kn with course changes in sea state 4-5, beside the same sensors on the static carrier. {} The navigator starts aligned from truth on the moving base; delta-beta is compensated with the plant's own coefficients.",
+            r.runs,
+            r.days,
+            match r.sea_seed {
+                Some(seed) => format!("Every seed sails the same sea (sea seed {seed}): the seeds differ in their sensors only."),
+                None => "Each seed sails its own sea, drawn from its run seed.".into(),
+            }
         ),
     );
     let keys = ["static_reference", "ship", "ship_isolated"];

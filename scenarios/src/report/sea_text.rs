@@ -21,6 +21,14 @@ impl RenderText for SeaReport {
         );
         let _ = writeln!(
             s,
+            "  sea: {}",
+            match self.sea_seed {
+                Some(seed) => format!("one realisation for every seed (sea seed {seed})"),
+                None => "each seed its own realisation (from its run seed)".into(),
+            }
+        );
+        let _ = writeln!(
+            s,
             "  horizontal error at the end (nmi), median [5%, 95%] over the seeds; improvement of the medians by the compensation\n  {:<24} {:>30} {:>30} {:>21}",
             "case", "uncompensated", "compensated", "impr. % hor (lon)"
         );

@@ -173,6 +173,9 @@ fn sea_study_against_independent_references() {
         "--out",
         sea_dir.join("per-run").to_str().unwrap(),
     ]);
+    // The report says which: the built-in ship scenario's run seed is 1.
+    assert_eq!(sea["sea_seed"], Value::from(1u64));
+    assert_eq!(per_run["sea_seed"], Value::Null);
     for case in ["ship", "ship_isolated"] {
         let of = |v: &Value, s: usize| f(v, &format!("{case}.per_seed.{s}.1.horizontal_nm"));
         assert_eq!(
