@@ -146,10 +146,29 @@ impl Plant {
 
     /// The interval's true increments and deterministic errors: the dwell's last interval
     /// again while the table holds still, else every tick of motion and sensor errors.
+    #[inline(always)]
     fn deterministic_interval(&mut self) -> Interval {
         let held = self
             .motion
             .holds_through(self.clock.tick() + self.clock.substeps());
+        // Most samples of a static run: the dwell's interval again, with nothing to redo.
+        if held
+            && let Some(DwellReuse {
+                interval,
+                timed: None,
+            }) = &self.dwell
+        {
+            let x = *interval;
+            self.clock.advance_interval();
+            return x;
+        }
+        self.deterministic_interval_worked(held)
+    }
+
+    /// [`Plant::deterministic_interval`] but for a dwell's plain reuse: the declared effects
+    /// that read the time redone over a dwell's interval, or every tick worked out.
+    #[inline(never)]
+    fn deterministic_interval_worked(&mut self, held: bool) -> Interval {
         if let (Some(d), true) = (self.dwell, held) {
             // The per-term contributions of the catalogue in the truth are those of the
             // previous interval of this dwell: unchanged.
@@ -232,6 +251,7 @@ impl Plant {
 
     /// The readout of `x`: the sample the IMU outputs, the truth beside it, and the isolation
     /// loop fed with what was measured.
+    #[inline(always)]
     fn read_out(&mut self, index: u64, x: &Interval) -> ImuSample {
         let measured = self.readout.measure(x);
         let tick = self.clock.tick();
