@@ -515,6 +515,8 @@ mod tests {
     }
 
     #[test]
+    // One index into the carried angles, sines, cosines and the angles before the tick.
+    #[allow(clippy::needless_range_loop)]
     fn carried_sines_and_tick_end_states_match_the_exact_composition() {
         // The tick-end state against `compose` (libm sines and cosines, the closed-form radii)
         // from the same track point and jet; and the carried sines against libm.

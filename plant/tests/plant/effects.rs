@@ -243,6 +243,8 @@ fn position_bias_is_zero_at_z_up_full_at_z_down_and_follows_temperature() {
 }
 
 #[test]
+// The axis is an argument of the regressors and coefficients as well as an index.
+#[allow(clippy::needless_range_loop)]
 fn regressors_times_coefficients_reproduce_each_term() {
     let spec = rins_plant::presets::nav_grade_full();
     let gm = rins_plant::effects::GyroModel::new(&spec.gyro);

@@ -62,12 +62,8 @@ fn all_tick_means_at_once_are_the_per_tick_means_bit_for_bit() {
         rule.tick_means_all(&points_of(&y), &mut all);
         for k in 0..64 {
             let one = rule.tick_mean(k, &y);
-            for c in 0..POINT_CHANNELS {
-                assert_eq!(
-                    all.row(k)[c].to_bits(),
-                    one[c].to_bits(),
-                    "{n} nodes, tick {k} channel {c}"
-                );
+            for (c, (a, b)) in all.row(k).iter().zip(&one).enumerate() {
+                assert_eq!(a.to_bits(), b.to_bits(), "{n} nodes, tick {k} channel {c}");
             }
         }
     }

@@ -623,14 +623,14 @@ mod tests {
     #[test]
     fn every_signal_parses_back_and_has_slots_in_the_frame() {
         let mut count = 0;
-        for i in 0..FAMILIES.len() {
+        for (i, family) in FAMILIES.iter().enumerate() {
             let all = Signal::all_of(i);
-            assert!(!all.is_empty(), "{}", FAMILIES[i].doc_name);
+            assert!(!all.is_empty(), "{}", family.doc_name);
             for s in all {
                 count += 1;
                 assert_eq!(s.parts().0, i);
                 assert_eq!(Signal::parse(&s.name()), Some(s), "{}", s.name());
-                assert_eq!(s.unit(), FAMILIES[i].unit);
+                assert_eq!(s.unit(), family.unit);
                 for axis in 0..3 {
                     let (a, b) = s.slots(true, axis);
                     assert!(a < SLOTS && b.is_none_or(|b| b < SLOTS), "{}", s.name());
@@ -659,9 +659,9 @@ mod tests {
                 ArgKind::Node => node::COUNT,
                 ArgKind::NodePair => continue,
             };
-            for s in f.slot..f.slot + width {
-                assert_eq!(owner[s], None, "slot {s} of {} taken", f.doc_name);
-                owner[s] = Some(i);
+            for (s, o) in owner.iter_mut().enumerate().skip(f.slot).take(width) {
+                assert_eq!(*o, None, "slot {s} of {} taken", f.doc_name);
+                *o = Some(i);
             }
             let Some(fill) = f.fill else {
                 assert_eq!(
