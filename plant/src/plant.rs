@@ -148,7 +148,8 @@ impl Plant {
     /// again while the table holds still, else every tick of motion and sensor errors.
     /// Inlined into the step with the readout, the worked interval out of line: as three calls
     /// the staged step copied the cached dwell (about 200 bytes) every sample and measured 7 %
-    /// slower than the plant before the stages (`plant_week`; 2.3 % now).
+    /// slower than the plant before the stages (`plant_week`; +1.2 % now, median of pooled
+    /// interleaved runs).
     #[inline(always)]
     fn deterministic_interval(&mut self) -> Interval {
         let held = self
