@@ -447,10 +447,15 @@ mod tests {
         c.carrier.ship.sea.spectrum = SpectrumKind::Jonswap;
         c.carrier.ship.sea.sea_state = 4;
         check(&c, 120.0);
-        // The isolation loop feeds each seed's measured increments back into its motion: a
-        // plant per seed, several seeds' navigators side by side in one lane group.
+        // Each seed's sea and isolation loop: a plant per seed, several seeds' navigators side
+        // by side in one lane group.
         c.carrier.azimuth_isolation = true;
         assert!(!SeedBatch::shares(&[c.clone()]).unwrap());
+        check(&c, 120.0);
+        // One sea for every seed: the seeds' own tables are turned from one reference table,
+        // so they share its physics.
+        c.carrier.ship.sea.realisation = rins_plant::carrier::SeaRealisation::Fixed;
+        assert!(SeedBatch::shares(&[c.clone()]).unwrap());
         check(&c, 120.0);
     }
 

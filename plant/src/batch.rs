@@ -9,7 +9,7 @@
 use crate::config::{ConfigError, PlantConfig};
 use crate::output::{ImuSample, Truth};
 use crate::plant::Plant;
-use crate::stages::readout::Readout;
+use crate::stages::lane::Lane;
 
 /// Several seeds of one configuration stepped together.
 #[derive(Clone, Debug)]
@@ -22,10 +22,7 @@ pub struct SeedBatch {
 #[derive(Clone, Debug)]
 enum Kind {
     /// One plant (the first seed) and the other seeds' readouts.
-    Shared {
-        plant: Box<Plant>,
-        lanes: Vec<Readout>,
-    },
+    Shared { plant: Box<Plant>, lanes: Vec<Lane> },
     /// A plant per seed (the physics depends on the seed).
     Separate(Vec<Plant>),
 }
@@ -55,7 +52,7 @@ impl SeedBatch {
             for m in &members[1..] {
                 m.validate()?;
             }
-            let lanes = members[1..].iter().map(|m| first.lane_readout(m)).collect();
+            let lanes = members[1..].iter().map(|m| first.lane(m)).collect();
             Kind::Shared {
                 plant: Box::new(first),
                 lanes,
@@ -153,9 +150,16 @@ impl SeedBatch {
     }
 }
 
-/// True when `b` is `a` but for the seed and the stochastic terms: what only the readout
-/// ([`Readout`]) uses, so `b`'s samples can be read out of `a`'s physics.
+/// True when `b`'s samples can be read out of `a`'s physics: `b` is `a` but for the seed and
+/// the stochastic terms (what only the readout uses), or `a` with ideal sensors (every error
+/// term off: its readout takes the true increments alone).
 fn differs_in_readout_only(a: &PlantConfig, b: &PlantConfig) -> bool {
+    if b.sensor == crate::config::SensorSpec::default() {
+        let mut b = b.clone();
+        b.seed = a.seed;
+        b.sensor = a.sensor.clone();
+        return b == *a;
+    }
     let mut b = b.clone();
     b.seed = a.seed;
     let (g, ga) = (&mut b.sensor.gyro, &a.sensor.gyro);
@@ -246,6 +250,12 @@ mod tests {
         check_members(&[seeded(7), nf.clone(), seeded(8)], true, 20_000);
         // The noise-free member first: its plant carries the others' readouts.
         check_members(&[nf.clone(), seeded(3)], true, 5_000);
+        // An ideal IMU (every error term off) reads the true increments alone: it rides along,
+        // in a lane or carrying the others'.
+        let mut ideal = seeded(5);
+        ideal.sensor = Default::default();
+        check_members(&[seeded(7), ideal.clone(), seeded(8)], true, 20_000);
+        check_members(&[ideal.clone(), seeded(3)], false, 2_000);
         // Another deterministic error is other physics: a plant per member.
         let mut biased = seeded(9);
         biased.sensor.gyro.bias.dph[2] += 0.01;
@@ -266,6 +276,30 @@ mod tests {
         c.carrier.ship.sea.spectrum = SpectrumKind::Jonswap;
         c.carrier.ship.sea.sea_state = 4;
         check(&c, false, 3_000);
+    }
+
+    /// With azimuth isolation on one sea the seeds' own tables are turned from one reference
+    /// table ([`crate::carrier::own_table`]): they share its physics, and each seed (and the
+    /// noise-free member) equals its run alone, truth included.
+    #[test]
+    fn isolated_seeds_on_one_sea_share_the_reference_table_and_equal_their_runs_alone() {
+        let mut c = config();
+        c.carrier.kind = CarrierKind::Ship;
+        c.carrier.ship.sea.spectrum = SpectrumKind::Jonswap;
+        c.carrier.ship.sea.sea_state = 4;
+        c.carrier.ship.sea.realisation = crate::carrier::SeaRealisation::Fixed;
+        c.carrier.azimuth_isolation = true;
+        check(&c, true, 3_000);
+        let seeded = |seed| PlantConfig { seed, ..c.clone() };
+        check_members(&[seeded(7), c.noise_free(), seeded(8)], true, 2_000);
+        // An ideal IMU rides along too, with its own loop.
+        let mut ideal = seeded(4);
+        ideal.sensor = Default::default();
+        check_members(&[seeded(7), ideal, seeded(8)], true, 2_000);
+        // Each seed moving its own table shares nothing.
+        let mut own = Plant::new(&c).unwrap();
+        own.set_isolation_reference(false).unwrap();
+        assert!(!own.shares_physics_across_seeds());
     }
 
     /// A sea drawn from its own seed is the same for every run seed: the seeds share the

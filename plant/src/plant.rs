@@ -5,6 +5,8 @@
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
+use crate::carrier::isolation::Isolation;
+use crate::carrier::own_table::OwnTable;
 use crate::carrier::run::CarrierRun;
 use crate::carrier::{Carrier, CarrierTruth};
 use crate::command::{ActiveCommand, GimbalCommand};
@@ -16,6 +18,7 @@ use crate::effects::{AccelModel, GyroModel};
 use crate::output::{ImuSample, Truth};
 use crate::stages::clock::Clock;
 use crate::stages::interval::Interval;
+use crate::stages::lane::Lane;
 use crate::stages::motion::Motion;
 use crate::stages::readout::{Readout, ReadoutTerms};
 use crate::stages::sensor_errors::{SensorErrors, TickInput};
@@ -49,7 +52,11 @@ pub struct Plant {
     motion: Motion,
     temperature: TemperatureField,
     errors: SensorErrors,
-    readout: Readout,
+    /// This seed's readout and, with azimuth isolation, its own table.
+    lane: Lane,
+    /// With azimuth isolation: one reference table, each seed's own turned from it
+    /// (`crate::carrier::own_table`), rather than each seed moving its own.
+    isolation_reference: bool,
     /// The last interval, reused while the table dwells between thermal updates (cleared on
     /// motion, commands and thermal updates).
     dwell: Option<DwellReuse>,
@@ -89,7 +96,15 @@ impl Plant {
         let temps = temperature.temperatures();
         Self {
             errors: SensorErrors::new(cfg, &temps),
-            readout: Readout::new(cfg, &temps.nodes_c),
+            lane: Lane::new(
+                Readout::new(cfg, &temps.nodes_c),
+                motion
+                    .carrier()
+                    .and_then(|c| c.isolation.clone())
+                    .map(|lp| OwnTable { lp }),
+                false,
+            ),
+            isolation_reference: true,
             truth: Truth {
                 gimbal: g0,
                 dtheta_true_rad: Vector3::zeros(),
@@ -137,7 +152,7 @@ impl Plant {
                 None
             }
             ThermalEvent::Stepped { h_s } => {
-                self.readout.on_thermal_step(h_s, &t.nodes_c);
+                self.lane.readout.on_thermal_step(h_s, &t.nodes_c);
                 self.errors.on_temperatures(&t, Some(h_s));
                 Some(h_s)
             }
@@ -258,7 +273,10 @@ impl Plant {
     /// loop fed with what was measured.
     #[inline(always)]
     fn read_out(&mut self, index: u64, x: &Interval) -> ImuSample {
-        let measured = self.readout.measure(x);
+        if self.lane.own.is_some() {
+            return self.read_out_isolated(index, x, &mut [], &mut []);
+        }
+        let measured = self.lane.readout.measure(x);
         let tick = self.clock.tick();
         let tr = &mut self.truth;
         tr.gimbal = self.motion.gimbal_truth(tick);
@@ -271,11 +289,70 @@ impl Plant {
             t_s: self.clock.time_s(),
             dtheta_rad: measured.dtheta_rad,
             dv_mps: measured.dv_mps,
-            encoder: self.readout.encoders(tr.gimbal.angles),
-            temps_c: self.readout.temp_readings_c(),
+            encoder: self.lane.readout.encoders(tr.gimbal.angles),
+            temps_c: self.lane.readout.temp_readings_c(),
         };
         self.motion.isolate(&sample.dtheta_rad, tick);
         sample
+    }
+
+    /// [`Plant::read_out`] on isolated tables: the reference table's interval `x` read out on
+    /// this seed's own table and on each of `lanes` (their samples into `out`), then the
+    /// reference loop closed with the reference's true increment.
+    #[inline(never)]
+    fn read_out_isolated(
+        &mut self,
+        index: u64,
+        x: &Interval,
+        lanes: &mut [Lane],
+        out: &mut [ImuSample],
+    ) -> ImuSample {
+        let tick = self.clock.tick();
+        let r = self
+            .motion
+            .reference_interval(tick)
+            .expect("an own table beside the reference loop");
+        let gimbal_ref = self.motion.gimbal_truth(tick);
+        // Phase by phase over the lanes, this seed's first (see [`Lane::turn`]).
+        std::iter::once(&mut self.lane)
+            .chain(lanes.iter_mut())
+            .for_each(|l| l.turn(x, &r, gimbal_ref));
+        let measured = self.lane.measure_turned();
+        for (lane, o) in lanes.iter_mut().zip(out.iter_mut()) {
+            let m = lane.measure_turned();
+            o.dtheta_rad = m.dtheta_rad;
+            o.dv_mps = m.dv_mps;
+        }
+        std::iter::once(&mut self.lane)
+            .chain(lanes.iter_mut())
+            .for_each(|l| l.close(&r));
+        let own = self.lane.table.expect("just turned");
+        let tr = &mut self.truth;
+        tr.gimbal = own.gimbal;
+        tr.dtheta_true_rad = own.dtheta_true_rad;
+        tr.dv_true_mps = own.dv_true_mps;
+        tr.temps = self.temperature.temperatures();
+        tr.position_weight = x.position_weight;
+        let first = ImuSample {
+            index,
+            t_s: self.clock.time_s(),
+            dtheta_rad: measured.dtheta_rad,
+            dv_mps: measured.dv_mps,
+            encoder: self.lane.readout.encoders(own.gimbal.angles),
+            temps_c: self.lane.readout.temp_readings_c(),
+        };
+        for (lane, o) in lanes.iter().zip(out) {
+            let g = lane.table.expect("just turned").gimbal;
+            *o = ImuSample {
+                dtheta_rad: o.dtheta_rad,
+                dv_mps: o.dv_mps,
+                encoder: lane.readout.encoders(g.angles),
+                temps_c: lane.readout.temp_readings_c(),
+                ..first
+            };
+        }
+        self.motion.isolate_reference(&x.dtheta_true_rad, &r);
+        first
     }
 
     /// True when every seed sees the same physics (motion, temperatures, deterministic
@@ -286,9 +363,10 @@ impl Plant {
         match self.motion.carrier() {
             None => true,
             Some(run) => {
+                // Isolated tables share it when each is turned from the reference table.
                 !run.carrier.depends_on_seed()
-                    && run.isolation.is_none()
-                    && !self.cfg.carrier.azimuth_isolation
+                    && (self.lane.own.is_some()
+                        || (run.isolation.is_none() && !self.cfg.carrier.azimuth_isolation))
             }
         }
     }
@@ -296,16 +374,20 @@ impl Plant {
     /// One step for this plant's seed and, from the same interval, one for each of `lanes`
     /// (readouts of other seeds): `out[0]` is this plant's sample, `out[k]` lane k − 1's. Only
     /// when [`Plant::shares_physics_across_seeds`].
-    pub(crate) fn step_lanes(&mut self, lanes: &mut [Readout], out: &mut [ImuSample]) {
+    pub(crate) fn step_lanes(&mut self, lanes: &mut [Lane], out: &mut [ImuSample]) {
         debug_assert_eq!(lanes.len() + 1, out.len());
         let index = self.clock.begin_sample();
         if let Some(h_s) = self.update_temperatures() {
             let nodes = self.temperature.temperatures().nodes_c;
             lanes
                 .iter_mut()
-                .for_each(|l| l.on_thermal_step(h_s, &nodes));
+                .for_each(|l| l.readout.on_thermal_step(h_s, &nodes));
         }
         let interval = self.deterministic_interval();
+        if self.lane.own.is_some() {
+            out[0] = self.read_out_isolated(index, &interval, lanes, &mut out[1..]);
+            return;
+        }
         let first = self.read_out(index, &interval);
         out[0] = first;
         for (lane, o) in lanes.iter_mut().zip(&mut out[1..]) {
@@ -313,23 +395,26 @@ impl Plant {
             *o = ImuSample {
                 dtheta_rad: m.dtheta_rad,
                 dv_mps: m.dv_mps,
-                temps_c: lane.temp_readings_c(),
+                temps_c: lane.readout.temp_readings_c(),
                 ..first
             };
         }
     }
 
-    /// The readout of `cfg` (this plant's configuration but for its seed and noise terms, see
-    /// [`crate::SeedBatch`]) at the plant's start: a lane of a batch, built before the first step.
-    pub(crate) fn lane_readout(&self, cfg: &PlantConfig) -> Readout {
-        Readout::new(cfg, &self.truth.temps.nodes_c)
+    /// The lane of `cfg` (this plant's configuration but for its seed and noise terms, or with
+    /// ideal sensors, see [`crate::SeedBatch`]) at the plant's start: a lane of a batch, built
+    /// before the first step; on isolated tables it starts with this plant's loop.
+    pub(crate) fn lane(&self, cfg: &PlantConfig) -> Lane {
+        Lane::new(
+            Readout::new(cfg, &self.truth.temps.nodes_c),
+            self.lane.own.clone(),
+            cfg.sensor == crate::config::SensorSpec::default(),
+        )
     }
 
-    /// [`Plant::truth`] with `lane`'s noise and quantisation terms.
-    pub(crate) fn truth_of_lane(&self, lane: &Readout) -> Truth {
-        let mut t = self.truth();
-        lane.terms().write_into(&mut t);
-        t
+    /// [`Plant::truth`] on `lane` (its noise and quantisation terms, and its own table).
+    pub(crate) fn truth_of_lane(&self, lane: &Lane) -> Truth {
+        lane.truth(self.truth())
     }
 
     /// Applies a table command from the next output interval on (see [`GimbalCommand`]).
@@ -346,7 +431,59 @@ impl Plant {
     /// from the table's attitude now and holds the scheme at its present azimuth in the
     /// navigation frame. Off: the outer offset stays where it is. Refused on the static carrier.
     pub fn command_azimuth_isolation(&mut self, on: bool) -> Result<(), String> {
-        self.motion.command_azimuth_isolation(on, self.clock.tick())
+        let tick = self.clock.tick();
+        // The seed's own table before the reference loop restarts: its attitude and offset.
+        let own_start = self.isolation_reference.then(|| {
+            let offset = self.own_offset_rad(tick);
+            (self.attitude_c_bn(), offset)
+        });
+        self.motion.command_azimuth_isolation(on, tick)?;
+        let Some((c_bn, offset)) = own_start else {
+            return Ok(());
+        };
+        match (on, &mut self.lane.own) {
+            (false, Some(o)) => o.lp.active = false,
+            (false, None) => {}
+            (true, _) => {
+                let a = self.motion.gimbal_now().angles;
+                self.lane.own = Some(OwnTable {
+                    lp: Isolation::new(&c_bn, a.inner_rad, a.outer_rad, offset, tick),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The outer offset of this seed's table at internal tick `tick`, rad: its own loop's, else
+    /// the table's (the reference loop's, or 0 without isolation).
+    fn own_offset_rad(&self, tick: u64) -> f64 {
+        match &self.lane.own {
+            Some(o) => o.lp.offset_rad(tick, 1),
+            None => self
+                .motion
+                .carrier()
+                .map_or(0.0, |c| c.isolation_rad(tick, 1)),
+        }
+    }
+
+    /// With azimuth isolation, moves one reference table and turns each seed's from it (`true`,
+    /// the default; `crate::carrier::own_table`) or moves this seed's own table with its loop
+    /// (`false`: the reference the tests compare with; the plant then shares no physics with
+    /// other seeds). Only before the first step.
+    pub fn set_isolation_reference(&mut self, on: bool) -> Result<(), String> {
+        if self.clock.tick() != 0 {
+            return Err("the isolation's reference table is switched before the first step".into());
+        }
+        self.isolation_reference = on;
+        self.lane.own = if on {
+            self.motion
+                .carrier()
+                .and_then(|c| c.isolation.clone())
+                .map(|lp| OwnTable { lp })
+        } else {
+            None
+        };
+        Ok(())
     }
 
     /// Puts the plant on an externally driven carrier held at `start` (call after building,
@@ -406,7 +543,7 @@ impl Plant {
     /// bias-instability and rate-random-walk values. A Monte Carlo can warm the plant up once,
     /// save the state, and give each run its own noise from there.
     pub fn reseed_noise(&mut self, seed: u64) {
-        self.readout.reseed(seed);
+        self.lane.readout.reseed(seed);
     }
 
     /// The configuration the plant was built from.
@@ -441,7 +578,7 @@ impl Plant {
             carrier: self.carrier_truth(),
             ..self.truth
         };
-        self.readout.terms().write_into(&mut t);
+        self.lane.readout.terms().write_into(&mut t);
         t
     }
 
@@ -453,7 +590,7 @@ impl Plant {
 
     /// The temperature-sensor readings of the last sample (a measured output), °C.
     pub fn temp_readings_c(&self) -> [f64; node::COUNT] {
-        self.readout.temp_readings_c()
+        self.lane.readout.temp_readings_c()
     }
 
     /// The chamber temperature over the last interval (the test set-up's, not the unit's), °C.
@@ -481,9 +618,17 @@ impl Plant {
         self.motion.vehicle_to_nav()
     }
 
-    /// True IMU attitude C_b^n now.
+    /// True IMU attitude C_b^n now (this seed's own table's, with azimuth isolation).
     pub fn attitude_c_bn(&self) -> Matrix3<f64> {
-        self.motion.attitude_c_bn(self.clock.tick())
+        let tick = self.clock.tick();
+        match &self.lane.own {
+            None => self.motion.attitude_c_bn(tick),
+            Some(_) => {
+                let mut a = self.motion.gimbal_now().angles;
+                a.outer_rad += self.own_offset_rad(tick);
+                body_to_nav(&self.motion.vehicle_to_nav(), a)
+            }
+        }
     }
 
     /// True IMU attitude now as the quaternion q_b^n.
@@ -493,7 +638,7 @@ impl Plant {
 
     /// Seed of the noise streams in use.
     pub fn noise_seed(&self) -> u64 {
-        self.readout.noise_seed()
+        self.lane.readout.noise_seed()
     }
 
     /// True when the table rides a moving carrier (ship, trajectory or an external vessel model).
@@ -506,10 +651,14 @@ impl Plant {
         w.u64(self.clock.tick());
         w.u64(self.clock.samples());
         self.temperature.write(w);
-        self.readout.write(w);
+        self.lane.readout.write(w);
         self.write_truth(w);
         self.errors.write(w, &self.truth);
         self.motion.write(w);
+        w.u64(self.lane.own.is_some() as u64);
+        if let Some(o) = &self.lane.own {
+            o.write(w);
+        }
     }
 
     /// Reads what [`Plant::write_state`] wrote into a freshly built plant of the same
@@ -521,11 +670,22 @@ impl Plant {
         let (tick, samples) = (r.u64()?, r.u64()?);
         self.clock.restore(tick, samples);
         self.temperature.read(r)?;
-        self.readout.read(r)?;
+        self.lane.readout.read(r)?;
         self.read_truth(r)?;
         let temps = self.temperature.temperatures();
         self.errors.read(r, &temps, &mut self.truth)?;
         self.motion.read(r, tick)?;
+        self.lane.own = match r.u64()? {
+            0 => None,
+            1 if self.motion.carrier().is_some_and(|c| c.isolation.is_some()) => {
+                Some(OwnTable::read(r)?)
+            }
+            f => {
+                return Err(crate::state::StateError::Inconsistent(format!(
+                    "own isolation loop flag {f} (0 or 1, and 1 only beside the table's loop)"
+                )));
+            }
+        };
         self.truth.gimbal = self.motion.gimbal_now();
         self.dwell = None;
         Ok(())
@@ -534,7 +694,7 @@ impl Plant {
     /// The truth's evolving part (the rest is rebuilt or filled in by the next step).
     fn write_truth(&self, w: &mut crate::state::Writer) {
         let mut tr = self.truth;
-        self.readout.terms().write_into(&mut tr);
+        self.lane.readout.terms().write_into(&mut tr);
         w.v3(&tr.dtheta_true_rad);
         w.v3(&tr.dv_true_mps);
         tr.temps.nodes_c.iter().for_each(|x| w.f64(*x));
@@ -562,7 +722,9 @@ impl Plant {
             *v = r.v3()?;
         }
         tr.position_weight = r.f64()?;
-        self.readout.set_terms(ReadoutTerms::read_from(&self.truth));
+        self.lane
+            .readout
+            .set_terms(ReadoutTerms::read_from(&self.truth));
         Ok(())
     }
 }

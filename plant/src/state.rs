@@ -38,6 +38,10 @@ pub enum StateError {
         /// Bytes expected.
         expected: usize,
     },
+    /// The fields read do not make one plant (e.g. a seed's own isolation loop without the
+    /// reference table's).
+    #[error("plant state is inconsistent: {0}")]
+    Inconsistent(String),
     /// The configuration itself is invalid.
     #[error("invalid configuration: {0}")]
     Config(String),

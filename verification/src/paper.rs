@@ -1,8 +1,8 @@
 //! The paper's week-long simulation (Section 3.1, Table 4, Figures 2–3): uncompensated and
 //! compensated navigation of the 16-position RINS over several seeds, side by side with the paper.
 
-use rins_experiments::{NavRecord, NavRunConfig, run};
-use rins_plant::{Plant, PlantConfig};
+use rins_experiments::{NavRecord, NavRunConfig};
+use rins_plant::PlantConfig;
 use serde::Serialize;
 
 /// Table 4 of the paper and the up-axis mean attitude errors quoted with Figure 2.
@@ -202,26 +202,6 @@ pub struct Table4Options {
     pub compensation: Option<rins_plant::effects::gyro::PositionBiasSpec>,
 }
 
-/// One navigation run of the study: the plant of `plant_cfg` (already validated) navigated for
-/// `opt.duration_s`, uncompensated or with `opt`'s compensation; `progress` receives its samples.
-pub fn one_run(
-    plant_cfg: &PlantConfig,
-    opt: &Table4Options,
-    compensated: bool,
-    progress: &(dyn Fn(u64) + Sync),
-) -> rins_experiments::NavRun {
-    let (nav, duration_s) = (&opt.nav, opt.duration_s);
-    let mut plant = Plant::new(plant_cfg).expect("validated scenario");
-    let mut cfg = nav.clone();
-    cfg.compensation = compensated.then(|| {
-        opt.compensation
-            .unwrap_or(plant_cfg.sensor.gyro.position_bias)
-    });
-    let out = run(&mut plant, duration_s, &cfg).expect("navigation run");
-    progress((duration_s * plant_cfg.rate_hz) as u64);
-    out
-}
-
 /// The navigators of the study: uncompensated, then compensated with `opt`'s δβ (or the
 /// plant's own).
 pub fn paired_navs(
@@ -242,6 +222,18 @@ pub fn paired_navs(
 /// random numbers (each seed's samples feed both navigators), plus the noise-free pair, through
 /// the Monte Carlo engine ([`rins_experiments::run_members`]). `progress` receives samples done.
 pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Report {
+    table4_with(opt, &[], progress).0
+}
+
+/// [`table4`] with `extra` members in the same run (each fed to the study's navigators, after
+/// the seeds and the noise-free pair): a member that shares the case's physics, such as the
+/// case with ideal sensors, rides in its batches. Returns the report and, per extra member,
+/// its runs (uncompensated, compensated).
+pub fn table4_with(
+    opt: &Table4Options,
+    extra: &[PlantConfig],
+    progress: &(dyn Fn(u64) + Sync),
+) -> (Table4Report, Vec<Vec<rins_experiments::NavRun>>) {
     let t0 = std::time::Instant::now();
     let seeds: Vec<u64> = (0..opt.runs as u64).map(|k| opt.plant.seed + k).collect();
     // The noise-free pair is one more member of the case: it shares the seeds' physics, so it
@@ -255,6 +247,7 @@ pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Rep
         .map(seeded_cfg)
         .chain(std::iter::once(opt.plant.noise_free()))
         .chain(seeds[mid..].iter().map(seeded_cfg))
+        .chain(extra.iter().cloned())
         .collect();
     let mut seeded = rins_experiments::run_members(
         &members,
@@ -263,6 +256,7 @@ pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Rep
         progress,
     )
     .expect("navigation runs");
+    let extra_runs = seeded.split_off(seeded.len() - extra.len());
     let nf_runs = vec![seeded.remove(mid)];
     let mut results: Vec<((Option<u64>, bool), rins_experiments::NavRun)> = Vec::new();
     for (seed, pair) in seeds.iter().zip(seeded) {
@@ -311,7 +305,7 @@ pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Rep
     let u: Vec<EndFigures> = per_seed.iter().map(|p| p.1).collect();
     let c: Vec<EndFigures> = per_seed.iter().map(|p| p.2).collect();
     let (us, cs) = (CaseStats::of(&u), CaseStats::of(&c));
-    Table4Report {
+    let report = Table4Report {
         runs: opt.runs,
         days: opt.duration_s / 86_400.0,
         improvement_pct: improvement(&us, &cs),
@@ -322,7 +316,8 @@ pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Rep
         first_seed: first,
         noise_free_series: nf_series,
         wall_s: t0.elapsed().as_secs_f64(),
-    }
+    };
+    (report, extra_runs)
 }
 
 /// Table 5 of the paper (long-term static test): uncompensated / compensated.
@@ -461,28 +456,24 @@ pub fn sea(opt: &SeaOptions, progress: &(dyn Fn(u64) + Sync)) -> SeaReport {
             ..opt.paired.clone()
         }
     };
-    // The three cases and the two ideal runs side by side: the cores take the runs as they come
-    // free (the ideal runs after the cases would leave one core idle while the isolated one,
-    // the longer, finishes).
-    let ideal_run = |iso: bool| {
-        let mut o = with(iso);
-        o.plant.sensor = PlantConfig::default().sensor;
-        IdealFigures::of(&one_run(&o.plant, &o, false, progress))
+    // The ideal IMU on the ship (every sensor error off) shares each ship case's physics: it
+    // rides in that case's batches as one more member (its uncompensated run is the figure).
+    let ideal_of = |o: &Table4Options| {
+        let mut m = o.plant.clone();
+        m.sensor = PlantConfig::default().sensor;
+        m
     };
-    let ((static_reference, (ship, ship_isolated)), ideal) = rayon::join(
-        || {
-            rayon::join(
-                || table4(&opt.paired, progress),
-                || {
-                    rayon::join(
-                        || table4(&with(false), progress),
-                        || table4(&with(true), progress),
-                    )
-                },
-            )
-        },
-        || rayon::join(|| ideal_run(false), || ideal_run(true)),
+    let ship_case = |iso: bool| {
+        let o = with(iso);
+        let (report, extra) = table4_with(&o, &[ideal_of(&o)], progress);
+        (report, IdealFigures::of(&extra[0][0]))
+    };
+    // The three cases side by side: the cores take their batches as they come free.
+    let (static_reference, ((ship, ideal_off), (ship_isolated, ideal_on))) = rayon::join(
+        || table4(&opt.paired, progress),
+        || rayon::join(|| ship_case(false), || ship_case(true)),
     );
+    let ideal = (ideal_off, ideal_on);
     SeaReport {
         runs: opt.paired.runs,
         days: opt.paired.duration_s / 86_400.0,

@@ -22,6 +22,7 @@ use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use crate::attitude::quat_from_rotvec;
 use crate::earth::{OMEGA_IE_RPS, radii_of_curvature_sin2};
 use crate::table::gimbal::rot_x;
+use crate::trig::AngleTrig;
 
 /// Azimuth (counter-clockwise from east, rad) of the x axis of the frame `c` (to ENU), from its
 /// horizontal projection.
@@ -51,17 +52,72 @@ fn outer_azimuth_rad(q_bn: &UnitQuaternion<f64>) -> f64 {
 /// target. The loop holds that error to a yaw step (below 1e-2 rad), where an odd series of
 /// the arctangent to r⁹ (next term below 1e-20 relative) replaces atan2; larger errors take
 /// atan2.
+#[cfg(test)]
 fn outer_azimuth_error_rad(q_bn: &UnitQuaternion<f64>, target_rad: f64) -> f64 {
+    outer_azimuth_error_from(q_bn, target_rad.sin_cos())
+}
+
+/// [`outer_azimuth_error_rad`] with the target's sine and cosine `(st, ct)` given.
+#[inline]
+fn outer_azimuth_error_from(q_bn: &UnitQuaternion<f64>, (st, ct): (f64, f64)) -> f64 {
     let (c00, c10) = outer_x_horizontal(q_bn);
-    let (st, ct) = target_rad.sin_cos();
     let (x, y) = (c00 * ct + c10 * st, c10 * ct - c00 * st);
     if x > 0.0 && y.abs() <= 1e-2 * x {
         let r = y / x;
         let r2 = r * r;
-        r * (1.0 - r2 * (1.0 / 3.0 - r2 * (1.0 / 5.0 - r2 * (1.0 / 7.0 - r2 / 9.0))))
+        r * (1.0 - r2 * (1.0 / 3.0 - r2 * (1.0 / 5.0 - r2 * (1.0 / 7.0 - r2 * (1.0 / 9.0)))))
     } else {
         y.atan2(x)
     }
+}
+
+/// The quaternion of a sample's small rotation `v` (the coning-corrected increment): the
+/// series of [`quat_from_rotvec`] with products by the reciprocals of its constants instead of
+/// divisions (a few ulp apart), the closed form beyond 1e-2 rad.
+#[inline]
+fn small_rotation(v: &Vector3<f64>) -> UnitQuaternion<f64> {
+    let n2 = v.norm_squared();
+    if n2 > 1e-4 {
+        return UnitQuaternion::from_scaled_axis(*v);
+    }
+    let c = 1.0 - n2 * (1.0 / 8.0) + n2 * n2 * (1.0 / 384.0);
+    let s = 0.5 - n2 * (1.0 / 48.0) + n2 * n2 * (1.0 / 3840.0);
+    UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(c, s * v.x, s * v.y, s * v.z))
+}
+
+/// The navigation frame's turn over an output interval of `dt_s`, as the quaternion that
+/// carries an attitude C_b^n over it: the rotation vector −ω_in^n·Δt, with
+/// ω_in^n = ω_ie^n + ω_en^n at latitude `lat_rad`, height `height_m` and velocity `v_n` (ENU).
+pub fn nav_frame_turn(
+    lat_rad: f64,
+    height_m: f64,
+    v_n: &Vector3<f64>,
+    dt_s: f64,
+) -> UnitQuaternion<f64> {
+    // One sine for both (`f64::sin_cos` is `(sin, cos)`: the radii's own `sin` bits).
+    let (sl, cl) = lat_rad.sin_cos();
+    let (rm, rn) = radii_of_curvature_sin2(sl * sl);
+    let w_in = Vector3::new(
+        -v_n.y / (rm + height_m),
+        OMEGA_IE_RPS * cl + v_n.x / (rn + height_m),
+        OMEGA_IE_RPS * sl + v_n.x * sl / cl / (rn + height_m),
+    );
+    quat_from_rotvec(&(-w_in * dt_s))
+}
+
+/// The outer offset over one output interval of a loop: what a seed's own table needs from
+/// it, and from the reference table's loop, to turn the reference's increments
+/// (`crate::carrier::own_table`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IntervalOffset {
+    /// The offset at the interval's middle, rad.
+    pub mid_rad: f64,
+    /// Its change over the interval, rad.
+    pub step_rad: f64,
+    /// The offset at the interval's end, rad.
+    pub end_rad: f64,
+    /// Its rate at the interval's end, rad/s.
+    pub end_rps: f64,
 }
 
 /// The isolation loop's state.
@@ -83,6 +139,9 @@ pub struct Isolation {
     to_rps: f64,
     /// Internal tick at which the current interval starts.
     start_tick: u64,
+    /// The target azimuth's sine and cosine, held while the scheme's outer angle holds (a
+    /// cache: not part of the saved state).
+    target: AngleTrig,
 }
 
 impl Isolation {
@@ -107,6 +166,7 @@ impl Isolation {
             from_rps: 0.0,
             to_rps: 0.0,
             start_tick: tick,
+            target: AngleTrig::default(),
         }
     }
 
@@ -146,6 +206,21 @@ impl Isolation {
         }
     }
 
+    /// The offset over the current output interval of `dt_s`, before [`Isolation::update`]
+    /// closes it.
+    #[inline]
+    pub fn interval_offset(&self, dt_s: f64) -> IntervalOffset {
+        IntervalOffset {
+            // [`Isolation::offset_at`] at the middle, x = ½: the Hermite basis there is ½, ⅛,
+            // ½, −⅛.
+            mid_rad: 0.5 * (self.from_rad + self.to_rad)
+                + 0.125 * dt_s * (self.from_rps - self.to_rps),
+            step_rad: self.to_rad - self.from_rad,
+            end_rad: self.to_rad,
+            end_rps: self.to_rps,
+        }
+    }
+
     /// Outer offset rate at internal tick `tick` between output intervals, rad/s.
     pub fn rate_rps(&self, tick: u64) -> f64 {
         if tick > self.start_tick {
@@ -169,6 +244,21 @@ impl Isolation {
         dt_s: f64,
         tick: u64,
     ) {
+        let nav = nav_frame_turn(lat_rad, height_m, v_n, dt_s);
+        self.update_with(dtheta_rad, &nav, scheme_outer_rad, dt_s, tick);
+    }
+
+    /// [`Isolation::update`] with the navigation frame's turn over the interval already formed
+    /// ([`nav_frame_turn`]): the loops of several seeds on one carrier share it.
+    #[inline]
+    pub fn update_with(
+        &mut self,
+        dtheta_rad: &Vector3<f64>,
+        nav: &UnitQuaternion<f64>,
+        scheme_outer_rad: f64,
+        dt_s: f64,
+        tick: u64,
+    ) {
         self.from_rad = self.to_rad;
         self.from_rps = self.to_rps;
         self.start_tick = tick;
@@ -177,22 +267,17 @@ impl Isolation {
             return;
         }
         // Two-sample coning correction (the wave motion cones at ~1e-3 rad/s).
-        let phi = dtheta_rad + self.prev_dtheta.cross(dtheta_rad) / 12.0;
+        // Products by reciprocals, no division: the loop closes a chain from one sample to the
+        // next (the offset it sets moves the next increment), where a division's latency counts.
+        let phi = dtheta_rad + self.prev_dtheta.cross(dtheta_rad) * (1.0 / 12.0);
         self.prev_dtheta = *dtheta_rad;
-        // One sine for both (`f64::sin_cos` is `(sin, cos)`: the radii's own `sin` bits).
-        let (sl, cl) = lat_rad.sin_cos();
-        let (rm, rn) = radii_of_curvature_sin2(sl * sl);
-        let w_in = Vector3::new(
-            -v_n.y / (rm + height_m),
-            OMEGA_IE_RPS * cl + v_n.x / (rn + height_m),
-            OMEGA_IE_RPS * sl + v_n.x * sl / cl / (rn + height_m),
-        );
-        self.q_bn = quat_from_rotvec(&(-w_in * dt_s)) * self.q_bn * quat_from_rotvec(&phi);
+        self.q_bn = nav * self.q_bn * small_rotation(&phi);
         self.q_bn.renormalize_fast();
-        let err = outer_azimuth_error_rad(&self.q_bn, self.az0_rad + scheme_outer_rad);
+        let target = self.target.at(self.az0_rad + scheme_outer_rad);
+        let err = outer_azimuth_error_from(&self.q_bn, target);
         self.to_rad -= err;
         // The end rate: the interval's mean rate (the ramp of a one-sample servo).
-        self.to_rps = (self.to_rad - self.from_rad) / dt_s;
+        self.to_rps = (self.to_rad - self.from_rad) * (1.0 / dt_s);
     }
 
     /// Writes the loop's state (see [`Isolation::read`]).
@@ -228,6 +313,7 @@ impl Isolation {
             from_rps: r.f64()?,
             to_rps: r.f64()?,
             start_tick: r.u64()?,
+            target: AngleTrig::default(),
         })
     }
 }

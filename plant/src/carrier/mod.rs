@@ -12,6 +12,7 @@ pub mod carrier_state;
 pub mod external;
 pub(crate) mod gimbal_trig;
 pub mod isolation;
+pub(crate) mod own_table;
 pub mod run;
 pub mod segment;
 pub mod ship;

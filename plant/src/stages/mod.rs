@@ -14,6 +14,7 @@
 
 pub(crate) mod clock;
 pub(crate) mod interval;
+pub(crate) mod lane;
 pub(crate) mod motion;
 pub(crate) mod readout;
 pub(crate) mod sensor_errors;

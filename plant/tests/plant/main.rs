@@ -9,6 +9,7 @@ mod carrier_trajectory;
 mod custom_effects;
 mod effects;
 mod gimbal_command;
+mod isolation_reference;
 mod readouts;
 mod state;
 mod state_fuzz;

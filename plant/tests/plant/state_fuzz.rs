@@ -78,6 +78,7 @@ fn check_refusal(e: &StateError, len: usize, ctx: &str) {
             assert_ne!(saved, current, "{ctx}");
             assert!(text.contains("fingerprint"), "{ctx}: {text}");
         }
+        StateError::Inconsistent(m) => assert!(text.contains("inconsistent"), "{ctx}: {m}"),
         StateError::Config(m) => panic!("{ctx}: the configuration was valid, yet {m}"),
     }
 }

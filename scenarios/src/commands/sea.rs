@@ -119,7 +119,9 @@ pub fn run(a: &SeaArgs) -> Result<()> {
         },
     };
     let per_run = (opt.paired.duration_s * opt.ship.rate_hz) as u64;
-    let pb = crate::progress::bar((6 * runs as u64 + 8) * per_run, "sea");
+    // Three cases × 2 navigators per seed, plus each case's noise-free pair and the ideal IMU
+    // on each ship case (two navigators each).
+    let pb = crate::progress::bar((6 * runs as u64 + 10) * per_run, "sea");
     let r = rins_verify::paper::sea(&opt, &|n| pb.inc(n));
     pb.finish_and_clear();
     super::create_dir(&a.out)?;

@@ -7,6 +7,8 @@ mod moving_base;
 
 use nalgebra::{Matrix3, Vector3};
 
+use crate::carrier::isolation::nav_frame_turn;
+use crate::carrier::own_table::ReferenceInterval;
 use crate::carrier::run::CarrierRun;
 use crate::carrier::{Carrier, CarrierState, CarrierTruth};
 use crate::command::ActiveCommand;
@@ -99,6 +101,9 @@ pub(crate) struct Motion {
     dt_s: f64,
     /// The scheme's acceleration limit, for commanded moves, rad/s².
     accel_rps2: f64,
+    /// The inner angle at the start of the current output interval (the isolated tables' turn,
+    /// [`Motion::reference_interval`]).
+    interval_inner_rad: f64,
 }
 
 impl Motion {
@@ -116,13 +121,15 @@ impl Motion {
         };
         let schedule = Schedule::new(&cfg.scheme.resolve());
         let internal_rate_hz = cfg.rate_hz * cfg.substeps as f64;
+        let gimbal_now = schedule.eval(0.0);
         Self {
             f_n: Vector3::new(0.0, 0.0, site.gravity_mps2),
             site,
             vehicle_level: c_vn == Matrix3::identity(),
             c_vn,
             static_truth,
-            gimbal_now: schedule.eval(0.0),
+            gimbal_now,
+            interval_inner_rad: gimbal_now.angles.inner_rad,
             hold_until_tick: hold_tick(schedule.eval_hold(0.0).1, internal_rate_hz),
             schedule,
             cursor: Cursor::default(),
@@ -338,6 +345,7 @@ impl Motion {
             "azimuth isolation needs a moving carrier ([carrier] kind = \"ship\" or \"trajectory\")",
         )?;
         run.set_isolation(on, &c_bn, angles, tick);
+        self.interval_inner_rad = angles.inner_rad;
         Ok(())
     }
 
@@ -351,6 +359,44 @@ impl Motion {
         let (lat_rad, height_m, v_n) = run.lat_height_velocity();
         if let Some(i) = run.isolation.as_mut() {
             i.update(dtheta_rad, outer, lat_rad, height_m, &v_n, dt, tick);
+        }
+    }
+
+    /// What the seeds' own tables need from this (the reference) table over the output interval
+    /// that ends at internal tick `tick` ([`ReferenceInterval`]), before its loop is updated;
+    /// `None` without the isolation loop.
+    pub(crate) fn reference_interval(&mut self, tick: u64) -> Option<ReferenceInterval> {
+        let (dt_s, g) = (self.dt_s, self.gimbal_now.angles);
+        let start = std::mem::replace(&mut self.interval_inner_rad, g.inner_rad);
+        let run = self.carrier.as_mut()?;
+        let offset = run.isolation.as_ref()?.interval_offset(dt_s);
+        // The inner gimbal mostly rests: its sine and cosine are held.
+        let (si, ci) = if start == g.inner_rad {
+            run.trig.inner.at(g.inner_rad)
+        } else {
+            (0.5 * (start + g.inner_rad)).sin_cos()
+        };
+        let (lat_rad, height_m, v_n) = run.lat_height_velocity();
+        Some(ReferenceInterval {
+            axis_b: Vector3::new(0.0, si, ci),
+            inner_step_rad: g.inner_rad - start,
+            offset,
+            nav: nav_frame_turn(lat_rad, height_m, &v_n, dt_s),
+            scheme_outer_rad: g.outer_rad,
+            dt_s,
+            tick,
+        })
+    }
+
+    /// Closes the output interval `r` for the reference table's loop: it takes the table's own
+    /// true increment `dtheta_true_rad` (an ideal loop, the same for every seed).
+    pub(crate) fn isolate_reference(
+        &mut self,
+        dtheta_true_rad: &Vector3<f64>,
+        r: &ReferenceInterval,
+    ) {
+        if let Some(i) = self.carrier.as_mut().and_then(|c| c.isolation.as_mut()) {
+            i.update_with(dtheta_true_rad, &r.nav, r.scheme_outer_rad, r.dt_s, r.tick);
         }
     }
 
@@ -406,6 +452,7 @@ impl Motion {
         }
         // Derived: the table state at the restored tick; caches start empty.
         self.gimbal_now = self.schedule.eval(tick as f64 / self.internal_rate_hz);
+        self.interval_inner_rad = self.gimbal_now.angles.inner_rad;
         self.hold_until_tick = 0;
         self.cursor = Cursor::default();
         let isolation = !self.scenario_static;
