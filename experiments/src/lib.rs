@@ -12,6 +12,6 @@ pub mod montecarlo;
 pub mod session;
 pub mod tracker;
 
-pub use montecarlo::{run_members, run_seeds};
+pub use montecarlo::{Split, run_members, run_members_split, run_seeds};
 pub use session::{Alignment, NavRecord, NavRun, NavRunConfig, run};
 pub use tracker::Tracker;

@@ -49,6 +49,29 @@ pub fn run_members(
     navs: &[NavRunConfig],
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Vec<Vec<NavRun>>, SessionError> {
+    run_members_split(members, nav_s, navs, Split::PerCore, progress)
+}
+
+/// How [`run_members_split`] divides a case that shares its physics into batches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Split {
+    /// One batch per core, with equal runs of navigators: the case alone uses every core.
+    PerCore,
+    /// One batch: for a caller that runs as many cases side by side as there are cores. The
+    /// plant's physics is then computed once rather than once per core, and the navigators
+    /// fill whole lane groups.
+    Whole,
+}
+
+/// [`run_members`] with the batches chosen by `split` (members that do not share the physics
+/// are split per core either way).
+pub fn run_members_split(
+    members: &[PlantConfig],
+    nav_s: f64,
+    navs: &[NavRunConfig],
+    split: Split,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Vec<Vec<NavRun>>, SessionError> {
     if !(nav_s > 0.0 && navs.iter().all(|n| n.record_every_s > 0.0)) {
         return Err(SessionError::BadTimes(format!(
             "navigation time {nav_s} s and record intervals must be > 0"
@@ -89,7 +112,10 @@ pub fn run_members(
         .collect();
     let cores = rayon::current_num_threads().max(1);
     let batches: Vec<std::ops::Range<usize>> = if shared {
-        even_split(slots.len(), cores)
+        match split {
+            Split::PerCore => even_split(slots.len(), cores),
+            Split::Whole => even_split(slots.len(), 1),
+        }
     } else {
         let per_group = (LANES / navs.len().max(1)).max(1);
         let parts = members.len().div_ceil(per_group).div_ceil(cores) * cores;

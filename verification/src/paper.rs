@@ -222,16 +222,18 @@ pub fn paired_navs(
 /// random numbers (each seed's samples feed both navigators), plus the noise-free pair, through
 /// the Monte Carlo engine ([`rins_experiments::run_members`]). `progress` receives samples done.
 pub fn table4(opt: &Table4Options, progress: &(dyn Fn(u64) + Sync)) -> Table4Report {
-    table4_with(opt, &[], progress).0
+    table4_with(opt, &[], rins_experiments::Split::PerCore, progress).0
 }
 
 /// [`table4`] with `extra` members in the same run (each fed to the study's navigators, after
 /// the seeds and the noise-free pair): a member that shares the case's physics, such as the
 /// case with ideal sensors, rides in its batches. Returns the report and, per extra member,
-/// its runs (uncompensated, compensated).
+/// its runs (uncompensated, compensated). `split` divides the case into batches
+/// ([`rins_experiments::Split`]).
 pub fn table4_with(
     opt: &Table4Options,
     extra: &[PlantConfig],
+    split: rins_experiments::Split,
     progress: &(dyn Fn(u64) + Sync),
 ) -> (Table4Report, Vec<Vec<rins_experiments::NavRun>>) {
     let t0 = std::time::Instant::now();
@@ -249,10 +251,11 @@ pub fn table4_with(
         .chain(seeds[mid..].iter().map(seeded_cfg))
         .chain(extra.iter().cloned())
         .collect();
-    let mut seeded = rins_experiments::run_members(
+    let mut seeded = rins_experiments::run_members_split(
         &members,
         opt.duration_s,
         &paired_navs(opt, &opt.plant),
+        split,
         progress,
     )
     .expect("navigation runs");
@@ -463,15 +466,27 @@ pub fn sea(opt: &SeaOptions, progress: &(dyn Fn(u64) + Sync)) -> SeaReport {
         m.sensor = PlantConfig::default().sensor;
         m
     };
+    // With fewer cores than cases each case is one batch (its physics computed once, its
+    // navigators in whole lane groups), the isolated case, the longest, started first so that
+    // the other core takes the other two in turn; with more cores each case is split per core.
+    let split = if rayon::current_num_threads() < 3 {
+        rins_experiments::Split::Whole
+    } else {
+        rins_experiments::Split::PerCore
+    };
     let ship_case = |iso: bool| {
         let o = with(iso);
-        let (report, extra) = table4_with(&o, &[ideal_of(&o)], progress);
+        let (report, extra) = table4_with(&o, &[ideal_of(&o)], split, progress);
         (report, IdealFigures::of(&extra[0][0]))
     };
-    // The three cases side by side: the cores take their batches as they come free.
-    let (static_reference, ((ship, ideal_off), (ship_isolated, ideal_on))) = rayon::join(
-        || table4(&opt.paired, progress),
-        || rayon::join(|| ship_case(false), || ship_case(true)),
+    let ((ship_isolated, ideal_on), ((ship, ideal_off), static_reference)) = rayon::join(
+        || ship_case(true),
+        || {
+            rayon::join(
+                || ship_case(false),
+                || table4_with(&opt.paired, &[], split, progress).0,
+            )
+        },
     );
     let ideal = (ideal_off, ideal_on);
     SeaReport {
