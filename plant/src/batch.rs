@@ -1,9 +1,11 @@
 //! Seeds side by side. A Monte Carlo case runs many seeds of one scenario; where the physics
-//! does not depend on the seed (the static site, a calm ship or a trajectory, no azimuth
-//! isolation), the motion, the temperature field and every deterministic sensor error are
-//! computed once per interval and read out for each seed (noise, quantisation, temperature
-//! sensors). Otherwise each seed runs its own plant. Either way a seed's samples are the bits
-//! [`Plant::step`] gives for that seed alone: the readout is the same code on the same
+//! does not depend on the seed (the static site, a calm ship or a trajectory, a ship on one
+//! sea; with azimuth isolation each seed's table is turned from one reference table,
+//! [`crate::carrier::own_table`]), the motion, the temperature field and every deterministic
+//! sensor error are computed once per interval and read out for each seed (noise,
+//! quantisation, temperature sensors, and the seed's own isolation loop). Otherwise each seed
+//! runs its own plant. Either way a seed's samples are the bits [`Plant::step`] gives for that
+//! seed alone: every lane, the plant's own included, is read out by the same code on the same
 //! interval.
 
 use crate::config::{ConfigError, PlantConfig};
@@ -38,7 +40,8 @@ impl SeedBatch {
     /// physics allows it ([`Plant::shares_physics_across_seeds`]) and they differ from the first
     /// only in what the readout alone uses: the seed and the stochastic terms (angle and
     /// velocity random walk, bias instability, rate random walk), so a noise-free member rides
-    /// with the seeds of its case. Otherwise each member runs its own plant.
+    /// with the seeds of its case; or a member is the first with ideal sensors (every error term
+    /// off), which reads the true increments alone. Otherwise each member runs its own plant.
     pub fn of(members: &[PlantConfig]) -> Result<Self, Vec<ConfigError>> {
         let Some(head) = members.first() else {
             return Err(vec![ConfigError {

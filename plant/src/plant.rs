@@ -357,8 +357,9 @@ impl Plant {
 
     /// True when every seed sees the same physics (motion, temperatures, deterministic
     /// errors), so one interval can be read out for many seeds ([`crate::SeedBatch`]): not on
-    /// a ship in a seeded sea, nor with the azimuth isolation loop, which feeds the measured
-    /// increments back into the motion.
+    /// a ship in a seeded sea, nor with the azimuth isolation loop moving this seed's own table
+    /// ([`Plant::set_isolation_reference`]`(false)`), which feeds its measured increments back
+    /// into the motion; with the reference table each seed's table is turned from it.
     pub fn shares_physics_across_seeds(&self) -> bool {
         match self.motion.carrier() {
             None => true,

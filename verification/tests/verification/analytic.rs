@@ -111,12 +111,10 @@ fn cycle_trace_ends_where_the_quadrature_says() {
     let end = tr.last().unwrap();
     let r = eq11(dbeta, dwell);
     let full = r.full_cycle_rad;
-    for i in 0..3 {
+    for (i, (got, want)) in end.delta_beta_rad.iter().zip(full).enumerate() {
         assert!(
-            (end.delta_beta_rad[i] - full[i]).abs() <= 1e-3 * r.expected_z_rad.abs(),
-            "axis {i}: {} vs {}",
-            end.delta_beta_rad[i],
-            full[i]
+            (got - want).abs() <= 1e-3 * r.expected_z_rad.abs(),
+            "axis {i}: {got} vs {want}"
         );
     }
     // Eq. 8: a constant bias integrates back to zero; halfway through it does not.
