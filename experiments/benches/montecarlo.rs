@@ -10,6 +10,10 @@
 //!   navigators ([`rins_experiments::run_seeds`]).
 //! - `engine 16 seeds, 2 navs`: sixteen seeds sharing the physics, two navigators each
 //!   (per sample and seed).
+//! - `isolated ship`: the at-sea study's hardest case, a ship in a sea state 4–5 sea (one sea
+//!   for every seed) with azimuth isolation: eight seeds and the noise-free member, two
+//!   navigators each, the seeds' tables turned from one reference table (per sample and
+//!   member); and, beside it, one seed's plant alone with one navigator.
 
 use criterion::{Criterion, Throughput};
 use nalgebra::{UnitQuaternion, Vector3};
@@ -22,6 +26,31 @@ use rins_plant::Plant;
 use std::hint::black_box;
 
 const HOUR_S: f64 = 3600.0;
+
+/// The at-sea study's ship (`ship-16pos-week`'s sea and first legs) with azimuth isolation and
+/// one sea for every seed.
+fn isolated_ship() -> rins_plant::PlantConfig {
+    use rins_plant::carrier::{CarrierKind, LegSpec, SeaRealisation, SpectrumKind};
+    let mut cfg = rins_plant::presets::paper_16pos_config();
+    cfg.carrier.kind = CarrierKind::Ship;
+    cfg.carrier.azimuth_isolation = true;
+    cfg.carrier.ship.legs = [(45.0, 12.0), (135.0, 14.0)]
+        .map(|(heading_deg, speed_kn)| LegSpec {
+            heading_deg,
+            speed_kn,
+            duration_s: 43_200.0,
+        })
+        .to_vec();
+    let sea = &mut cfg.carrier.ship.sea;
+    sea.spectrum = SpectrumKind::Jonswap;
+    sea.sea_state = 0;
+    sea.hs_m = 2.5;
+    sea.tp_s = 9.2;
+    sea.realisation = SeaRealisation::Fixed;
+    sea.seed = 1;
+    cfg
+}
+
 const RATE_HZ: f64 = 100.0;
 
 /// The naive loop for `samples` samples; returns the final longitude (kept alive).
@@ -103,12 +132,38 @@ fn main() {
             })
         })
     });
+    let ship = isolated_ship();
+    let members: Vec<rins_plant::PlantConfig> = (1..=8)
+        .map(|k| ship.with_seed(k))
+        .chain(std::iter::once(ship.noise_free()))
+        .collect();
+    let ship_navs = [
+        NavRunConfig::default(),
+        NavRunConfig {
+            compensation: Some(ship.sensor.gyro.position_bias),
+            ..NavRunConfig::default()
+        },
+    ];
+    g.throughput(Throughput::Elements(samples * members.len() as u64));
+    g.bench_function(
+        "isolated ship, 8 seeds + noise-free, 2 navs (per member)",
+        |b| {
+            b.iter(|| {
+                pool.install(|| {
+                    black_box(
+                        rins_experiments::run_members(&members, HOUR_S, &ship_navs, &|_| {})
+                            .expect("run"),
+                    )
+                })
+            })
+        },
+    );
     g.finish();
     c.final_summary();
     // Thread CPU time per sample and seed, best of 3 interleaved repeats (robust to load).
     // (name, seeds, one run of the case).
     type Case<'a> = (&'a str, u64, Box<dyn Fn() + Sync + 'a>);
-    let cases: [Case; 4] = [
+    let cases: [Case; 6] = [
         (
             "naive (1 navigator)",
             1,
@@ -138,8 +193,26 @@ fn main() {
                 black_box(run_seeds(&cfg, &seeds, HOUR_S, &navs, &|_| {}).expect("run"));
             }),
         ),
+        (
+            "engine, isolated ship, 8 seeds + noise-free x 2 navigators (one reference table)",
+            members.len() as u64,
+            Box::new(|| {
+                black_box(
+                    rins_experiments::run_members(&members, HOUR_S, &ship_navs, &|_| {})
+                        .expect("run"),
+                );
+            }),
+        ),
+        (
+            "isolated ship, plant + 1 navigator",
+            1,
+            Box::new(|| {
+                let mut p = Plant::new(&members[0]).expect("valid");
+                black_box(run(&mut p, HOUR_S, &ship_navs[0]).expect("run").end());
+            }),
+        ),
     ];
-    let mut best = [f64::INFINITY; 4];
+    let mut best = [f64::INFINITY; 6];
     for _ in 0..3 {
         for (k, (_, _, f)) in cases.iter().enumerate() {
             let ns = pool.install(|| {

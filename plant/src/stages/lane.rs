@@ -110,8 +110,11 @@ impl Lane {
     /// The plant's interval `x` measured by this lane (a lane without its own table).
     #[inline(always)]
     pub fn measure(&mut self, x: &Interval) -> Measured {
-        let x = self.of_sensor(*x);
-        self.readout.measure(&x)
+        if self.ideal {
+            let x = self.of_sensor(*x);
+            return self.readout.measure(&x);
+        }
+        self.readout.measure(x)
     }
 
     /// `t` (the plant's truth) with this lane's noise and quantisation and, on an own table,
