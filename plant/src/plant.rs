@@ -5,7 +5,6 @@
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
-use crate::carrier::isolation::Isolation;
 use crate::carrier::own_table::OwnTable;
 use crate::carrier::run::CarrierRun;
 use crate::carrier::{Carrier, CarrierTruth};
@@ -25,6 +24,8 @@ use crate::stages::sensor_errors::{SensorErrors, TickInput};
 use crate::stages::temperature::{TemperatureField, ThermalEvent};
 use crate::table::{Schedule, body_to_nav};
 use crate::thermal::node;
+
+mod isolated;
 
 /// A dwell's interval kept for the rest of the dwell. When a declared effect reads the time,
 /// the tick's catalogue errors and true increments are kept too: each later interval redoes
@@ -296,65 +297,6 @@ impl Plant {
         sample
     }
 
-    /// [`Plant::read_out`] on isolated tables: the reference table's interval `x` read out on
-    /// this seed's own table and on each of `lanes` (their samples into `out`), then the
-    /// reference loop closed with the reference's true increment.
-    #[inline(never)]
-    fn read_out_isolated(
-        &mut self,
-        index: u64,
-        x: &Interval,
-        lanes: &mut [Lane],
-        out: &mut [ImuSample],
-    ) -> ImuSample {
-        let tick = self.clock.tick();
-        let r = self
-            .motion
-            .reference_interval(tick)
-            .expect("an own table beside the reference loop");
-        let gimbal_ref = self.motion.gimbal_truth(tick);
-        // Phase by phase over the lanes, this seed's first (see [`Lane::turn`]).
-        std::iter::once(&mut self.lane)
-            .chain(lanes.iter_mut())
-            .for_each(|l| l.turn(x, &r, gimbal_ref));
-        let measured = self.lane.measure_turned();
-        for (lane, o) in lanes.iter_mut().zip(out.iter_mut()) {
-            let m = lane.measure_turned();
-            o.dtheta_rad = m.dtheta_rad;
-            o.dv_mps = m.dv_mps;
-        }
-        std::iter::once(&mut self.lane)
-            .chain(lanes.iter_mut())
-            .for_each(|l| l.close(&r));
-        let own = self.lane.table.expect("just turned");
-        let tr = &mut self.truth;
-        tr.gimbal = own.gimbal;
-        tr.dtheta_true_rad = own.dtheta_true_rad;
-        tr.dv_true_mps = own.dv_true_mps;
-        tr.temps = self.temperature.temperatures();
-        tr.position_weight = x.position_weight;
-        let first = ImuSample {
-            index,
-            t_s: self.clock.time_s(),
-            dtheta_rad: measured.dtheta_rad,
-            dv_mps: measured.dv_mps,
-            encoder: self.lane.readout.encoders(own.gimbal.angles),
-            temps_c: self.lane.readout.temp_readings_c(),
-        };
-        for (lane, o) in lanes.iter().zip(out) {
-            let g = lane.table.expect("just turned").gimbal;
-            *o = ImuSample {
-                dtheta_rad: o.dtheta_rad,
-                dv_mps: o.dv_mps,
-                encoder: lane.readout.encoders(g.angles),
-                temps_c: lane.readout.temp_readings_c(),
-                ..first
-            };
-        }
-        self.motion.isolate_reference(&x.dtheta_true_rad, &r);
-        first
-    }
-
     /// True when every seed sees the same physics (motion, temperatures, deterministic
     /// errors), so one interval can be read out for many seeds ([`crate::SeedBatch`]): not on
     /// a ship in a seeded sea, nor with the azimuth isolation loop moving this seed's own table
@@ -424,66 +366,6 @@ impl Plant {
         let c = ActiveCommand::new(cmd, self.motion.gimbal_now().angles, self.clock.tick())?;
         self.motion.install_command(c);
         self.dwell = None;
-        Ok(())
-    }
-
-    /// Switches azimuth isolation on or off from the next output interval (the navigation
-    /// computer's command; `[carrier] azimuth_isolation` sets it at start). On: the loop restarts
-    /// from the table's attitude now and holds the scheme at its present azimuth in the
-    /// navigation frame. Off: the outer offset stays where it is. Refused on the static carrier.
-    pub fn command_azimuth_isolation(&mut self, on: bool) -> Result<(), String> {
-        let tick = self.clock.tick();
-        // The seed's own table before the reference loop restarts: its attitude and offset.
-        let own_start = self.isolation_reference.then(|| {
-            let offset = self.own_offset_rad(tick);
-            (self.attitude_c_bn(), offset)
-        });
-        self.motion.command_azimuth_isolation(on, tick)?;
-        let Some((c_bn, offset)) = own_start else {
-            return Ok(());
-        };
-        match (on, &mut self.lane.own) {
-            (false, Some(o)) => o.lp.active = false,
-            (false, None) => {}
-            (true, _) => {
-                let a = self.motion.gimbal_now().angles;
-                self.lane.own = Some(OwnTable {
-                    lp: Isolation::new(&c_bn, a.inner_rad, a.outer_rad, offset, tick),
-                });
-            }
-        }
-        Ok(())
-    }
-
-    /// The outer offset of this seed's table at internal tick `tick`, rad: its own loop's, else
-    /// the table's (the reference loop's, or 0 without isolation).
-    fn own_offset_rad(&self, tick: u64) -> f64 {
-        match &self.lane.own {
-            Some(o) => o.lp.offset_rad(tick, 1),
-            None => self
-                .motion
-                .carrier()
-                .map_or(0.0, |c| c.isolation_rad(tick, 1)),
-        }
-    }
-
-    /// With azimuth isolation, moves one reference table and turns each seed's from it (`true`,
-    /// the default; `crate::carrier::own_table`) or moves this seed's own table with its loop
-    /// (`false`: the reference the tests compare with; the plant then shares no physics with
-    /// other seeds). Only before the first step.
-    pub fn set_isolation_reference(&mut self, on: bool) -> Result<(), String> {
-        if self.clock.tick() != 0 {
-            return Err("the isolation's reference table is switched before the first step".into());
-        }
-        self.isolation_reference = on;
-        self.lane.own = if on {
-            self.motion
-                .carrier()
-                .and_then(|c| c.isolation.clone())
-                .map(|lp| OwnTable { lp })
-        } else {
-            None
-        };
         Ok(())
     }
 
