@@ -53,8 +53,9 @@ pub struct SeaArgs {
 /// Which sea the seeds of `rins paper sea` sail.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SeaOfSeeds {
-    /// One realisation for every seed: a batch computes the ship's motion once (the ship
-    /// without isolation), and the seeds' spread is the sensors'.
+    /// One realisation for every seed: a batch computes the ship's motion once (with azimuth
+    /// isolation, one reference table that each seed's table is turned from), and the seeds'
+    /// spread is the sensors'.
     Fixed,
     /// Each seed draws its own realisation from its run seed: the spread includes the sea's.
     PerRun,
