@@ -23,7 +23,7 @@ pub struct SeedBatch {
 
 #[derive(Clone, Debug)]
 enum Kind {
-    /// One plant (the first seed) and the other seeds' readouts.
+    /// One plant (the first seed) and the other seeds' lanes (readout and own isolation loop).
     Shared { plant: Box<Plant>, lanes: Vec<Lane> },
     /// A plant per seed (the physics depends on the seed).
     Separate(Vec<Plant>),

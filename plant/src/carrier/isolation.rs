@@ -126,8 +126,8 @@ pub struct IntervalOffset {
     pub end_rps: f64,
 }
 
-/// The isolation loop's state.
-#[derive(Clone, Debug, PartialEq)]
+/// The isolation loop's state (no `PartialEq`: it holds a cache).
+#[derive(Clone, Debug)]
 pub struct Isolation {
     /// Counter-rotating (true) or holding the last offset (switched off by a command).
     pub active: bool,

@@ -14,7 +14,9 @@
 //! extra turn added; R(u, δ) leaves u where it is, so the reference's outer turn needs no
 //! correction). δ̄ is δ at the interval's middle: the odd parts of δ and u over the interval
 //! cancel in the integral, leaving δ̇·h and u̇·h times the carrier rate's change over the
-//! interval (below 1e-12 rad per sample at sea; docs/carrier.md, "Azimuth isolation").
+//! interval (an estimate, not a measurement: with δ̇ ~ 1e-6 rad/s and the waves' rate changing by
+//! ~7e-5 rad/s over 10 ms, about 1e-15 rad per sample; the hour against each seed's own table
+//! in `plant/tests/plant/isolation_reference.rs` bounds the whole difference).
 //!
 //! What the seeds share beside the motion: the temperature field and the deterministic sensor
 //! errors are the reference table's. They depend on the table's azimuth about the outer axis only
@@ -87,7 +89,7 @@ fn small_sin_cos(d: f64) -> (f64, f64) {
 }
 
 /// A seed's own loop, turning the reference table's interval into its own.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub(crate) struct OwnTable {
     /// The seed's isolation loop (fed its measured increments).
     pub lp: Isolation,

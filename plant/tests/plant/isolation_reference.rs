@@ -5,7 +5,7 @@
 //! through the 16-position scheme's turns and a course change.
 //!
 //! Bounds (module docs of `own_table`): the turn itself is exact but for δ̇·h and u̇·h times the
-//! carrier rate's change over an interval, below 1e-12 rad per sample; the deterministic errors
+//! carrier rate's change over an interval (estimated about 1e-15 rad per sample); the deterministic errors
 //! taken on the reference table differ by scale factor and misalignment (≤ 1e-5 here) times δ
 //! times the carrier rate, δ the two loops' difference (milliradians at most). So the seed's
 //! tables agree to far below the loop's own one-interval lag (~8e-4 rad at this sea), and the
