@@ -1,6 +1,7 @@
 //! The strapdown navigator alone, per update of one navigator: [`Strapdown`] one at a time
 //! against [`StrapdownLanes`] (eight side by side, and two), on the same increments (Earth rate,
-//! gravity, small noise-like wobbles). `cargo bench -p rins-nav --bench strapdown`.
+//! gravity, small noise-like wobbles), and eight updated once every 4 intervals (per interval).
+//! `cargo bench -p rins-nav --bench strapdown`.
 
 use criterion::{Criterion, Throughput};
 use nalgebra::{UnitQuaternion, Vector3};
@@ -67,6 +68,27 @@ fn main() {
             black_box(lanes.state(0).lat_rad)
         })
     });
+    g.bench_function(
+        "lanes of 8, updated every 4 intervals (per navigator interval)",
+        |b| {
+            b.iter(|| {
+                let four = rins_nav::Subsamples::new(4).expect("in range");
+                let navs: Vec<Strapdown> = navigators()
+                    .into_iter()
+                    .map(|n| n.with_subsamples(four))
+                    .collect();
+                let mut lanes = StrapdownLanes::new(&navs).expect("same navigators");
+                let (mut dth, mut dv) = ([Vector3::zeros(); LANES], [Vector3::zeros(); LANES]);
+                for i in 0..STEPS {
+                    for k in 0..LANES {
+                        (dth[k], dv[k]) = increments(i, k);
+                    }
+                    lanes.update(&dth, &dv);
+                }
+                black_box(lanes.state(0).lat_rad)
+            })
+        },
+    );
     g.finish();
     // Two navigators (a seed's uncompensated and compensated pair at sea): one by one against
     // a pair of lanes.

@@ -18,8 +18,10 @@ pub mod fit;
 mod mechanisation;
 pub mod strapdown;
 pub mod strapdown_lanes;
+pub mod subsamples;
 
 pub use alignment::Alignment;
 pub use errors::NavRecord;
 pub use strapdown::{NavState, Strapdown, VerticalChannel};
 pub use strapdown_lanes::StrapdownLanes;
+pub use subsamples::Subsamples;

@@ -39,7 +39,7 @@ pub(crate) struct Solution<T> {
 }
 
 #[inline(always)]
-fn cross<T: Real>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
+pub(crate) fn cross<T: Real>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -48,12 +48,12 @@ fn cross<T: Real>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
 }
 
 #[inline(always)]
-fn add<T: Real>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
+pub(crate) fn add<T: Real>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
 #[inline(always)]
-fn scale<T: Real>(a: &[T; 3], s: T) -> [T; 3] {
+pub(crate) fn scale<T: Real>(a: &[T; 3], s: T) -> [T; 3] {
     [a[0] * s, a[1] * s, a[2] * s]
 }
 
@@ -151,6 +151,16 @@ pub(crate) fn up_in_body<T: Real>(q: &[T; 4]) -> [T; 3] {
     ]
 }
 
+/// The body frame's part of one update: its rotation vector φ and the specific-force velocity
+/// increment Δv_sf (rotation and sculling corrected), in body axes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BodyIncrement<T> {
+    /// Coning-corrected rotation of the body, rad.
+    pub phi: [T; 3],
+    /// Specific-force velocity increment, m/s.
+    pub dv_sf: [T; 3],
+}
+
 /// Integrates one interval's increments Δθ (rad) and Δv (m/s) over `dt_s` (the equations of
 /// [`crate::strapdown`]).
 #[inline(always)]
@@ -161,9 +171,37 @@ pub(crate) fn update<T: Real>(
     dt_s: f64,
     vertical: VerticalChannel,
 ) {
-    let dt = T::splat(dt_s);
-    let (half, two) = (T::splat(0.5), T::splat(2.0));
-    // Coning and sculling with the previous interval.
+    let body = one_plus_previous(s, dtheta, dv);
+    update_frame(s, &body, dt_s, vertical);
+}
+
+/// Integrates the increments of `dtheta.len()` intervals of `dt_s` each (`dv` as many) in one
+/// update: one interval with [`update`]'s coning and sculling, several with their N-sample
+/// combination ([`crate::subsamples`]).
+#[inline(always)]
+pub(crate) fn update_subsamples<T: Real>(
+    s: &mut Solution<T>,
+    dtheta: &[[T; 3]],
+    dv: &[[T; 3]],
+    dt_s: f64,
+    vertical: VerticalChannel,
+) {
+    if dtheta.len() == 1 {
+        update(s, &dtheta[0], &dv[0], dt_s, vertical);
+    } else {
+        let body = crate::subsamples::combine(dtheta, dv);
+        update_frame(s, &body, dt_s * dtheta.len() as f64, vertical);
+    }
+}
+
+/// Coning and sculling of one interval with the previous one (which it then becomes).
+#[inline(always)]
+fn one_plus_previous<T: Real>(
+    s: &mut Solution<T>,
+    dtheta: &[T; 3],
+    dv: &[T; 3],
+) -> BodyIncrement<T> {
+    let half = T::splat(0.5);
     let (pth, pdv) = (s.prev_dtheta, s.prev_dv);
     let phi = add(dtheta, &divide(&cross(&pth, dtheta), TWELVE));
     let dv_sf_b = add(
@@ -172,6 +210,24 @@ pub(crate) fn update<T: Real>(
     );
     s.prev_dtheta = *dtheta;
     s.prev_dv = *dv;
+    BodyIncrement {
+        phi,
+        dv_sf: dv_sf_b,
+    }
+}
+
+/// The rest of an update over `dt_s` from the body's part: velocity, position and attitude in
+/// the navigation frame.
+#[inline(always)]
+fn update_frame<T: Real>(
+    s: &mut Solution<T>,
+    body: &BodyIncrement<T>,
+    dt_s: f64,
+    vertical: VerticalChannel,
+) {
+    let dt = T::splat(dt_s);
+    let (half, two) = (T::splat(0.5), T::splat(2.0));
+    let (phi, dv_sf_b) = (body.phi, body.dv_sf);
 
     // The latitude's terms: WGS-84 radii of curvature and normal gravity. Its sine and cosine
     // step from a grid point ([`GridTrig`]: libm there, a series from it): vector operations

@@ -13,6 +13,7 @@ use rins_plant::trig::GridTrig;
 use serde::{Deserialize, Serialize};
 
 use crate::mechanisation::Solution;
+use crate::subsamples::Subsamples;
 
 /// How the unstable vertical channel is handled.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -62,7 +63,16 @@ pub struct Strapdown {
     prev_dv: Vector3<f64>,
     lat_trig: GridTrig,
     steps: u64,
+    subsamples: Subsamples,
+    /// The intervals of the update under way (the first `pending` of them), when an update
+    /// takes several ([`Strapdown::with_subsamples`]).
+    pending_dtheta: [Vector3<f64>; MAX_PENDING],
+    pending_dv: [Vector3<f64>; MAX_PENDING],
+    pending: usize,
 }
+
+/// Intervals an update can hold before its last one.
+pub(crate) const MAX_PENDING: usize = Subsamples::MAX as usize - 1;
 
 impl Strapdown {
     /// Starts from `state`, consuming increments over intervals of `dt_s`.
@@ -75,6 +85,10 @@ impl Strapdown {
             prev_dv: Vector3::zeros(),
             lat_trig: GridTrig::default(),
             steps: 0,
+            subsamples: Subsamples::ONE,
+            pending_dtheta: [Vector3::zeros(); MAX_PENDING],
+            pending_dv: [Vector3::zeros(); MAX_PENDING],
+            pending: 0,
         };
         if let VerticalChannel::Hold { ref_height_m } = vertical {
             s.state.height_m = ref_height_m;
@@ -83,7 +97,29 @@ impl Strapdown {
         s
     }
 
-    /// Current solution.
+    /// The same navigator updating once every `n` intervals, with the N-sample coning and
+    /// sculling combination ([`crate::subsamples`]); its state moves at each update (every
+    /// n-th [`Strapdown::update`]). Panics if intervals are held already.
+    pub fn with_subsamples(mut self, n: Subsamples) -> Self {
+        assert_eq!(self.pending, 0, "subsamples set with an update under way");
+        self.subsamples = n;
+        self
+    }
+
+    /// Intervals per update.
+    pub fn subsamples(&self) -> Subsamples {
+        self.subsamples
+    }
+
+    /// The intervals held for the update under way: Δθ (rad) and Δv (m/s) in order.
+    pub fn pending(&self) -> (&[Vector3<f64>], &[Vector3<f64>]) {
+        (
+            &self.pending_dtheta[..self.pending],
+            &self.pending_dv[..self.pending],
+        )
+    }
+
+    /// Current solution (as of the last update).
     pub fn state(&self) -> &NavState {
         &self.state
     }
@@ -125,18 +161,53 @@ impl Strapdown {
     }
 
     /// Consumes one interval's increments Δθ (rad) and Δv (m/s) (the equations of
-    /// [`crate::mechanisation`]).
+    /// [`crate::mechanisation`]); with several intervals per update, holds them until the
+    /// update's last.
     pub fn update(&mut self, dtheta: &Vector3<f64>, dv: &Vector3<f64>) {
+        self.steps += 1;
+        let n = self.subsamples.get();
+        if n == 1 {
+            let mut m = self.solution();
+            crate::mechanisation::update(
+                &mut m,
+                &(*dtheta).into(),
+                &(*dv).into(),
+                self.dt_s,
+                self.vertical,
+            );
+            self.set_solution(&m);
+            return;
+        }
+        if self.pending + 1 < n {
+            self.pending_dtheta[self.pending] = *dtheta;
+            self.pending_dv[self.pending] = *dv;
+            self.pending += 1;
+            return;
+        }
+        let th: [[f64; 3]; MAX_PENDING + 1] = std::array::from_fn(|i| {
+            if i < self.pending {
+                self.pending_dtheta[i].into()
+            } else {
+                (*dtheta).into()
+            }
+        });
+        let dvs: [[f64; 3]; MAX_PENDING + 1] = std::array::from_fn(|i| {
+            if i < self.pending {
+                self.pending_dv[i].into()
+            } else {
+                (*dv).into()
+            }
+        });
         let mut m = self.solution();
-        crate::mechanisation::update(
+        crate::mechanisation::update_subsamples(
             &mut m,
-            &(*dtheta).into(),
-            &(*dv).into(),
+            &th[..n],
+            &dvs[..n],
             self.dt_s,
             self.vertical,
         );
         self.set_solution(&m);
-        self.steps += 1;
+        self.pending = 0;
     }
 
     /// The solution and the previous increments as the equations use them.
