@@ -280,13 +280,17 @@ fn invalid_config(e: Vec<rins_plant::ConfigError>) -> SessionError {
 }
 
 /// The navigators' indices in groups of at most [`LANES`] that can share lanes (the same
-/// update interval and vertical channel), in order.
+/// update interval, vertical channel and intervals per update; none has an update under way
+/// here), in order.
 fn lane_groups(navigators: &[Strapdown]) -> Vec<Vec<usize>> {
     let mut groups: Vec<Vec<usize>> = Vec::new();
     for (i, n) in navigators.iter().enumerate() {
         let alike = |g: &&mut Vec<usize>| {
             let first = &navigators[g[0]];
-            g.len() < LANES && first.dt_s() == n.dt_s() && first.vertical() == n.vertical()
+            g.len() < LANES
+                && first.dt_s() == n.dt_s()
+                && first.vertical() == n.vertical()
+                && first.subsamples() == n.subsamples()
         };
         match groups.iter_mut().find(alike) {
             Some(g) => g.push(i),
@@ -349,8 +353,9 @@ mod tests {
         assert!(e.to_string().contains("rate_hz"), "{e}");
     }
 
-    /// One batch of nine seeds with three navigators each, one of them with a damped vertical
-    /// channel: 27 navigators in several lane groups, some of them partly filled.
+    /// One batch of nine seeds with four navigators each, one of them with a damped vertical
+    /// channel and one compensating and updating every 4 intervals: 36 navigators in several
+    /// lane groups, some of them partly filled.
     #[test]
     fn navigators_in_several_lane_groups_equal_their_runs_alone() {
         let cfg = rins_plant::presets::paper_16pos_config();
@@ -366,6 +371,12 @@ mod tests {
                     tau_s: 50.0,
                 },
                 record_every_s: 10.0,
+                ..NavRunConfig::default()
+            },
+            NavRunConfig {
+                compensation: Some(cfg.sensor.gyro.position_bias),
+                subsamples: rins_nav::Subsamples::new(4).unwrap(),
+                record_every_s: 30.0,
                 ..NavRunConfig::default()
             },
         ];

@@ -14,6 +14,7 @@ use rins_nav::alignment::{FineAlignment, coarse, correct_attitude};
 use rins_nav::errors::attitude_error;
 pub use rins_nav::errors::{NavRecord, vehicle_attitude};
 use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
+use rins_nav::subsamples::Subsamples;
 
 /// Options of a navigation run.
 #[derive(Clone, Debug)]
@@ -26,6 +27,8 @@ pub struct NavRunConfig {
     pub compensation: Option<PositionBiasSpec>,
     /// Interval of the error records (and of the tRMS samples of Eq. 20), s.
     pub record_every_s: f64,
+    /// IMU intervals per navigator update ([`rins_nav::subsamples`]).
+    pub subsamples: Subsamples,
 }
 
 impl Default for NavRunConfig {
@@ -35,6 +38,7 @@ impl Default for NavRunConfig {
             vertical: VerticalChannel::Hold { ref_height_m: 0.0 },
             compensation: None,
             record_every_s: 60.0,
+            subsamples: Subsamples::ONE,
         }
     }
 }
@@ -161,7 +165,8 @@ pub(crate) fn tracker_for(
         plant.vehicle_to_nav(),
         cfg.compensation.as_ref(),
         cfg.record_every_s,
-    );
+    )
+    .with_subsamples(cfg.subsamples);
     if plant.moving_carrier() {
         tracker.on_moving_carrier(plant.config().vehicle.c_vn())
     } else {

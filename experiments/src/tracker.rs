@@ -11,6 +11,7 @@ use nalgebra::{Matrix3, Vector3};
 use rins_nav::compensation::PositionBiasCompensation;
 use rins_nav::errors::{NavRecord, Trms, attitude_error, position_error_m, vehicle_attitude};
 use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
+use rins_nav::subsamples::Subsamples;
 use rins_plant::earth::Site;
 use rins_plant::effects::gyro::PositionBiasSpec;
 use rins_plant::{ImuSample, Plant, Truth};
@@ -73,6 +74,13 @@ impl Tracker {
                 moving_mount: None,
             },
         }
+    }
+
+    /// The same tracker with its navigator updating once every `n` intervals
+    /// ([`Strapdown::with_subsamples`]).
+    pub fn with_subsamples(mut self, n: Subsamples) -> Self {
+        self.nav = self.nav.with_subsamples(n);
+        self
     }
 
     /// The same tracker on a moving carrier with table mount `mount` (C_v^c): errors against the

@@ -166,6 +166,8 @@ pub struct Table4Report {
     pub runs: usize,
     /// Simulated days.
     pub days: f64,
+    /// IMU intervals per navigator update ([`rins_nav::Subsamples`]).
+    pub nav_subsamples: u8,
     /// Uncompensated statistics.
     pub uncompensated: CaseStats,
     /// Compensated statistics.
@@ -311,6 +313,7 @@ pub fn table4_with(
     let report = Table4Report {
         runs: opt.runs,
         days: opt.duration_s / 86_400.0,
+        nav_subsamples: opt.nav.subsamples.into(),
         improvement_pct: improvement(&us, &cs),
         uncompensated: us,
         compensated: cs,

@@ -22,6 +22,9 @@ pub struct PaperArgs {
     /// Headline job: seeds of Table 4 (the paper's 32 by default; fewer for a quick look).
     #[arg(long, default_value_t = 32, allow_negative_numbers = true)]
     pub runs: i64,
+    /// Headline job: IMU intervals per navigator update (1 to 4; see `rins paper table4`).
+    #[arg(long, default_value_t = 4, value_parser = super::table4::parse_subsamples)]
+    pub subsamples: u8,
     /// Output folder.
     #[arg(long, default_value = "out/paper")]
     pub out: PathBuf,
@@ -71,6 +74,7 @@ fn headline(a: &PaperArgs) -> Result<()> {
         days: 7.0,
         scenario: PathBuf::from("builtin:paper-16pos-week"),
         align: "truth".into(),
+        subsamples: a.subsamples,
         json: false,
         out: a.out.clone(),
         report: None,

@@ -40,8 +40,8 @@ impl RenderText for Table4Report {
         let na = [f64::NAN, f64::NAN];
         let mut s = format!(
             "Table 4: {} seeds x {:.2} days, 16-position RINS at 36.6 N 123.6 E, Table 3 sensors (wall {:.1} s)\n\
-             (navigator vertical channel held at the site height; paper values where the paper gives them)\n",
-            self.runs, self.days, self.wall_s,
+             (navigator updated every {} IMU interval(s), vertical channel held at the site height; paper values where the paper gives them)\n",
+            self.runs, self.days, self.wall_s, self.nav_subsamples,
         );
         s += &paired_table_header(28);
         s += &row(
