@@ -15,9 +15,9 @@ from . import _rins
 CASES = ("uncompensated", "compensated")
 
 
-def _task(scenario, seeds, duration_s, alignment):
+def _task(scenario, seeds, duration_s, alignment, subsamples=1):
     """One Dask task: the per-seed end figures of ``seeds`` (runs on a worker)."""
-    return _rins.end_figures(scenario, seeds, duration_s, alignment)
+    return _rins.end_figures(scenario, seeds, duration_s, alignment, subsamples)
 
 
 def _batches(seeds, seeds_per_task):
@@ -44,40 +44,44 @@ def _seeds(seeds):
     return seeds
 
 
-def sweep(scenarios, seeds, *, duration_s=None, alignment="truth", client=None, seeds_per_task=4):
+def sweep(scenarios, seeds, *, duration_s=None, alignment="truth", client=None, seeds_per_task=4,
+          subsamples=1):
     """``montecarlo`` for several scenarios (parameter points) at once: every (scenario, seed
     batch) task is submitted before any is gathered, so a cluster works on all of them.
     Returns one result per scenario, in order."""
     points = [_rins.Scenario(s) for s in scenarios]
     seeds = _seeds(seeds)
     if client is None:
-        return [_assemble(_task(p, seeds, duration_s, alignment)) for p in points]
+        return [_assemble(_task(p, seeds, duration_s, alignment, subsamples)) for p in points]
     batches = _batches(seeds, seeds_per_task)
     futures = [
-        [client.submit(_task, p, b, duration_s, alignment, pure=False) for b in batches]
+        [client.submit(_task, p, b, duration_s, alignment, subsamples, pure=False) for b in batches]
         for p in points
     ]
     results = client.gather(futures)
     return [_assemble([row for part in parts for row in part]) for parts in results]
 
 
-def montecarlo(scenario, seeds, *, duration_s=None, alignment="truth", client=None, seeds_per_task=4):
+def montecarlo(scenario, seeds, *, duration_s=None, alignment="truth", client=None, seeds_per_task=4,
+               subsamples=1):
     """Navigation end figures for each seed of one scenario: uncompensated and with the
     plant's δβ compensated (the per-seed numbers of ``rins paper table4``).
 
     ``scenario``: a path, ``"builtin:NAME"``, a dict or a ``rins.Scenario``; ``seeds``: the
     ``run.seed`` values; ``duration_s``: navigation time (default: the scenario's);
-    ``alignment``: ``"truth"`` or ``"self"``. With a ``dask.distributed.Client`` the seeds go
+    ``alignment``: ``"truth"`` or ``"self"``; ``subsamples``: IMU intervals per navigator
+    update, 1 to 4 (``rins paper table4`` uses 4). With a ``dask.distributed.Client`` the seeds go
     to its workers ``seeds_per_task`` at a time; with ``client=None`` they run in-process.
 
     Returns ``{"seed": uint64 array, "uncompensated": {figure: array}, "compensated": {...}}``
     with the figures of ``rins.FIGURES`` (nmi; mean |phi_U| in degrees).
     """
     return sweep([scenario], seeds, duration_s=duration_s, alignment=alignment, client=client,
-                 seeds_per_task=seeds_per_task)[0]
+                 seeds_per_task=seeds_per_task, subsamples=subsamples)[0]
 
 
-def table4(scenario="builtin:paper-16pos-week", runs=2, days=7.0, alignment="truth"):
+def table4(scenario="builtin:paper-16pos-week", runs=2, days=7.0, alignment="truth", subsamples=4):
     """The ``rins paper table4`` study in-process (seeds from the scenario's ``run.seed``, plus
-    the noise-free pair): the dict ``rins paper table4 --json`` prints."""
-    return json.loads(_rins.table4_json(scenario, runs, days, alignment))
+    the noise-free pair, navigators updated every ``subsamples`` intervals as the CLI's
+    ``--subsamples``): the dict ``rins paper table4 --json`` prints."""
+    return json.loads(_rins.table4_json(scenario, runs, days, alignment, subsamples))

@@ -8,7 +8,7 @@ use pyo3::prelude::*;
 use rins_experiments::{Alignment, NavRunConfig};
 use rins_verify::paper::{EndFigures, Table4Options};
 
-use crate::navigation::parse_alignment;
+use crate::navigation::{parse_alignment, parse_subsamples};
 use crate::scenario::PyScenario;
 use crate::simulation::samples_of;
 
@@ -45,12 +45,14 @@ pub fn from_figures(f: [f64; 5]) -> EndFigures {
 }
 
 /// The study options of `rins paper table4` for this scenario: self-alignment prepends its
-/// time to the table's first dwell, as `--align self` does.
+/// time to the table's first dwell, as `--align self` does; the navigators update every
+/// `subsamples` intervals, as `--subsamples` says.
 fn options(
     sc: &PyScenario,
     runs: usize,
     duration_s: f64,
     alignment: Alignment,
+    subsamples: u8,
 ) -> PyResult<Table4Options> {
     samples_of(duration_s, sc.inner.plant.rate_hz)?;
     let mut plant = sc.inner.plant.clone();
@@ -64,6 +66,7 @@ fn options(
         compensation: None,
         nav: NavRunConfig {
             alignment,
+            subsamples: parse_subsamples(subsamples)?,
             ..NavRunConfig::default()
         },
     })
@@ -72,9 +75,10 @@ fn options(
 /// Per seed: `(seed, uncompensated, compensated)`, each a tuple of the figures named in
 /// `rins.FIGURES` (signed latitude and longitude error, horizontal error and tRMS at the end in
 /// nmi, mean |φ_U| in degrees), the numbers `rins paper table4 --json` lists under `per_seed`.
-/// `duration_s` defaults to the scenario's; `alignment` is `"truth"` (default) or `"self"`.
+/// `duration_s` defaults to the scenario's; `alignment` is `"truth"` (default) or `"self"`;
+/// `subsamples` is the IMU intervals per navigator update (1 to 4; `rins paper table4` uses 4).
 #[pyfunction]
-#[pyo3(signature = (scenario, seeds, duration_s = None, alignment = None))]
+#[pyo3(signature = (scenario, seeds, duration_s = None, alignment = None, subsamples = 1))]
 #[allow(clippy::type_complexity)]
 pub fn end_figures(
     py: Python<'_>,
@@ -82,6 +86,7 @@ pub fn end_figures(
     seeds: Vec<u64>,
     duration_s: Option<f64>,
     alignment: Option<&Bound<'_, PyAny>>,
+    subsamples: u8,
 ) -> PyResult<Vec<(u64, [f64; 5], [f64; 5])>> {
     let sc = PyScenario::resolve(scenario)?;
     let align = match alignment {
@@ -93,6 +98,7 @@ pub fn end_figures(
         seeds.len(),
         duration_s.unwrap_or(sc.inner.meta.duration_s),
         align,
+        subsamples,
     )?;
     rins_scenarios::runner::new_plant(&opt.plant, &sc.inner.source)
         .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
@@ -122,15 +128,17 @@ pub fn end_figures(
 
 /// The whole `rins paper table4` study in-process: `runs` seeds from the scenario's seed,
 /// uncompensated and compensated, plus the noise-free pair, over `days`; returns the JSON text
-/// `rins paper table4 --json` prints (medians, 5-95 % bands, improvements, per-seed figures).
+/// `rins paper table4 --json` prints (medians, 5-95 % bands, improvements, per-seed figures),
+/// its navigators updated every `subsamples` intervals (4, as the CLI's default).
 #[pyfunction]
-#[pyo3(signature = (scenario = None, runs = 2, days = 7.0, alignment = None))]
+#[pyo3(signature = (scenario = None, runs = 2, days = 7.0, alignment = None, subsamples = 4))]
 pub fn table4_json(
     py: Python<'_>,
     scenario: Option<&Bound<'_, PyAny>>,
     runs: usize,
     days: f64,
     alignment: Option<&Bound<'_, PyAny>>,
+    subsamples: u8,
 ) -> PyResult<String> {
     let sc = match scenario {
         Some(s) => PyScenario::resolve(s)?,
@@ -150,7 +158,7 @@ pub fn table4_json(
         Some(a) => parse_alignment(a)?,
         None => Alignment::Truth,
     };
-    let opt = options(&sc, runs, days * 86_400.0, align)?;
+    let opt = options(&sc, runs, days * 86_400.0, align, subsamples)?;
     rins_scenarios::runner::new_plant(&opt.plant, &sc.inner.source)
         .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
     let report = py.detach(|| rins_verify::paper::table4(&opt, &|_| {}));

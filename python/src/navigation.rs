@@ -43,9 +43,10 @@ pub fn parse_alignment(a: &Bound<'_, PyAny>) -> PyResult<Alignment> {
 /// `t_s`, `att_err_rad` (E, N, U), `vehicle_att_err_rad`, `vel_err_mps`, `north_m`, `east_m`,
 /// `horizontal_m`, `trms_m`, plus `up_att_mean_abs_rad` and, when self-aligned, `alignment`.
 /// `compensated=True` subtracts the plant's own δβ in the navigation computer (Table 4's
-/// compensated case). The GIL is released while it runs.
+/// compensated case). `subsamples` (1 to 4) is the number of IMU intervals per navigator update
+/// (`rins paper table4 --subsamples`). The GIL is released while it runs.
 #[pyfunction]
-#[pyo3(signature = (scenario, duration_s = None, seed = None, compensated = false, alignment = None, record_every_s = 60.0))]
+#[pyo3(signature = (scenario, duration_s = None, seed = None, compensated = false, alignment = None, record_every_s = 60.0, subsamples = 1))]
 pub fn navigate<'py>(
     py: Python<'py>,
     scenario: &Bound<'py, PyAny>,
@@ -54,6 +55,7 @@ pub fn navigate<'py>(
     compensated: bool,
     alignment: Option<&Bound<'py, PyAny>>,
     record_every_s: f64,
+    subsamples: u8,
 ) -> PyResult<Bound<'py, PyDict>> {
     let sc = PyScenario::resolve(scenario)?;
     let mut cfg = sc.inner.plant.clone();
@@ -69,6 +71,7 @@ pub fn navigate<'py>(
         },
         compensation: compensated.then_some(cfg.sensor.gyro.position_bias),
         record_every_s,
+        subsamples: parse_subsamples(subsamples)?,
         ..NavRunConfig::default()
     };
     let mut plant = rins_scenarios::runner::new_plant(&cfg, &sc.inner.source)
@@ -104,4 +107,9 @@ pub fn navigate<'py>(
         d.set_item("alignment", ad)?;
     }
     Ok(d)
+}
+
+/// `subsamples`: IMU intervals per navigator update, or a ValueError naming the range.
+pub(crate) fn parse_subsamples(n: u8) -> PyResult<rins_nav::Subsamples> {
+    rins_nav::Subsamples::new(n).map_err(pyo3::exceptions::PyValueError::new_err)
 }

@@ -208,22 +208,34 @@ def test_montecarlo_equals_cli():
         [RINS, "paper", "table4", "--runs", "2", "--days", str(DAYS), "--json", "--out", out],
         check=True, capture_output=True, text=True).stdout)
     seeds = [s for s, _, _ in cli["per_seed"]]
-    mc = rins.montecarlo(WEEK, seeds, duration_s=DAYS * 86400.0)
+    # The CLI's study updates its navigators every 4 intervals (--subsamples 4, its default).
+    assert cli["nav_subsamples"] == 4, cli["nav_subsamples"]
+    mc = rins.montecarlo(WEEK, seeds, duration_s=DAYS * 86400.0, subsamples=4)
     np.testing.assert_array_equal(mc["seed"], np.array(seeds, dtype=np.uint64))
     for k, case in enumerate(("uncompensated", "compensated")):
         for name in rins.FIGURES:
             same_bits(mc[case][name], [row[1 + k][name] for row in cli["per_seed"]], f"{case} {name}")
     print(f"montecarlo: seeds {seeds}, {len(rins.FIGURES)} figures x 2 cases equal `rins paper table4 --json` bit for bit")
     # The navigator on its own agrees with the Monte Carlo's figures of the same seed.
-    nav = rins.navigate(WEEK, duration_s=DAYS * 86400.0, seed=seeds[1], compensated=True)
+    nav = rins.navigate(WEEK, duration_s=DAYS * 86400.0, seed=seeds[1], compensated=True, subsamples=4)
     same_bits(nav["horizontal_m"][-1] / 1852.0, mc["compensated"]["horizontal_nm"][1], "navigate horizontal")
     same_bits(nav["up_att_mean_abs_rad"] * (180.0 / math.pi), mc["compensated"]["up_att_mean_deg"][1],
               "navigate mean |phi_U|")
     assert nav["t_s"][-1] == DAYS * 86400.0, nav["t_s"][-1]
     # The whole study in-process equals the CLI's (wall time aside).
     t4 = rins.table4(WEEK, runs=2, days=DAYS)
-    for key in ("uncompensated", "compensated", "improvement_pct", "noise_free", "per_seed", "runs", "days"):
+    for key in ("uncompensated", "compensated", "improvement_pct", "noise_free", "per_seed", "runs", "days",
+                "nav_subsamples"):
         assert t4[key] == cli[key], key
+    # Every interval an update is another navigator: its figures differ, a little.
+    every = rins.montecarlo(WEEK, seeds[:1], duration_s=DAYS * 86400.0, subsamples=1)
+    diff = abs(every["uncompensated"]["lon_nm"][0] - mc["uncompensated"]["lon_nm"][0])
+    assert 0.0 < diff < 0.05, diff
+    try:
+        rins.montecarlo(WEEK, seeds[:1], duration_s=60.0, subsamples=5)
+        raise AssertionError("subsamples=5 was accepted")
+    except ValueError as e:
+        assert "1 to 4" in str(e), str(e)
     print("rins.table4 equals `rins paper table4 --json` (statistics, improvements, noise-free pair)")
 
 
