@@ -175,9 +175,8 @@ pub(crate) fn update<T: Real>(
     update_frame(s, &body, dt_s, vertical);
 }
 
-/// Integrates the increments of `dtheta.len()` intervals of `dt_s` each (`dv` as many) in one
-/// update: one interval with [`update`]'s coning and sculling, several with their N-sample
-/// combination ([`crate::subsamples`]).
+/// Integrates the increments of `dtheta.len()` intervals of `dt_s` each (2 to 4; `dv` as many)
+/// in one update, with their N-sample coning and sculling combination ([`crate::subsamples`]).
 #[inline(always)]
 pub(crate) fn update_subsamples<T: Real>(
     s: &mut Solution<T>,
@@ -186,12 +185,8 @@ pub(crate) fn update_subsamples<T: Real>(
     dt_s: f64,
     vertical: VerticalChannel,
 ) {
-    if dtheta.len() == 1 {
-        update(s, &dtheta[0], &dv[0], dt_s, vertical);
-    } else {
-        let body = crate::subsamples::combine(dtheta, dv);
-        update_frame(s, &body, dt_s * dtheta.len() as f64, vertical);
-    }
+    let body = crate::subsamples::combine(dtheta, dv);
+    update_frame(s, &body, dt_s * dtheta.len() as f64, vertical);
 }
 
 /// Coning and sculling of one interval with the previous one (which it then becomes).
