@@ -36,6 +36,10 @@ pub struct SeaArgs {
     /// differ in their sensors only, as over a route) or `per-run` (each seed draws its own sea).
     #[arg(long, value_enum, default_value_t = SeaOfSeeds::Fixed)]
     pub sea: SeaOfSeeds,
+    /// IMU intervals per navigator update, 1 to 4 (`rins paper table4 --subsamples`; the
+    /// figures in docs/carrier.md are with 1).
+    #[arg(long, default_value_t = 1, value_parser = super::table4::parse_subsamples)]
+    pub subsamples: u8,
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
@@ -116,7 +120,10 @@ pub fn run(a: &SeaArgs) -> Result<()> {
             runs,
             duration_s: a.days * 86_400.0,
             compensation: None,
-            nav: rins_experiments::NavRunConfig::default(),
+            nav: rins_experiments::NavRunConfig {
+                subsamples: rins_nav::Subsamples::new(a.subsamples).map_err(anyhow::Error::msg)?,
+                ..rins_experiments::NavRunConfig::default()
+            },
         },
     };
     let per_run = (opt.paired.duration_s * opt.ship.rate_hz) as u64;

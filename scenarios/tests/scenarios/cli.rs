@@ -83,11 +83,16 @@ fn negative_numbers_reach_the_range_check_which_names_flag_and_range() {
         err.contains("--days: expected a number in (0, 60], got -1"),
         "{err}"
     );
-    for bad in ["0", "5", "two"] {
-        let err = failure(&["paper", "table4", "--subsamples", bad, "--out", out]);
+    for (study, bad) in [
+        ("table4", "0"),
+        ("table4", "5"),
+        ("table4", "two"),
+        ("sea", "9"),
+    ] {
+        let err = failure(&["paper", study, "--subsamples", bad, "--out", out]);
         assert!(
             err.contains("--subsamples") && err.contains("1 to 4"),
-            "{bad}: {err}"
+            "{study} {bad}: {err}"
         );
     }
     let err = failure(&["verify", "ins", "--runs", "-8"]);
