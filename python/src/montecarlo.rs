@@ -52,7 +52,7 @@ fn options(
     runs: usize,
     duration_s: f64,
     alignment: Alignment,
-    subsamples: u8,
+    subsamples: i64,
 ) -> PyResult<Table4Options> {
     samples_of(duration_s, sc.inner.plant.rate_hz)?;
     let mut plant = sc.inner.plant.clone();
@@ -86,7 +86,7 @@ pub fn end_figures(
     seeds: Vec<u64>,
     duration_s: Option<f64>,
     alignment: Option<&Bound<'_, PyAny>>,
-    subsamples: u8,
+    subsamples: i64,
 ) -> PyResult<Vec<(u64, [f64; 5], [f64; 5])>> {
     let sc = PyScenario::resolve(scenario)?;
     let align = match alignment {
@@ -138,7 +138,7 @@ pub fn table4_json(
     runs: usize,
     days: f64,
     alignment: Option<&Bound<'_, PyAny>>,
-    subsamples: u8,
+    subsamples: i64,
 ) -> PyResult<String> {
     let sc = match scenario {
         Some(s) => PyScenario::resolve(s)?,

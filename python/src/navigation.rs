@@ -55,7 +55,7 @@ pub fn navigate<'py>(
     compensated: bool,
     alignment: Option<&Bound<'py, PyAny>>,
     record_every_s: f64,
-    subsamples: u8,
+    subsamples: i64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let sc = PyScenario::resolve(scenario)?;
     let mut cfg = sc.inner.plant.clone();
@@ -110,6 +110,9 @@ pub fn navigate<'py>(
 }
 
 /// `subsamples`: IMU intervals per navigator update, or a ValueError naming the range.
-pub(crate) fn parse_subsamples(n: u8) -> PyResult<rins_nav::Subsamples> {
-    rins_nav::Subsamples::new(n).map_err(pyo3::exceptions::PyValueError::new_err)
+pub(crate) fn parse_subsamples(n: i64) -> PyResult<rins_nav::Subsamples> {
+    u8::try_from(n)
+        .map_err(|_| format!("subsamples {n}: the navigator updates every 1 to 4 IMU intervals"))
+        .and_then(rins_nav::Subsamples::new)
+        .map_err(pyo3::exceptions::PyValueError::new_err)
 }

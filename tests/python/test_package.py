@@ -231,11 +231,12 @@ def test_montecarlo_equals_cli():
     every = rins.montecarlo(WEEK, seeds[:1], duration_s=DAYS * 86400.0, subsamples=1)
     diff = abs(every["uncompensated"]["lon_nm"][0] - mc["uncompensated"]["lon_nm"][0])
     assert 0.0 < diff < 0.05, diff
-    try:
-        rins.montecarlo(WEEK, seeds[:1], duration_s=60.0, subsamples=5)
-        raise AssertionError("subsamples=5 was accepted")
-    except ValueError as e:
-        assert "1 to 4" in str(e), str(e)
+    for bad in (5, -1, 300):
+        try:
+            rins.montecarlo(WEEK, seeds[:1], duration_s=60.0, subsamples=bad)
+            raise AssertionError(f"subsamples={bad} was accepted")
+        except ValueError as e:
+            assert "1 to 4" in str(e), str(e)
     print("rins.table4 equals `rins paper table4 --json` (statistics, improvements, noise-free pair)")
 
 

@@ -23,8 +23,8 @@ pub struct PaperArgs {
     #[arg(long, default_value_t = 32, allow_negative_numbers = true)]
     pub runs: i64,
     /// Headline job: IMU intervals per navigator update (1 to 4; see `rins paper table4`).
-    #[arg(long, default_value_t = 4, value_parser = super::table4::parse_subsamples)]
-    pub subsamples: u8,
+    #[arg(long, default_value = "4", value_parser = super::table4::parse_subsamples)]
+    pub subsamples: rins_nav::Subsamples,
     /// Output folder.
     #[arg(long, default_value = "out/paper")]
     pub out: PathBuf,

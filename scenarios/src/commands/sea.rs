@@ -38,8 +38,8 @@ pub struct SeaArgs {
     pub sea: SeaOfSeeds,
     /// IMU intervals per navigator update, 1 to 4 (`rins paper table4 --subsamples`; the
     /// figures in docs/carrier.md are with 1).
-    #[arg(long, default_value_t = 1, value_parser = super::table4::parse_subsamples)]
-    pub subsamples: u8,
+    #[arg(long, default_value = "1", value_parser = super::table4::parse_subsamples)]
+    pub subsamples: rins_nav::Subsamples,
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
@@ -121,7 +121,7 @@ pub fn run(a: &SeaArgs) -> Result<()> {
             duration_s: a.days * 86_400.0,
             compensation: None,
             nav: rins_experiments::NavRunConfig {
-                subsamples: rins_nav::Subsamples::new(a.subsamples).map_err(anyhow::Error::msg)?,
+                subsamples: a.subsamples,
                 ..rins_experiments::NavRunConfig::default()
             },
         },
