@@ -89,6 +89,7 @@ fn main() {
             0.01,
             rins_plant::table::GimbalAngles::new(0.0, a),
             a,
+            rins_plant::effects::custom::MotionClocks::default(),
         );
         acc += g;
     }

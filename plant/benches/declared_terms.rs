@@ -171,6 +171,7 @@ fn increments_alone(cfg: &PlantConfig, calls: u64) -> f64 {
             0.01,
             GimbalAngles::new(a, 2.0 * a),
             a,
+            rins_plant::effects::custom::MotionClocks::default(),
         );
         acc += g + v;
     }

@@ -200,10 +200,12 @@ impl Plant {
             let mut x = interval;
             let h_s = self.clock.h_s();
             for sub in 0..self.clock.substeps() {
+                let since = self.errors.table_clocks_held(self.clock.tick(), h_s);
                 self.errors.redo_declared(
                     sub == 0,
                     t.catalogue,
                     self.clock.tick_mid_s(),
+                    since,
                     &t.dtheta_rad,
                     &t.dv_mps,
                     h_s,
@@ -231,6 +233,7 @@ impl Plant {
         for sub in 0..self.clock.substeps() {
             let tick = self.clock.tick();
             let m = self.motion.tick(tick, h_s, heading);
+            let since = self.errors.table_clocks(tick, m.moved, h_s);
             let input = TickInput {
                 h_s,
                 dtheta_rad: m.inc.dtheta_rad,
@@ -240,6 +243,7 @@ impl Plant {
                 north_east_b: m.north_east_b,
                 gimbal_mid: m.gimbal_mid.angles,
                 t_mid_s: if time { self.clock.tick_mid_s() } else { 0.0 },
+                since,
             };
             let catalogue = self.errors.tick(
                 &input,
@@ -638,8 +642,19 @@ mod tests {
                 spec("drift", CustomKind::Bias, "time", "s"),
                 spec("tilt", CustomKind::Bias, "time*u_x", "s"),
                 spec("sf", CustomKind::ScaleFactor, "time^2", "s^2"),
+                // Memory (issue 42): a transient after each move, a lagged temperature.
+                spec("transient", CustomKind::Bias, "exp(-since_move/60)", "1"),
+                spec("lagged", CustomKind::Bias, "lag(temp:block,300)*u_z", "K"),
             ];
-            cfg.sensor.accel.custom = vec![spec("a", CustomKind::Bias, "time*u_z", "s")];
+            cfg.sensor.accel.custom = vec![
+                spec("a", CustomKind::Bias, "time*u_z", "s"),
+                spec(
+                    "b",
+                    CustomKind::Bias,
+                    "since_start*lag(abs_w_z,5)",
+                    "s*deg/s",
+                ),
+            ];
             let mut cached = Plant::new(&cfg).unwrap();
             let mut plain = Plant::new(&cfg).unwrap();
             plain.set_dwell_cache(false);
@@ -657,6 +672,88 @@ mod tests {
             }
             // About 55 % of the samples: the dwells, less each thermal update (every 1 s).
             assert!(reused > 15_000, "the dwell was reused {reused} times");
+        }
+    }
+
+    /// A transient after each table move, `exp(-since_move/τ)`: over a whole dwell of the
+    /// 16-position scheme the plant's declared error sums to A·τ·(1 − e^(−T/τ)) (the clock
+    /// starts when the turn ends), and during the turn to A per second; the clock is in whole
+    /// ticks, the value at each tick's middle (relative error below (h/τ)²/24).
+    #[test]
+    fn a_transient_after_each_move_integrates_to_its_closed_form() {
+        let mut cfg = crate::presets::paper_16pos_config();
+        cfg.sensor = crate::config::SensorSpec::default();
+        let (a_dph, tau_s) = (0.05, 40.0);
+        cfg.sensor.gyro.custom = vec![CustomSpec {
+            name: "transient".into(),
+            enabled: true,
+            kind: CustomKind::Bias,
+            regressor: "exp(-since_move/40)".into(),
+            unit: "1".into(),
+            axes: vec![Axis::Z],
+            coef: [0.0, 0.0, a_dph],
+        }];
+        let mut p = Plant::new(&cfg).unwrap();
+        let h = 1.0 / cfg.rate_hz;
+        let a = a_dph * crate::units::DPH;
+        // Samples while the table turns, and the dwell after the first turn.
+        let (mut moving_sum, mut moving_n, mut dwell, mut in_dwell) = (0.0, 0, Vec::new(), false);
+        for _ in 0..40_000 {
+            p.step();
+            let t = p.truth();
+            let e = t.custom_gyro_rad[2];
+            if t.gimbal.moving {
+                if in_dwell {
+                    break;
+                }
+                moving_sum += e;
+                moving_n += 1;
+            } else if moving_n > 0 {
+                in_dwell = true;
+                dwell.push(e);
+            }
+        }
+        assert!(
+            moving_n > 100 && dwell.len() > 1000,
+            "{moving_n} {}",
+            dwell.len()
+        );
+        // While turning the clock is 0: A per second (the samples the turn starts and ends
+        // in are partly still, so the mean lies a little below A).
+        let mean = moving_sum / (moving_n as f64 * h);
+        assert!((mean / a - 1.0).abs() < 0.02, "{mean} vs {a}");
+        // The dwell: samples after the turn's last one, from its stop to the next turn.
+        let span = dwell.len() as f64 * h;
+        let want = a * tau_s * (1.0 - (-span / tau_s).exp());
+        let got: f64 = dwell.iter().sum();
+        assert!(
+            (got / want - 1.0).abs() < 2.0 * h / span + 1e-6,
+            "{got} vs closed form {want}"
+        );
+    }
+
+    /// The declared effects' memory and motion clocks are part of the saved state: a plant
+    /// resumed mid-dwell continues bit for bit.
+    #[test]
+    fn memory_and_motion_clocks_survive_a_saved_state() {
+        let mut cfg = crate::presets::paper_16pos_config();
+        cfg.sensor.gyro.custom = vec![CustomSpec {
+            name: "m".into(),
+            enabled: true,
+            kind: CustomKind::Bias,
+            regressor: "exp(-since_move/60)*lag(temp:block,200)".into(),
+            unit: "K".into(),
+            axes: vec![Axis::X, Axis::Z],
+            coef: [0.01, 0.0, -0.02],
+        }];
+        cfg.thermal.start_steady = false;
+        let mut a = Plant::new(&cfg).unwrap();
+        for _ in 0..25_123 {
+            a.step();
+        }
+        let mut b = Plant::from_serialized_state(&cfg, &a.serialize_state()).unwrap();
+        for k in 0..30_000 {
+            assert_eq!(a.step(), b.step(), "sample {k} after the restore");
         }
     }
 }

@@ -7,8 +7,7 @@ use nalgebra::Vector3;
 
 use crate::config::PlantConfig;
 use crate::effects::accel::ACCEL_TERMS;
-use crate::effects::custom::Declared;
-use crate::effects::custom::Needs;
+use crate::effects::custom::{Declared, MotionClocks, Needs};
 use crate::effects::gyro::{GYRO_TERMS, GyroThermalRates};
 use crate::effects::{AccelModel, GyroModel, TermContext};
 use crate::output::Truth;
@@ -35,6 +34,49 @@ pub(crate) struct TickInput {
     pub gimbal_mid: GimbalAngles,
     /// Time at the tick's middle, s, when a declared effect reads it.
     pub t_mid_s: f64,
+    /// The table's motion clocks at the tick's middle, when a declared effect reads them.
+    pub since: MotionClocks,
+}
+
+/// When the table last stopped and last started, in internal ticks: the clocks `since_move`
+/// and `since_start` of the declared effects, kept in whole ticks so they are exact.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct TableClocks {
+    /// The tick at whose start the table last stopped (0: the run's start).
+    stop_tick: u64,
+    /// The tick in which it last started to move (0: the run's start).
+    start_tick: u64,
+    /// The last tick moved.
+    moving: bool,
+}
+
+impl TableClocks {
+    /// Tick `tick` (of length `h_s`), which moved the table or not: the clocks at its middle.
+    #[inline]
+    pub(crate) fn tick(&mut self, tick: u64, moved: bool, h_s: f64) -> MotionClocks {
+        if moved && !self.moving {
+            self.start_tick = tick;
+        } else if !moved && self.moving {
+            self.stop_tick = tick;
+        }
+        self.moving = moved;
+        self.at(tick, h_s)
+    }
+
+    /// The clocks at the middle of tick `tick`, with nothing changed since the last
+    /// [`TableClocks::tick`] (a held dwell).
+    #[inline]
+    pub(crate) fn at(&self, tick: u64, h_s: f64) -> MotionClocks {
+        let mid = |from: u64| (tick.saturating_sub(from) as f64 + 0.5) * h_s;
+        MotionClocks {
+            move_s: if self.moving {
+                0.0
+            } else {
+                mid(self.stop_tick)
+            },
+            start_s: mid(self.start_tick),
+        }
+    }
 }
 
 /// The deterministic sensor effects.
@@ -48,6 +90,8 @@ pub(crate) struct SensorErrors {
     accel_thermal_mps2: Vector3<f64>,
     /// Declared effects and their slow signals.
     declared: Declared,
+    /// The table's last stop and start, for the declared effects' motion clocks.
+    clocks: TableClocks,
 }
 
 impl SensorErrors {
@@ -60,6 +104,7 @@ impl SensorErrors {
             gyro_thermal: gyro.thermal_rates(&temps.gyro_c(), &temps.gyro_gradient_k()),
             accel_thermal_mps2: accel.thermal_bias_mps2(temps.accel_c()),
             declared: Declared::new(&s.gyro, &s.accel, &temps.nodes_c),
+            clocks: TableClocks::default(),
             gyro,
             accel,
         }
@@ -80,8 +125,29 @@ impl SensorErrors {
         self.declared.is_active().then(|| self.declared.needs())
     }
 
-    /// True when a declared effect changes within a dwell (it reads time, say), so a dwell's
-    /// interval cannot be reused.
+    /// Tick `tick` of length `h_s` moved the table or not: the motion clocks at its middle
+    /// (kept only when a declared effect reads them; zeros otherwise).
+    #[inline]
+    pub(crate) fn table_clocks(&mut self, tick: u64, moved: bool, h_s: f64) -> MotionClocks {
+        if self.declared.needs().motion {
+            self.clocks.tick(tick, moved, h_s)
+        } else {
+            MotionClocks::default()
+        }
+    }
+
+    /// The motion clocks at tick `tick` of a held dwell.
+    #[inline]
+    pub(crate) fn table_clocks_held(&self, tick: u64, h_s: f64) -> MotionClocks {
+        if self.declared.needs().motion {
+            self.clocks.at(tick, h_s)
+        } else {
+            MotionClocks::default()
+        }
+    }
+
+    /// True when a declared effect changes within a dwell (it reads time or a motion clock,
+    /// or has memory), so a dwell's interval cannot be reused whole.
     pub(crate) fn vary_in_dwell(&self) -> bool {
         self.declared.varies_in_dwell()
     }
@@ -167,6 +233,7 @@ impl SensorErrors {
                 x.h_s,
                 x.gimbal_mid,
                 x.t_mid_s,
+                x.since,
             );
             (truth.custom_gyro_rad, truth.custom_accel_mps) = if first {
                 (g, a)
@@ -179,15 +246,17 @@ impl SensorErrors {
         catalogue
     }
 
-    /// One tick of a dwell again, for declared effects that read the time: adds the tick's
+    /// One tick of a dwell again, for declared effects that change within it: adds the tick's
     /// `catalogue` errors (unchanged within the dwell) and the declared effects at `t_mid_s`
-    /// to `sums`, as [`SensorErrors::tick`] would (the frame's other signals are the dwell's).
+    /// and motion clocks `since` to `sums`, as [`SensorErrors::tick`] would (the frame's other
+    /// signals are the dwell's; the memory advances by the tick).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn redo_declared(
         &mut self,
         first: bool,
         catalogue: (Vector3<f64>, Vector3<f64>),
         t_mid_s: f64,
+        since: MotionClocks,
         dtheta_rad: &Vector3<f64>,
         dv_mps: &Vector3<f64>,
         h_s: f64,
@@ -203,7 +272,7 @@ impl SensorErrors {
         }
         let (g, a) = self
             .declared
-            .increments_at(t_mid_s, dtheta_rad, dv_mps, h_s);
+            .increments_at(t_mid_s, since, dtheta_rad, dv_mps, h_s);
         (truth.custom_gyro_rad, truth.custom_accel_mps) = if first {
             (g, a)
         } else {
@@ -219,12 +288,21 @@ impl SensorErrors {
     }
 
     /// Writes the declared effects' temperature rates (only when there are declared effects:
-    /// states of plants without them keep their length).
+    /// states of plants without them keep their length), and, when they have them, their
+    /// motion clocks and memory.
     pub(crate) fn write(&self, w: &mut Writer, truth: &Truth) {
         if self.declared.is_active() {
             self.declared.rates_k_per_s().iter().for_each(|x| w.f64(*x));
             w.v3(&truth.custom_gyro_rad);
             w.v3(&truth.custom_accel_mps);
+        }
+        if self.declared.needs().motion {
+            w.u64(self.clocks.stop_tick);
+            w.u64(self.clocks.start_tick);
+            w.u64(self.clocks.moving as u64);
+        }
+        if self.declared.has_memory() {
+            self.declared.lag_ends().iter().for_each(|x| w.f64(*x));
         }
     }
 
@@ -243,6 +321,18 @@ impl SensorErrors {
             self.declared.restore(&temps.nodes_c, &rates);
             truth.custom_gyro_rad = r.v3()?;
             truth.custom_accel_mps = r.v3()?;
+        }
+        if self.declared.needs().motion {
+            self.clocks.stop_tick = r.u64()?;
+            self.clocks.start_tick = r.u64()?;
+            self.clocks.moving = r.u64()? != 0;
+        }
+        if self.declared.has_memory() {
+            let mut ends = self.declared.lag_ends();
+            for x in ends.iter_mut() {
+                *x = r.f64()?;
+            }
+            self.declared.restore_lag_ends(&ends);
         }
         self.refresh_rates(temps);
         Ok(())

@@ -5,10 +5,13 @@
 //! effects through [`crate::slots`], so the plant compiles and simulates
 //! a slot with the same code as the same block of a scenario file.
 
-use crate::slots::{BLOCK_CODE, FACTORS, SIGNAL_CODE_MAX, Slot, signal_codes};
+use crate::slots::{
+    BLOCK_CODE, FACTORS, OP_CODE_MAX, SIGNAL_CODE_MAX, Slot, TAU_START_S, signal_codes,
+};
 use rins_fmi::vars::{Causality, Kind, ScalarVar, Value};
 use rins_plant::PlantConfig;
 use rins_plant::effects::CustomSpec;
+use rins_plant::effects::custom::{MAX_TAU_S, MIN_TAU_S};
 
 /// Slots per sensor.
 pub const SLOTS: usize = 4;
@@ -22,6 +25,8 @@ pub(crate) enum Field {
     NodeOrAxis(usize),
     NodeB(usize),
     Power(usize),
+    Op(usize),
+    TauS(usize),
     Coef(usize),
 }
 
@@ -132,6 +137,30 @@ pub(crate) fn vars() -> Vec<(ScalarVar, SlotVar)> {
                     );
                 }
             }
+            // Appended after the fields above, so their value references do not move.
+            for j in 0..FACTORS {
+                push(
+                    Field::Op(j),
+                    format!("{p}.op[{j}]"),
+                    format!("{p}.op"),
+                    Kind::Integer,
+                    Value::Integer(0),
+                    Some((0.0, OP_CODE_MAX as f64)),
+                    "operator on factor j: 0 none, 1 lag(signal, tau_s), 2 exp(-signal/tau_s) (signal a clock: time, since_move, since_start)".into(),
+                );
+            }
+            for j in 0..FACTORS {
+                push(
+                    Field::TauS(j),
+                    format!("{p}.tau_s[{j}]"),
+                    format!("{p}.tau_s"),
+                    Kind::Real,
+                    Value::Real(TAU_START_S),
+                    Some((MIN_TAU_S, MAX_TAU_S)),
+                    "time constant of the operator on factor j, s (read only when op[j] is 1 or 2)"
+                        .into(),
+                );
+            }
             for i in 0..3 {
                 push(
                     Field::Coef(i),
@@ -165,6 +194,8 @@ pub(crate) fn read<'a>(
             (Field::NodeOrAxis(j), x) => s.factors[j].node_or_axis = int(x),
             (Field::NodeB(j), x) => s.factors[j].node_b = int(x),
             (Field::Power(j), x) => s.factors[j].power = int(x),
+            (Field::Op(j), x) => s.factors[j].op = int(x),
+            (Field::TauS(j), Value::Real(x)) => s.factors[j].tau_s = x,
             (Field::Coef(i), Value::Real(x)) => s.coef[i] = x,
             _ => {}
         }
@@ -225,6 +256,8 @@ pub fn slot_values(
                 ));
                 out.push((format!("{p}.node_b[{j}]"), Value::Integer(f.node_b)));
                 out.push((format!("{p}.power[{j}]"), Value::Integer(f.power.max(1))));
+                out.push((format!("{p}.op[{j}]"), Value::Integer(f.op)));
+                out.push((format!("{p}.tau_s[{j}]"), Value::Real(f.tau_s)));
             }
             for (i, c) in slot.coef.iter().enumerate() {
                 out.push((format!("{p}.coef[{i}]"), Value::Real(*c)));

@@ -15,7 +15,7 @@
 use rins_plant::effects::Axes3;
 use rins_plant::effects::custom::signals::{ArgKind, Args, FAMILIES, NodeRef};
 use rins_plant::effects::custom::{
-    Axis, CustomKind, CustomSpec, MAX_POWER, parse_regressor, unit_of,
+    Axis, CustomKind, CustomSpec, MAX_POWER, MAX_TAU_S, MIN_TAU_S, Op, parse_regressor, unit_of,
 };
 use rins_plant::thermal::node;
 
@@ -26,8 +26,13 @@ pub const SIGNAL_CODE_MAX: u64 = FAMILIES.len() as u64;
 /// The node code of `block` (the acting axis's own block); 0…5 are the nodes of [`node`].
 pub const BLOCK_CODE: u64 = node::COUNT as u64;
 
+/// Operator codes of a factor: 0 none, 1 `lag(SIGNAL, TAU)`, 2 `exp(-CLOCK/TAU)`.
+pub const OP_CODE_MAX: u64 = 2;
+/// The start value of a factor's time constant (read only with an operator).
+pub const TAU_START_S: f64 = 60.0;
+
 /// One factor of a slot, as numbers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SlotFactor {
     /// Signal: 0 none, else the row of [`FAMILIES`] + 1 (1 temp, 2 dtemp_dt, 3 grad, 4 u,
     /// 5 w, 6 abs_w, 7 gimbal_outer, 8 gimbal_inner, 9 time, 10 n, 11 e: [`signal_codes`]).
@@ -39,6 +44,23 @@ pub struct SlotFactor {
     pub node_b: u64,
     /// Power, 1 … 8.
     pub power: u64,
+    /// Operator: 0 none, 1 first-order lag, 2 decay exp(−signal/τ) (docs/effects.md).
+    pub op: u64,
+    /// The operator's time constant, s.
+    pub tau_s: f64,
+}
+
+impl Default for SlotFactor {
+    fn default() -> Self {
+        SlotFactor {
+            signal: 0,
+            node_or_axis: 0,
+            node_b: 0,
+            power: 1,
+            op: 0,
+            tau_s: TAU_START_S,
+        }
+    }
 }
 
 /// One declared effect as numbers.
@@ -143,6 +165,29 @@ impl Slot {
                     format!("= {} is not a power (valid: 1…{})", f.power, MAX_POWER),
                 ));
             }
+            if f.op != 0 && !(MIN_TAU_S..=MAX_TAU_S).contains(&f.tau_s) {
+                return Err(bad(
+                    "tau_s",
+                    format!(
+                        "= {} s is not a time constant (valid: {MIN_TAU_S:e}…{MAX_TAU_S:e} s)",
+                        f.tau_s
+                    ),
+                ));
+            }
+            // The time constant in Rust's shortest round-trip form: parsed back to its bits.
+            let name = match f.op {
+                0 => name,
+                1 => format!("lag({name},{})", f.tau_s),
+                2 => format!("exp(-{name}/{})", f.tau_s),
+                code => {
+                    return Err(bad(
+                        "op",
+                        format!(
+                            "= {code} is not an operator (valid: 0…{OP_CODE_MAX}: 0 none, 1 lag, 2 exp decay)"
+                        ),
+                    ));
+                }
+            };
             parts.push(if f.power == 1 {
                 name
             } else {
@@ -176,7 +221,14 @@ impl Slot {
         };
         let regressor = self.regressor()?;
         let factors = parse_regressor(&regressor).map_err(|e| SlotError {
-            field: "signal[0]".into(),
+            field: if e.contains("exp(") {
+                // A decay of a signal that is not a clock: the operator's field.
+                (0..FACTORS)
+                    .find(|&j| self.factors[j].op == 2)
+                    .map_or("signal[0]".into(), |j| format!("signal[{j}]"))
+            } else {
+                "signal[0]".into()
+            },
             message: e,
         })?;
         Ok(CustomSpec {
@@ -221,11 +273,18 @@ impl Slot {
                 Args::Axis(i) => (i as u64, 0),
             };
             let signal = family as u64 + 1;
+            let (op, tau_s) = match f.op {
+                Op::Plain => (0, TAU_START_S),
+                Op::Lag { tau_s } => (1, tau_s),
+                Op::Decay { tau_s } => (2, tau_s),
+            };
             *out = SlotFactor {
                 signal,
                 node_or_axis: a,
                 node_b: b,
                 power: f.power as u64,
+                op,
+                tau_s,
             };
         }
         Ok(slot)
@@ -269,6 +328,12 @@ mod tests {
             ("grad:gyro_z-housing*abs_w_x^3", CustomKind::Bias),
             ("gimbal_outer*gimbal_inner", CustomKind::Bias),
             ("time", CustomKind::ScaleFactor),
+            ("lag(temp:block,900)", CustomKind::Bias),
+            (
+                "exp(-since_move/37.5)*lag(grad:gyro_x-housing,0.125)^2",
+                CustomKind::Bias,
+            ),
+            ("exp(-since_start/1e4)", CustomKind::ScaleFactor),
         ] {
             let s = spec(r, kind);
             let slot = Slot::from_spec(&s).unwrap();
@@ -302,7 +367,7 @@ mod tests {
         assert!(signal_codes().starts_with(
             "1 temp:NODE, 2 dtemp_dt:NODE, 3 grad:A-B, 4 u_x, u_y, u_z, 5 w_x, w_y, w_z, \
              6 abs_w_x, abs_w_y, abs_w_z, 7 gimbal_outer, 8 gimbal_inner, 9 time, \
-             10 n_x, n_y, n_z, 11 e_x, e_y, e_z"
+             10 n_x, n_y, n_z, 11 e_x, e_y, e_z, 12 since_move, 13 since_start"
         ));
     }
 
@@ -326,13 +391,25 @@ mod tests {
             signal: 3,
             node_or_axis: 6,
             node_b: 7,
-            power: 1,
+            ..SlotFactor::default()
         };
         assert_eq!(slot.to_spec("t").unwrap_err().field, "node_b[1]");
         slot.factors[1].node_b = 5;
         slot.factors[1].power = 9;
         assert_eq!(slot.to_spec("t").unwrap_err().field, "power[1]");
         slot.factors[1].power = 1;
+        slot.factors[1].op = 3;
+        assert_eq!(slot.to_spec("t").unwrap_err().field, "op[1]");
+        slot.factors[1].op = 1;
+        slot.factors[1].tau_s = 0.0;
+        assert_eq!(slot.to_spec("t").unwrap_err().field, "tau_s[1]");
+        slot.factors[1].tau_s = 30.0;
+        slot.factors[1].op = 2;
+        // A decay of a gradient, which is no clock.
+        let e = slot.to_spec("t").unwrap_err();
+        assert_eq!(e.field, "signal[1]");
+        assert!(e.message.contains("clock"), "{}", e.message);
+        slot.factors[1].op = 0;
         slot.kind = 3;
         assert_eq!(slot.to_spec("t").unwrap_err().field, "kind");
         slot.kind = 1;

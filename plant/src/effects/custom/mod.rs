@@ -18,6 +18,7 @@
 //! ([`CustomModel::regressor`]), as the catalogue does; both give the same bits.
 
 mod expr;
+mod memory;
 mod model;
 mod plan;
 mod plant_side;
@@ -26,10 +27,13 @@ mod unit;
 
 use serde::{Deserialize, Serialize};
 
-pub use expr::{Factor, MAX_POWER, parse_regressor, unit_of};
+pub use expr::{
+    Factor, MAX_POWER, MAX_TAU_S, MIN_TAU_S, Op, is_clock, parse_regressor, regressor_text, unit_of,
+};
+pub use memory::{MemoryState, decay_value, lag_step, lag_weights};
 pub use model::{CompiledEffect, CustomModel, custom_coefficient_key};
 pub use plant_side::{Declared, Needs, fill_fast};
-pub use signals::{FAMILIES, Family, FastInputs, Frame, Signal, Unit};
+pub use signals::{FAMILIES, Family, FastInputs, Frame, MotionClocks, Signal, Unit};
 
 use super::Axes3;
 

@@ -5,7 +5,8 @@
 
 use nalgebra::Vector3;
 
-use super::expr::{Factor, bound_of, parse_regressor, unit_of};
+use super::expr::{Factor, Op, bound_of, parse_regressor, unit_of};
+use super::memory::{MemoryState, MemoryTerm};
 use super::plan::{FactorRef, Plan, PlanBuilder};
 use super::signals::{Frame, SLOTS, Signal, Unit};
 use super::{CustomKind, CustomSpec};
@@ -13,13 +14,14 @@ use crate::config::ConfigError;
 use crate::units::{DPH, PPM, UG};
 
 /// One factor resolved for one axis: `(frame[a] − frame[b])^power` when `diff`, else
-/// `frame[a]^power`.
+/// `frame[a]^power`; with memory, memory term `mem` (of that input) to the power.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Slot {
     a: u8,
     b: u8,
     diff: bool,
     power: i32,
+    mem: Option<u16>,
 }
 
 /// A declared effect after checking.
@@ -60,7 +62,12 @@ pub struct CustomModel {
     accel: bool,
     effects: Vec<CompiledEffect>,
     plan: Plan,
-    uses_time: bool,
+    /// A switched-on effect changes within a dwell (it reads `time`, a motion clock, or has
+    /// memory).
+    varies_in_dwell: bool,
+    /// The distinct memory values of every effect (switched on or not: the diagnosis reads
+    /// the regressors of all), per resolved input.
+    memory: Vec<MemoryTerm>,
 }
 
 /// Scenario key of the coefficient of declared effect `index` on `axis`.
@@ -69,30 +76,50 @@ pub fn custom_coefficient_key(accel: bool, index: usize, axis: usize) -> String 
     format!("sensor.{s}.custom[{index}].coef[{axis}]")
 }
 
-fn resolve(factors: &[Factor], accel: bool, axis: usize) -> Vec<Slot> {
+/// The factors resolved for `axis`, each memory operator added to `memory` once.
+fn resolve(
+    factors: &[Factor],
+    accel: bool,
+    axis: usize,
+    memory: &mut Vec<MemoryTerm>,
+) -> Vec<Slot> {
     factors
         .iter()
         .map(|f| {
             let (a, b) = f.signal.slots(accel, axis);
+            let mem = (f.op != Op::Plain).then(|| {
+                let t = MemoryTerm {
+                    a: a as u8,
+                    b: b.map(|b| b as u8),
+                    op: f.op,
+                };
+                let k = memory.iter().position(|m| *m == t).unwrap_or_else(|| {
+                    memory.push(t);
+                    memory.len() - 1
+                });
+                k as u16
+            });
             let (b, diff) = (b.unwrap_or(0), b.is_some());
             Slot {
                 a: a as u8,
                 b: b as u8,
                 diff,
                 power: f.power,
+                mem,
             }
         })
         .collect()
 }
 
 #[inline]
-fn product(slots: &[Slot], frame: &Frame) -> f64 {
+fn product(slots: &[Slot], frame: &Frame, mem: &[f64]) -> f64 {
     let mut r = 1.0;
     for s in slots {
-        let mut v = frame[s.a as usize];
-        if s.diff {
-            v -= frame[s.b as usize];
-        }
+        let v = match s.mem {
+            Some(k) => mem[k as usize],
+            None if s.diff => frame[s.a as usize] - frame[s.b as usize],
+            None => frame[s.a as usize],
+        };
         r *= if s.power == 1 { v } else { v.powi(s.power) };
     }
     r
@@ -208,8 +235,11 @@ impl CustomModel {
                     );
                 }
             }
-            let slots = [0, 1, 2].map(|i| resolve(&factors, accel, i));
-            m.uses_time |= s.enabled && factors.iter().any(|f| f.signal == Signal::Time);
+            let slots = [0, 1, 2].map(|i| resolve(&factors, accel, i, &mut m.memory));
+            m.varies_in_dwell |= s.enabled
+                && factors.iter().any(|f| {
+                    f.signal == Signal::Time || f.signal.family().reads_motion || f.op != Op::Plain
+                });
             m.effects.push(CompiledEffect {
                 name: s.name.clone(),
                 enabled: s.enabled,
@@ -245,6 +275,7 @@ impl CustomModel {
                         a: s.a as usize,
                         b: s.diff.then_some(s.b as usize),
                         power: s.power,
+                        mem: s.mem.map(|k| k as usize),
                     })
                     .collect();
                 let mut coef_si = [0.0; 3];
@@ -254,7 +285,7 @@ impl CustomModel {
                 plan.term(&factors, coef_si, e.kind == CustomKind::ScaleFactor);
             }
         }
-        m.plan = plan.finish();
+        m.plan = plan.finish(m.memory.len());
         Ok(m)
     }
 
@@ -268,10 +299,30 @@ impl CustomModel {
         !self.plan.is_empty()
     }
 
-    /// Whether a switched-on effect reads `time` (its contribution then changes within a
-    /// dwell, so the plant does not reuse one dwell interval for the next).
-    pub fn uses_time(&self) -> bool {
-        self.uses_time
+    /// Whether a switched-on effect changes within a dwell: it reads `time` or a motion clock
+    /// (`since_move`, `since_start`), or has memory (`lag`, `exp`). The plant then redoes the
+    /// declared part of each tick of a dwell rather than reusing the dwell's interval whole.
+    pub fn varies_in_dwell(&self) -> bool {
+        self.varies_in_dwell
+    }
+
+    /// A memory state for these effects, before their first interval.
+    pub fn memory_state(&self) -> MemoryState {
+        MemoryState::new(self.memory.len())
+    }
+
+    /// Whether an effect (switched on or not) has a factor with memory.
+    pub fn has_memory(&self) -> bool {
+        !self.memory.is_empty()
+    }
+
+    /// Advances `mem` over an interval of `dt_s` with the signals `frame`: call once per
+    /// interval, before the regressors of that interval are read.
+    #[inline]
+    pub fn advance_memory(&self, mem: &mut MemoryState, frame: &Frame, dt_s: f64) {
+        if !self.memory.is_empty() {
+            mem.advance(&self.memory, frame, dt_s);
+        }
     }
 
     /// Whether these are accelerometer effects.
@@ -280,20 +331,28 @@ impl CustomModel {
     }
 
     /// Sum of the switched-on effects' increment errors over an interval of `dt_s` with the
-    /// signals `frame` and the true increment `input` (rad or m/s): rad or m/s.
+    /// signals `frame` and the true increment `input` (rad or m/s): rad or m/s. Advances `mem`
+    /// over the interval first ([`CustomModel::advance_memory`]): call once per interval.
     #[inline]
-    pub fn increment_error(&self, frame: &Frame, dt_s: f64, input: &Vector3<f64>) -> Vector3<f64> {
+    pub fn increment_error(
+        &self,
+        frame: &Frame,
+        mem: &mut MemoryState,
+        dt_s: f64,
+        input: &Vector3<f64>,
+    ) -> Vector3<f64> {
         /// Values that fit on the stack (larger plans take a vector per call).
         const STACK: usize = 96;
+        self.advance_memory(mem, frame, dt_s);
         let n = self.plan.values_len();
         if n <= STACK {
             let mut values = [0.0; STACK];
             values[..SLOTS].copy_from_slice(frame);
-            self.plan.evaluate(&mut values, dt_s, input)
+            self.plan.evaluate(&mut values, mem.values(), dt_s, input)
         } else {
             let mut values = vec![0.0; n];
             values[..SLOTS].copy_from_slice(frame);
-            self.plan.evaluate(&mut values, dt_s, input)
+            self.plan.evaluate(&mut values, mem.values(), dt_s, input)
         }
     }
 
@@ -315,25 +374,34 @@ impl CustomModel {
     pub(super) fn evaluate(
         &self,
         values: &mut [f64],
+        mem: &mut MemoryState,
         dt_s: f64,
         input: &Vector3<f64>,
     ) -> Vector3<f64> {
-        self.plan.evaluate(values, dt_s, input)
+        if !self.memory.is_empty() {
+            let frame: &Frame = (&values[..SLOTS])
+                .try_into()
+                .expect("the frame comes first");
+            mem.advance(&self.memory, frame, dt_s);
+        }
+        self.plan.evaluate(values, mem.values(), dt_s, input)
     }
 
     /// Regressor φ of effect `index` on `axis` in increment units (the effect's error there is
-    /// `coef_si[axis]·φ`), whether or not it is switched on.
+    /// `coef_si[axis]·φ`), whether or not it is switched on; `mem` as advanced over this
+    /// interval ([`CustomModel::advance_memory`]).
     #[inline]
     pub fn regressor(
         &self,
         index: usize,
         axis: usize,
         frame: &Frame,
+        mem: &MemoryState,
         dt_s: f64,
         input: &Vector3<f64>,
     ) -> f64 {
         let e = &self.effects[index];
-        let r = product(&e.slots[axis], frame);
+        let r = product(&e.slots[axis], frame, mem.values());
         match e.kind {
             CustomKind::Bias => r * dt_s,
             CustomKind::ScaleFactor => r * input[axis],

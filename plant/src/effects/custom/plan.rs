@@ -2,7 +2,8 @@
 //!
 //! Every regressor is compiled once into one entry of a value array: the first
 //! [`SLOTS`] entries are the signal frame (filled once per interval, whatever the number of
-//! terms), then the gradients (`temp:A − temp:B`), then the products and powers, each
+//! terms), then the gradients (`temp:A − temp:B`), then the values of the factors with memory
+//! (`lag`, `exp`, advanced by the caller's [`super::MemoryState`]), then the products and powers, each
 //! computed once per interval and shared by every term that reads it (`u_x*u_z` in ten
 //! effects is one multiplication). A term is then one row (coefficients, value index, kind):
 //! no branch on signal names, no allocation, `time` a frame entry like any other.
@@ -23,6 +24,7 @@ use super::signals::SLOTS;
 enum Val {
     Frame(u32),
     Diff(u32),
+    Mem(u32),
     Mul(u32),
 }
 
@@ -41,7 +43,9 @@ struct Row {
 pub(super) struct Plan {
     /// `values[SLOTS + k] = values[a] − values[b]`.
     diffs: Vec<[u32; 2]>,
-    /// `values[SLOTS + diffs.len() + k] = values[a] · values[b]`, in dependency order.
+    /// Memory values copied to `values[SLOTS + diffs.len() + k]`.
+    mems: u32,
+    /// `values[SLOTS + diffs.len() + mems + k] = values[a] · values[b]`, in dependency order.
     muls: Vec<[u32; 2]>,
     rows: Vec<Row>,
 }
@@ -65,6 +69,9 @@ pub(super) struct FactorRef {
     pub b: Option<usize>,
     /// Power, ≥ 1.
     pub power: i32,
+    /// The memory value of this input (a lag or decay), when the factor has one: the value
+    /// read instead of the frame.
+    pub mem: Option<usize>,
 }
 
 impl PlanBuilder {
@@ -112,9 +119,10 @@ impl PlanBuilder {
     pub(super) fn term(&mut self, factors: &[FactorRef], coef_si: [f64; 3], scale: bool) {
         let mut r = None;
         for f in factors {
-            let v = match f.b {
-                Some(b) => self.diff(f.a, b),
-                None => Val::Frame(f.a as u32),
+            let v = match (f.mem, f.b) {
+                (Some(k), _) => Val::Mem(k as u32),
+                (None, Some(b)) => self.diff(f.a, b),
+                (None, None) => Val::Frame(f.a as u32),
             };
             let v = if f.power == 1 {
                 v
@@ -134,15 +142,19 @@ impl PlanBuilder {
         ));
     }
 
-    /// The plan, with gradients numbered before products.
-    pub(super) fn finish(self) -> Plan {
+    /// The plan over `mems` memory values, with gradients numbered before them and them
+    /// before products.
+    pub(super) fn finish(self, mems: usize) -> Plan {
         let nd = self.diffs.len() as u32;
+        let nm = mems as u32;
         let index = |v: Val| match v {
             Val::Frame(i) => i,
             Val::Diff(k) => SLOTS as u32 + k,
-            Val::Mul(k) => SLOTS as u32 + nd + k,
+            Val::Mem(k) => SLOTS as u32 + nd + k,
+            Val::Mul(k) => SLOTS as u32 + nd + nm + k,
         };
         Plan {
+            mems: nm,
             diffs: self.diffs.iter().map(|d| d.map(index)).collect(),
             muls: self.muls.iter().map(|m| m.map(index)).collect(),
             rows: self
@@ -161,7 +173,7 @@ impl PlanBuilder {
 impl Plan {
     /// Length of the value array the plan reads and writes (the frame first).
     pub(super) fn values_len(&self) -> usize {
-        SLOTS + self.diffs.len() + self.muls.len()
+        SLOTS + self.diffs.len() + self.mems as usize + self.muls.len()
     }
 
     /// Whether the plan has a term.
@@ -177,11 +189,13 @@ impl Plan {
 
     /// Sum of the terms over an interval of `dt_s` with the true increment `input`;
     /// `values` holds the frame in its first [`SLOTS`] entries and is at least
-    /// [`Plan::values_len`] long (the gradients and products are written after the frame).
+    /// [`Plan::values_len`] long (the gradients, memory values and products are written after
+    /// the frame); `mem` holds the memory values over the interval.
     #[inline]
     pub(super) fn evaluate(
         &self,
         values: &mut [f64],
+        mem: &[f64],
         dt_s: f64,
         input: &Vector3<f64>,
     ) -> Vector3<f64> {
@@ -190,6 +204,10 @@ impl Plan {
         for &[a, b] in &self.diffs {
             values[k] = values[a as usize] - values[b as usize];
             k += 1;
+        }
+        if self.mems > 0 {
+            values[k..k + self.mems as usize].copy_from_slice(&mem[..self.mems as usize]);
+            k += self.mems as usize;
         }
         for &[a, b] in &self.muls {
             values[k] = values[a as usize] * values[b as usize];
@@ -253,6 +271,12 @@ mod tests {
             "n_x",
             "n_z",
             "e_y",
+            "since_move",
+            "lag(temp:block,900)",
+            "lag(grad:gyro_z-housing,60.5)",
+            "lag(abs_w_y,0.02)",
+            "exp(-since_move/120)",
+            "exp(-since_start/7.25)",
         ];
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(29);
         for accel in [false, true] {
@@ -292,20 +316,22 @@ mod tests {
                 specs.push(spec(k, &f.join("*"), coef, kind));
             }
             let m = CustomModel::new(&specs, accel).unwrap();
+            let mut mem = m.memory_state();
             for _ in 0..200 {
                 let mut frame = [0.0; signals::SLOTS];
+                // The same model's memory runs on from one interval to the next.
                 for v in frame.iter_mut() {
                     *v = rng.random_range(-3.0..3.0);
                 }
                 frame[signals::TIME] = rng.random_range(0.0..5e3);
                 let dt_s = rng.random_range(1e-3..2e-2);
                 let input = Vector3::from_fn(|_, _| rng.random_range(-1e-3..1e-3));
-                let got = m.increment_error(&frame, dt_s, &input);
+                let got = m.increment_error(&frame, &mut mem, dt_s, &input);
                 let mut want = [0.0f64; 3];
                 for (k, e) in m.effects().iter().enumerate() {
                     for i in (0..3).filter(|&i| e.enabled && e.coef_si[i] != 0.0) {
                         // dt = 1, input = 1: the product alone (·1 is exact).
-                        let r = m.regressor(k, i, &frame, 1.0, &Vector3::repeat(1.0));
+                        let r = m.regressor(k, i, &frame, &mem, 1.0, &Vector3::repeat(1.0));
                         let mult = match e.kind {
                             CustomKind::Bias => dt_s,
                             CustomKind::ScaleFactor => input[i],

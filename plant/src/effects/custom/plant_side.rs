@@ -4,9 +4,10 @@
 use nalgebra::Vector3;
 
 use super::CustomModel;
+use super::memory::MemoryState;
 #[cfg(doc)]
 use super::signals::Family;
-use super::signals::{self, DTEMP, FAMILIES, FastInputs, Frame, SLOTS, TEMP};
+use super::signals::{self, DTEMP, FAMILIES, FastInputs, Frame, MotionClocks, SLOTS, TEMP};
 use crate::effects::{AccelSpec, GyroSpec};
 use crate::table::GimbalAngles;
 use crate::thermal::node;
@@ -23,6 +24,8 @@ pub struct Declared {
     /// the gradients and products the plans compute once per interval (shared by their
     /// terms).
     values: Vec<f64>,
+    /// What the gyro and accelerometer effects with memory remember between intervals.
+    memory: [MemoryState; 2],
     /// Which fast slots the switched-on effects read.
     needs: Needs,
 }
@@ -35,6 +38,8 @@ pub struct Needs {
     pub time: bool,
     /// North and east directions in body axes: a needed family [`Family::reads_heading`].
     pub heading: bool,
+    /// The table's motion clocks: a needed family [`Family::reads_motion`].
+    pub motion: bool,
     /// Bit i: row i of [`FAMILIES`] is filled.
     fast: u32,
 }
@@ -47,6 +52,7 @@ impl Needs {
     pub const ALL: Needs = Needs {
         time: true,
         heading: true,
+        motion: true,
         fast: u32::MAX,
     };
 
@@ -67,6 +73,7 @@ impl Needs {
                         n.fast |= 1 << i;
                         n.time |= f.reads_time;
                         n.heading |= f.reads_heading;
+                        n.motion |= f.reads_motion;
                     }
                 }
             }
@@ -85,6 +92,7 @@ impl Declared {
         let mut d = Self {
             needs: Needs::of([&gyro, &accel]),
             values: vec![0.0; gyro.values_len().max(accel.values_len())],
+            memory: [gyro.memory_state(), accel.memory_state()],
             gyro,
             accel,
         };
@@ -104,9 +112,30 @@ impl Declared {
         self.needs
     }
 
-    /// Whether a contribution changes within a dwell (an effect reads `time`).
+    /// Whether a contribution changes within a dwell (an effect reads `time` or a motion
+    /// clock, or has memory).
     pub fn varies_in_dwell(&self) -> bool {
-        self.gyro.uses_time() || self.accel.uses_time()
+        self.gyro.varies_in_dwell() || self.accel.varies_in_dwell()
+    }
+
+    /// Whether an effect has memory (lags to save with the plant's state).
+    pub fn has_memory(&self) -> bool {
+        self.gyro.has_memory() || self.accel.has_memory()
+    }
+
+    /// The lag outputs of both sensors' effects (gyro first), for a saved plant state.
+    pub fn lag_ends(&self) -> Vec<f64> {
+        self.memory
+            .iter()
+            .flat_map(|m| m.lag_ends().iter().copied())
+            .collect()
+    }
+
+    /// Restores what [`Declared::lag_ends`] gave.
+    pub fn restore_lag_ends(&mut self, ends: &[f64]) {
+        let n = self.memory[0].lag_ends().len();
+        self.memory[0].restore_lag_ends(&ends[..n]);
+        self.memory[1].restore_lag_ends(&ends[n..]);
     }
 
     /// After a thermal step of `h_s` from the current temperatures to `new_c`.
@@ -130,8 +159,9 @@ impl Declared {
 
     /// Gyro and accelerometer increment errors over one interval of `h_s` with true
     /// increments `dtheta`/`dv`, body up direction `up_b`, body north and east directions
-    /// `north_east_b` (read only when [`Needs::heading`]), mid gimbal angles `mid` and mid time
-    /// `t_mid_s`.
+    /// `north_east_b` (read only when [`Needs::heading`]), mid gimbal angles `mid`, mid time
+    /// `t_mid_s` and the table's motion clocks `since` (read only when [`Needs::motion`]).
+    /// Advances the effects' memory: call once per interval.
     #[inline]
     #[allow(clippy::too_many_arguments)]
     pub fn increments(
@@ -143,6 +173,7 @@ impl Declared {
         h_s: f64,
         mid: GimbalAngles,
         t_mid_s: f64,
+        since: MotionClocks,
     ) -> (Vector3<f64>, Vector3<f64>) {
         let frame: &mut Frame = (&mut self.values[..SLOTS])
             .try_into()
@@ -155,26 +186,33 @@ impl Declared {
             h_s,
             gimbal_mid: mid,
             t_mid_s,
+            since_s: since,
         };
         fill_fast(frame, self.needs, &x);
         self.evaluate(dtheta, dv, h_s)
     }
 
-    /// The last interval's increment errors again at mid time `t_mid_s`, every other signal
-    /// as [`Declared::increments`] last set it: for a held dwell, where only `time` changes
-    /// from one interval to the next (the plant can then reuse the rest of the interval
-    /// instead of integrating it again). `dtheta`, `dv` and `h_s` are those of that call; the
-    /// result is then the same bits as [`Declared::increments`] with `t_mid_s`.
+    /// The next interval's increment errors at mid time `t_mid_s` and motion clocks `since`,
+    /// every other signal as [`Declared::increments`] last set it: for a held dwell, where only
+    /// the clocks and the memory change from one interval to the next (the plant can then
+    /// reuse the rest of the interval instead of integrating it again). `dtheta`, `dv` and
+    /// `h_s` are those of that call; the result is then the same bits as
+    /// [`Declared::increments`] with `t_mid_s` and `since`. Advances the memory.
     #[inline]
     pub fn increments_at(
         &mut self,
         t_mid_s: f64,
+        since: MotionClocks,
         dtheta: &Vector3<f64>,
         dv: &Vector3<f64>,
         h_s: f64,
     ) -> (Vector3<f64>, Vector3<f64>) {
         if self.needs.time {
             self.values[signals::TIME] = t_mid_s;
+        }
+        if self.needs.motion {
+            self.values[signals::SINCE_MOVE] = since.move_s;
+            self.values[signals::SINCE_START] = since.start_s;
         }
         self.evaluate(dtheta, dv, h_s)
     }
@@ -188,14 +226,15 @@ impl Declared {
         h_s: f64,
     ) -> (Vector3<f64>, Vector3<f64>) {
         let z = Vector3::zeros();
+        let [gm, am] = &mut self.memory;
         (
             if self.gyro.is_active() {
-                self.gyro.evaluate(&mut self.values, h_s, dtheta)
+                self.gyro.evaluate(&mut self.values, gm, h_s, dtheta)
             } else {
                 z
             },
             if self.accel.is_active() {
-                self.accel.evaluate(&mut self.values, h_s, dv)
+                self.accel.evaluate(&mut self.values, am, h_s, dv)
             } else {
                 z
             },
@@ -242,10 +281,22 @@ mod tests {
             spec("a", "time*u_x", "s", CustomKind::Bias),
             spec("b", "temp:block*n_y", "K", CustomKind::Bias),
             spec("c", "time^2*w_z", "s^2*deg/s", CustomKind::ScaleFactor),
+            spec(
+                "f",
+                "exp(-since_move/30)*lag(temp:block,300)",
+                "K",
+                CustomKind::Bias,
+            ),
         ];
         s.accel.custom = vec![
             spec("d", "time*gimbal_outer", "s*deg", CustomKind::Bias),
             spec("e", "abs_w_x*e_z", "deg/s", CustomKind::ScaleFactor),
+            spec(
+                "g",
+                "since_start*lag(abs_w_x,2)",
+                "s*deg/s",
+                CustomKind::Bias,
+            ),
         ];
         let temps = [20.0, 31.0, 32.0, 33.0, 28.0, 22.0];
         let mut d = Declared::new(&s.gyro, &s.accel, &temps);
@@ -258,11 +309,17 @@ mod tests {
         );
         let mid = GimbalAngles::new(0.7, -1.2);
         let h = 0.01;
-        let first = d.increments(&up, &ne, &dth, &dv, h, mid, 100.005);
-        let again = d.increments_at(250.005, &dth, &dv, h);
+        let since = |t: f64| MotionClocks {
+            move_s: t - 40.0,
+            start_s: t - 45.0,
+        };
+        let first = d.increments(&up, &ne, &dth, &dv, h, mid, 100.005, since(100.005));
+        let again = d.increments_at(250.005, since(250.005), &dth, &dv, h);
         let mut fresh = Declared::new(&s.gyro, &s.accel, &temps);
         fresh.thermal_update(&temps.map(|t| t + 0.25), 1.0);
-        let full = fresh.increments(&up, &ne, &dth, &dv, h, mid, 250.005);
+        // The memory has had one interval in `d`: the same in `fresh` before comparing.
+        fresh.increments(&up, &ne, &dth, &dv, h, mid, 100.005, since(100.005));
+        let full = fresh.increments(&up, &ne, &dth, &dv, h, mid, 250.005, since(250.005));
         for k in 0..3 {
             assert_eq!(again.0[k].to_bits(), full.0[k].to_bits());
             assert_eq!(again.1[k].to_bits(), full.1[k].to_bits());

@@ -24,7 +24,7 @@ use crate::table::GimbalAngles;
 use crate::thermal::node;
 
 /// Number of values in a [`Frame`].
-pub const SLOTS: usize = 30;
+pub const SLOTS: usize = 32;
 /// First slot of the node temperatures (°C), indexed by [`node`].
 pub const TEMP: usize = 0;
 /// First slot of the node temperature rates (K/s).
@@ -46,6 +46,10 @@ pub const TIME: usize = 23;
 pub const NORTH: usize = 24;
 /// First slot of the body components of the navigation frame's east unit vector e^b.
 pub const EAST: usize = 27;
+/// Seconds since the table last stopped (0 while it moves).
+pub const SINCE_MOVE: usize = 30;
+/// Seconds since the table last started to move.
+pub const SINCE_START: usize = 31;
 
 /// Values of every signal over one interval (slots above).
 pub type Frame = [f64; SLOTS];
@@ -111,6 +115,12 @@ pub enum Signal {
     North(usize),
     /// `e_x`, `e_y`, `e_z`: body components of the local east direction, 1.
     East(usize),
+    /// `since_move`: seconds since the table last stopped (0 while it moves; counted from the
+    /// run's start before its first move).
+    SinceMove,
+    /// `since_start`: seconds since the table last started to move (from the run's start
+    /// before its first move).
+    SinceStart,
 }
 
 /// What follows a family's prefix in a signal name.
@@ -149,6 +159,10 @@ pub enum Library {
     /// through K·C_n^b·m^n, linear in them; their products would multiply the library for no
     /// physics.
     LinearOnly,
+    /// Only through a decay exp(−x/τ) as a bias, τ searched (the clocks since the table's last
+    /// stop and start: a transient after each move); a polynomial in an unbounded clock is no
+    /// physics.
+    Decay,
 }
 
 /// Everything a fast signal (one filled per interval, not per thermal step) can be computed
@@ -173,6 +187,19 @@ pub struct FastInputs {
     /// Mid-interval time since the start of the run, s; the plant computes it only when a
     /// needed family [`Family::reads_time`].
     pub t_mid_s: f64,
+    /// Mid-interval seconds since the table last stopped (0 while it moves) and since it last
+    /// started to move; the plant computes them only when a needed family
+    /// [`Family::reads_motion`].
+    pub since_s: MotionClocks,
+}
+
+/// The table's motion clocks at an interval's middle, s.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct MotionClocks {
+    /// Since the table last stopped (0 while it moves; from the run's start before any move).
+    pub move_s: f64,
+    /// Since the table last started to move (from the run's start before any move).
+    pub start_s: f64,
 }
 
 /// One row of the signals table: a family of signals (`u_x, u_y, u_z`) and every property the
@@ -208,6 +235,10 @@ pub struct Family {
     pub reads_heading: bool,
     /// Reads the time (the plant computes it only then).
     pub reads_time: bool,
+    /// Reads the table's motion clocks (the plant keeps them only then).
+    pub reads_motion: bool,
+    /// A clock: seconds, never negative, growing with time; a decay exp(−x/τ) may read it.
+    pub clock: bool,
     /// How discovery's library uses it.
     pub library: Library,
     /// Fills the family's slots once per interval; `None` for the slow (thermal) families,
@@ -255,6 +286,8 @@ const fn slow(
         needs_gimbal: false,
         reads_heading: false,
         reads_time: false,
+        reads_motion: false,
+        clock: false,
         library: Library::Products,
         fill: None,
     }
@@ -288,7 +321,7 @@ fn rate_dps(x: &FastInputs, i: usize) -> f64 {
 
 /// The signals table: one row per family; a row's position + 1 is its FMU signal code, and
 /// the discovery library takes its families in this order.
-pub const FAMILIES: [Family; 11] = [
+pub const FAMILIES: [Family; 13] = [
     slow(
         "temp:NODE",
         "temp:",
@@ -401,6 +434,7 @@ pub const FAMILIES: [Family; 11] = [
     },
     Family {
         reads_time: true,
+        clock: true,
         ..fast(
             "time",
             "time",
@@ -445,6 +479,38 @@ pub const FAMILIES: [Family; 11] = [
             |x, f| f[EAST..EAST + 3].copy_from_slice(x.north_east_b[1].as_slice()),
         )
     },
+    Family {
+        reads_motion: true,
+        clock: true,
+        library: Library::Decay,
+        ..fast(
+            "since_move",
+            "since_move",
+            ArgKind::None,
+            SECOND,
+            "seconds since the table last stopped (0 while it moves; from the run's start before its first move)",
+            1e7,
+            SINCE_MOVE,
+            "smove",
+            |x, f| f[SINCE_MOVE] = x.since_s.move_s,
+        )
+    },
+    Family {
+        reads_motion: true,
+        clock: true,
+        library: Library::Decay,
+        ..fast(
+            "since_start",
+            "since_start",
+            ArgKind::None,
+            SECOND,
+            "seconds since the table last started to move (from the run's start before its first move)",
+            1e7,
+            SINCE_START,
+            "sstart",
+            |x, f| f[SINCE_START] = x.since_s.start_s,
+        )
+    },
 ];
 
 const AXIS_NAMES: [&str; 3] = ["x", "y", "z"];
@@ -476,6 +542,8 @@ impl Signal {
             Signal::Time => (8, Args::None),
             Signal::North(i) => (9, Args::Axis(i)),
             Signal::East(i) => (10, Args::Axis(i)),
+            Signal::SinceMove => (11, Args::None),
+            Signal::SinceStart => (12, Args::None),
         }
     }
 
@@ -493,6 +561,8 @@ impl Signal {
             (8, Args::None) => Signal::Time,
             (9, Args::Axis(i)) if i < 3 => Signal::North(i),
             (10, Args::Axis(i)) if i < 3 => Signal::East(i),
+            (11, Args::None) => Signal::SinceMove,
+            (12, Args::None) => Signal::SinceStart,
             _ => return None,
         })
     }
@@ -615,6 +685,10 @@ mod tests {
             h_s: 0.01,
             gimbal_mid: GimbalAngles::new(3.5, -1.2),
             t_mid_s: 100.005,
+            since_s: MotionClocks {
+                move_s: 12.5,
+                start_s: 20.125,
+            },
         }
     }
 
@@ -638,8 +712,8 @@ mod tests {
             }
         }
         // temp and dtemp_dt over 7 nodes (6 and block), grad over 49 pairs, u, w, abs_w, n, e
-        // over 3 axes, and 3 single signals.
-        assert_eq!(count, 7 + 7 + 49 + 5 * 3 + 3);
+        // over 3 axes, and 5 single signals.
+        assert_eq!(count, 7 + 7 + 49 + 5 * 3 + 5);
         assert_eq!(Signal::parse("u_w"), None);
         assert_eq!(Signal::parse("gimbal_outer_x"), None);
         assert_eq!(Signal::parse("grad:block"), None);
@@ -708,6 +782,8 @@ mod tests {
         assert!((f[OUTER] - (3.5f64.to_degrees() - 360.0)).abs() < 1e-12);
         assert!((f[INNER] - (-1.2f64).to_degrees()).abs() < 1e-12);
         assert_eq!(f[TIME], 100.005);
+        assert_eq!(f[SINCE_MOVE], 12.5);
+        assert_eq!(f[SINCE_START], 20.125);
     }
 
     /// The properties the plant and discovery rely on: the heading and time families ask for
@@ -723,6 +799,19 @@ mod tests {
                 f.doc_name
             );
             assert_eq!(f.reads_time, f.prefix == "time", "{}", f.doc_name);
+            assert_eq!(
+                f.reads_motion,
+                f.prefix.starts_with("since_"),
+                "{}",
+                f.doc_name
+            );
+            // Every clock is a second count; decays read only clocks.
+            if f.clock {
+                assert_eq!(f.unit, SECOND, "{}", f.doc_name);
+            }
+            if f.library == Library::Decay {
+                assert!(f.clock, "{}", f.doc_name);
+            }
             assert_eq!(
                 f.needs_gimbal,
                 f.prefix.starts_with("gimbal_"),

@@ -69,6 +69,8 @@ pub(crate) struct TickMotion {
     pub gimbal_mid: GimbalState,
     /// North and east in body axes (zero unless asked for).
     pub north_east_b: [Vector3<f64>; 2],
+    /// A gimbal turned during the tick (its angles at the end differ from those at the start).
+    pub moved: bool,
 }
 
 /// The carrier and the table.
@@ -307,12 +309,14 @@ impl Motion {
             }
             (inc, m.c_nb.column(2).into_owned())
         };
+        let moved = g1.angles != g0.angles;
         self.gimbal_now = g1;
         TickMotion {
             inc,
             up_b,
             gimbal_mid: gm,
             north_east_b,
+            moved,
         }
     }
 
