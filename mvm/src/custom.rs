@@ -7,7 +7,7 @@
 use rins_plant::PlantConfig;
 use rins_plant::effects::custom::signals::{self, Frame, SLOTS, Signal};
 use rins_plant::effects::custom::{
-    CustomKind, CustomModel, FastInputs, Needs, custom_coefficient_key, fill_fast,
+    CustomKind, CustomModel, FastInputs, MotionClocks, Needs, custom_coefficient_key, fill_fast,
 };
 use rins_plant::table::GimbalAngles;
 use rins_plant::thermal::node;
@@ -141,10 +141,12 @@ fn reading(h: &History, n: usize, k: usize) -> f64 {
 }
 
 /// Per-row slow signals of a history: readings and, for the nodes a declared effect
-/// differentiates, their central-difference rates within each segment.
+/// differentiates, their central-difference rates within each segment; and the table's motion
+/// clocks per row.
 pub struct RowSignals {
     rates: [Option<Vec<f64>>; node::COUNT],
     run_start_s: Vec<f64>,
+    since: Vec<MotionClocks>,
 }
 
 impl RowSignals {
@@ -166,6 +168,7 @@ impl RowSignals {
         let rates = std::array::from_fn(|n| need[n].then(|| rate_of(h, n)));
         Self {
             rates,
+            since: motion_clocks(h, run_start_s),
             run_start_s: run_start_s.to_vec(),
         }
     }
@@ -223,10 +226,69 @@ impl RowSignals {
             h_s: dt_s,
             gimbal_mid,
             t_mid_s: h.t_s[k] - 0.5 * dt_s - self.run_start_s[h.run[k] as usize],
+            since_s: self.since[k],
         };
         fill_fast(&mut f, Needs::ALL, &x);
         f
     }
+}
+
+/// Whether the table turned during row `k` of `h` (its attitude at the row's end differs from
+/// the one before): the replay's definition of a moving row.
+pub fn row_moved(h: &History, k: usize) -> bool {
+    match &h.attitude {
+        Attitude::Gimbal {
+            outer_rad,
+            inner_rad,
+        } => outer_rad[k] != outer_rad[k - 1] || inner_rad[k] != inner_rad[k - 1],
+        Attitude::Quaternion(q) => {
+            let (a, b) = (q[k - 1], q[k]);
+            // |⟨a, b⟩| = cos(angle/2): the same 1e-12 rad threshold the replay's kinematics use.
+            let dot = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]).abs();
+            let na = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3]).sqrt();
+            let nb = (b[0] * b[0] + b[1] * b[1] + b[2] * b[2] + b[3] * b[3]).sqrt();
+            2.0 * (dot / (na * nb)).min(1.0).acos() > 1e-12
+        }
+    }
+}
+
+/// The table's motion clocks at each row's middle, as the plant defines them
+/// (docs/effects.md): `since_move` is 0 on a row in which the table turned, else the time
+/// since the end of the last such row; `since_start` the time since the start of the first row
+/// of the last move. Before the first move of a segment both count from the run's start when
+/// the segment begins the run (within two rows of it), else from the segment's first row (the
+/// table's state before a gap in the log is not known).
+fn motion_clocks(h: &History, run_start_s: &[f64]) -> Vec<MotionClocks> {
+    let mut out = vec![MotionClocks::default(); h.len()];
+    for seg in &h.segments {
+        if seg.len() < 2 {
+            continue;
+        }
+        let t0 = h.t_s[seg.start];
+        let run_start = run_start_s[h.run[seg.start] as usize];
+        let row = h.t_s[seg.start + 1] - t0;
+        let origin = if t0 - run_start <= 2.0 * row {
+            run_start
+        } else {
+            t0
+        };
+        let (mut stop, mut start, mut moving) = (origin, origin, false);
+        for k in seg.start + 1..seg.end {
+            let moved = row_moved(h, k);
+            if moved && !moving {
+                start = h.t_s[k - 1];
+            } else if !moved && moving {
+                stop = h.t_s[k - 1];
+            }
+            moving = moved;
+            let mid = 0.5 * (h.t_s[k - 1] + h.t_s[k]);
+            out[k] = MotionClocks {
+                move_s: if moving { 0.0 } else { mid - stop },
+                start_s: mid - start,
+            };
+        }
+    }
+    out
 }
 
 /// Central-difference rate of node `n`'s reading over ±[`RATE_HALF_SPAN_S`] within each
