@@ -103,16 +103,40 @@ fn lower_monomials(regressor: &str) -> Vec<String> {
     out
 }
 
+/// The parents of a declared effect of a sensor (`accel`), `kind` and `regressor`: the
+/// constant of its kind and its lower monomials. A gyro bias linear in one up component is the
+/// catalogue's g-sensitivity (G·f/g₀ with f = g·u), so that is the parent rather than a new
+/// declaration.
+pub fn parents_of_regressor(accel: bool, kind: CustomKind, regressor: &str) -> Vec<Parent> {
+    let mut out = vec![Parent::Effect(constant(accel, kind))];
+    let mut gsens = false;
+    for m in lower_monomials(&regressor.replace(' ', "")) {
+        if !accel && kind == CustomKind::Bias && matches!(Signal::parse(&m), Some(Signal::Up(_))) {
+            gsens = true;
+            continue;
+        }
+        out.push(Parent::Declare {
+            accel,
+            kind,
+            regressor: m,
+        });
+    }
+    if gsens {
+        out.push(Parent::Effect(Effect::Gyro(GyroTerm::GSensitivity)));
+    }
+    out
+}
+
 /// The parents of `effect` in `model`: the constant of its kind, and for a declared effect its
-/// lower monomials. A gyro bias linear in one up component is the catalogue's g-sensitivity
-/// (G·f/g₀ with f = g·u), so that is the parent rather than a new declaration.
+/// lower monomials ([`parents_of_regressor`]).
 pub fn parents(model: &PlantConfig, effect: Effect) -> Vec<Parent> {
     match effect {
         Effect::Gyro(
             GyroTerm::TemperatureBias
             | GyroTerm::TemperatureGradientBias
             | GyroTerm::GSensitivity
-            | GyroTerm::DitherBias,
+            | GyroTerm::DitherBias
+            | GyroTerm::NavFieldBias,
         ) => vec![Parent::Effect(Effect::Gyro(GyroTerm::Bias))],
         Effect::Gyro(GyroTerm::ScaleFactorAsymmetry) => {
             vec![Parent::Effect(Effect::Gyro(GyroTerm::ScaleFactor))]
@@ -129,26 +153,7 @@ pub fn parents(model: &PlantConfig, effect: Effect) -> Vec<Parent> {
             let Some(spec) = list.get(r.index as usize) else {
                 return Vec::new();
             };
-            let mut out = vec![Parent::Effect(constant(r.accel, spec.kind))];
-            let mut gsens = false;
-            for m in lower_monomials(&spec.regressor.replace(' ', "")) {
-                if !r.accel
-                    && spec.kind == CustomKind::Bias
-                    && matches!(Signal::parse(&m), Some(Signal::Up(_)))
-                {
-                    gsens = true;
-                    continue;
-                }
-                out.push(Parent::Declare {
-                    accel: r.accel,
-                    kind: spec.kind,
-                    regressor: m,
-                });
-            }
-            if gsens {
-                out.push(Parent::Effect(Effect::Gyro(GyroTerm::GSensitivity)));
-            }
-            out
+            parents_of_regressor(r.accel, spec.kind, &spec.regressor)
         }
         _ => Vec::new(),
     }

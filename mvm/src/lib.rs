@@ -29,6 +29,7 @@ mod compare;
 pub mod custom;
 pub mod discover;
 pub mod fit;
+pub mod forward;
 mod header;
 pub mod heredity;
 pub mod history;
@@ -171,6 +172,7 @@ pub fn analyse(model: &PlantConfig, h: &(impl Rows + ?Sized), opts: &Options) ->
         data,
         opts,
         runs,
+        ..
     } = p;
     Analysis {
         source,

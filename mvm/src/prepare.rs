@@ -10,7 +10,7 @@ use rins_plant::units::{DPSH, UG};
 
 use crate::Options;
 use crate::fit::ChannelData;
-use crate::replay::{CHANNELS, Replay, replay};
+use crate::replay::{CHANNELS, Effect, Group, Replay, replay};
 use crate::report::{NoiseFloor, unit_of};
 use crate::rows::{Rows, RowsInfo};
 use crate::stats;
@@ -29,6 +29,23 @@ pub(crate) struct Prepared {
     pub opts: Options,
     /// Runs.
     pub runs: usize,
+    /// The regressor and kind of every declared candidate (the model's declared effects, and
+    /// discovery's proposals once they join the ranking), by sensor and index: what heredity
+    /// reads to find a candidate's parents.
+    pub declared: Vec<DeclaredCandidate>,
+}
+
+/// A declared candidate's identity for heredity.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct DeclaredCandidate {
+    /// Accelerometer effect (else gyro).
+    pub accel: bool,
+    /// Index in its sensor's list (a proposal: the index it would be declared at).
+    pub index: u16,
+    /// Bias or scale factor.
+    pub kind: rins_plant::effects::custom::CustomKind,
+    /// Regressor text without spaces.
+    pub regressor: String,
 }
 
 fn model_density(model: &PlantConfig, channel: usize) -> f64 {
@@ -136,6 +153,24 @@ pub(crate) fn prepare(
             folds,
         });
     }
+    let declared = [false, true]
+        .into_iter()
+        .flat_map(|accel| {
+            let list = if accel {
+                &model.sensor.accel.custom
+            } else {
+                &model.sensor.gyro.custom
+            };
+            list.iter()
+                .enumerate()
+                .map(move |(i, s)| DeclaredCandidate {
+                    accel,
+                    index: i as u16,
+                    kind: s.kind,
+                    regressor: s.regressor.replace(' ', ""),
+                })
+        })
+        .collect();
     Prepared {
         run_names: info.run_names,
         replay: rep,
@@ -143,6 +178,7 @@ pub(crate) fn prepare(
         data,
         opts: opts.clone(),
         runs,
+        declared,
     }
 }
 
@@ -150,5 +186,53 @@ impl Prepared {
     /// Zero predictions (the model as is).
     pub(crate) fn zero_pred(&self) -> Vec<Vec<f64>> {
         vec![vec![0.0; self.replay.windows.len()]; 6]
+    }
+
+    /// The parents of candidate `g` ([`crate::heredity`]) as groups of its channel; a parent
+    /// with no group there (a lower monomial nobody declared or proposed) is left out.
+    pub(crate) fn parent_groups(&self, g: &Group) -> Vec<Group> {
+        use crate::heredity::{Parent, parents_of_regressor};
+        let c = g.channel;
+        let on_channel = |e: Effect| {
+            self.replay
+                .groups
+                .iter()
+                .find(|x| x.channel == c && x.effect == e)
+                .copied()
+        };
+        let parents = match g.effect {
+            Effect::Custom(r) => match self
+                .declared
+                .iter()
+                .find(|d| d.accel == r.accel && d.index == r.index)
+            {
+                Some(d) => parents_of_regressor(d.accel, d.kind, &d.regressor),
+                None => Vec::new(),
+            },
+            e => crate::heredity::parents(&rins_plant::PlantConfig::default(), e),
+        };
+        parents
+            .into_iter()
+            .filter_map(|p| match p {
+                Parent::Effect(e) => on_channel(e),
+                Parent::Declare {
+                    accel,
+                    kind,
+                    regressor,
+                } => self
+                    .replay
+                    .groups
+                    .iter()
+                    .find(|x| {
+                        x.channel == c
+                            && matches!(x.effect, Effect::Custom(r) if r.accel == accel
+                                && r.kind == kind
+                                && self.declared.iter().any(|d| d.accel == accel
+                                    && d.index == r.index
+                                    && d.regressor == regressor))
+                    })
+                    .copied(),
+            })
+            .collect()
     }
 }

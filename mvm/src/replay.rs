@@ -212,6 +212,8 @@ fn layout(
         dv_mps: Vector3::zeros(),
         f_b_mps2: Vector3::zeros(),
         up_b: Vector3::z(),
+        north_b: Vector3::y(),
+        east_b: Vector3::x(),
         gyro_temp_c: Vector3::zeros(),
         gyro_gradient_k: Vector3::zeros(),
         accel_temp_c: 0.0,
@@ -492,6 +494,8 @@ pub fn replay(model: &PlantConfig, rows: &(impl Rows + ?Sized), window_s: f64) -
                     dv_mps: dv,
                     f_b_mps2: f_b,
                     up_b,
+                    north_b: c_nb.column(1).into_owned(),
+                    east_b: c_nb.column(0).into_owned(),
                     gyro_temp_c: gt,
                     gyro_gradient_k: h
                         .housing_temp_c

@@ -161,6 +161,10 @@ pub struct RankedEffect {
     pub confusable_with: Vec<Confusable>,
     /// Passes the gate (ΔBIC < −10, Bonferroni p < 0.01, CV gain > 0).
     pub passes_gate: bool,
+    /// Parents fitted with it that the model lacked (heredity: the constant of its kind, the
+    /// lower powers and factors); when accepted, its figures are on top of them.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub parents: Vec<String>,
 }
 
 /// An effect that cannot be told apart from another on this data.

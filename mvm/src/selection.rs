@@ -20,8 +20,12 @@ use crate::report::{CompareReport, Confusable, DiagnoseReport, RankedEffect, uni
 pub struct Diagnosis {
     /// The report `rins diagnose` prints.
     pub report: DiagnoseReport,
-    /// Groups accepted by forward selection, per channel, in order of acceptance.
+    /// Groups accepted by forward selection, per channel, in order of acceptance (a
+    /// candidate's parents just before it).
     pub selected: Vec<Vec<Group>>,
+    /// Per channel and selected group, the candidate it entered as a parent of (`None`:
+    /// accepted in its own right).
+    pub parent_of: Vec<Vec<Option<Group>>>,
     /// Per channel and window, the accepted effects' contribution to the window sum (rad for
     /// gyros, m/s for accelerometers), fitted jointly per channel; zeros where none.
     pub predictions: Vec<Vec<f64>>,
@@ -42,6 +46,8 @@ pub fn separating_experiment(a: &str, b: &str) -> String {
         "dwell at both Z-up and Z-down at each temperature: δβ appears only at Z-down".into()
     } else if has("scale_factor_asymmetry") && has("scale_factor") {
         "rotate in both directions at the same rate: the scale factor changes sign with the rate, the asymmetry does not".into()
+    } else if has("nav_field_bias") {
+        "dwell at four or more azimuths at Z-up and at Z-down (and tilted): a field fixed in the navigation frame turns with the azimuth, the other effect does not".into()
     } else if has("misalignment") {
         "rotate about each body axis in turn: misalignment shows on the cross axes only".into()
     } else if has("temperature") {
@@ -143,6 +149,7 @@ fn ranked(
         condition_number: c.fit.condition,
         confusable_with,
         passes_gate: gate.passes(c),
+        parents: Vec::new(),
     }
 }
 
@@ -183,6 +190,7 @@ pub(crate) fn diagnose(a: &Prepared, source: &str, before: &CompareReport) -> Di
     let mut ranking = Vec::new();
     let mut accepted = Vec::new();
     let mut selected: Vec<Vec<Group>> = vec![Vec::new(); 6];
+    let mut parent_of: Vec<Vec<Option<Group>>> = vec![Vec::new(); 6];
     for c in 0..6 {
         let pool: Vec<Group> = a
             .replay
@@ -193,25 +201,16 @@ pub(crate) fn diagnose(a: &Prepared, source: &str, before: &CompareReport) -> Di
             .collect();
         let (_, _, first) = test_candidates(&a.replay.windows, &a.data[c], &[], &pool);
         ranking.extend(first.iter().map(|cand| ranked(a, cand, &first, &gate)));
-        // Forward selection: add the best candidate while it passes the gate.
-        loop {
-            let rest: Vec<Group> = pool
-                .iter()
-                .filter(|g| !selected[c].iter().any(|s| s.effect == g.effect))
-                .copied()
-                .collect();
-            if rest.is_empty() {
-                break;
-            }
-            let (_, _, cands) = test_candidates(&a.replay.windows, &a.data[c], &selected[c], &rest);
-            match cands.first() {
-                Some(best) if gate.passes(best) => {
-                    accepted.push(ranked(a, best, &cands, &gate));
-                    selected[c].push(best.group);
-                }
-                _ => break,
-            }
+        // Forward selection with heredity and a beam (crate::forward).
+        let parents = |g: &Group| a.parent_groups(g);
+        let sel = crate::forward::select(&a.replay.windows, &a.data[c], &pool, &parents, &gate);
+        for (t, others) in &sel.steps {
+            let mut r = ranked(a, &t.candidate, others, &gate);
+            r.parents = t.parents.iter().map(|p| p.effect.name()).collect();
+            accepted.push(r);
         }
+        selected[c] = sel.groups.clone();
+        parent_of[c] = sel.parent_of.clone();
     }
     ranking.sort_by(|x, y| x.delta_bic.total_cmp(&y.delta_bic));
     let pred = predictions(a, &selected);
@@ -294,6 +293,7 @@ pub(crate) fn diagnose(a: &Prepared, source: &str, before: &CompareReport) -> Di
     Diagnosis {
         report,
         selected,
+        parent_of,
         predictions: pred,
         after,
     }

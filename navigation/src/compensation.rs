@@ -85,6 +85,8 @@ mod tests {
                     dv_mps: Vector3::zeros(),
                     f_b_mps2: Vector3::zeros(),
                     up_b,
+                    north_b: Vector3::zeros(),
+                    east_b: Vector3::zeros(),
                     gyro_temp_c: temps,
                     gyro_gradient_k: Vector3::zeros(),
                     accel_temp_c: 25.0,

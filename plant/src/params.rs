@@ -81,6 +81,7 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("sensor.gyro.position_bias.dph_per_k3", -0.1, 0.1),
     ("sensor.gyro.dither_bias.amplitude_change", -1.0, 1.0),
     ("sensor.gyro.dither_bias.dph_per_amplitude", -100.0, 100.0),
+    ("sensor.gyro.nav_field_bias.dph_enu", -100.0, 100.0),
     ("sensor.gyro.angle_random_walk.dpsh", 0.0, 10.0),
     ("sensor.gyro.bias_instability.sigma_dph", 0.0, 100.0),
     ("sensor.gyro.bias_instability.tau_s", 1e-3, 1e9),

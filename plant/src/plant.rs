@@ -218,7 +218,7 @@ impl Plant {
         }
         let temps = self.temperature.temperatures();
         let needs = self.errors.declared_needs();
-        let heading = needs.is_some_and(|n| n.heading);
+        let heading = needs.is_some_and(|n| n.heading) || self.errors.gyro().reads_heading();
         // The division only when an effect reads the time.
         let time = needs.is_some_and(|n| n.time);
         let h_s = self.clock.h_s();

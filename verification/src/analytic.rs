@@ -27,6 +27,8 @@ fn context(sched: &Schedule, t: f64, gravity: f64) -> (Matrix3<f64>, TermContext
         dv_mps: f_b,
         f_b_mps2: f_b,
         up_b: c_nb.column(2).into_owned(),
+        north_b: c_nb.column(1).into_owned(),
+        east_b: c_nb.column(0).into_owned(),
         gyro_temp_c: Vector3::repeat(25.0),
         gyro_gradient_k: Vector3::zeros(),
         accel_temp_c: 25.0,
@@ -171,7 +173,7 @@ pub fn eq8() -> Eq8Report {
             let gm = GyroModel::new(&table3_gyro(which));
             let (phi, mag) = over_cycle(&sched, Phase::All, |t| {
                 let (c, ctx) = context(&sched, t, gravity);
-                c * gm.increment_error(&ctx, &mut [Vector3::zeros(); 13])
+                c * gm.increment_error(&ctx, &mut [Vector3::zeros(); rins_plant::effects::gyro::GYRO_TERMS])
             });
             cases.push(CancellationCase {
                 errors: format!("gyro {which}"),
@@ -304,7 +306,7 @@ pub fn eq11(delta_beta_dph: [f64; 3], dwell_s: f64) -> Eq11Report {
         let sched = sched.clone();
         move |t: f64| {
             let (c, ctx) = context(&sched, t, 9.8);
-            c * gm.increment_error(&ctx, &mut [Vector3::zeros(); 13])
+            c * gm.increment_error(&ctx, &mut [Vector3::zeros(); rins_plant::effects::gyro::GYRO_TERMS])
         }
     };
     let (stationary, _) = over_cycle(&sched, Phase::Stationary, integrand(&sched));
@@ -398,7 +400,7 @@ pub fn cycle_trace(
         bias_rad: [0.0; 3],
         delta_beta_rad: [0.0; 3],
     });
-    let mut terms = [Vector3::zeros(); 13];
+    let mut terms = [Vector3::zeros(); rins_plant::effects::gyro::GYRO_TERMS];
     for k in 0..n {
         let (c, ctx) = context(&sched, sched.lead_s() + (k as f64 + 0.5) * dt, 9.8);
         pb += c * mb.increment_error(&ctx, &mut terms) * dt;

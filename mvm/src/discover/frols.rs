@@ -81,49 +81,125 @@ impl Ortho {
         self.q.par_iter_mut().for_each(|q| remove(q, e));
     }
 
-    /// The candidate (not in `skip`) with the largest error-reduction ratio, and that ratio,
-    /// preferring the simpler: a candidate of higher `complexity` (a product of two signals, an
-    /// indicator) is taken only if it explains more than the best simpler one by
-    /// [`PARSIMONY_CHI2`] (in units of the residual's variance); on data that cannot tell
-    /// T·Δθ from T·|ω|·Δθ (constant-rate moves), the degree-one term is proposed.
-    fn best(&self, skip: &[usize], complexity: &[u8]) -> Option<(usize, f64)> {
-        let scores: Vec<(usize, f64)> = (0..self.q.len())
-            .filter(|j| !skip.contains(j))
+    /// Candidate `j`'s orthogonal part with its parents not yet `taken` removed too, and
+    /// those parents: what `j` explains beyond them.
+    fn beyond_parents(
+        &self,
+        j: usize,
+        lib: &Candidates,
+        taken: &[usize],
+    ) -> (Vec<f64>, Vec<usize>) {
+        let missing: Vec<usize> = lib.parents[j]
+            .iter()
+            .copied()
+            .filter(|p| !taken.contains(p))
+            .collect();
+        let mut q = self.q[j].clone();
+        let mut basis: Vec<Vec<f64>> = Vec::new();
+        for &p in &missing {
+            let mut e = self.q[p].clone();
+            for u in &basis {
+                remove(&mut e, u);
+            }
+            let n = dot(&e, &e);
+            if n > MIN_ORTHOGONAL_SHARE * self.norm0[p] && n > 0.0 {
+                let inv = 1.0 / n.sqrt();
+                e.iter_mut().for_each(|x| *x *= inv);
+                remove(&mut q, &e);
+                basis.push(e);
+            }
+        }
+        (q, missing)
+    }
+
+    /// The candidate (selectable, not in `skip` nor `taken`) that explains most of the
+    /// residual beyond its parents not yet taken, with its error-reduction ratio and those
+    /// parents; preferring the simpler: a candidate of higher `complexity` (a product of two
+    /// signals, an indicator, a memory term) is taken only if it explains more than the best
+    /// simpler one by [`PARSIMONY_CHI2`] (in units of the residual's variance), and a term
+    /// with a time constant pays for it as one more parameter (ln n in χ²); on data that cannot
+    /// tell T·Δθ from T·|ω|·Δθ (constant-rate moves), the degree-one term is proposed.
+    fn best(
+        &self,
+        skip: &[usize],
+        taken: &[usize],
+        lib: &Candidates,
+    ) -> Option<(usize, f64, Vec<usize>)> {
+        let n = self.r.len().max(1) as f64;
+        let s2 = (dot(&self.r, &self.r) / n).max(1.0);
+        let scores: Vec<(usize, f64, f64, Vec<usize>)> = (0..self.q.len())
+            .into_par_iter()
+            .filter(|j| lib.selectable[*j] && !skip.contains(j) && !taken.contains(j))
             .filter_map(|j| {
-                let qq = dot(&self.q[j], &self.q[j]);
+                let owned;
+                let (q, parents): (&[f64], Vec<usize>) =
+                    if lib.parents[j].iter().all(|p| taken.contains(p)) {
+                        (&self.q[j], Vec::new())
+                    } else {
+                        let (q, p) = self.beyond_parents(j, lib, taken);
+                        owned = q;
+                        (&owned, p)
+                    };
+                let qq = dot(q, q);
                 (qq > MIN_ORTHOGONAL_SHARE * self.norm0[j] && qq > 0.0).then(|| {
-                    let g = dot(&self.q[j], &self.r);
-                    (j, g * g / qq)
+                    let g = dot(q, &self.r);
+                    let gain = g * g / qq;
+                    let penalised = gain - lib.extra_params[j] as f64 * n.ln() * s2;
+                    (j, penalised, gain, parents)
                 })
             })
             .collect();
         let top = |max: u8| {
             scores
                 .iter()
-                .filter(|(j, _)| complexity[*j] <= max)
-                .copied()
+                .filter(|(j, ..)| lib.complexity[*j] <= max)
                 .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
         };
-        let n = self.r.len().max(1) as f64;
-        let s2 = (dot(&self.r, &self.r) / n).max(1.0);
         let mut pick = top(u8::MAX)?;
-        for level in (0..complexity[pick.0]).rev() {
+        for level in (0..lib.complexity[pick.0]).rev() {
             if let Some(simple) = top(level)
                 && simple.1 >= pick.1 - PARSIMONY_CHI2 * s2
             {
                 pick = simple;
             }
         }
-        Some((pick.0, pick.1 / self.yy.max(f64::MIN_POSITIVE)))
+        Some((
+            pick.0,
+            pick.2 / self.yy.max(f64::MIN_POSITIVE),
+            pick.3.clone(),
+        ))
     }
 
     /// Moves candidate `j` into the model.
     fn take(&mut self, j: usize) {
         let mut e = self.q[j].clone();
         let n = dot(&e, &e).sqrt();
+        if !(n > 0.0) {
+            return;
+        }
         e.iter_mut().for_each(|x| *x /= n);
         self.take_direction(&e);
     }
+}
+
+/// The library of one channel as the selection reads it: columns (SI coefficients) with their
+/// file units, complexity, parents, whether each may be selected alone, and the parameters
+/// each has beyond its coefficient.
+#[derive(Clone, Debug, Default)]
+pub struct Candidates {
+    /// Window sums of each candidate at a unit SI coefficient.
+    pub cols: Vec<Vec<f64>>,
+    /// SI size of each coefficient's file unit.
+    pub units: Vec<f64>,
+    /// 0 for one signal, 1 for a product, an indicator or a memory term.
+    pub complexity: Vec<u8>,
+    /// Each candidate's parents (heredity), as indices of this list: they enter with it.
+    pub parents: Vec<Vec<usize>>,
+    /// Whether a candidate may be selected in its own right (the catalogue constants are
+    /// here only as parents).
+    pub selectable: Vec<bool>,
+    /// Parameters beyond the coefficient (a memory term's time constant).
+    pub extra_params: Vec<usize>,
 }
 
 fn whiten(col: &[f64], d: &ChannelData, w: Option<&[f64]>) -> Vec<f64> {
@@ -138,31 +214,33 @@ pub struct Pick {
     /// Index of the term in the library.
     pub term: usize,
     /// Its error-reduction ratio: the share of the residual energy (after the catalogue's
-    /// accepted effects and the terms before it) its orthogonal part explains.
+    /// accepted effects, the terms before it and its parents) its orthogonal part explains.
     pub err: f64,
-    /// The nested test on top of the model before it; its coefficient is the last.
+    /// The parents it brought (library indices), fitted with it.
+    pub parents: Vec<usize>,
+    /// The nested test on top of the model before it and its parents; its coefficient is
+    /// the last; ΔBIC counts a time constant as a parameter.
     pub test: NestedTest,
     /// Whether it passed the gate.
     pub passes: bool,
+    /// The design of the test: the model before it, its parents, and it last.
+    pub design: Design,
 }
 
-/// Forward selection on one channel: at most `max_terms` library terms (columns `cols`, SI
-/// coefficients with file units `units`, `complexity` 0 for one signal, 1 for a product or an
-/// indicator) on top of the design `base` (the catalogue's accepted
-/// effects). Returns the kept terms in order and the first one the gate refused, if any.
+/// Forward selection on one channel: at most `max_terms` library terms of `lib` on top of the
+/// design `base` (the catalogue's accepted effects), each with its parents (which enter the
+/// model with it). Returns the kept terms in order and the first one the gate refused, if any.
 pub fn select(
     d: &ChannelData,
     base: &Design,
-    cols: &[Vec<f64>],
-    units: &[f64],
-    complexity: &[u8],
+    lib: &Candidates,
     gate: &Gate,
     max_terms: usize,
 ) -> (Vec<Pick>, Option<Pick>) {
     let basew: Vec<Vec<f64>> = (0..base.ncols())
         .map(|c| whiten(base.column(c).as_slice(), d, None))
         .collect();
-    let candw: Vec<Vec<f64>> = cols.iter().map(|c| whiten(c, d, None)).collect();
+    let candw: Vec<Vec<f64>> = lib.cols.iter().map(|c| whiten(c, d, None)).collect();
     let mut o = Ortho::new(whiten(&d.y, d, None), &basew, candw);
     let Some(mut fit0) = wls(base, d, None) else {
         return (Vec::new(), None);
@@ -171,27 +249,60 @@ pub fn select(
     let mut x = base.clone();
     let mut kept: Vec<Pick> = Vec::new();
     let mut tried: Vec<usize> = Vec::new();
+    let mut taken: Vec<usize> = Vec::new();
+    let ln_n = (d.y.len() as f64).ln();
     while kept.len() < max_terms {
-        let Some((j, err)) = o.best(&tried, complexity) else {
+        let Some((j, err, parents)) = o.best(&tried, &taken, lib) else {
             break;
         };
         tried.push(j);
-        let x1 = append(&x, &cols[j], units[j]);
-        let Some(test) = nested_test(&fit0, cv0, x.ncols(), &x1, d) else {
+        // The parents first: the child is tested on top of them.
+        let mut xp = x.clone();
+        for &p in &parents {
+            xp = append(&xp, &lib.cols[p], lib.units[p]);
+        }
+        let (fit_p, cv_p) = if parents.is_empty() {
+            (fit0.clone(), cv0)
+        } else {
+            match wls(&xp, d, None) {
+                Some(f) => (f, cv_rmse(&xp, d)),
+                None => continue,
+            }
+        };
+        let x1 = append(&xp, &lib.cols[j], lib.units[j]);
+        let Some(mut test) = nested_test(&fit_p, cv_p, xp.ncols(), &x1, d) else {
             // Not identifiable on top of the model: the next best.
             continue;
         };
-        let passes = gate.passes_test(test.delta_bic, test.p_value, test.cv_gain_pct);
+        test.delta_bic += lib.extra_params[j] as f64 * ln_n;
+        // The block (parents and term) must improve the model too: parents that explain
+        // nothing must not ride in on a term that only passes on top of them.
+        let block_ok = parents.is_empty()
+            || wls(&x1, d, None).is_some_and(|f| {
+                let k = f.identified_in(x.ncols()..x1.ncols()) as f64
+                    + lib.extra_params[j] as f64;
+                let s2 = f.chi2_red().max(1.0);
+                -(fit0.chi2 - f.chi2) / s2 + k * ln_n < gate.max_delta_bic
+            });
+        let passes =
+            block_ok && gate.passes_test(test.delta_bic, test.p_value, test.cv_gain_pct);
         let pick = Pick {
             term: j,
             err,
+            parents,
             test,
             passes,
+            design: x1.clone(),
         };
         if !passes {
             return (kept, Some(pick));
         }
+        for &p in &pick.parents {
+            o.take(p);
+            taken.push(p);
+        }
         o.take(j);
+        taken.push(j);
         fit0 = pick.test.fit.clone();
         cv0 = pick.test.cv_rmse;
         x = x1;
@@ -211,15 +322,9 @@ pub fn append(x: &Design, col: &[f64], unit: f64) -> Design {
 
 /// Selection frequency of each of `picked` (library indices) over [`RESAMPLES`] bootstrap
 /// resamples of the cross-validation units (runs, or blocks with fewer than three runs): in
-/// each resample the orthogonal selection takes `picked.len()` terms on top of `base`, and a
-/// term counts when it is among them.
-pub fn bootstrap(
-    d: &ChannelData,
-    base: &Design,
-    cols: &[Vec<f64>],
-    complexity: &[u8],
-    picked: &[usize],
-) -> Vec<f64> {
+/// each resample the orthogonal selection takes `picked.len()` terms (each with its parents)
+/// on top of `base`, and a term counts when it is among them.
+pub fn bootstrap(d: &ChannelData, base: &Design, lib: &Candidates, picked: &[usize]) -> Vec<f64> {
     if picked.is_empty() || d.folds == 0 {
         return Vec::new();
     }
@@ -236,20 +341,26 @@ pub fn bootstrap(
         })
         .collect();
     let hits: Vec<Vec<bool>> = draws
-        .par_iter()
+        .iter()
         .map(|count| {
             let w: Vec<f64> = d.fold.iter().map(|&f| count[f]).collect();
             let basew: Vec<Vec<f64>> = (0..base.ncols())
                 .map(|c| whiten(base.column(c).as_slice(), d, Some(&w)))
                 .collect();
-            let candw: Vec<Vec<f64>> = cols.iter().map(|c| whiten(c, d, Some(&w))).collect();
+            let candw: Vec<Vec<f64>> = lib.cols.iter().map(|c| whiten(c, d, Some(&w))).collect();
             let mut o = Ortho::new(whiten(&d.y, d, Some(&w)), &basew, candw);
             let mut chosen = Vec::new();
+            let mut taken = Vec::new();
             while chosen.len() < picked.len() {
-                let Some((j, _)) = o.best(&chosen, complexity) else {
+                let Some((j, _, parents)) = o.best(&chosen, &taken, lib) else {
                     break;
                 };
+                for p in parents {
+                    o.take(p);
+                    taken.push(p);
+                }
                 o.take(j);
+                taken.push(j);
                 chosen.push(j);
             }
             picked.iter().map(|p| chosen.contains(p)).collect()

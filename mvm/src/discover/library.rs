@@ -23,12 +23,12 @@
 //! `library_tests.rs`, against closed forms.
 
 use rayon::prelude::*;
-use rins_plant::effects::custom::CustomKind;
 #[cfg(doc)]
 use rins_plant::effects::custom::signals::Family;
 use rins_plant::effects::custom::signals::{
     ArgKind, Args, FAMILIES, Library, NodeRef, SLOTS, Signal, UP, Unit,
 };
+use rins_plant::effects::custom::{CustomKind, Factor, Op, decay_value, lag_step, lag_weights};
 use rins_plant::thermal::node;
 
 use crate::custom::RowSignals;
@@ -55,6 +55,57 @@ pub enum Term {
         /// The position's up direction in body axes, rounded to 0.01.
         up: [f64; 3],
     },
+    /// A bias through an operator with memory, `lag(signal, τ)` or `exp(-clock/τ)`, at one
+    /// time constant (of [`tau_grid`], or refined by the search).
+    Memory {
+        /// The signal.
+        signal: Signal,
+        /// The operator with its time constant.
+        op: Op,
+    },
+}
+
+/// Time constants the library's memory terms are searched at, s: log-spaced from 10 s to
+/// 3 h, six per decade (19 points, neighbours 1.474× apart), refined around the best by the
+/// search.
+pub fn tau_grid() -> Vec<f64> {
+    const LO: f64 = 10.0;
+    const HI: f64 = 10_800.0;
+    let n = ((HI / LO).log10() * 6.0).round() as usize;
+    (0..=n)
+        .map(|k| LO * (HI / LO).powf(k as f64 / n as f64))
+        .collect()
+}
+
+/// The memory terms of the library over the time constants `taus`: a decay of each
+/// [`Library::Decay`] clock (a transient after each table move, since it stopped or started),
+/// and a lag of the acting axis's block temperature and, when measured, the housing's.
+pub fn memory_terms(info: &RowsInfo, taus: &[f64]) -> Vec<Term> {
+    let mut base: Vec<(Signal, bool)> = FAMILIES
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| f.library == Library::Decay)
+        .flat_map(|(i, _)| Signal::all_of(i))
+        .map(|s| (s, true))
+        .collect();
+    base.push((Signal::Temp(NodeRef::Block), false));
+    if info.housing {
+        base.push((Signal::Temp(NodeRef::Node(node::HOUSING)), false));
+    }
+    let mut out = Vec::new();
+    for (signal, decay) in base {
+        for &tau_s in taus {
+            out.push(Term::Memory {
+                signal,
+                op: if decay {
+                    Op::Decay { tau_s }
+                } else {
+                    Op::Lag { tau_s }
+                },
+            });
+        }
+    }
+    out
 }
 
 /// Regressor notation of a signal, as a declared effect writes it.
@@ -75,7 +126,53 @@ impl Term {
                     .join("*"),
             }),
             Term::Position { .. } => None,
+            Term::Memory { signal, op } => Some(
+                Factor {
+                    signal: *signal,
+                    power: 1,
+                    op: *op,
+                }
+                .text(),
+            ),
         }
+    }
+
+    /// The time constant of a memory term.
+    pub fn tau_s(&self) -> Option<f64> {
+        match self {
+            Term::Memory { op, .. } => op.tau_s(),
+            _ => None,
+        }
+    }
+
+    /// The same memory term at another time constant (other terms unchanged).
+    pub fn with_tau(&self, tau_s: f64) -> Term {
+        match self {
+            Term::Memory { signal, op } => Term::Memory {
+                signal: *signal,
+                op: match op {
+                    Op::Lag { .. } => Op::Lag { tau_s },
+                    Op::Decay { .. } => Op::Decay { tau_s },
+                    Op::Plain => Op::Plain,
+                },
+            },
+            t => t.clone(),
+        }
+    }
+
+    /// Whether two terms are the same but for the time constant (one memory family).
+    pub fn same_family(&self, o: &Term) -> bool {
+        match (self, o) {
+            (Term::Memory { signal: a, op: p }, Term::Memory { signal: b, op: q }) => {
+                a == b && std::mem::discriminant(p) == std::mem::discriminant(q)
+            }
+            _ => self == o,
+        }
+    }
+
+    /// Parameters beyond the coefficient: the time constant of a memory term.
+    pub fn extra_params(&self) -> usize {
+        usize::from(self.tau_s().is_some())
     }
 
     /// The regressor's unit (`1` for an indicator).
@@ -85,11 +182,18 @@ impl Term {
                 factors.iter().fold(Unit::ONE, |u, s| u.times(s.unit()))
             }
             Term::Position { .. } => Unit::ONE,
+            Term::Memory { signal, op } => Factor {
+                signal: *signal,
+                power: 1,
+                op: *op,
+            }
+            .unit(),
         }
     }
 
-    /// 0 for one signal, 1 for a product of two or a position indicator: the selection prefers
-    /// the simpler of two terms the data cannot tell apart.
+    /// 0 for one signal, 1 for a product of two, a position indicator or a term with memory
+    /// (one more parameter, its time constant): the selection prefers the simpler of two terms
+    /// the data cannot tell apart.
     pub fn complexity(&self) -> u8 {
         match self {
             Term::Product { factors, .. } if factors.len() == 1 => 0,
@@ -101,7 +205,7 @@ impl Term {
     pub fn kind(&self) -> CustomKind {
         match self {
             Term::Product { kind, .. } => *kind,
-            Term::Position { .. } => CustomKind::Bias,
+            Term::Position { .. } | Term::Memory { .. } => CustomKind::Bias,
         }
     }
 
@@ -124,6 +228,18 @@ impl Term {
                 (up[2] * 100.0).round() as i64
             )
             .replace('-', "m"),
+            Term::Memory { signal, op } => {
+                let tau = op.tau_s().unwrap_or(0.0);
+                let t = if tau >= 1.0 {
+                    format!("{}", tau.round() as i64)
+                } else {
+                    format!("{tau:.3}").replace('.', "p")
+                };
+                match op {
+                    Op::Decay { .. } => format!("b_exp_{}_{t}", signal.short()),
+                    _ => format!("b_lag_{}_{t}", signal.short()),
+                }
+            }
         }
     }
 
@@ -143,6 +259,7 @@ impl Term {
                 "bias only at the static position with up = ({:.2}, {:.2}, {:.2}) in body axes",
                 up[0], up[1], up[2]
             ),
+            Term::Memory { .. } => format!("bias ∝ {}", self.regressor().unwrap_or_default()),
         }
     }
 }
@@ -219,7 +336,8 @@ pub fn product_terms(sig: &[Signal]) -> Vec<Term> {
     out
 }
 
-/// Per-window sums of every signal slot times each weight, and of the up products.
+/// Per-window sums of every signal slot times each weight, of the up products, and of the
+/// memory terms as biases.
 #[derive(Clone, Debug)]
 pub struct Moments {
     /// `[window][slot * WEIGHTS + weight]`: Σ frame[slot]·w over the window's rows (slot
@@ -229,18 +347,111 @@ pub struct Moments {
     pub uu: Vec<[f64; 9]>,
     /// Mean up direction of each window.
     pub up: Vec<[f64; 3]>,
+    /// The memory terms summed ([`Term::Memory`]).
+    pub memory_terms: Vec<Term>,
+    /// `[window][term * 6 + channel]`: Σ value·Δt of each memory term on each channel.
+    pub mem: Vec<Vec<f64>>,
+}
+
+/// The distinct inputs of memory terms over the channels: each (frame slot, subtracted slot,
+/// operator) once, and per term and channel the input it reads.
+struct MemoryUnits {
+    units: Vec<(usize, Option<usize>, Op)>,
+    of: Vec<usize>,
+}
+
+impl MemoryUnits {
+    fn new(terms: &[Term]) -> Self {
+        let mut units: Vec<(usize, Option<usize>, Op)> = Vec::new();
+        let mut of = Vec::with_capacity(terms.len() * 6);
+        for t in terms {
+            let Term::Memory { signal, op } = t else {
+                of.extend([usize::MAX; 6]);
+                continue;
+            };
+            for c in 0..6 {
+                let (a, b) = signal.slots(c >= 3, c % 3);
+                let u = (a, b, *op);
+                let k = units.iter().position(|x| *x == u).unwrap_or_else(|| {
+                    units.push(u);
+                    units.len() - 1
+                });
+                of.push(k);
+            }
+        }
+        MemoryUnits { units, of }
+    }
+}
+
+/// The memory inputs of one segment as it is walked: lag states, and the last decay value
+/// to continue within a dwell by one multiplication.
+struct MemoryWalk {
+    lag_end: Vec<f64>,
+    last: Vec<(f64, f64)>,
+    weights_dt: f64,
+    weights: Vec<(f64, f64)>,
+    value: Vec<f64>,
+}
+
+impl MemoryWalk {
+    fn new(n: usize) -> Self {
+        MemoryWalk {
+            lag_end: vec![f64::NAN; n],
+            last: vec![(f64::NAN, f64::NAN); n],
+            weights_dt: f64::NAN,
+            weights: vec![(0.0, 0.0); n],
+            value: vec![0.0; n],
+        }
+    }
+
+    /// Each unit's value over a row of `dt` with signals `f`: the plant's lag step
+    /// ([`lag_step`]) and decay ([`decay_value`]); a decay whose clock ran on by exactly the
+    /// row continues from the last value (one multiplication instead of an exponential, to
+    /// 1e-15 relative per row).
+    fn step(&mut self, units: &MemoryUnits, f: &[f64], dt: f64) {
+        if dt.to_bits() != self.weights_dt.to_bits() {
+            for (w, (_, _, op)) in self.weights.iter_mut().zip(&units.units) {
+                *w = match op {
+                    Op::Lag { tau_s } => lag_weights(dt, *tau_s),
+                    Op::Decay { tau_s } => ((-dt / tau_s).exp(), 0.0),
+                    Op::Plain => (1.0, 1.0),
+                };
+            }
+            self.weights_dt = dt;
+        }
+        for (k, (a, b, op)) in units.units.iter().enumerate() {
+            let x = f[*a] - b.map_or(0.0, |b| f[b]);
+            self.value[k] = match op {
+                Op::Lag { .. } => lag_step(&mut self.lag_end[k], x, self.weights[k]),
+                Op::Decay { tau_s } => {
+                    let (x0, v0) = self.last[k];
+                    let v = if (x - (x0 + dt)).abs() <= 1e-12 * x.abs().max(1.0) {
+                        v0 * self.weights[k].0
+                    } else {
+                        decay_value(x, *tau_s)
+                    };
+                    self.last[k] = (x, v);
+                    v
+                }
+                Op::Plain => x,
+            };
+        }
+    }
 }
 
 /// Sums the signals of `rows` over the replay's `windows` (one pass over the chunks, in
 /// parallel over a chunk's segments; the windows follow the segments in order, each row after a
-/// segment's first in the next window until its `rows` are used).
+/// segment's first in the next window until its `rows` are used), with the memory terms
+/// `memory_terms` as biases.
 pub(crate) fn moments(
     kin: &Kinematics,
     rows: &(impl Rows + ?Sized),
     windows: &[Window],
+    memory_terms: &[Term],
 ) -> Moments {
     let info = rows.info();
-    let mut per: Vec<Vec<(Vec<f64>, [f64; 9])>> = Vec::new();
+    let units = MemoryUnits::new(memory_terms);
+    let mut per: Vec<Vec<WindowSums>> = Vec::new();
     // The next segment's first window.
     let mut w = 0usize;
     rows.for_each_chunk(&mut |h| {
@@ -255,13 +466,15 @@ pub(crate) fn moments(
                 w += 1;
             }
         }
-        per.par_extend(chunk_moments(kin, h, &rs, windows, &first));
+        per.par_extend(chunk_moments(kin, h, &rs, windows, &first, &units));
     });
     let mut m = Vec::with_capacity(windows.len());
     let mut uu = Vec::with_capacity(windows.len());
-    for (a, u) in per.into_iter().flatten() {
-        m.push(a);
-        uu.push(u);
+    let mut mem = Vec::with_capacity(windows.len());
+    for s in per.into_iter().flatten() {
+        m.push(s.m);
+        uu.push(s.uu);
+        mem.push(s.mem);
     }
     let up = m
         .iter()
@@ -270,7 +483,20 @@ pub(crate) fn moments(
             [0, 1, 2].map(|i| a[(UP + i) * WEIGHTS] / d)
         })
         .collect();
-    Moments { m, uu, up }
+    Moments {
+        m,
+        uu,
+        up,
+        memory_terms: memory_terms.to_vec(),
+        mem,
+    }
+}
+
+/// One window's sums.
+struct WindowSums {
+    m: Vec<f64>,
+    uu: [f64; 9],
+    mem: Vec<f64>,
 }
 
 /// Per segment of chunk `h` (whose first windows are `first`), the per-window sums.
@@ -280,24 +506,26 @@ fn chunk_moments<'a>(
     rs: &'a RowSignals,
     windows: &'a [Window],
     first: &'a [usize],
-) -> impl IndexedParallelIterator<Item = Vec<(Vec<f64>, [f64; 9])>> + 'a {
+    units: &'a MemoryUnits,
+) -> impl IndexedParallelIterator<Item = Vec<WindowSums>> + 'a {
     h.segments
         .par_iter()
         .zip(first.par_iter())
         .map(|(seg, &w0)| {
+            let fresh = || WindowSums {
+                m: vec![0.0; (SLOTS + 1) * WEIGHTS],
+                uu: [0.0; 9],
+                mem: vec![0.0; units.of.len()],
+            };
             let mut out = Vec::new();
             let mut wi = w0;
             let mut left = 0usize;
-            let mut acc = vec![0.0; (SLOTS + 1) * WEIGHTS];
-            let mut uu = [0.0; 9];
+            let mut acc = fresh();
+            let mut walk = MemoryWalk::new(units.units.len());
             for k in seg.start + 1..seg.end {
                 if left == 0 {
                     if k > seg.start + 1 {
-                        out.push((
-                            std::mem::replace(&mut acc, vec![0.0; (SLOTS + 1) * WEIGHTS]),
-                            uu,
-                        ));
-                        uu = [0.0; 9];
+                        out.push(std::mem::replace(&mut acc, fresh()));
                     }
                     left = windows.get(wi).map_or(usize::MAX, |w| w.rows as usize);
                     wi += 1;
@@ -317,23 +545,31 @@ fn chunk_moments<'a>(
                 ];
                 for s in 0..SLOTS {
                     let v = f[s];
-                    let row = &mut acc[s * WEIGHTS..(s + 1) * WEIGHTS];
+                    let row = &mut acc.m[s * WEIGHTS..(s + 1) * WEIGHTS];
                     for (a, w) in row.iter_mut().zip(&wts) {
                         *a += v * w;
                     }
                 }
-                let row = &mut acc[SLOTS * WEIGHTS..];
+                let row = &mut acc.m[SLOTS * WEIGHTS..];
                 for (a, w) in row.iter_mut().zip(&wts) {
                     *a += w;
                 }
                 for a in 0..3 {
                     for b in a..3 {
-                        uu[a * 3 + b] += f[UP + a] * f[UP + b] * dt;
+                        acc.uu[a * 3 + b] += f[UP + a] * f[UP + b] * dt;
+                    }
+                }
+                if !units.units.is_empty() {
+                    walk.step(units, &f, dt);
+                    for (a, &u) in acc.mem.iter_mut().zip(&units.of) {
+                        if u != usize::MAX {
+                            *a += walk.value[u] * dt;
+                        }
                     }
                 }
             }
             if seg.len() > 1 {
-                out.push((acc, uu));
+                out.push(acc);
             }
             out
         })
@@ -392,6 +628,14 @@ impl Moments {
                     }
                     _ => 0.0,
                 },
+                Term::Memory { .. } => {
+                    let k = self
+                        .memory_terms
+                        .iter()
+                        .position(|t| t == term)
+                        .expect("a memory term summed by the pass");
+                    self.mem[w][k * 6 + channel]
+                }
             })
             .collect()
     }

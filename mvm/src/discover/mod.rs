@@ -16,8 +16,11 @@ pub mod frols;
 pub mod library;
 pub mod propose;
 mod report;
+pub mod tau;
 
-pub use report::{Dependent, DiscoveredTerm, DiscoveryReport, Identical, Proposal, Superseded};
+pub use report::{
+    Dependent, DiscoveredTerm, DiscoveryReport, Identical, Proposal, Superseded, TauReport,
+};
 
 use rins_plant::PlantConfig;
 use rins_plant::effects::CustomSpec;
@@ -101,6 +104,10 @@ fn identical_by_definition(term: &Term, effect: Effect) -> bool {
             CustomKind::Bias,
             Effect::Gyro(GyroTerm::GSensitivity)
         ) | (
+            [Signal::Up(_) | Signal::North(_) | Signal::East(_)],
+            CustomKind::Bias,
+            Effect::Gyro(GyroTerm::NavFieldBias)
+        ) | (
             [Signal::Up(_)],
             CustomKind::Bias,
             Effect::Accel(AccelTerm::ScaleFactor | AccelTerm::Misalignment)
@@ -123,6 +130,8 @@ pub(crate) struct Search {
     found: Vec<Found>,
 }
 
+/// The report of a term's test: the pick's own (its coefficient the fit's last, `back` = 0) or
+/// one of its parents' (`back` columns before the last).
 fn tested(
     a: &Prepared,
     c: usize,
@@ -130,10 +139,11 @@ fn tested(
     col: &[f64],
     pick: &frols::Pick,
     freq: f64,
+    back: usize,
 ) -> DiscoveredTerm {
     let accel = c >= 3;
     let unit = file_unit_si(term.kind(), accel);
-    let i = pick.test.fit.theta.len() - 1;
+    let i = pick.test.fit.theta.len() - 1 - back;
     let (th, se) = (pick.test.fit.theta[i], pick.test.fit.cov[(i, i)].sqrt());
     let identified = pick.test.fit.identified(i);
     let u = match (term.kind(), accel) {
@@ -175,7 +185,104 @@ fn tested(
         } else {
             Vec::new()
         },
+        tau: None,
+        parent_of: None,
     }
+}
+
+/// A memory term kept on a channel, whose time constant is refined after the search.
+struct Refine {
+    /// Index into `kept`.
+    kept: usize,
+    /// Channel.
+    channel: usize,
+    /// The design of its test (it last).
+    design: crate::fit::Design,
+    /// The profile over the grid: (τ, χ²).
+    grid: Vec<(f64, f64)>,
+}
+
+/// The library columns of channel `c` as the selection reads them (library indices `idx` of
+/// `terms`, their columns `cols`), with the catalogue constants and g-sensitivity a term's
+/// heredity asks for appended as parents only (not selectable), leaving out parents the base
+/// `base_groups` has already.
+fn candidates(
+    a: &Prepared,
+    c: usize,
+    terms: &[Term],
+    idx: &[usize],
+    cols: &[Vec<f64>],
+    base_groups: &[Group],
+) -> frols::Candidates {
+    use crate::heredity::{Parent, parents_of_regressor};
+    let accel = c >= 3;
+    let ws = &a.replay.windows;
+    let mut lib = frols::Candidates {
+        cols: cols.to_vec(),
+        units: idx
+            .iter()
+            .map(|&t| file_unit_si(terms[t].kind(), accel))
+            .collect(),
+        complexity: idx.iter().map(|&t| terms[t].complexity()).collect(),
+        parents: vec![Vec::new(); idx.len()],
+        selectable: vec![true; idx.len()],
+        extra_params: idx.iter().map(|&t| terms[t].extra_params()).collect(),
+    };
+    // Catalogue groups appended as parents: effect → their column indices.
+    let mut appended: Vec<(Effect, Vec<usize>)> = Vec::new();
+    for j in 0..idx.len() {
+        let term = &terms[idx[j]];
+        let Some(reg) = term.regressor() else {
+            continue;
+        };
+        let mut ps = Vec::new();
+        for p in parents_of_regressor(accel, term.kind(), &reg) {
+            match p {
+                Parent::Effect(e) => {
+                    if base_groups.iter().any(|g| g.effect == e) {
+                        continue;
+                    }
+                    if let Some((_, cs)) = appended.iter().find(|(x, _)| *x == e) {
+                        ps.extend(cs.iter().copied());
+                        continue;
+                    }
+                    let Some(g) = a
+                        .replay
+                        .groups
+                        .iter()
+                        .find(|g| g.channel == c && g.effect == e)
+                    else {
+                        continue;
+                    };
+                    let x = design(ws, std::slice::from_ref(g));
+                    let mut cs = Vec::new();
+                    for k in 0..x.ncols() {
+                        lib.cols.push(x.column(k).iter().copied().collect());
+                        lib.units.push(x.unit[k]);
+                        lib.complexity.push(0);
+                        lib.parents.push(Vec::new());
+                        lib.selectable.push(false);
+                        lib.extra_params.push(0);
+                        cs.push(lib.cols.len() - 1);
+                    }
+                    ps.extend(cs.iter().copied());
+                    appended.push((e, cs));
+                }
+                Parent::Declare {
+                    kind, regressor, ..
+                } => {
+                    if let Some(k) = idx.iter().position(|&t| {
+                        terms[t].kind() == kind
+                            && terms[t].regressor().as_deref() == Some(&regressor)
+                    }) {
+                        ps.push(k);
+                    }
+                }
+            }
+        }
+        lib.parents[j] = ps;
+    }
+    lib
 }
 
 /// Searches the library on each channel's remainder after `selected` (the catalogue's accepted
@@ -187,14 +294,19 @@ pub(crate) fn search(
     selected: &[Vec<Group>],
 ) -> Search {
     let ws = &a.replay.windows;
-    let mom = library::moments(&Kinematics::new(model), rows, ws);
-    let sig = library::library_signals(&rows.info());
+    let info = rows.info();
+    let kin = Kinematics::new(model);
+    let taus = library::tau_grid();
+    let memory = library::memory_terms(&info, &taus);
+    let mom = library::moments(&kin, rows, ws, &memory);
+    let sig = library::library_signals(&info);
     let mut terms = library::product_terms(&sig);
     terms.extend(
         mom.positions(ws, MAX_POSITIONS)
             .into_iter()
             .map(|up| Term::Position { up }),
     );
+    terms.extend(memory.iter().cloned());
     // A term a declared effect of the model already is: tested by the catalogue step.
     let declared: Vec<(bool, CustomKind, String)> = [false, true]
         .into_iter()
@@ -232,11 +344,11 @@ pub(crate) fn search(
     let mut refused = Vec::new();
     let mut identical = Vec::new();
     let mut dependent = Vec::new();
-    // (channel, term index, column, test)
-    let mut kept: Vec<(usize, usize, Vec<f64>, DiscoveredTerm)> = Vec::new();
+    // (channel, term, column, test)
+    let mut kept: Vec<(usize, Term, Vec<f64>, DiscoveredTerm)> = Vec::new();
+    let mut refine: Vec<Refine> = Vec::new();
     for c in 0..6 {
         let idx = &per_channel[c];
-        let accel = c >= 3;
         let all_cols: Vec<Vec<f64>> = idx.iter().map(|&t| mom.column(&terms[t], c, ws)).collect();
         // A term that is a catalogue column up to scale on this data is that catalogue effect,
         // not new physics: reported, and left to the catalogue step.
@@ -293,11 +405,6 @@ pub(crate) fn search(
         let idx: Vec<usize> = keep.iter().map(|&j| idx[j]).collect();
         let idx = &idx;
         let cols: Vec<Vec<f64>> = keep.iter().map(|&j| all_cols[j].clone()).collect();
-        let units: Vec<f64> = idx
-            .iter()
-            .map(|&t| file_unit_si(terms[t].kind(), accel))
-            .collect();
-        let complexity: Vec<u8> = idx.iter().map(|&t| terms[t].complexity()).collect();
         // On the catalogue's remainder, and on the residual of the model as given: a
         // catalogue effect accepted as a stand-in can leave too little of the remainder for
         // the term it stands in for; the ranking then decides between them.
@@ -311,25 +418,64 @@ pub(crate) fn search(
         };
         for (on, groups) in bases {
             let base = design(ws, groups);
-            let (picks, miss) = frols::select(
-                &a.data[c],
-                &base,
-                &cols,
-                &units,
-                &complexity,
-                &gate,
-                MAX_TERMS,
-            );
+            let lib = candidates(a, c, &terms, idx, &cols, groups);
+            let (picks, miss) = frols::select(&a.data[c], &base, &lib, &gate, MAX_TERMS);
             let chosen: Vec<usize> = picks.iter().map(|p| p.term).collect();
-            let freq = frols::bootstrap(&a.data[c], &base, &cols, &complexity, &chosen);
+            let freq = frols::bootstrap(&a.data[c], &base, &lib, &chosen);
             for (k, p) in picks.iter().enumerate() {
                 let t = idx[p.term];
-                if kept.iter().any(|(kc, kt, _, _)| *kc == c && *kt == t) {
+                if kept
+                    .iter()
+                    .any(|(kc, kt, _, _)| *kc == c && *kt == terms[t])
+                {
                     continue;
                 }
-                let mut dt = tested(a, c, &terms[t], &cols[p.term], p, freq[k]);
+                let mut dt = tested(a, c, &terms[t], &cols[p.term], p, freq[k], 0);
                 dt.searched_on = on.into();
-                kept.push((c, t, cols[p.term].clone(), dt));
+                if terms[t].tau_s().is_some() {
+                    // The profile over the grid: the same family at every grid τ.
+                    let family: Vec<(f64, Vec<f64>)> = idx
+                        .iter()
+                        .zip(&cols)
+                        .filter(|(u, _)| terms[**u].same_family(&terms[t]))
+                        .map(|(u, col)| (terms[*u].tau_s().unwrap_or(f64::NAN), col.clone()))
+                        .collect();
+                    let prof = tau::profile(
+                        &p.design,
+                        &a.data[c],
+                        &family
+                            .iter()
+                            .map(|(_, col)| col.clone())
+                            .collect::<Vec<_>>(),
+                    );
+                    refine.push(Refine {
+                        kept: kept.len(),
+                        channel: c,
+                        design: p.design.clone(),
+                        grid: family
+                            .iter()
+                            .zip(prof)
+                            .filter_map(|((tau, _), chi2)| chi2.map(|x| (*tau, x)))
+                            .collect(),
+                    });
+                }
+                let child = terms[t].describe();
+                kept.push((c, terms[t].clone(), cols[p.term].clone(), dt));
+                // Its parents from the library enter with it (the catalogue's are the ranking's).
+                for (pos, &par) in p.parents.iter().enumerate() {
+                    if par >= idx.len() {
+                        continue;
+                    }
+                    let pt = &terms[idx[par]];
+                    if kept.iter().any(|(kc, kt, _, _)| *kc == c && kt == pt) {
+                        continue;
+                    }
+                    let back = p.parents.len() - pos;
+                    let mut pd = tested(a, c, pt, &cols[par], p, f64::NAN, back);
+                    pd.searched_on = on.into();
+                    pd.parent_of = Some(child.clone());
+                    kept.push((c, pt.clone(), cols[par].clone(), pd));
+                }
             }
             if let Some(p) = miss
                 && !refused
@@ -337,7 +483,7 @@ pub(crate) fn search(
                     .any(|r: &DiscoveredTerm| r.channel == CHANNELS[c])
                 && picks.is_empty()
             {
-                let mut dt = tested(a, c, &terms[idx[p.term]], &cols[p.term], &p, f64::NAN);
+                let mut dt = tested(a, c, &terms[idx[p.term]], &cols[p.term], &p, f64::NAN, 0);
                 dt.searched_on = on.into();
                 refused.push(dt);
             }
@@ -346,7 +492,7 @@ pub(crate) fn search(
         let mine: Vec<(String, Vec<f64>)> = kept
             .iter()
             .filter(|(kc, _, _, _)| *kc == c)
-            .map(|(_, t, col, _)| (terms[*t].describe(), whiten(col)))
+            .map(|(_, t, col, _)| (t.describe(), whiten(col)))
             .collect();
         let others: Vec<(String, &[f64])> = mine
             .iter()
@@ -377,25 +523,26 @@ pub(crate) fn search(
             }
         }
     }
+    refine_taus(&kin, rows, a, &taus, &mut kept, &refine);
     // Group the kept terms into proposals: one per term and sensor, on every axis it was kept on.
     let mut found: Vec<Found> = Vec::new();
     for (c, t, col, dt) in kept {
         let accel = c >= 3;
         let f = match found
             .iter_mut()
-            .position(|f| f.accel == accel && f.term == terms[t])
+            .position(|f| f.accel == accel && f.term == t)
         {
             Some(i) => &mut found[i],
             None => {
                 found.push(Found {
                     proposal: Proposal {
-                        name: terms[t].name(),
+                        name: t.name(),
                         sensor: if accel { "accel" } else { "gyro" }.into(),
                         terms: Vec::new(),
                         coef: [0.0; 3],
                         toml: None,
                     },
-                    term: terms[t].clone(),
+                    term: t.clone(),
                     accel,
                     columns: Vec::new(),
                 });
@@ -447,6 +594,121 @@ pub(crate) fn search(
     }
 }
 
+/// Refines the time constant of each kept memory term (`refine`) by profile likelihood
+/// ([`tau`]): two more passes over the rows, shared by every term (the points around each grid
+/// pick, then each estimate with its derivative), after which each such term in `kept` is
+/// the term at its estimate, with its column, coefficient and intervals.
+fn refine_taus(
+    kin: &Kinematics,
+    rows: &(impl Rows + ?Sized),
+    a: &Prepared,
+    taus: &[f64],
+    kept: &mut [(usize, Term, Vec<f64>, DiscoveredTerm)],
+    refine: &[Refine],
+) {
+    if refine.is_empty() {
+        return;
+    }
+    let ws = &a.replay.windows;
+    let ratio = taus[1] / taus[0];
+    // Pass 1: the points around each pick.
+    let mut fine_terms: Vec<Term> = Vec::new();
+    let mut fine_of: Vec<Vec<(f64, usize)>> = Vec::new();
+    for r in refine {
+        let t = &kept[r.kept].1;
+        let mut v = Vec::new();
+        for tau_s in tau::fine_around(t.tau_s().unwrap_or(60.0), ratio) {
+            let ft = t.with_tau(tau_s);
+            let k = fine_terms.iter().position(|x| *x == ft).unwrap_or_else(|| {
+                fine_terms.push(ft);
+                fine_terms.len() - 1
+            });
+            v.push((tau_s, k));
+        }
+        fine_of.push(v);
+    }
+    let mom = library::moments(kin, rows, ws, &fine_terms);
+    let mut estimates: Vec<Option<(tau::TauEstimate, f64)>> = Vec::new();
+    for (r, fine) in refine.iter().zip(&fine_of) {
+        let cols: Vec<Vec<f64>> = fine
+            .iter()
+            .map(|(_, k)| mom.column(&fine_terms[*k], r.channel, ws))
+            .collect();
+        let prof = tau::profile(&r.design, &a.data[r.channel], &cols);
+        let mut pts = r.grid.clone();
+        pts.extend(
+            fine.iter()
+                .zip(prof)
+                .filter_map(|((t, _), c)| c.map(|c| (*t, c))),
+        );
+        let d = &a.data[r.channel];
+        let min = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        let dof = d.y.len().saturating_sub(r.design.ncols() + 1).max(1) as f64;
+        let s2 = (min / dof).max(1.0);
+        estimates
+            .push(tau::estimate(&pts, s2).map(|e| (e, kept[r.kept].1.tau_s().unwrap_or(f64::NAN))));
+    }
+    // Pass 2: each estimate (rounded to three digits) and ±0.1 % for the derivative.
+    let mut final_terms: Vec<Term> = Vec::new();
+    for (r, e) in refine.iter().zip(&estimates) {
+        if let Some((e, _)) = e {
+            let tau_s = tau::round3(e.tau_s);
+            let t = &kept[r.kept].1;
+            for f in [1.0, 1.001, 0.999] {
+                let ft = t.with_tau(tau_s * f);
+                if !final_terms.contains(&ft) {
+                    final_terms.push(ft);
+                }
+            }
+        }
+    }
+    let mom = library::moments(kin, rows, ws, &final_terms);
+    for (r, e) in refine.iter().zip(estimates) {
+        let Some((e, grid_tau_s)) = e else {
+            continue;
+        };
+        let c = r.channel;
+        let tau_s = tau::round3(e.tau_s);
+        let (c0, cp, cm) = {
+            let t = &kept[r.kept].1;
+            (
+                mom.column(&t.with_tau(tau_s), c, ws),
+                mom.column(&t.with_tau(tau_s * 1.001), c, ws),
+                mom.column(&t.with_tau(tau_s * 0.999), c, ws),
+            )
+        };
+        let dcol: Vec<f64> = cp
+            .iter()
+            .zip(&cm)
+            .map(|(p, m)| (p - m) / (0.002 * tau_s))
+            .collect();
+        let mut x = r.design.clone();
+        let last = x.ncols() - 1;
+        for (i, v) in c0.iter().enumerate() {
+            x.x[(i, last)] = *v;
+        }
+        let (term, _, dt) = {
+            let k = &mut kept[r.kept];
+            k.1 = k.1.with_tau(tau_s);
+            k.2 = c0.clone();
+            (&k.1, (), &mut k.3)
+        };
+        let unit = file_unit_si(term.kind(), c >= 3);
+        if let Some((coef, se)) = tau::coefficient_with_tau(&x, &a.data[c], &dcol) {
+            dt.coefficient = coef / unit;
+            dt.ci95 = [(coef - 1.96 * se) / unit, (coef + 1.96 * se) / unit];
+        }
+        dt.term = term.describe();
+        dt.regressor = term.regressor();
+        dt.tau = Some(TauReport {
+            tau_s,
+            ci95_s: e.ci95_s,
+            open: e.open,
+            grid_tau_s,
+        });
+    }
+}
+
 /// The declared-effect reference a proposal would have in `model` (declared after the model's
 /// own effects of its sensor, in proposal order), or `None` for an indicator.
 fn reference(model: &PlantConfig, found: &[Found], i: usize) -> Option<CustomRef> {
@@ -485,6 +747,14 @@ impl Search {
             let Some(r) = reference(model, &self.found, i) else {
                 continue;
             };
+            if let Some(reg) = self.found[i].term.regressor() {
+                a.declared.push(crate::prepare::DeclaredCandidate {
+                    accel: r.accel,
+                    index: r.index,
+                    kind: r.kind,
+                    regressor: reg.replace(' ', ""),
+                });
+            }
             for (c, col) in &self.found[i].columns {
                 let offset = a.replay.windows.first().map_or(0, |w| w.x.len());
                 for (w, v) in a.replay.windows.iter_mut().zip(col) {

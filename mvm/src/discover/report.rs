@@ -42,6 +42,25 @@ pub struct DiscoveredTerm {
     pub bootstrap_frequency: f64,
     /// Catalogue effects whose fitted contribution is collinear with its own.
     pub confusable_with: Vec<Confusable>,
+    /// A memory term's time constant, by profile likelihood (`--discover` searches it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tau: Option<TauReport>,
+    /// The kept term this one entered with as a parent (heredity), if it did.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub parent_of: Option<String>,
+}
+
+/// The time constant of a discovered memory term.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct TauReport {
+    /// The estimate (profile-likelihood minimum, rounded to three digits), s.
+    pub tau_s: f64,
+    /// Its 95 % interval, s (an open end is the searched range's end: 10 s or 3 h).
+    pub ci95_s: [f64; 2],
+    /// Whether each end is open (the profile never leaves the bound on that side).
+    pub open: [bool; 2],
+    /// The grid point the selection picked, s.
+    pub grid_tau_s: f64,
 }
 
 /// A proposal: one term on the axes it was found on, as a declared effect.

@@ -122,6 +122,19 @@ pub struct DitherSpec {
     pub dph_per_amplitude: Axes3,
 }
 
+/// Bias that follows a field fixed in the navigation frame, as an RLG's bias follows the
+/// Earth's magnetic field: on axis i, b_i = Σ_j K_ij·(C_n^b)_ij = K_iE·e_i + K_iN·n_i + K_iU·u_i
+/// with e^b, n^b, u^b the body components of east, north and up. A unit with sensitivity k_i
+/// along its own axis in a field m^n (ENU) has K_ij = k_i·m_j.
+#[derive(Clone, Copy, Debug, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct NavFieldSpec {
+    /// Term on.
+    pub enabled: bool,
+    /// Rows: gyro axis; columns: the field's east, north and up components; °/h.
+    pub dph_enu: [Axes3; 3],
+}
+
 /// Angle random walk.
 #[derive(Clone, Copy, Debug, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -186,6 +199,8 @@ pub struct GyroSpec {
     pub position_bias: PositionBiasSpec,
     /// Dither-dependent bias.
     pub dither_bias: DitherSpec,
+    /// Bias following a field fixed in the navigation frame (magnetic sensitivity).
+    pub nav_field_bias: NavFieldSpec,
     /// Angle random walk.
     pub angle_random_walk: ArwSpec,
     /// Bias instability.
@@ -220,6 +235,7 @@ impl GyroSpec {
             GyroTerm::GSensitivity => self.g_sensitivity.enabled,
             GyroTerm::PositionBias => self.position_bias.enabled,
             GyroTerm::DitherBias => self.dither_bias.enabled,
+            GyroTerm::NavFieldBias => self.nav_field_bias.enabled,
             GyroTerm::AngleRandomWalk => self.angle_random_walk.enabled,
             GyroTerm::BiasInstability => self.bias_instability.enabled,
             GyroTerm::RateRandomWalk => self.rate_random_walk.enabled,
@@ -250,6 +266,7 @@ impl GyroSpec {
             GyroTerm::GSensitivity => self.g_sensitivity.enabled = on,
             GyroTerm::PositionBias => self.position_bias.enabled = on,
             GyroTerm::DitherBias => self.dither_bias.enabled = on,
+            GyroTerm::NavFieldBias => self.nav_field_bias.enabled = on,
             GyroTerm::AngleRandomWalk => self.angle_random_walk.enabled = on,
             GyroTerm::BiasInstability => self.bias_instability.enabled = on,
             GyroTerm::RateRandomWalk => self.rate_random_walk.enabled = on,
@@ -283,6 +300,9 @@ pub struct GyroModel {
     pos_rps: [Vector3<f64>; 4],
     dither_kappa: Vector3<f64>,
     dither_rps: Vector3<f64>,
+    /// Rows: axis; columns: east, north, up; rad/s (zero when off).
+    field_rps: nalgebra::Matrix3<f64>,
+    field_on: bool,
 }
 
 /// Temperature-dependent gyro rates at the current node temperatures, rad/s.
@@ -309,6 +329,14 @@ impl GyroModel {
             for i in 0..3 {
                 for j in 0..3 {
                     gsens[(i, j)] = spec.g_sensitivity.dph_per_g[i][j] * DPH;
+                }
+            }
+        }
+        let mut field = nalgebra::Matrix3::zeros();
+        if spec.nav_field_bias.enabled {
+            for i in 0..3 {
+                for j in 0..3 {
+                    field[(i, j)] = spec.nav_field_bias.dph_enu[i][j] * DPH;
                 }
             }
         }
@@ -350,7 +378,15 @@ impl GyroModel {
                 spec.dither_bias.dph_per_amplitude,
                 DPH,
             ),
+            field_rps: field,
+            field_on: spec.nav_field_bias.enabled,
         }
+    }
+
+    /// Whether the navigation-field term is on (the plant then computes north and east in body
+    /// axes each tick).
+    pub fn reads_heading(&self) -> bool {
+        self.field_on
     }
 
     /// The position-dependent bias δβ (Eq. 9) at the block temperatures `temp_c`, rad/s, before
@@ -442,9 +478,19 @@ impl GyroModel {
         out[4] = temp;
         out[5] = grad;
         out[6] = gsens;
+        let field = if self.field_on {
+            let f = &self.field_rps;
+            let (e, n, u) = (&c.east_b, &c.north_b, &c.up_b);
+            Vector3::from_fn(|i, _| {
+                (f[(i, 0)] * e[i] + f[(i, 1)] * n[i] + f[(i, 2)] * u[i]) * dt
+            })
+        } else {
+            Vector3::zeros()
+        };
         out[7] = pos;
         out[8] = dither;
-        bias + sf + asym + mis + temp + grad + gsens + pos + dither
+        out[9] = field;
+        bias + sf + asym + mis + temp + grad + gsens + pos + dither + field
     }
 
     /// Regressors φ of `term` on `axis` (increment units, so the error is Σ θ·φ).
@@ -470,6 +516,9 @@ impl GyroModel {
                 let l = c.f_b_mps2[axis] / G0;
                 out.push((l * l - 1.0 / 3.0) * dt);
             }
+            GyroTerm::NavFieldBias => {
+                out.extend([c.east_b[axis] * dt, c.north_b[axis] * dt, c.up_b[axis] * dt])
+            }
             _ => {}
         }
     }
@@ -491,6 +540,7 @@ impl GyroModel {
             GyroTerm::GSensitivity => (0..3).map(|j| self.gsens_rps_per_g[(axis, j)]).collect(),
             GyroTerm::PositionBias => self.pos_rps.iter().map(|c| c[axis]).collect(),
             GyroTerm::DitherBias => vec![self.dither_rps[axis] * self.dither_kappa[axis]],
+            GyroTerm::NavFieldBias => (0..3).map(|j| self.field_rps[(axis, j)]).collect(),
             _ => Vec::new(),
         }
     }
@@ -528,6 +578,14 @@ pub fn coefficient_keys(term: GyroTerm, axis: usize) -> Vec<(String, f64)> {
         ],
         // Written with amplitude_change = 1, so dph_per_amplitude carries the whole coefficient.
         GyroTerm::DitherBias => vec![k("dph_per_amplitude", DPH)],
+        GyroTerm::NavFieldBias => (0..3)
+            .map(|j| {
+                (
+                    format!("sensor.gyro.nav_field_bias.dph_enu[{axis}][{j}]"),
+                    DPH,
+                )
+            })
+            .collect(),
         _ => Vec::new(),
     }
 }

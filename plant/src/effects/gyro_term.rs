@@ -24,6 +24,9 @@ pub enum GyroTerm {
     PositionBias,
     /// Bias from the dither amplitude, which changes with the gravity load on the dither spring.
     DitherBias,
+    /// Bias that follows a field fixed in the navigation frame (an RLG's magnetic
+    /// sensitivity): each axis's sensitivity to the field's body component along it.
+    NavFieldBias,
     /// Angle random walk (white rate noise).
     AngleRandomWalk,
     /// Bias instability as a first-order Gauss–Markov process.
@@ -36,7 +39,7 @@ pub enum GyroTerm {
 
 impl GyroTerm {
     /// All terms in reporting order.
-    pub const ALL: [GyroTerm; 13] = [
+    pub const ALL: [GyroTerm; 14] = [
         GyroTerm::Bias,
         GyroTerm::ScaleFactor,
         GyroTerm::ScaleFactorAsymmetry,
@@ -46,14 +49,15 @@ impl GyroTerm {
         GyroTerm::GSensitivity,
         GyroTerm::PositionBias,
         GyroTerm::DitherBias,
+        GyroTerm::NavFieldBias,
         GyroTerm::AngleRandomWalk,
         GyroTerm::BiasInstability,
         GyroTerm::RateRandomWalk,
         GyroTerm::Quantization,
     ];
     /// Deterministic terms, linear in their coefficients (the diagnosis catalogue): the first
-    /// nine of [`GyroTerm::ALL`]; the rest are stochastic or quantisation.
-    pub const DETERMINISTIC: &'static [GyroTerm] = Self::ALL.split_at(9).0;
+    /// ten of [`GyroTerm::ALL`]; the rest are stochastic or quantisation.
+    pub const DETERMINISTIC: &'static [GyroTerm] = Self::ALL.split_at(10).0;
 
     /// Key of the term in scenario files and output columns.
     pub fn key(self) -> &'static str {
@@ -67,6 +71,7 @@ impl GyroTerm {
             GyroTerm::GSensitivity => "g_sensitivity",
             GyroTerm::PositionBias => "position_bias",
             GyroTerm::DitherBias => "dither_bias",
+            GyroTerm::NavFieldBias => "nav_field_bias",
             GyroTerm::AngleRandomWalk => "angle_random_walk",
             GyroTerm::BiasInstability => "bias_instability",
             GyroTerm::RateRandomWalk => "rate_random_walk",

@@ -34,6 +34,11 @@ pub struct TermContext {
     pub f_b_mps2: Vector3<f64>,
     /// Unit up direction in body axes at the midpoint (z component = cos of Z-axis tilt).
     pub up_b: Vector3<f64>,
+    /// Unit north direction in body axes (read by the navigation-field term only; zero when
+    /// nothing reads it).
+    pub north_b: Vector3<f64>,
+    /// Unit east direction in body axes (likewise).
+    pub east_b: Vector3<f64>,
     /// Gyro block temperatures, °C.
     pub gyro_temp_c: Vector3<f64>,
     /// Temperature gradient across each gyro block, K.

@@ -21,7 +21,7 @@ use crate::effects::encoder::{
 };
 use crate::effects::gyro::{
     ArwSpec, DitherSpec, GSensitivitySpec, GaussMarkovSpec, GradientBiasSpec, GyroBiasSpec,
-    GyroSpec, PositionBiasSpec, RrwSpec, Transition,
+    GyroSpec, NavFieldSpec, PositionBiasSpec, RrwSpec, Transition,
 };
 use crate::effects::temp_sensor::{
     TempNoiseSpec, TempOffsetSpec, TempResolutionSpec, TempSensorSpec,
@@ -224,6 +224,7 @@ param_fields! {
     GradientBiasSpec { enabled, dph_per_k }
     GSensitivitySpec { enabled, dph_per_g }
     DitherSpec { enabled, amplitude_change, dph_per_amplitude }
+    NavFieldSpec { enabled, dph_enu }
     ArwSpec { enabled, dpsh }
     GaussMarkovSpec { enabled, sigma_dph, tau_s }
     RrwSpec { enabled, dph_per_sqrth }
@@ -303,6 +304,7 @@ impl ParamFields for GyroSpec {
             g_sensitivity,
             position_bias,
             dither_bias,
+            nav_field_bias,
             angle_random_walk,
             bias_instability,
             rate_random_walk,
@@ -323,6 +325,7 @@ impl ParamFields for GyroSpec {
         field(path, "g_sensitivity", g_sensitivity, f);
         field(path, "position_bias", position_bias, f);
         field(path, "dither_bias", dither_bias, f);
+        field(path, "nav_field_bias", nav_field_bias, f);
         field(path, "angle_random_walk", angle_random_walk, f);
         field(path, "bias_instability", bias_instability, f);
         field(path, "rate_random_walk", rate_random_walk, f);

@@ -186,6 +186,8 @@ impl SensorErrors {
             dv_mps: x.dv_mps,
             f_b_mps2: x.f_b_mps2,
             up_b: x.up_b,
+            north_b: x.north_east_b[0],
+            east_b: x.north_east_b[1],
             gyro_temp_c: temps.gyro_c(),
             gyro_gradient_k: temps.gyro_gradient_k(),
             accel_temp_c: temps.accel_c(),

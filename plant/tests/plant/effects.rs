@@ -246,7 +246,10 @@ fn position_bias_is_zero_at_z_up_full_at_z_down_and_follows_temperature() {
 // The axis is an argument of the regressors and coefficients as well as an index.
 #[allow(clippy::needless_range_loop)]
 fn regressors_times_coefficients_reproduce_each_term() {
-    let spec = rins_plant::presets::nav_grade_full();
+    let mut spec = rins_plant::presets::nav_grade_full();
+    // The navigation-field term is off in every preset (it needs a field's value).
+    spec.gyro.nav_field_bias.enabled = true;
+    spec.gyro.nav_field_bias.dph_enu = [[0.002, -0.004, 0.003], [0.001, 0.005, -0.002], [-0.003, 0.002, 0.004]];
     let gm = rins_plant::effects::GyroModel::new(&spec.gyro);
     let am = rins_plant::effects::AccelModel::new(&spec.accel);
     let ctx = TermContext {
@@ -255,11 +258,13 @@ fn regressors_times_coefficients_reproduce_each_term() {
         dv_mps: Vector3::new(0.02, -0.05, 0.09),
         f_b_mps2: Vector3::new(2.0, -5.0, 8.9),
         up_b: Vector3::new(0.2, -0.5, 0.84).normalize(),
+        north_b: Vector3::new(0.1, 0.9, 0.3).normalize(),
+        east_b: Vector3::new(0.95, -0.1, 0.2).normalize(),
         gyro_temp_c: Vector3::new(31.0, 17.0, 44.0),
         gyro_gradient_k: Vector3::new(1.5, -0.5, 2.5),
         accel_temp_c: 39.0,
     };
-    let mut terms = [Vector3::zeros(); 13];
+    let mut terms = [Vector3::zeros(); rins_plant::effects::gyro::GYRO_TERMS];
     gm.increment_error(&ctx, &mut terms);
     for &term in GyroTerm::DETERMINISTIC {
         for axis in 0..3 {

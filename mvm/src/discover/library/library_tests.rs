@@ -70,7 +70,7 @@ fn windows() -> Vec<Window> {
 /// The bias column (Σ regressor·Δt per window) of `factors` on the x gyro.
 fn column(h: &History, factors: &[Signal]) -> Vec<f64> {
     let ws = windows();
-    let m = moments(&Kinematics::new(&PlantConfig::default()), h, &ws);
+    let m = moments(&Kinematics::new(&PlantConfig::default()), h, &ws, &[]);
     let term = Term::Product {
         factors: factors.to_vec(),
         kind: CustomKind::Bias,
@@ -258,18 +258,32 @@ fn library_signals_follow_the_table_in_its_order() {
 
 /// Every fast signal of the table is in the library when the data can form it (with gimbal
 /// angles, every one; with quaternions, every one that does not need gimbal angles), alone as
-/// a bias at least, so a new signal in the table is searched for with no change here.
+/// a bias at least, or, for a clock the library reads through a decay, as exp(−x/τ) at every
+/// time constant of the grid; so a new signal in the table is searched for with no change here.
 #[test]
 fn every_fast_signal_is_in_the_library_when_its_data_are_there() {
-    use rins_plant::effects::custom::signals::FAMILIES;
+    use rins_plant::effects::custom::Op;
+    use rins_plant::effects::custom::signals::{FAMILIES, Library};
+    let taus = super::tau_grid();
     for gimbal in [true, false] {
         let sig = super::library_signals(&info(gimbal, true));
         let terms = super::product_terms(&sig);
+        let memory = super::memory_terms(&info(gimbal, true), &taus);
         for (i, f) in FAMILIES.iter().enumerate() {
             if f.fill.is_none() {
                 continue;
             }
             for s in Signal::all_of(i) {
+                if f.library == Library::Decay {
+                    for &tau_s in &taus {
+                        let t = Term::Memory {
+                            signal: s,
+                            op: Op::Decay { tau_s },
+                        };
+                        assert!(memory.contains(&t), "{} at {tau_s} s", s.name());
+                    }
+                    continue;
+                }
                 let alone = Term::Product {
                     factors: vec![s],
                     kind: CustomKind::Bias,
@@ -282,5 +296,123 @@ fn every_fast_signal_is_in_the_library_when_its_data_are_there() {
                 );
             }
         }
+    }
+}
+
+/// The grid of time constants: 10 s to 3 h, six per decade (18 steps of 1080^(1/18) = 1.474).
+#[test]
+fn the_tau_grid_spans_ten_seconds_to_three_hours() {
+    let g = super::tau_grid();
+    assert_eq!(g.len(), 19);
+    assert!((g[0] - 10.0).abs() < 1e-12 && (g[18] - 10_800.0).abs() < 1e-9);
+    let r = g[1] / g[0];
+    assert!(g.windows(2).all(|w| (w[1] / w[0] / r - 1.0).abs() < 1e-12));
+}
+
+/// A decay of the time since the table stopped, summed by the library's pass, against the
+/// closed form: a dwell of D seconds after a move gives Σ e^(−s/τ)·Δt = τ(1 − e^(−D/τ)) up to
+/// the midpoint rule; a lag of a temperature step against the lag's closed form.
+#[test]
+fn memory_sums_match_their_closed_forms() {
+    use rins_plant::effects::custom::Op;
+    // One run: 10 s still, a 90° outer turn over 9 s, then 300 s still; 10 rows per second;
+    // the block temperature steps from 20 to 30 °C at t = 100 s.
+    let dt = 0.1;
+    let n = 3190;
+    let mut t_s = Vec::new();
+    let (mut outer, mut inner) = (Vec::new(), Vec::new());
+    let mut temp = Vec::new();
+    for k in 0..=n {
+        let t = k as f64 * dt;
+        t_s.push(t);
+        let o = if t <= 10.0 {
+            0.0
+        } else if t < 19.0 {
+            (t - 10.0) * 10.0
+        } else {
+            90.0
+        };
+        outer.push(o.to_radians());
+        inner.push(0.0);
+        temp.push(if t < 100.0 { 20.0 } else { 30.0 });
+    }
+    let h = History {
+        t_s: t_s.clone(),
+        dtheta_rad: [vec![0.0; n + 1], vec![0.0; n + 1], vec![0.0; n + 1]],
+        dv_mps: [vec![0.0; n + 1], vec![0.0; n + 1], vec![0.0; n + 1]],
+        attitude: crate::history::Attitude::Gimbal {
+            outer_rad: outer,
+            inner_rad: inner,
+        },
+        gyro_temp_c: [temp.clone(), temp.clone(), temp.clone()],
+        housing_temp_c: None,
+        accel_temp_c: temp,
+        run: vec![0; n + 1],
+        run_names: vec!["r".into()],
+        segments: vec![0..n + 1],
+        source: "test".into(),
+    };
+    // One window per row: the sums are per row.
+    let ws: Vec<Window> = (1..=n)
+        .map(|k| Window {
+            run: 0,
+            t_mid_s: t_s[k] - 0.5 * dt,
+            t_run_s: t_s[k] - 0.5 * dt,
+            duration_s: dt,
+            rows: 1,
+            moving: false,
+            up_z: 1.0,
+            azimuth_deg: 0.0,
+            f_b_g: [0.0, 0.0, 1.0],
+            gyro_temp_c: [0.0; 3],
+            accel_temp_c: 0.0,
+            rotation_rps: 0.0,
+            y: [0.0; 6],
+            x: Vec::new(),
+        })
+        .collect();
+    let (tau_d, tau_l) = (40.0, 60.0);
+    let decay = Term::Memory {
+        signal: Signal::SinceMove,
+        op: Op::Decay { tau_s: tau_d },
+    };
+    let lag = Term::Memory {
+        signal: Signal::Temp(rins_plant::effects::custom::signals::NodeRef::Block),
+        op: Op::Lag { tau_s: tau_l },
+    };
+    let m = moments(
+        &Kinematics::new(&PlantConfig::default()),
+        &h,
+        &ws,
+        &[decay.clone(), lag.clone()],
+    );
+    let dcol = m.column(&decay, 2, &ws);
+    let lcol = m.column(&lag, 0, &ws);
+    // The turn's rows (10 s < t ≤ 19 s): the clock is 0, e^0·Δt each.
+    for k in 101..=190 {
+        let row = t_s[k] - t_s[k - 1];
+        assert_eq!(dcol[k - 1], row, "row {k}");
+    }
+    // After the turn: Σ over the dwell = τ(1 − e^(−D/τ)) within the midpoint rule.
+    let d = t_s[n] - 19.0;
+    let sum: f64 = dcol[190..].iter().sum();
+    let want = tau_d * (1.0 - (-d / tau_d).exp());
+    assert!((sum / want - 1.0).abs() < 1e-5, "{sum} vs {want}");
+    // Before the turn the clock counts from the run's start (the first row's time less a row).
+    assert!((dcol[0] / dt - (-(0.5 * dt + dt) / tau_d).exp()).abs() < 1e-12);
+    // The lag of the step: ∫ over each row of 30 − 10·e^(−(t − 100)/τ) after the step.
+    for k in [1200usize, 1500, 2500] {
+        let (t0, t1) = (t_s[k - 1], t_s[k]);
+        // The reading of row k is the temperature at its end, held over the row: the lag's
+        // input steps at the start of the first row that reads 30 °C.
+        let first = (1..=n).find(|&j| h.accel_temp_c[j] == 30.0).unwrap();
+        let from = t_s[first - 1];
+        let exact = 30.0 * dt
+            - 10.0 * tau_l * ((-(t0 - from) / tau_l).exp() - (-(t1 - from) / tau_l).exp());
+        assert!(
+            (lcol[k - 1] - exact).abs() < 1e-9,
+            "row {k}: {} vs {exact}",
+            lcol[k - 1]
+        );
     }
 }
