@@ -40,6 +40,20 @@ fn orientation_of(w: &Window) -> String {
     }
 }
 
+/// Bins of the time since the table last stopped, s: a transient after each move shows in the
+/// first of them (the last is open).
+pub const SINCE_MOVE_BINS_S: [f64; 4] = [0.0, 30.0, 120.0, 600.0];
+
+/// The bin of a static window's time since the last move (`None` while moving).
+fn since_move_bin(w: &Window) -> Option<usize> {
+    (!w.moving).then(|| {
+        SINCE_MOVE_BINS_S
+            .iter()
+            .rposition(|b| w.since_move_s >= *b)
+            .unwrap_or(0)
+    })
+}
+
 fn temp_of(w: &Window, c: usize) -> f64 {
     if c < 3 {
         w.gyro_temp_c[c]
@@ -59,16 +73,23 @@ impl Prepared {
     /// Residual sums per channel after removing `pred` (per-channel predictions).
     fn cells(&self, pred: &[Vec<f64>]) -> (Vec<Cell>, f64) {
         let o = &self.opts;
-        // (channel, position, orientation, temperature bin, time window) -> (residual sum,
-        // variance, duration, windows)
-        type Key<'a> = (usize, &'a str, String, i64, i64);
+        // (channel, position, orientation, temperature bin, time window, since-move bin) ->
+        // (residual sum, variance, duration, windows)
+        type Key<'a> = (usize, &'a str, String, i64, i64, Option<usize>);
         let mut map: BTreeMap<Key, (f64, f64, f64, usize)> = BTreeMap::new();
         for (i, w) in self.replay.windows.iter().enumerate() {
             for c in 0..6 {
                 let tb = (temp_of(w, c) / o.temp_bin_k).floor() as i64;
                 let tw = (w.t_run_s / o.time_window_s).floor() as i64;
                 let e = map
-                    .entry((c, position_of(w), orientation_of(w), tb, tw))
+                    .entry((
+                        c,
+                        position_of(w),
+                        orientation_of(w),
+                        tb,
+                        tw,
+                        since_move_bin(w),
+                    ))
                     .or_default();
                 e.0 += self.data[c].y[i] - pred[c][i];
                 e.1 += self.data[c].v[i];
@@ -79,7 +100,7 @@ impl Prepared {
         let zc = stats::z_critical(o.alpha, map.len());
         let cells = map
             .into_iter()
-            .map(|((c, pos, orientation, tb, tw), (r, v, d, n))| {
+            .map(|((c, pos, orientation, tb, tw, sm), (r, v, d, n))| {
                 let (_, scale) = unit_of(c);
                 Cell {
                     channel: CHANNELS[c].into(),
@@ -90,6 +111,15 @@ impl Prepared {
                         tw as f64 * o.time_window_s,
                         (tw + 1) as f64 * o.time_window_s,
                     ],
+                    since_move_s: sm.map_or([0.0, 0.0], |b| {
+                        [
+                            SINCE_MOVE_BINS_S[b],
+                            SINCE_MOVE_BINS_S
+                                .get(b + 1)
+                                .copied()
+                                .unwrap_or(f64::INFINITY),
+                        ]
+                    }),
                     residual: r / d / scale,
                     noise_floor: v.sqrt() / d / scale,
                     z: r / v.sqrt(),

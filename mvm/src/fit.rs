@@ -282,6 +282,63 @@ pub fn cv_rmse(x: &Design, d: &ChannelData) -> f64 {
     (sse / count.max(1) as f64).sqrt()
 }
 
+/// The largest gyro scale-factor error (fraction) a fitted term may imply anywhere in the data:
+/// 0.1 % (1000 ppm), a hundred times what a navigation-grade RLG has. On an axis that sees only
+/// the Earth rate (body y of a level table that flips about x and turns about z), a scale
+/// factor reads 15 °/h·(its north component), so a bias that follows the azimuth (a field fixed
+/// in the navigation frame, a g-sensitivity on a tilted mount) looks like a scale factor of
+/// thousands of ppm with one parameter where the true effect has more; the bound refuses such
+/// a stand-in.
+pub const MAX_GYRO_SCALE_FACTOR: f64 = 1e-3;
+
+/// How much worse than on all the data a coefficient may be determined in a fold's (or a
+/// resample's) training data for that fold to judge it: a fold that leaves out the only run
+/// exciting a term (the one run with tilted dwells, say) cannot test it, and counts neither
+/// for nor against it.
+pub const FOLD_SE_RATIO: f64 = 3.0;
+
+/// The cross-validated gain of the design `x` over its first `base_cols` columns, %, and the
+/// CV RMSE with `x` (rate units): both models are fitted on each fold's training windows and
+/// predict its held-out ones, over the folds whose training data determine every extra
+/// coefficient of `x` within [`FOLD_SE_RATIO`] of its standard error on all the data (`full`,
+/// the fit of `x` on all windows). No such fold: gain 0.
+pub fn paired_cv(x: &Design, base_cols: usize, full: &Fit, d: &ChannelData) -> (f64, f64) {
+    let x0 = x.select(&(0..base_cols).collect::<Vec<_>>());
+    let (mut sse0, mut sse1, mut count) = (0.0, 0.0, 0usize);
+    for f in 0..d.folds {
+        let train: Vec<bool> = d.fold.iter().map(|&k| k != f).collect();
+        let Some(f1) = wls(x, d, Some(&train)) else {
+            continue;
+        };
+        let determined = (base_cols..x.ncols()).all(|k| {
+            !full.identified(k)
+                || f1.identified(k)
+                    && f1.cov[(k, k)].sqrt() <= FOLD_SE_RATIO * full.cov[(k, k)].sqrt()
+        });
+        if !determined {
+            continue;
+        }
+        let f0 = wls(&x0, d, Some(&train));
+        for r in (0..d.y.len()).filter(|&r| d.fold[r] == f) {
+            let p1: f64 = (0..x.ncols()).map(|c| x[(r, c)] * f1.theta[c]).sum();
+            let p0: f64 = f0.as_ref().map_or(0.0, |f0| {
+                (0..x0.ncols()).map(|c| x0[(r, c)] * f0.theta[c]).sum()
+            });
+            let (e0, e1) = ((d.y[r] - p0) / d.dur[r], (d.y[r] - p1) / d.dur[r]);
+            sse0 += e0 * e0;
+            sse1 += e1 * e1;
+            count += 1;
+        }
+    }
+    if count == 0 || !(sse0 > 0.0) {
+        return (0.0, f64::NAN);
+    }
+    (
+        100.0 * (1.0 - (sse1 / sse0).sqrt()),
+        (sse1 / count as f64).sqrt(),
+    )
+}
+
 /// A candidate tested against the current model of its channel.
 #[derive(Clone, Debug)]
 pub struct Candidate {
@@ -323,11 +380,10 @@ pub struct NestedTest {
 }
 
 /// Tests the design `x` (the base model's `base_cols` columns first, then the extra ones)
-/// against `base` (fitted on those first columns, CV RMSE `cv0`): ΔBIC, nested F test and
-/// cross-validated gain. `None` if `x` cannot be fitted or identifies none of the extra columns.
+/// against `base` (fitted on those first columns): ΔBIC, nested F test and cross-validated
+/// gain ([`paired_cv`]). `None` if `x` cannot be fitted or identifies none of the extra columns.
 pub fn nested_test(
     base: &Fit,
-    cv0: f64,
     base_cols: usize,
     x: &Design,
     d: &ChannelData,
@@ -346,17 +402,13 @@ pub fn nested_test(
     let s2 = (fit.chi2 / dof).max(1.0);
     let p_value = f_sf(delta_chi2 / k / s2, k, dof);
     let delta_bic = -delta_chi2 / s2 + k * ln_n;
-    let cv = cv_rmse(x, d);
+    let (cv_gain_pct, cv) = paired_cv(x, base_cols, &fit, d);
     Some(NestedTest {
         fit,
         delta_chi2,
         delta_bic,
         p_value,
-        cv_gain_pct: if cv0 > 0.0 {
-            100.0 * (1.0 - cv / cv0)
-        } else {
-            0.0
-        },
+        cv_gain_pct,
         cv_rmse: cv,
     })
 }
@@ -367,16 +419,15 @@ pub fn test_candidates(
     d: &ChannelData,
     selected: &[Group],
     pool: &[Group],
-) -> (Fit, f64, Vec<Candidate>) {
+) -> (Fit, Vec<Candidate>) {
     let x0 = design(windows, selected);
     let base = wls(&x0, d, None).expect("the selected model is identifiable");
-    let cv0 = cv_rmse(&x0, d);
     let mut out: Vec<Candidate> = Vec::new();
     for g in pool.iter().flat_map(|g| g.orders()) {
         let mut groups = selected.to_vec();
         groups.push(g);
         let x = design(windows, &groups);
-        let Some(t) = nested_test(&base, cv0, x0.ncols(), &x, d) else {
+        let Some(t) = nested_test(&base, x0.ncols(), &x, d) else {
             continue;
         };
         let cand = Candidate {
@@ -400,7 +451,7 @@ pub fn test_candidates(
         }
     }
     out.sort_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic));
-    (base, cv0, out)
+    (base, out)
 }
 
 /// Whether the fit with more polynomial terms (`high`) is significantly better than `low`

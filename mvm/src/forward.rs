@@ -15,9 +15,10 @@
 //! extended. The chosen set is the one with the lowest summed block ΔBIC (the BIC of the set
 //! against the model as given, stage by stage).
 
-use crate::fit::{Candidate, ChannelData, Design, Fit, Gate, cv_rmse, design, wls};
-use crate::replay::{Group, Window};
+use crate::fit::{Candidate, ChannelData, Design, Fit, Gate, design, paired_cv, wls};
+use crate::replay::{Effect, Group, Window};
 use crate::stats::f_sf;
+use rins_plant::effects::GyroTerm;
 
 /// Sets kept at each stage.
 pub const BEAM: usize = 3;
@@ -74,12 +75,11 @@ impl Selection {
     }
 }
 
-/// A test of design `x` (its first `base_cols` columns the base) against the base fit `base`
-/// (CV RMSE `cv0`): like [`crate::fit::nested_test`], but the cross-validated error, which costs
-/// a fit per fold, is computed only when ΔBIC and the p-value pass `gate`.
+/// A test of design `x` (its first `base_cols` columns the base) against the base fit `base`:
+/// like [`crate::fit::nested_test`], but the cross-validated gain, which costs two fits per
+/// fold, is computed only when ΔBIC and the p-value pass `gate`.
 fn lazy_test(
     base: &Fit,
-    cv0: f64,
     base_cols: usize,
     x: &Design,
     d: &ChannelData,
@@ -97,12 +97,7 @@ fn lazy_test(
     let p_value = f_sf(delta_chi2 / k / s2, k, dof);
     let delta_bic = -delta_chi2 / s2 + k * ln_n;
     let gain = if gate.passes_test(delta_bic, p_value, f64::INFINITY) {
-        let cv = cv_rmse(x, d);
-        if cv0 > 0.0 {
-            100.0 * (1.0 - cv / cv0)
-        } else {
-            0.0
-        }
+        paired_cv(x, base_cols, &fit, d).0
     } else {
         f64::NEG_INFINITY
     };
@@ -125,8 +120,7 @@ fn extensions(
     };
     let ln_n = (d.y.len() as f64).ln();
     // Bases with parents, shared by the candidates that bring the same parents.
-    let mut bases: Vec<(Vec<Group>, Option<(Design, Fit, f64)>)> = Vec::new();
-    let cv0 = std::cell::OnceCell::new();
+    let mut bases: Vec<(Vec<Group>, Option<(Design, Fit)>)> = Vec::new();
     let mut out: Vec<Tried> = Vec::new();
     for g in pool.iter().flat_map(|g| g.orders()) {
         if set.groups.iter().any(|s| s.effect == g.effect) {
@@ -141,30 +135,35 @@ fn extensions(
             Some(i) => i,
             None => {
                 let b = if missing.is_empty() {
-                    let cv = *cv0.get_or_init(|| cv_rmse(&x0, d));
-                    Some((x0.clone(), f0.clone(), cv))
+                    Some((x0.clone(), f0.clone()))
                 } else {
                     let x = design(windows, &with);
-                    wls(&x, d, None).map(|f| {
-                        let cv = cv_rmse(&x, d);
-                        (x, f, cv)
-                    })
+                    wls(&x, d, None).map(|f| (x, f))
                 };
                 bases.push((missing.clone(), b));
                 bases.len() - 1
             }
         };
-        let Some((xb, fb, cvb)) = &bases[base].1 else {
+        let Some((xb, fb)) = &bases[base].1 else {
             continue;
         };
         let mut all = with.clone();
         all.push(g);
         let x = design(windows, &all);
         let Some((fit, delta_chi2, delta_bic, p_value, cv_gain_pct)) =
-            lazy_test(fb, *cvb, xb.ncols(), &x, d, gate)
+            lazy_test(fb, xb.ncols(), &x, d, gate)
         else {
             continue;
         };
+        // A gyro scale factor beyond what any navigation-grade unit has is a bias in disguise.
+        if matches!(
+            g.effect,
+            Effect::Gyro(GyroTerm::ScaleFactor | GyroTerm::ScaleFactorAsymmetry)
+        ) && (xb.ncols()..x.ncols())
+            .any(|k| fit.identified(k) && fit.theta[k].abs() > crate::fit::MAX_GYRO_SCALE_FACTOR)
+        {
+            continue;
+        }
         // The block: parents and candidate on top of the set.
         let k_block = fit.identified_in(x0.ncols()..x.ncols()) as f64;
         let s2 = fit.chi2_red().max(1.0);

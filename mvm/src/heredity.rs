@@ -104,15 +104,16 @@ fn lower_monomials(regressor: &str) -> Vec<String> {
 }
 
 /// The parents of a declared effect of a sensor (`accel`), `kind` and `regressor`: the
-/// constant of its kind and its lower monomials. A gyro bias linear in one up component is the
-/// catalogue's g-sensitivity (G·f/g₀ with f = g·u), so that is the parent rather than a new
-/// declaration.
+/// constant of its kind and its lower monomials, except the single up components of a bias in
+/// the up direction (`u_x*u_z`, `u_z^2`): those are the catalogue's g-sensitivity, three
+/// coefficients for each one the term adds, and a second-order sensitivity to the gravity
+/// direction (a dither spring's load, an anisoelastic term) has no first-order part by
+/// necessity; the product is still fitted with its constant, and the g-sensitivity competes
+/// with it as a candidate of its own.
 pub fn parents_of_regressor(accel: bool, kind: CustomKind, regressor: &str) -> Vec<Parent> {
     let mut out = vec![Parent::Effect(constant(accel, kind))];
-    let mut gsens = false;
     for m in lower_monomials(&regressor.replace(' ', "")) {
-        if !accel && kind == CustomKind::Bias && matches!(Signal::parse(&m), Some(Signal::Up(_))) {
-            gsens = true;
+        if kind == CustomKind::Bias && matches!(Signal::parse(&m), Some(Signal::Up(_))) {
             continue;
         }
         out.push(Parent::Declare {
@@ -120,9 +121,6 @@ pub fn parents_of_regressor(accel: bool, kind: CustomKind, regressor: &str) -> V
             kind,
             regressor: m,
         });
-    }
-    if gsens {
-        out.push(Parent::Effect(Effect::Gyro(GyroTerm::GSensitivity)));
     }
     out
 }

@@ -18,7 +18,7 @@ use rins_plant::PlantConfig;
 use serde::Serialize;
 
 use crate::apply::{Coefficient, apply_groups};
-use crate::fit::{ChannelData, Gate, cv_rmse, design, nested_test, wls};
+use crate::fit::{ChannelData, Gate, design, nested_test, wls};
 use crate::heredity::{Parent, declare, parents};
 use crate::prepare::{Prepared, prepare};
 use crate::replay::{CHANNELS, Effect, Group};
@@ -91,6 +91,15 @@ pub struct AcceptedTerm {
     pub stability: f64,
     /// Survived the joint fit and the resampling (else dropped).
     pub kept: bool,
+    /// A discovered memory term's time constant with its 95 % interval (`--discover`'s
+    /// profile likelihood), fixed at the estimate in the model written.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tau: Option<crate::discover::TauReport>,
+    /// Effects the diagnosis found nearly as good an explanation on this data (its confusable
+    /// list: |ρ| > 0.9 of the fitted contributions, ΔBIC within 10), each a candidate the data
+    /// cannot tell from this term; empty when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub confusable_with: Vec<String>,
 }
 
 /// One step of the iteration: the model entering it against the data, and what was fitted.
@@ -164,9 +173,15 @@ fn stability(x: &crate::fit::Design, d: &ChannelData, k: usize, sign: f64) -> f6
     if d.folds == 0 {
         return 0.0;
     }
+    let Some(se_all) = wls(x, d, None)
+        .filter(|f| f.identified(k))
+        .map(|f| f.cov[(k, k)].sqrt())
+    else {
+        return 0.0;
+    };
     let mut rng = ChaCha8Rng::seed_from_u64(RESAMPLE_SEED);
     rng.set_stream(RESAMPLE_STREAM);
-    let mut hits = 0;
+    let (mut hits, mut informative) = (0, 0);
     for _ in 0..RESAMPLES {
         let mut count = vec![0.0f64; d.folds];
         for _ in 0..d.folds {
@@ -180,16 +195,26 @@ fn stability(x: &crate::fit::Design, d: &ChannelData, k: usize, sign: f64) -> f6
                 dr.v[r] = d.v[r] / count[f];
             }
         }
+        // A resample that leaves out what excites the term (its one tilted run, say) cannot
+        // judge it: counted neither way (crate::fit::FOLD_SE_RATIO).
         if let Some(f) = wls(x, &dr, Some(&mask))
             && f.identified(k)
         {
             let (th, se) = (f.theta[k], f.cov[(k, k)].sqrt());
+            if se > crate::fit::FOLD_SE_RATIO * se_all {
+                continue;
+            }
+            informative += 1;
             if th * sign > 0.0 && th.abs() >= 2.0 * se {
                 hits += 1;
             }
         }
     }
-    hits as f64 / RESAMPLES as f64
+    // Too few informative resamples: the joint fit's test decides alone.
+    if informative < RESAMPLES / 4 {
+        return f64::NAN;
+    }
+    hits as f64 / informative as f64
 }
 
 /// The accepted groups of one channel (`terms`, with `parent` marking parents) checked in the
@@ -225,8 +250,7 @@ fn joint_check(
         };
         order.push(*g);
         let x = design(ws, &order);
-        let cv0 = cv_rmse(&base, d);
-        let Some(t) = nested_test(&base_fit, cv0, base.ncols(), &x, d) else {
+        let Some(t) = nested_test(&base_fit, base.ncols(), &x, d) else {
             out.push((f64::NAN, 0.0, false));
             continue;
         };
@@ -578,7 +602,39 @@ pub fn iterate(
                     .expect("listed")]
                 .expect("not a parent");
                 let (_, name, _, found_by, dbic) = &accepted[i];
+                let tau = diag.report.discovery.as_ref().and_then(|d| {
+                    d.proposals
+                        .iter()
+                        .filter(|p| format!("custom:{}", p.name) == *name)
+                        .flat_map(|p| &p.terms)
+                        .find(|t| t.channel == CHANNELS[c])
+                        .and_then(|t| t.tau)
+                });
+                let confusable_with: Vec<String> = diag
+                    .report
+                    .accepted
+                    .iter()
+                    .filter(|r| r.effect == *name && r.channel == CHANNELS[c])
+                    .flat_map(|r| &r.confusable_with)
+                    .chain(
+                        diag.report
+                            .discovery
+                            .iter()
+                            .flat_map(|d| &d.proposals)
+                            .filter(|p| format!("custom:{}", p.name) == *name)
+                            .flat_map(|p| &p.terms)
+                            .filter(|t| t.channel == CHANNELS[c])
+                            .flat_map(|t| &t.confusable_with),
+                    )
+                    .map(|x| {
+                        x.effect
+                            .trim_end_matches(" (with a bias correction)")
+                            .to_string()
+                    })
+                    .collect();
                 records.push(AcceptedTerm {
+                    confusable_with,
+                    tau,
                     channel: CHANNELS[c].into(),
                     effect: name.clone(),
                     found_by: found_by.clone(),

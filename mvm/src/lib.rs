@@ -54,8 +54,8 @@ pub use history::{Attitude, History, to_history, with_data_site, with_site};
 pub use iterate::{IterateOptions, Iteration, IterationReport, iterate};
 pub use replay::{CHANNELS, Effect, Group, Replay};
 pub use report::{
-    Cell, ChannelSummary, CompareReport, Confusable, Correlation, DiagnoseReport, NavComparison,
-    NoiseFloor, RankedEffect,
+    Cell, ChannelSummary, CompareReport, Confusable, Correlation, DiagnoseReport, FieldDirection,
+    NavComparison, NoiseFloor, RankedEffect,
 };
 pub use row_cache::RowCache;
 pub use rows::{Rows, RowsInfo};

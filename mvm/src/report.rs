@@ -45,6 +45,9 @@ pub struct Cell {
     pub temp_bin_c: [f64; 2],
     /// Time window since the segment start, s.
     pub time_window_s: [f64; 2],
+    /// Time since the table last stopped, s: `[0, 30]`, `[30, 120]`, `[120, 600]` or
+    /// `[600, ∞]` (`null` in JSON); `[0, 0]` while moving.
+    pub since_move_s: [f64; 2],
     /// Mean residual (display unit).
     pub residual: f64,
     /// Its noise floor (1σ, display unit).
@@ -165,6 +168,29 @@ pub struct RankedEffect {
     /// lower powers and factors); when accepted, its figures are on top of them.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub parents: Vec<String>,
+    /// For `gyro.nav_field_bias` with its three components determined: the field's magnitude
+    /// and direction along this axis's sensitivity.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub field: Option<FieldDirection>,
+}
+
+/// A field fixed in the navigation frame as one gyro axis sees it: K·m with K the axis's
+/// sensitivity and m the field's unit direction; intervals by the delta method from the
+/// components' covariance.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct FieldDirection {
+    /// |K·m|, °/h.
+    pub magnitude_dph: f64,
+    /// Its 95 % interval.
+    pub magnitude_ci95_dph: [f64; 2],
+    /// Declination of m, degrees east of north.
+    pub declination_deg: f64,
+    /// Its 95 % interval.
+    pub declination_ci95_deg: [f64; 2],
+    /// Inclination of m, degrees below the horizon.
+    pub inclination_deg: f64,
+    /// Its 95 % interval.
+    pub inclination_ci95_deg: [f64; 2],
 }
 
 /// An effect that cannot be told apart from another on this data.

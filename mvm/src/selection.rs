@@ -150,7 +150,52 @@ fn ranked(
         confusable_with,
         passes_gate: gate.passes(c),
         parents: Vec::new(),
+        field: (c.group.effect == Effect::Gyro(rins_plant::effects::GyroTerm::NavFieldBias)
+            && c.group.len == 3)
+            .then(|| field_direction(&c.fit, c.theta_offset))
+            .flatten(),
     }
+}
+
+/// The field's magnitude and direction from the three components (east, north, up; SI) at
+/// `offset` of `fit`, when all three are determined.
+fn field_direction(fit: &fit::Fit, offset: usize) -> Option<crate::report::FieldDirection> {
+    use rins_plant::units::DPH;
+    let k: Vec<usize> = (offset..offset + 3).collect();
+    if !k.iter().all(|&i| fit.identified(i)) {
+        return None;
+    }
+    let (e, n, u) = (fit.theta[k[0]], fit.theta[k[1]], fit.theta[k[2]]);
+    let cov = |a: usize, b: usize| fit.cov[(k[a], k[b])];
+    // The delta method: var(f) = ∇fᵀ Σ ∇f for a function f of (e, n, u).
+    let spread = |g: [f64; 3]| {
+        let mut v = 0.0;
+        for a in 0..3 {
+            for b in 0..3 {
+                v += g[a] * g[b] * cov(a, b);
+            }
+        }
+        1.96 * v.max(0.0).sqrt()
+    };
+    let h = e.hypot(n);
+    let m = (h * h + u * u).sqrt();
+    if !(m > 0.0 && h > 0.0) {
+        return None;
+    }
+    let dm = spread([e / m, n / m, u / m]);
+    // declination atan2(e, n): ∂/∂e = n/h², ∂/∂n = −e/h².
+    let dd = spread([n / (h * h), -e / (h * h), 0.0]).to_degrees();
+    // inclination atan2(−u, h): ∂/∂u = −h/m², ∂/∂e = u·e/(h·m²), ∂/∂n = u·n/(h·m²).
+    let di = spread([u * e / (h * m * m), u * n / (h * m * m), -h / (m * m)]).to_degrees();
+    let (dec, inc) = (e.atan2(n).to_degrees(), (-u).atan2(h).to_degrees());
+    Some(crate::report::FieldDirection {
+        magnitude_dph: m / DPH,
+        magnitude_ci95_dph: [(m - dm) / DPH, (m + dm) / DPH],
+        declination_deg: dec,
+        declination_ci95_deg: [dec - dd, dec + dd],
+        inclination_deg: inc,
+        inclination_ci95_deg: [inc - di, inc + di],
+    })
 }
 
 /// Predictions of `groups` fitted on channel `c`.
@@ -199,7 +244,7 @@ pub(crate) fn diagnose(a: &Prepared, source: &str, before: &CompareReport) -> Di
             .filter(|g| g.channel == c)
             .copied()
             .collect();
-        let (_, _, first) = test_candidates(&a.replay.windows, &a.data[c], &[], &pool);
+        let (_, first) = test_candidates(&a.replay.windows, &a.data[c], &[], &pool);
         ranking.extend(first.iter().map(|cand| ranked(a, cand, &first, &gate)));
         // Forward selection with heredity and a beam (crate::forward).
         let parents = |g: &Group| a.parent_groups(g);

@@ -173,7 +173,10 @@ pub fn eq8() -> Eq8Report {
             let gm = GyroModel::new(&table3_gyro(which));
             let (phi, mag) = over_cycle(&sched, Phase::All, |t| {
                 let (c, ctx) = context(&sched, t, gravity);
-                c * gm.increment_error(&ctx, &mut [Vector3::zeros(); rins_plant::effects::gyro::GYRO_TERMS])
+                c * gm.increment_error(
+                    &ctx,
+                    &mut [Vector3::zeros(); rins_plant::effects::gyro::GYRO_TERMS],
+                )
             });
             cases.push(CancellationCase {
                 errors: format!("gyro {which}"),
@@ -306,7 +309,10 @@ pub fn eq11(delta_beta_dph: [f64; 3], dwell_s: f64) -> Eq11Report {
         let sched = sched.clone();
         move |t: f64| {
             let (c, ctx) = context(&sched, t, 9.8);
-            c * gm.increment_error(&ctx, &mut [Vector3::zeros(); rins_plant::effects::gyro::GYRO_TERMS])
+            c * gm.increment_error(
+                &ctx,
+                &mut [Vector3::zeros(); rins_plant::effects::gyro::GYRO_TERMS],
+            )
         }
     };
     let (stationary, _) = over_cycle(&sched, Phase::Stationary, integrand(&sched));

@@ -11,7 +11,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_chacha::rand_core::{RngCore, SeedableRng};
 use rayon::prelude::*;
 
-use crate::fit::{ChannelData, Design, Gate, NestedTest, cv_rmse, nested_test, wls};
+use crate::fit::{ChannelData, Design, Gate, NestedTest, nested_test, wls};
 
 /// Seed of the bootstrap over runs.
 pub const BOOTSTRAP_SEED: u64 = 0xD15C_0BE7;
@@ -200,6 +200,11 @@ pub struct Candidates {
     pub selectable: Vec<bool>,
     /// Parameters beyond the coefficient (a memory term's time constant).
     pub extra_params: Vec<usize>,
+    /// For a gyro scale-factor term, the range (largest minus smallest) of its regressor over
+    /// the windows: the scale factor it implies varies by its coefficient times this, which
+    /// must stay within [`crate::fit::MAX_GYRO_SCALE_FACTOR`] (the constant of its kind is its
+    /// parent and takes the rest); 0 for other terms.
+    pub sf_regressor_range: Vec<f64>,
 }
 
 fn whiten(col: &[f64], d: &ChannelData, w: Option<&[f64]>) -> Vec<f64> {
@@ -245,7 +250,6 @@ pub fn select(
     let Some(mut fit0) = wls(base, d, None) else {
         return (Vec::new(), None);
     };
-    let mut cv0 = cv_rmse(base, d);
     let mut x = base.clone();
     let mut kept: Vec<Pick> = Vec::new();
     let mut tried: Vec<usize> = Vec::new();
@@ -261,31 +265,34 @@ pub fn select(
         for &p in &parents {
             xp = append(&xp, &lib.cols[p], lib.units[p]);
         }
-        let (fit_p, cv_p) = if parents.is_empty() {
-            (fit0.clone(), cv0)
+        let fit_p = if parents.is_empty() {
+            fit0.clone()
         } else {
             match wls(&xp, d, None) {
-                Some(f) => (f, cv_rmse(&xp, d)),
+                Some(f) => f,
                 None => continue,
             }
         };
         let x1 = append(&xp, &lib.cols[j], lib.units[j]);
-        let Some(mut test) = nested_test(&fit_p, cv_p, xp.ncols(), &x1, d) else {
+        let Some(mut test) = nested_test(&fit_p, xp.ncols(), &x1, d) else {
             // Not identifiable on top of the model: the next best.
             continue;
         };
         test.delta_bic += lib.extra_params[j] as f64 * ln_n;
+        let theta = test.fit.theta[test.fit.theta.len() - 1];
+        if theta.abs() * lib.sf_regressor_range[j] > crate::fit::MAX_GYRO_SCALE_FACTOR {
+            // An implausible scale factor: a bias in disguise; the next best.
+            continue;
+        }
         // The block (parents and term) must improve the model too: parents that explain
         // nothing must not ride in on a term that only passes on top of them.
         let block_ok = parents.is_empty()
             || wls(&x1, d, None).is_some_and(|f| {
-                let k = f.identified_in(x.ncols()..x1.ncols()) as f64
-                    + lib.extra_params[j] as f64;
+                let k = f.identified_in(x.ncols()..x1.ncols()) as f64 + lib.extra_params[j] as f64;
                 let s2 = f.chi2_red().max(1.0);
                 -(fit0.chi2 - f.chi2) / s2 + k * ln_n < gate.max_delta_bic
             });
-        let passes =
-            block_ok && gate.passes_test(test.delta_bic, test.p_value, test.cv_gain_pct);
+        let passes = block_ok && gate.passes_test(test.delta_bic, test.p_value, test.cv_gain_pct);
         let pick = Pick {
             term: j,
             err,
@@ -304,7 +311,6 @@ pub fn select(
         o.take(j);
         taken.push(j);
         fit0 = pick.test.fit.clone();
-        cv0 = pick.test.cv_rmse;
         x = x1;
         kept.push(pick);
     }

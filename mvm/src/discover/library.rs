@@ -296,29 +296,10 @@ pub fn library_signals(info: &RowsInfo) -> Vec<Signal> {
     v
 }
 
-/// Signals the library holds alone, as biases, not in products: the [`Library::LinearOnly`]
-/// families (the body components of north and east), which every attitude history can form
-/// (the table's test checks none [`Family::needs_gimbal`]).
-pub fn linear_only() -> Vec<Signal> {
-    FAMILIES
-        .iter()
-        .enumerate()
-        .filter(|(_, f)| f.library == Library::LinearOnly)
-        .flat_map(|(i, _)| Signal::all_of(i))
-        .collect()
-}
-
 /// Every product term of the library over `sig`: each signal, each product of two (squares
-/// included), as a bias and as a scale factor; and, first, the [`linear_only`] signals as
-/// biases.
+/// included), as a bias and as a scale factor.
 pub fn product_terms(sig: &[Signal]) -> Vec<Term> {
-    let mut out: Vec<Term> = linear_only()
-        .iter()
-        .map(|s| Term::Product {
-            factors: vec![*s],
-            kind: CustomKind::Bias,
-        })
-        .collect();
+    let mut out: Vec<Term> = Vec::new();
     for kind in [CustomKind::Bias, CustomKind::ScaleFactor] {
         for (i, a) in sig.iter().enumerate() {
             out.push(Term::Product {
@@ -532,7 +513,7 @@ fn chunk_moments<'a>(
                 }
                 left -= 1;
                 let dt = h.t_s[k] - h.t_s[k - 1];
-                let r = kin.row(h, k, dt);
+                let r = kin.row(h, seg, k, dt);
                 let f = rs.frame(h, k, dt, &r.c_nb, &r.dtheta_rad, &r.dv_mps);
                 let wts = [
                     dt,

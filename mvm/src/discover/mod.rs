@@ -115,6 +115,22 @@ fn identical_by_definition(term: &Term, effect: Effect) -> bool {
     )
 }
 
+/// Whether `term` on gyro channel `c` is a bias ∝ X·w_i with w_i the channel's own body rate:
+/// c·X·ω_i·Δt = c·X·Δθ_i, the scale factor ∝ X the library holds too (in other units), so it is
+/// left out rather than searched twice under two names.
+fn scale_factor_in_disguise(term: &Term, c: usize) -> bool {
+    use rins_plant::effects::custom::signals::Signal;
+    match term {
+        Term::Product {
+            factors,
+            kind: CustomKind::Bias,
+        } if c < 3 => {
+            factors.len() == 2 && factors.iter().filter(|f| **f == Signal::Rate(c)).count() == 1
+        }
+        _ => false,
+    }
+}
+
 /// A proposal with what augmentation needs.
 pub(crate) struct Found {
     proposal: Proposal,
@@ -206,8 +222,10 @@ struct Refine {
 /// `terms`, their columns `cols`), with the catalogue constants and g-sensitivity a term's
 /// heredity asks for appended as parents only (not selectable), leaving out parents the base
 /// `base_groups` has already.
+#[allow(clippy::too_many_arguments)]
 fn candidates(
     a: &Prepared,
+    mom: &library::Moments,
     c: usize,
     terms: &[Term],
     idx: &[usize],
@@ -227,6 +245,33 @@ fn candidates(
         parents: vec![Vec::new(); idx.len()],
         selectable: vec![true; idx.len()],
         extra_params: idx.iter().map(|&t| terms[t].extra_params()).collect(),
+        sf_regressor_range: idx
+            .iter()
+            .map(|&t| match (&terms[t], accel) {
+                (
+                    Term::Product {
+                        factors,
+                        kind: CustomKind::ScaleFactor,
+                    },
+                    false,
+                ) => {
+                    let twin = Term::Product {
+                        factors: factors.clone(),
+                        kind: CustomKind::Bias,
+                    };
+                    let means: Vec<f64> = mom
+                        .column(&twin, c, ws)
+                        .iter()
+                        .zip(ws)
+                        .map(|(v, w)| v / w.duration_s.max(f64::MIN_POSITIVE))
+                        .collect();
+                    let hi = means.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                    let lo = means.iter().copied().fold(f64::INFINITY, f64::min);
+                    (hi - lo).max(0.0)
+                }
+                _ => 0.0,
+            })
+            .collect(),
     };
     // Catalogue groups appended as parents: effect → their column indices.
     let mut appended: Vec<(Effect, Vec<usize>)> = Vec::new();
@@ -263,6 +308,7 @@ fn candidates(
                         lib.parents.push(Vec::new());
                         lib.selectable.push(false);
                         lib.extra_params.push(0);
+                        lib.sf_regressor_range.push(0.0);
                         cs.push(lib.cols.len() - 1);
                     }
                     ps.extend(cs.iter().copied());
@@ -326,7 +372,7 @@ pub(crate) fn search(
                 let r = terms[t].regressor();
                 !declared.iter().any(|(acc, k, reg)| {
                     *acc == (c >= 3) && *k == terms[t].kind() && Some(reg) == r.as_ref()
-                })
+                }) && !scale_factor_in_disguise(&terms[t], c)
             })
             .collect()
     };
@@ -418,7 +464,7 @@ pub(crate) fn search(
         };
         for (on, groups) in bases {
             let base = design(ws, groups);
-            let lib = candidates(a, c, &terms, idx, &cols, groups);
+            let lib = candidates(a, &mom, c, &terms, idx, &cols, groups);
             let (picks, miss) = frols::select(&a.data[c], &base, &lib, &gate, MAX_TERMS);
             let chosen: Vec<usize> = picks.iter().map(|p| p.term).collect();
             let freq = frols::bootstrap(&a.data[c], &base, &lib, &chosen);

@@ -51,7 +51,7 @@ pub struct DiscoveredTerm {
 }
 
 /// The time constant of a discovered memory term.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct TauReport {
     /// The estimate (profile-likelihood minimum, rounded to three digits), s.
     pub tau_s: f64,

@@ -88,11 +88,24 @@ fn main() {
             .iter()
             .map(|l| format!("{} {:.2}", l.channel, l.ratio))
             .collect();
-        println!("step {}: {} | cells {}", s.step, lv.join(", "), s.flagged_cells);
+        println!(
+            "step {}: {} | cells {}",
+            s.step,
+            lv.join(", "),
+            s.flagged_cells
+        );
         for a in &s.accepted {
             println!(
                 "  {} {} ({}) dBIC {:.1} joint {:.1} stab {:.2} kept {} parents {:?} replaces {:?}",
-                a.channel, a.effect, a.found_by, a.delta_bic, a.joint_delta_bic, a.stability, a.kept, a.parents, a.replaces
+                a.channel,
+                a.effect,
+                a.found_by,
+                a.delta_bic,
+                a.joint_delta_bic,
+                a.stability,
+                a.kept,
+                a.parents,
+                a.replaces
             );
         }
         for c in &s.coefficients {
@@ -103,10 +116,29 @@ fn main() {
     for u in &r.unexplained {
         println!("  {u}");
     }
-    if let Some(d) = it.last.diagnosis.as_ref().and_then(|d| d.report.discovery.as_ref()) {
+    if let Some(d) = it
+        .last
+        .diagnosis
+        .as_ref()
+        .and_then(|d| d.report.discovery.as_ref())
+    {
         for p in &d.proposals {
             for t in &p.terms {
-                println!("  proposal {} {} {} {:.5} {:?} tau {:?} parent_of {:?} dBIC {:.1} p {:.2e} cv {:.2} boot {:.2} on {}", p.name, t.channel, t.term, t.coefficient, t.ci95, t.tau, t.parent_of, t.delta_bic, t.p_value, t.cv_rmse_gain_pct, t.bootstrap_frequency, t.searched_on);
+                println!(
+                    "  proposal {} {} {} {:.5} {:?} tau {:?} parent_of {:?} dBIC {:.1} p {:.2e} cv {:.2} boot {:.2} on {}",
+                    p.name,
+                    t.channel,
+                    t.term,
+                    t.coefficient,
+                    t.ci95,
+                    t.tau,
+                    t.parent_of,
+                    t.delta_bic,
+                    t.p_value,
+                    t.cv_rmse_gain_pct,
+                    t.bootstrap_frequency,
+                    t.searched_on
+                );
             }
         }
     }

@@ -15,11 +15,14 @@
 //! ([`scale_to_z`], [`oracle`]), [`generate`] the log, and [`write_csv`] it, with the model as a scenario
 //! file ([`write_model`]), when a trial must be replayed alone.
 
+pub mod bench;
+pub mod classes;
 pub mod csv;
 pub mod design;
 pub mod draw;
 pub mod effect_error;
 pub mod exp_poly;
+pub mod expect;
 pub mod generate;
 pub mod hidden;
 pub mod model_file;
@@ -31,10 +34,15 @@ pub mod table;
 pub mod thermal;
 pub mod units;
 
+pub use bench::{Outcome, Report, TrialSpec, plan, run, run_trial};
+pub use classes::Class;
 pub use csv::write_csv;
 pub use design::{ChamberLeg, Design, Gimbal, RUN_GAP_S, RunDesign, TableLeg, UnitThermal};
 pub use draw::draw_design;
 pub use generate::{Truth, check_model, generate};
 pub use hidden::{Channel, HiddenEffect, Sensor};
 pub use model_file::{model_toml, write_model};
-pub use oracle::{Nuisance, oracle_z, oracle_z_per_channel, oracle_z_per_channel_with, scale_to_z};
+pub use oracle::{
+    Nuisance, oracle_z, oracle_z_beyond, oracle_z_per_channel, oracle_z_per_channel_with,
+    scale_to_z,
+};

@@ -232,3 +232,47 @@ pub fn scale_to_z(
     let whole = ch.iter().map(|c| c.2 * c.2).sum::<f64>().sqrt();
     (z > 1e-9 * whole && z.is_finite()).then(|| effect.scaled(z_target / z))
 }
+
+/// The oracle z of `effect` per channel beyond `other` too: its column projected off the
+/// nuisance columns and `other`'s column on the same channel. What remains is what tells the
+/// two apart on the design (a lag of the temperature beyond the temperature itself): below
+/// z ≈ 5 the design cannot separate them, and keeping either is identifying it.
+pub fn oracle_z_beyond(
+    model: &PlantConfig,
+    design: &Design,
+    effect: &HiddenEffect,
+    other: &HiddenEffect,
+) -> Vec<(Channel, f64)> {
+    let terms = ModelTerms::of(model);
+    let wins = windows(model, design, effect);
+    let twin = windows(model, design, other);
+    effect
+        .channels()
+        .into_iter()
+        .map(|ch| {
+            let i = ch.axis;
+            let gyro = ch.sensor == Sensor::Gyro;
+            let noise = if gyro { terms.arw[i] } else { terms.vrw[i] };
+            let n = wins.len();
+            let sigma: Vec<f64> = wins.iter().map(|w| noise * w.dt.sqrt()).collect();
+            let err = |w: &Window| if gyro { w.err_gyro[i] } else { w.err_accel[i] };
+            let input = |w: &Window| if gyro { w.dtheta } else { w.dv };
+            // Columns: bias, scale factor, the twin, then the misalignment columns.
+            let mut cols: Vec<usize> = vec![0, 1, 2];
+            if gyro {
+                cols.extend((0..3).filter(|j| *j != i).map(|j| 3 + j));
+            }
+            let x = DMatrix::from_fn(n, cols.len(), |r, c| {
+                let v = match cols[c] {
+                    0 => wins[r].dt,
+                    1 => input(&wins[r])[i],
+                    2 => err(&twin[r]),
+                    j => input(&wins[r])[j - 3],
+                };
+                v / sigma[r]
+            });
+            let y = DVector::from_fn(n, |r, _| err(&wins[r]) / sigma[r]);
+            (ch, residual_norm(&x, &y))
+        })
+        .collect()
+}

@@ -481,9 +481,7 @@ impl GyroModel {
         let field = if self.field_on {
             let f = &self.field_rps;
             let (e, n, u) = (&c.east_b, &c.north_b, &c.up_b);
-            Vector3::from_fn(|i, _| {
-                (f[(i, 0)] * e[i] + f[(i, 1)] * n[i] + f[(i, 2)] * u[i]) * dt
-            })
+            Vector3::from_fn(|i, _| (f[(i, 0)] * e[i] + f[(i, 1)] * n[i] + f[(i, 2)] * u[i]) * dt)
         } else {
             Vector3::zeros()
         };

@@ -249,7 +249,11 @@ fn regressors_times_coefficients_reproduce_each_term() {
     let mut spec = rins_plant::presets::nav_grade_full();
     // The navigation-field term is off in every preset (it needs a field's value).
     spec.gyro.nav_field_bias.enabled = true;
-    spec.gyro.nav_field_bias.dph_enu = [[0.002, -0.004, 0.003], [0.001, 0.005, -0.002], [-0.003, 0.002, 0.004]];
+    spec.gyro.nav_field_bias.dph_enu = [
+        [0.002, -0.004, 0.003],
+        [0.001, 0.005, -0.002],
+        [-0.003, 0.002, 0.004],
+    ];
     let gm = rins_plant::effects::GyroModel::new(&spec.gyro);
     let am = rins_plant::effects::AccelModel::new(&spec.accel);
     let ctx = TermContext {

@@ -3,8 +3,8 @@
 
 use clap::{Parser, Subcommand};
 use rins_scenarios::commands::{
-    self, calibrate, campaign, compare, diagnose, fmu, measure, paper, run, scenarios, sweep,
-    verify,
+    self, bench_diagnosis, calibrate, campaign, compare, diagnose, fmu, measure, paper, run,
+    scenarios, sweep, verify,
 };
 #[cfg(feature = "transport")]
 use rins_scenarios::commands::{nav, serve};
@@ -48,6 +48,10 @@ enum Command {
     /// Simulate a measurement log from a scenario (one run per [campaign] temperature when the
     /// scenario has one), in the measurement format: test data with known effects.
     Measure(measure::MeasureArgs),
+    /// The randomised benchmark of `diagnose --iterate`: trials of every effect class, run
+    /// design and magnitude from an independent generator; identification, interval coverage,
+    /// floor and false-claim rates per class.
+    BenchDiagnosis(bench_diagnosis::BenchDiagnosisArgs),
     /// Serve the plant over iceoryx2 shared memory to navigation software (docs/transport.md).
     #[cfg(feature = "transport")]
     Serve(serve::ServeArgs),
@@ -73,6 +77,7 @@ fn main() -> std::process::ExitCode {
         Command::Compare(a) => compare::run(&a),
         Command::Diagnose(a) => diagnose::run(&a),
         Command::Measure(a) => measure::run(&a),
+        Command::BenchDiagnosis(a) => bench_diagnosis::run(&a),
         #[cfg(feature = "transport")]
         Command::Serve(a) => serve::run(&a),
         #[cfg(feature = "transport")]

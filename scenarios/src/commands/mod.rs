@@ -2,6 +2,7 @@
 //! binary (`src/bin/rins.rs`) only lists them and dispatches.
 
 pub mod args;
+pub mod bench_diagnosis;
 pub mod calibrate;
 pub mod campaign;
 pub mod compare;

@@ -61,6 +61,7 @@ fn windows() -> Vec<Window> {
             gyro_temp_c: [0.0; 3],
             accel_temp_c: 0.0,
             rotation_rps: 0.0,
+            since_move_s: 0.0,
             y: [0.0; 6],
             x: Vec::new(),
         })
@@ -245,21 +246,20 @@ fn library_signals_follow_the_table_in_its_order() {
         names(true, true).join(" "),
         format!(
             "temp:block dtemp_dt:block temp:housing dtemp_dt:housing grad:block-housing {fast} \
-             gimbal_outer gimbal_inner time"
+             time"
         )
     );
     assert_eq!(
         names(false, false).join(" "),
         format!("temp:block dtemp_dt:block {fast} time")
     );
-    let linear: Vec<String> = super::linear_only().into_iter().map(Signal::name).collect();
-    assert_eq!(linear.join(" "), "n_x n_y n_z e_x e_y e_z");
 }
 
-/// Every fast signal of the table is in the library when the data can form it (with gimbal
-/// angles, every one; with quaternions, every one that does not need gimbal angles), alone as
-/// a bias at least, or, for a clock the library reads through a decay, as exp(−x/τ) at every
-/// time constant of the grid; so a new signal in the table is searched for with no change here.
+/// Every fast signal of the table that the library searches is in it when the data can form it
+/// (with gimbal angles, every one; with quaternions, every one that does not need gimbal
+/// angles), alone as a bias at least, or, for a clock the library reads through a decay, as
+/// exp(−x/τ) at every time constant of the grid; so a new signal in the table is searched for
+/// with no change here.
 #[test]
 fn every_fast_signal_is_in_the_library_when_its_data_are_there() {
     use rins_plant::effects::custom::Op;
@@ -271,6 +271,9 @@ fn every_fast_signal_is_in_the_library_when_its_data_are_there() {
         let memory = super::memory_terms(&info(gimbal, true), &taus);
         for (i, f) in FAMILIES.iter().enumerate() {
             if f.fill.is_none() {
+                continue;
+            }
+            if f.library == Library::NotSearched {
                 continue;
             }
             for s in Signal::all_of(i) {
@@ -367,6 +370,7 @@ fn memory_sums_match_their_closed_forms() {
             gyro_temp_c: [0.0; 3],
             accel_temp_c: 0.0,
             rotation_rps: 0.0,
+            since_move_s: 0.0,
             y: [0.0; 6],
             x: Vec::new(),
         })

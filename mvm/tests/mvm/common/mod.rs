@@ -20,6 +20,15 @@ pub const ARW_DPSH: f64 = 0.0005;
 /// Accelerometer white noise, µg/√Hz.
 pub const VRW_UG_PER_SQRTHZ: f64 = 20.0;
 
+/// Gauss–Legendre nodes and weights on [−1, 1], five points.
+const GAUSS5: [(f64, f64); 5] = [
+    (0.0, 0.568_888_888_888_888_9),
+    (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+    (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+    (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
+    (0.906_179_845_938_664, 0.236_926_885_056_189_1),
+];
+
 /// The model: ideal sensor with white noise only (`noise = false`: no noise terms at all).
 pub fn model(noise: bool) -> PlantConfig {
     let mut m = PlantConfig::default();
@@ -136,8 +145,23 @@ pub fn history(m: &PlantConfig, hidden: &Hidden, seed: u64) -> History {
             let (s, c) = mid.inner_rad.sin_cos();
             let (d_o, d_i) = (a1.outer_rad - a0.outer_rad, a1.inner_rad - a0.inner_rad);
             let gimbal = Vector3::new(d_i, s * d_o, c * d_o);
-            let dtheta = gimbal + c_nb * site.omega_ie_n * dt;
-            let f_b = c_nb * f_n;
+            // The Earth rate and gravity integrated over the row as the angles move through it
+            // (linear in time): 5-point Gauss–Legendre, exact to rounding for these rows (a
+            // real unit integrates them continuously).
+            let _ = c_nb;
+            let (mut earth, mut f_int) = (Vector3::zeros(), Vector3::zeros());
+            for (x, w) in GAUSS5 {
+                let u = 0.5 * (1.0 + x);
+                let at = GimbalAngles::new(
+                    a0.outer_rad + u * (a1.outer_rad - a0.outer_rad),
+                    a0.inner_rad + u * (a1.inner_rad - a0.inner_rad),
+                );
+                let c = body_to_nav(&c_vn, at).transpose();
+                earth += c * site.omega_ie_n * (0.5 * w * dt);
+                f_int += c * f_n * (0.5 * w * dt);
+            }
+            let dtheta = gimbal + earth;
+            let f_b = f_int / dt;
             let temp_rate = (temp(k + 1) - temp(k.saturating_sub(1))) / (2.0 * dt);
             for i in 0..3 {
                 let gs: f64 = (0..3)

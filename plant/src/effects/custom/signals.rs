@@ -155,10 +155,12 @@ pub enum Library {
     /// Alone and in every product of two, as biases and scale factors (node families: the
     /// acting block, and the housing and the block-to-housing difference when it is measured).
     Products,
-    /// Alone as biases only: the components of a field fixed in the navigation frame act
-    /// through K·C_n^b·m^n, linear in them; their products would multiply the library for no
-    /// physics.
-    LinearOnly,
+    /// Declarable but not searched: the body components of north and east are the catalogue's
+    /// `gyro.nav_field_bias` (a field fixed in the navigation frame, one candidate with its
+    /// three components: searched one by one, a single component stood in for the field, or on
+    /// another axis for a g-sensitivity); a bias linear in a gimbal angle, which wraps at
+    /// ±180°, is no physics a search should propose.
+    NotSearched,
     /// Only through a decay exp(−x/τ) as a bias, τ searched (the clocks since the table's last
     /// stop and start: a transient after each move); a polynomial in an unbounded clock is no
     /// physics.
@@ -405,6 +407,7 @@ pub const FAMILIES: [Family; 13] = [
     Family {
         dwell_constant: true,
         needs_gimbal: true,
+        library: Library::NotSearched,
         ..fast(
             "gimbal_outer",
             "gimbal_outer",
@@ -420,6 +423,7 @@ pub const FAMILIES: [Family; 13] = [
     Family {
         dwell_constant: true,
         needs_gimbal: true,
+        library: Library::NotSearched,
         ..fast(
             "gimbal_inner",
             "gimbal_inner",
@@ -450,7 +454,7 @@ pub const FAMILIES: [Family; 13] = [
     Family {
         dwell_constant: true,
         reads_heading: true,
-        library: Library::LinearOnly,
+        library: Library::NotSearched,
         ..fast(
             "n_x, n_y, n_z",
             "n_",
@@ -466,7 +470,7 @@ pub const FAMILIES: [Family; 13] = [
     Family {
         dwell_constant: true,
         reads_heading: true,
-        library: Library::LinearOnly,
+        library: Library::NotSearched,
         ..fast(
             "e_x, e_y, e_z",
             "e_",
@@ -818,9 +822,7 @@ mod tests {
                 "{}",
                 f.doc_name
             );
-            if f.library == Library::LinearOnly {
-                assert!(!f.needs_gimbal, "{}", f.doc_name);
-            }
+
             assert!(f.bound > 0.0 && !f.description.is_empty());
         }
     }
