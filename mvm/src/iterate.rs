@@ -136,6 +136,80 @@ pub struct IterationReport {
     pub cells_after: Vec<Cell>,
     /// |z| beyond which a cell is flagged.
     pub z_critical: f64,
+    /// When the search stopped: the candidates of the last step that came closest to the gate
+    /// without passing it (catalogue, declared and discovered, lowest ΔBIC first), with the
+    /// criterion each failed: what was tried when "nothing more passes the gate".
+    pub closest_to_gate: Vec<NearMiss>,
+}
+
+/// A candidate tried at the last step that did not pass the gate.
+#[derive(Clone, Debug, Serialize)]
+pub struct NearMiss {
+    /// Channel.
+    pub channel: String,
+    /// Effect (`gyro.temperature_bias`, `custom:NAME`) or a discovery term (`bias ∝ …`).
+    pub effect: String,
+    /// ΔBIC on the model entering the step.
+    pub delta_bic: f64,
+    /// Nested F-test p-value.
+    pub p_value: f64,
+    /// Cross-validated gain, %.
+    pub cv_rmse_gain_pct: f64,
+    /// What it failed: `ΔBIC ≥ −10`, `p ≥ α/tests`, `CV gain ≤ 0`.
+    pub failed: String,
+}
+
+/// Near misses shown when the search stops.
+pub const NEAR_MISSES: usize = 5;
+
+/// The candidates of `an`'s diagnosis closest to the gate without passing it.
+fn near_misses(an: &Analysis) -> Vec<NearMiss> {
+    let Some(d) = an.diagnosis.as_ref() else {
+        return Vec::new();
+    };
+    let r = &d.report;
+    let failed = |dbic: f64, cv: f64, passes: bool| {
+        let mut f = Vec::new();
+        if !(dbic < -10.0) {
+            f.push("ΔBIC ≥ −10");
+        }
+        if !(cv > 0.0) {
+            f.push("CV gain ≤ 0");
+        }
+        if f.is_empty() && !passes {
+            f.push("p ≥ α/tests (Bonferroni)");
+        }
+        f.join(", ")
+    };
+    let mut out: Vec<NearMiss> = r
+        .ranking
+        .iter()
+        .filter(|e| !e.passes_gate && e.delta_bic.is_finite())
+        .map(|e| NearMiss {
+            channel: e.channel.clone(),
+            effect: e.effect.clone(),
+            delta_bic: e.delta_bic,
+            p_value: e.p_value,
+            cv_rmse_gain_pct: e.cv_rmse_gain_pct,
+            failed: failed(e.delta_bic, e.cv_rmse_gain_pct, e.passes_gate),
+        })
+        .chain(
+            r.discovery
+                .iter()
+                .flat_map(|d| &d.refused)
+                .map(|t| NearMiss {
+                    channel: t.channel.clone(),
+                    effect: t.term.clone(),
+                    delta_bic: t.delta_bic,
+                    p_value: t.p_value,
+                    cv_rmse_gain_pct: t.cv_rmse_gain_pct,
+                    failed: failed(t.delta_bic, t.cv_rmse_gain_pct, t.passes_gate),
+                }),
+        )
+        .collect();
+    out.sort_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic));
+    out.truncate(NEAR_MISSES);
+    out
 }
 
 /// The iteration's result.
@@ -411,6 +485,7 @@ pub fn iterate(
                     cells_before: cells_before.clone(),
                     cells_after: an.comparison.cells.clone(),
                     z_critical: an.comparison.z_critical,
+                    closest_to_gate: near_misses(&an),
                 },
                 model: m,
                 last: an,
@@ -690,7 +765,25 @@ pub fn iterate(
             );
         }
         let applied = apply_groups(&m2, &p2, &[], &per_channel)?;
-        steps.last_mut().expect("pushed").coefficients = applied.coefficients;
+        // A discovered memory term is fitted with its time constant fixed at the estimate: its
+        // coefficient's interval is widened by what τ's uncertainty adds (discovery's fit with
+        // τ free).
+        let mut coefficients = applied.coefficients;
+        let last = steps.last_mut().expect("pushed");
+        for c in coefficients.iter_mut() {
+            let widen = last
+                .accepted
+                .iter()
+                .find(|a| a.effect == c.effect && a.channel == c.channel)
+                .and_then(|a| a.tau)
+                .map_or(1.0, |t| t.coefficient_widening);
+            if let (Some(v), Some(ci)) = (c.fitted, c.ci95.as_mut())
+                && widen > 1.0
+            {
+                *ci = [v - (v - ci[0]) * widen, v + (ci[1] - v) * widen];
+            }
+        }
+        last.coefficients = coefficients;
         // Declarations this step added for terms that did not survive stay in the list (the
         // history's keys keep their indices) but are switched off.
         let used: Vec<String> = per_channel

@@ -51,7 +51,7 @@ use rins_plant::PlantConfig;
 pub use apply::{Applied, Coefficient, Fate};
 pub use fit::ChannelData;
 pub use history::{Attitude, History, to_history, with_data_site, with_site};
-pub use iterate::{IterateOptions, Iteration, IterationReport, iterate};
+pub use iterate::{IterateOptions, Iteration, IterationReport, NearMiss, iterate};
 pub use replay::{CHANNELS, Effect, Group, Replay};
 pub use report::{
     Cell, ChannelSummary, CompareReport, Confusable, Correlation, DiagnoseReport, FieldDirection,

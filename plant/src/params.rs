@@ -254,6 +254,7 @@ pub fn unit_for(path: &str) -> &'static str {
         }
         "profile" => "s|degC",
         _ => [
+            ("dph_enu", "deg/h"),
             ("_dph_per_sqrth", "deg/h/sqrt(h)"),
             ("_dph_per_amplitude", "deg/h"),
             ("_dph_per_g", "deg/h/g"),

@@ -78,6 +78,24 @@ pub fn render_text(r: &IterationReport) -> String {
                     " -> not fitted (it does not survive the joint fit)"
                 },
             );
+            if let Some(tau) = &t.tau {
+                let _ = writeln!(
+                    s,
+                    "    time constant {:.4} s, 95 % [{}{:.4}, {:.4}{}] s (profile likelihood)",
+                    tau.tau_s,
+                    if tau.open[0] { "≤ " } else { "" },
+                    tau.ci95_s[0],
+                    tau.ci95_s[1],
+                    if tau.open[1] { " or more" } else { "" },
+                );
+            }
+            if !t.confusable_with.is_empty() {
+                let _ = writeln!(
+                    s,
+                    "    confusable on this data with {}",
+                    t.confusable_with.join(", ")
+                );
+            }
         }
         for c in &st.coefficients {
             let what = match c.fate {
@@ -97,6 +115,16 @@ pub fn render_text(r: &IterationReport) -> String {
     let _ = writeln!(s, "\nstopped: {}", r.stop);
     for u in &r.unexplained {
         let _ = writeln!(s, "  {u}");
+    }
+    if !r.closest_to_gate.is_empty() {
+        let _ = writeln!(s, "closest to the gate (not passed):");
+        for m in &r.closest_to_gate {
+            let _ = writeln!(
+                s,
+                "  {} on {}: dBIC {:.1}, p {:.2e}, CV {:.2} %: {}",
+                m.effect, m.channel, m.delta_bic, m.p_value, m.cv_rmse_gain_pct, m.failed
+            );
+        }
     }
     s
 }

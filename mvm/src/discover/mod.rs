@@ -740,9 +740,11 @@ fn refine_taus(
             (&k.1, (), &mut k.3)
         };
         let unit = file_unit_si(term.kind(), c >= 3);
-        if let Some((coef, se)) = tau::coefficient_with_tau(&x, &a.data[c], &dcol) {
+        let mut widening = 1.0;
+        if let Some((coef, se, wide)) = tau::coefficient_with_tau(&x, &a.data[c], &dcol) {
             dt.coefficient = coef / unit;
             dt.ci95 = [(coef - 1.96 * se) / unit, (coef + 1.96 * se) / unit];
+            widening = wide;
         }
         dt.term = term.describe();
         dt.regressor = term.regressor();
@@ -751,6 +753,7 @@ fn refine_taus(
             ci95_s: e.ci95_s,
             open: e.open,
             grid_tau_s,
+            coefficient_widening: widening,
         });
     }
 }

@@ -61,6 +61,9 @@ pub struct TauReport {
     pub open: [bool; 2],
     /// The grid point the selection picked, s.
     pub grid_tau_s: f64,
+    /// How much wider the coefficient's interval is with τ free than with τ fixed at its
+    /// estimate (the joint fit that writes the model fixes τ and widens its intervals by this).
+    pub coefficient_widening: f64,
 }
 
 /// A proposal: one term on the axes it was found on, as a declared effect.

@@ -121,10 +121,15 @@ pub fn estimate(pts: &[(f64, f64)], s2: f64) -> Option<TauEstimate> {
     })
 }
 
-/// The last coefficient of the fit of `x` and its standard error with the time constant free:
-/// the design gains the column `coef·∂col/∂τ` (`dcol_dtau` the derivative of the last column)
-/// and the covariance of the two is read from that fit (scaled by the reduced χ², at least 1).
-pub fn coefficient_with_tau(x: &Design, d: &ChannelData, dcol_dtau: &[f64]) -> Option<(f64, f64)> {
+/// The last coefficient of the fit of `x`, its standard error with the time constant free, and
+/// that error's ratio to the one with the time constant fixed: the design gains the column
+/// `coef·∂col/∂τ` (`dcol_dtau` the derivative of the last column) and the covariance of the two
+/// is read from that fit (scaled by the reduced χ², at least 1).
+pub fn coefficient_with_tau(
+    x: &Design,
+    d: &ChannelData,
+    dcol_dtau: &[f64],
+) -> Option<(f64, f64, f64)> {
     let f = wls(x, d, None)?;
     let k = x.ncols() - 1;
     let coef = f.theta[k];
@@ -133,11 +138,12 @@ pub fn coefficient_with_tau(x: &Design, d: &ChannelData, dcol_dtau: &[f64]) -> O
     }
     let jac: Vec<f64> = dcol_dtau.iter().map(|v| v * coef).collect();
     let x2 = super::frols::append(x, &jac, 1.0);
+    let fixed = f.cov[(k, k)].sqrt();
     let se = match wls(&x2, d, None) {
-        Some(g) if g.identified(k) && g.identified(k + 1) => g.cov[(k, k)].sqrt(),
-        _ => f.cov[(k, k)].sqrt(),
+        Some(g) if g.identified(k) && g.identified(k + 1) => g.cov[(k, k)].sqrt().max(fixed),
+        _ => fixed,
     };
-    Some((coef, se))
+    Some((coef, se, se / fixed))
 }
 
 #[cfg(test)]

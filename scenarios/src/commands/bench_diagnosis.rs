@@ -17,13 +17,13 @@ pub struct BenchDiagnosisArgs {
     #[arg(long, default_value_t = 200, allow_negative_numbers = true)]
     pub trials: i64,
     /// Seed of the benchmark (each trial's own seed is drawn from it and its index).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
     pub seed: u64,
     /// Classes to draw from, comma-separated (default: every class, controls included).
     #[arg(long, value_delimiter = ',')]
     pub classes: Vec<String>,
     /// Only these trial indices of the plan (replay a failing trial alone).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub only: Vec<usize>,
     /// Print the whole report (every trial and the rates) as JSON.
     #[arg(long)]

@@ -333,7 +333,7 @@ mod tests {
                 "exp(-since_move/37.5)*lag(grad:gyro_x-housing,0.125)^2",
                 CustomKind::Bias,
             ),
-            ("exp(-since_start/1e4)", CustomKind::ScaleFactor),
+            ("exp(-since_start/10000)", CustomKind::ScaleFactor),
         ] {
             let s = spec(r, kind);
             let slot = Slot::from_spec(&s).unwrap();

@@ -3,6 +3,7 @@
 //! linearity and projections of the oracle, and the diagnosis's own CSV reader.
 
 mod csv;
+mod diagnosis;
 mod draw;
 mod effects;
 mod generate;
