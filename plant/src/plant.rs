@@ -16,6 +16,7 @@ use crate::effects::gyro::GYRO_TERMS;
 use crate::effects::{AccelModel, GyroModel};
 use crate::output::{ImuSample, Truth};
 use crate::stages::clock::Clock;
+use crate::stages::dwell_rule::DwellRule;
 use crate::stages::interval::Interval;
 use crate::stages::lane::Lane;
 use crate::stages::motion::Motion;
@@ -30,6 +31,10 @@ mod isolated;
 /// A dwell's interval kept for the rest of the dwell. When a declared effect reads the time,
 /// the tick's catalogue errors and true increments are kept too: each later interval redoes
 /// only the declared part, tick by tick, in the order the full path adds them.
+///
+/// Right only for terms whose contribution is the same every tick of a held dwell: each
+/// catalogue term declares whether it is (`crate::effects::DwellDependence`), each declared
+/// effect too, and [`SensorErrors::dwell_rule`] says from their union what may be kept.
 #[derive(Clone, Copy, Debug)]
 struct DwellReuse {
     interval: Interval,
@@ -264,13 +269,17 @@ impl Plant {
             self.clock.advance_tick();
         }
         x.position_weight /= self.clock.substeps() as f64;
-        let reuse = held && self.use_dwell_cache;
-        let timed = if self.errors.vary_in_dwell() {
-            last_tick
-        } else {
-            None
+        // What may be kept rests on what every switched-on term declares about a dwell
+        // (`DwellDependence` per catalogue term, `varies_in_dwell` per declared effect):
+        // `plant/tests/plant/dwell_cache.rs` checks each against the path without the cache.
+        let timed = match self.errors.dwell_rule() {
+            DwellRule::ReuseWhole => Some(None),
+            DwellRule::RedoDeclared => Some(last_tick),
+            DwellRule::WorkEveryTick => None,
         };
-        self.dwell = reuse.then_some(DwellReuse { interval: x, timed });
+        self.dwell = timed
+            .filter(|_| held && self.use_dwell_cache)
+            .map(|timed| DwellReuse { interval: x, timed });
         x
     }
 

@@ -4,6 +4,7 @@
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
+use super::dwell_dependence::DwellDependence;
 use super::{
     Axes3, MisalignmentSpec, QuantizationSpec, ScaleFactorSpec, TempPolySpec, TermContext, cubic,
     misalignment_regressors, scale_and_misalign,
@@ -51,6 +52,27 @@ impl AccelTerm {
             AccelTerm::VelocityRandomWalk => "velocity_random_walk",
             AccelTerm::Quantization => "quantization",
         }
+    }
+
+    /// What the term's contribution does while the table dwells (the plant's dwell cache
+    /// relies on it; see [`DwellDependence`]). No wildcard arm: a new term must answer.
+    pub fn dwell_dependence(self) -> DwellDependence {
+        use DwellDependence::{HeldInputs, Readout};
+        match self {
+            // Constants, functions of the true increment (gravity and the Earth rate in body
+            // axes in a held dwell), and a bias evaluated at each thermal update, held between.
+            AccelTerm::Bias
+            | AccelTerm::ScaleFactor
+            | AccelTerm::Misalignment
+            | AccelTerm::TemperatureBias => HeldInputs,
+            AccelTerm::VelocityRandomWalk | AccelTerm::Quantization => Readout,
+        }
+    }
+
+    /// Whether the term's contribution changes within a held dwell
+    /// ([`DwellDependence::varies_in_dwell`]): the plant then works every tick of a dwell.
+    pub fn varies_in_dwell(self) -> bool {
+        self.dwell_dependence().varies_in_dwell()
     }
 }
 

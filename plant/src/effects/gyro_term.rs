@@ -1,6 +1,8 @@
-//! The names and reporting order of the gyro error terms.
+//! The names and reporting order of the gyro error terms, and what each does within a dwell.
 
 use serde::{Deserialize, Serialize};
+
+use super::dwell_dependence::DwellDependence;
 
 /// Gyro error terms, in the order their contributions are reported.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -77,5 +79,38 @@ impl GyroTerm {
             GyroTerm::RateRandomWalk => "rate_random_walk",
             GyroTerm::Quantization => "quantization",
         }
+    }
+
+    /// What the term's contribution does while the table dwells (the plant's dwell cache
+    /// relies on it; see [`DwellDependence`]). No wildcard arm: a new term must answer.
+    pub fn dwell_dependence(self) -> DwellDependence {
+        use DwellDependence::{HeldInputs, Readout};
+        match self {
+            // Constants, or functions of the true increment (the Earth rate in body axes in a
+            // held dwell).
+            GyroTerm::Bias
+            | GyroTerm::ScaleFactor
+            | GyroTerm::ScaleFactorAsymmetry
+            | GyroTerm::Misalignment => HeldInputs,
+            // Rates evaluated at each thermal update (`GyroThermalRates`), held between.
+            GyroTerm::TemperatureBias | GyroTerm::TemperatureGradientBias => HeldInputs,
+            // Functions of the specific force and of the up, north and east directions in
+            // body axes, fixed while the table holds still on the static carrier; δβ's
+            // temperature polynomial is a thermal rate too.
+            GyroTerm::GSensitivity
+            | GyroTerm::PositionBias
+            | GyroTerm::DitherBias
+            | GyroTerm::NavFieldBias => HeldInputs,
+            GyroTerm::AngleRandomWalk
+            | GyroTerm::BiasInstability
+            | GyroTerm::RateRandomWalk
+            | GyroTerm::Quantization => Readout,
+        }
+    }
+
+    /// Whether the term's contribution changes within a held dwell
+    /// ([`DwellDependence::varies_in_dwell`]): the plant then works every tick of a dwell.
+    pub fn varies_in_dwell(self) -> bool {
+        self.dwell_dependence().varies_in_dwell()
     }
 }

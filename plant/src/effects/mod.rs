@@ -7,6 +7,7 @@
 
 pub mod accel;
 pub mod custom;
+pub mod dwell_dependence;
 pub mod encoder;
 pub mod gyro;
 pub mod gyro_term;
@@ -19,6 +20,7 @@ use serde::{Deserialize, Serialize};
 
 pub use accel::{AccelModel, AccelSpec, AccelTerm};
 pub use custom::{CustomKind, CustomModel, CustomSpec};
+pub use dwell_dependence::DwellDependence;
 pub use gyro::{GyroModel, GyroSpec, GyroTerm};
 
 /// What the effects see over one integration interval (SI units).

@@ -13,6 +13,7 @@
 //!   can feed many seeds.
 
 pub(crate) mod clock;
+pub(crate) mod dwell_rule;
 pub(crate) mod interval;
 pub(crate) mod lane;
 pub(crate) mod motion;

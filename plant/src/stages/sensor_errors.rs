@@ -5,6 +5,7 @@
 
 use nalgebra::Vector3;
 
+use super::dwell_rule::DwellRule;
 use crate::config::PlantConfig;
 use crate::effects::accel::ACCEL_TERMS;
 use crate::effects::custom::{Declared, MotionClocks, Needs};
@@ -92,6 +93,10 @@ pub(crate) struct SensorErrors {
     declared: Declared,
     /// The table's last stop and start, for the declared effects' motion clocks.
     clocks: TableClocks,
+    /// A switched-on catalogue term changes within a dwell
+    /// ([`crate::effects::GyroTerm::varies_in_dwell`],
+    /// [`crate::effects::AccelTerm::varies_in_dwell`]).
+    catalogue_varies_in_dwell: bool,
 }
 
 impl SensorErrors {
@@ -105,6 +110,8 @@ impl SensorErrors {
             accel_thermal_mps2: accel.thermal_bias_mps2(temps.accel_c()),
             declared: Declared::new(&s.gyro, &s.accel, &temps.nodes_c),
             clocks: TableClocks::default(),
+            catalogue_varies_in_dwell: s.gyro.enabled_terms().iter().any(|t| t.varies_in_dwell())
+                || s.accel.enabled_terms().iter().any(|t| t.varies_in_dwell()),
             gyro,
             accel,
         }
@@ -146,10 +153,21 @@ impl SensorErrors {
         }
     }
 
-    /// True when a declared effect changes within a dwell (it reads time or a motion clock,
-    /// or has memory), so a dwell's interval cannot be reused whole.
-    pub(crate) fn vary_in_dwell(&self) -> bool {
-        self.declared.varies_in_dwell()
+    /// How much of a held dwell's interval the plant may keep for the next, from the union of
+    /// the switched-on terms that change within a dwell: a catalogue term that says so
+    /// ([`crate::effects::DwellDependence::WithinDwell`]) keeps nothing; a declared effect that
+    /// reads the time or a motion clock, or has memory, keeps the catalogue's part and has its
+    /// own redone per tick; with neither the interval is kept whole. The noise and
+    /// quantisation terms are not asked: the readout applies them to every sample after the
+    /// deterministic interval, cached or not.
+    pub(crate) fn dwell_rule(&self) -> DwellRule {
+        if self.catalogue_varies_in_dwell {
+            DwellRule::WorkEveryTick
+        } else if self.declared.varies_in_dwell() {
+            DwellRule::RedoDeclared
+        } else {
+            DwellRule::ReuseWhole
+        }
     }
 
     /// New temperatures: the temperature-dependent rates follow them; after a step of `h_s`
