@@ -7,6 +7,7 @@ mod carrier_kinematics;
 mod carrier_segment;
 mod carrier_trajectory;
 mod custom_effects;
+mod dwell_cache;
 mod effects;
 mod gimbal_command;
 mod isolation_reference;
