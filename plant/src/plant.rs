@@ -272,14 +272,22 @@ impl Plant {
         // What may be kept rests on what every switched-on term declares about a dwell
         // (`DwellDependence` per catalogue term, `varies_in_dwell` per declared effect):
         // `plant/tests/plant/dwell_cache.rs` checks each against the path without the cache.
-        let timed = match self.errors.dwell_rule() {
-            DwellRule::ReuseWhole => Some(None),
-            DwellRule::RedoDeclared => Some(last_tick),
-            DwellRule::WorkEveryTick => None,
+        self.dwell = if held && self.use_dwell_cache {
+            match self.errors.dwell_rule() {
+                DwellRule::ReuseWhole => Some(DwellReuse {
+                    interval: x,
+                    timed: None,
+                }),
+                DwellRule::RedoDeclared => Some(DwellReuse {
+                    interval: x,
+                    timed: last_tick,
+                }),
+                // The redo path keeps the catalogue's errors: with one that varies, keep nothing.
+                DwellRule::WorkEveryTick => None,
+            }
+        } else {
+            None
         };
-        self.dwell = timed
-            .filter(|_| held && self.use_dwell_cache)
-            .map(|timed| DwellReuse { interval: x, timed });
         x
     }
 
