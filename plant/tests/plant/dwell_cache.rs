@@ -361,7 +361,8 @@ fn assert_cache_invisible(rng: &mut ChaCha8Rng, label: &str, cfg: &PlantConfig) 
         let (ta, tb) = (cached.truth(), worked.truth());
         if bits(&a, &ta) != bits(&b, &tb) {
             panic!(
-                "{label}: sample {k} differs with the dwell cache\n cached {a:?}\n worked {b:?}\n truth cached {ta:?}\n truth worked {tb:?}\n{cfg:#?}"
+                "{label}: sample {k} differs with the dwell cache\n cached {a:?}\n worked {b:?}\n \
+                 truth cached {ta:?}\n truth worked {tb:?}\n{cfg:#?}"
             );
         }
     }
