@@ -16,11 +16,9 @@ use rins_nav::strapdown_lanes::{LANES, StrapdownLanes};
 use rins_plant::{PlantConfig, SeedBatch};
 
 use crate::session::{
-    Alignment, NavRun, NavRunConfig, SessionError, initial_state, run, tracker_for,
+    Alignment, NavRun, NavRunConfig, PROGRESS_EVERY, SessionError, initial_state,
+    run_with_progress, tracker_for,
 };
-
-/// Samples between progress reports of a batch.
-const PROGRESS_EVERY: u64 = 1 << 16;
 
 /// Runs `seeds` of `cfg` for `nav_s` seconds; each seed's samples feed one navigator per
 /// entry of `navs`. Returns, per seed in order, one run per navigator. `progress` receives
@@ -91,9 +89,7 @@ pub fn run_members_split(
                 navs.iter()
                     .map(|n| {
                         let mut p = rins_plant::Plant::new(m).expect("validated configuration");
-                        let r = run(&mut p, nav_s, n);
-                        progress((nav_s / p.dt_s()).round() as u64);
-                        r
+                        run_with_progress(&mut p, nav_s, n, progress)
                     })
                     .collect()
             })
@@ -303,6 +299,7 @@ fn lane_groups(navigators: &[Strapdown]) -> Vec<Vec<usize>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::session::run;
     use rins_nav::VerticalChannel;
     use rins_plant::Plant;
     use rins_plant::carrier::{CarrierKind, SpectrumKind};

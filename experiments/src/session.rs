@@ -96,8 +96,25 @@ pub enum SessionError {
     InvalidConfig(String),
 }
 
+/// Samples between progress reports of a run (and of a Monte Carlo batch,
+/// [`crate::montecarlo`]): a caller that stops long runs from its progress callback (the Python
+/// package on Ctrl-C) is called this often.
+pub(crate) const PROGRESS_EVERY: u64 = 1 << 16;
+
 /// Aligns (if asked) and navigates for `nav_s` seconds, stepping `plant` as it goes.
 pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, SessionError> {
+    run_with_progress(plant, nav_s, cfg, &|_| {})
+}
+
+/// [`run`], with `progress` receiving the navigation samples done every [`PROGRESS_EVERY`]
+/// samples and at the end (summing to the run's samples); while self-aligning it is called with
+/// 0 as often. The runs are the same bits as [`run`]'s.
+pub fn run_with_progress(
+    plant: &mut Plant,
+    nav_s: f64,
+    cfg: &NavRunConfig,
+    progress: &dyn Fn(u64),
+) -> Result<NavRun, SessionError> {
     if !(nav_s > 0.0 && cfg.record_every_s > 0.0) {
         return Err(SessionError::BadTimes(format!(
             "navigation time {nav_s} s and record interval {} s must be > 0",
@@ -119,19 +136,24 @@ pub fn run(plant: &mut Plant, nav_s: f64, cfg: &NavRunConfig) -> Result<NavRun, 
                 "alignment times coarse {coarse_s} s, fine {fine_s} s"
             )));
         }
-        let (state, res) = self_align(plant, init, coarse_s, fine_s)?;
+        let (state, res) = self_align(plant, init, coarse_s, fine_s, progress)?;
         init = state;
         alignment = Some(res);
     }
     let mut tracker = tracker_for(plant, init, ref_height_m, cfg);
     let samples = (nav_s / dt).round() as u64;
     let mut records = Vec::with_capacity((samples / tracker.record_interval() + 1) as usize);
+    let mut reported = 0;
     for k in 1..=samples {
         let s = plant.step();
         if let Some(r) = tracker.push(&s, || plant.truth()) {
             records.push(r);
         } else if k == samples {
             records.push(tracker.record(&plant.truth()));
+        }
+        if k % PROGRESS_EVERY == 0 || k == samples {
+            progress(k - reported);
+            reported = k;
         }
     }
     let up_att_mean_abs_rad = tracker.up_att_mean_abs_rad();
@@ -204,6 +226,7 @@ fn self_align(
     init: NavState,
     coarse_s: f64,
     fine_s: f64,
+    progress: &dyn Fn(u64),
 ) -> Result<(NavState, AlignmentResult), SessionError> {
     let dt = plant.dt_s();
     let n_coarse = (coarse_s / dt).round() as u64;
@@ -215,10 +238,13 @@ fn self_align(
         last_encoder = Some(s.encoder);
         m
     };
-    for _ in 0..n_coarse {
+    for k in 1..=n_coarse {
         let s = plant.step();
         if moved(&s) {
             return Err(SessionError::TableMovedDuringAlignment { t_s: s.t_s });
+        }
+        if k % PROGRESS_EVERY == 0 {
+            progress(0);
         }
         f_sum += s.dv_mps;
         w_sum += s.dtheta_rad;
@@ -255,6 +281,9 @@ fn self_align(
             return Err(SessionError::TableMovedDuringAlignment { t_s: s.t_s });
         }
         nav.update(&s.dtheta_rad, &s.dv_mps);
+        if k % PROGRESS_EVERY == 0 {
+            progress(0);
+        }
         if k % per_update == 0 {
             let st = *nav.state();
             let x = kf.step(&Vector2::new(st.v_n.x, st.v_n.y));
