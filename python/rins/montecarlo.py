@@ -21,8 +21,7 @@ def _task(scenario, seeds, duration_s, alignment, subsamples=1):
 
 
 def _batches(seeds, seeds_per_task):
-    if seeds_per_task < 1:
-        raise ValueError(f"seeds_per_task: expected at least 1, got {seeds_per_task}")
+    seeds_per_task = _rins.whole(seeds_per_task, "seeds_per_task", 1, 2**64 - 1)
     return [seeds[i : i + seeds_per_task] for i in range(0, len(seeds), seeds_per_task)]
 
 
@@ -36,12 +35,10 @@ def _assemble(rows):
 
 
 def _seeds(seeds):
-    seeds = [int(s) for s in seeds]
-    if not seeds:
-        raise ValueError("seeds: expected at least one seed")
-    if any(s < 0 or s >= 2**64 for s in seeds):
-        raise ValueError(f"seeds: expected whole numbers in [0, {2**64 - 1}]")
-    return seeds
+    """The seeds as a list, checked before any task is sent (the compiled call's own check:
+    whole numbers in [0, 2**64 - 1], at least one, none twice; ValueError or TypeError naming
+    the entry)."""
+    return _rins.check_seeds(seeds)
 
 
 def sweep(scenarios, seeds, *, duration_s=None, alignment="truth", client=None, seeds_per_task=4,

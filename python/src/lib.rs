@@ -4,12 +4,16 @@
 //! built-ins or dicts ([`scenario`]), the plant run to numpy arrays in chunks ([`simulation`]),
 //! the reference navigator ([`navigation`]) and Monte Carlo seeds with the figures of
 //! `rins paper table4` ([`montecarlo`]), and sweep files as `rins sweep` runs them
-//! ([`sweep_file`]). Rust runs with the GIL released; errors arrive as
-//! Python exceptions ([`errors`]). The Dask helpers are Python (python/rins/montecarlo.py,
+//! ([`sweep_file`]). Rust runs with the GIL released, and long calls stop on Ctrl-C
+//! ([`interrupt`]); errors arrive as Python exceptions ([`errors`]): whole-number arguments are
+//! checked by [`args`], the memory a call's arrays need by [`memory`], before they are made. The Dask helpers are Python (python/rins/montecarlo.py,
 //! python/rins/sweep_file.py).
 //! Docs: docs/python.md.
 
+pub mod args;
 pub mod errors;
+pub mod interrupt;
+pub mod memory;
 pub mod montecarlo;
 pub mod navigation;
 pub mod scenario;
@@ -40,5 +44,7 @@ fn _rins(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(montecarlo::end_figures, m)?)?;
     m.add_function(wrap_pyfunction!(montecarlo::table4_json, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_file::sweep_seed_figures, m)?)?;
+    m.add_function(wrap_pyfunction!(args::py_whole, m)?)?;
+    m.add_function(wrap_pyfunction!(args::py_seeds, m)?)?;
     Ok(())
 }

@@ -8,7 +8,7 @@ use pyo3::prelude::*;
 use rins_experiments::{Alignment, NavRunConfig};
 use rins_verify::paper::{EndFigures, Table4Options};
 
-use crate::navigation::{parse_alignment, parse_subsamples};
+use crate::navigation::parse_alignment;
 use crate::scenario::PyScenario;
 use crate::simulation::samples_of;
 
@@ -44,6 +44,28 @@ pub fn from_figures(f: [f64; 5]) -> EndFigures {
     }
 }
 
+/// Checks that the error records the Monte Carlo engine keeps fit in memory, before it runs:
+/// `runs` navigation runs (members × navigators) over `duration_s` at `rate_hz`, one record every
+/// `NavRunConfig`'s default interval. `MemoryError` naming the bytes otherwise.
+pub fn check_records(
+    call: &str,
+    members: u128,
+    what: &str,
+    duration_s: f64,
+    rate_hz: f64,
+    hint: &str,
+) -> PyResult<()> {
+    let samples = (duration_s * rate_hz).round() as u64;
+    let every = ((NavRunConfig::default().record_every_s * rate_hz).round() as u64).max(1);
+    let records = u128::from(samples / every + 1);
+    let per = size_of::<rins_experiments::NavRecord>() as u128;
+    crate::memory::check(
+        &format!("{call}: {members} {what} × 2 navigators × {records} error records × {per} bytes"),
+        members * 2 * records * per,
+        hint,
+    )
+}
+
 /// The study options of `rins paper table4` for this scenario: self-alignment prepends its
 /// time to the table's first dwell, as `--align self` does; the navigators update every
 /// `subsamples` intervals, as `--subsamples` says.
@@ -52,7 +74,7 @@ fn options(
     runs: usize,
     duration_s: f64,
     alignment: Alignment,
-    subsamples: i64,
+    subsamples: rins_nav::Subsamples,
 ) -> PyResult<Table4Options> {
     samples_of(duration_s, sc.inner.plant.rate_hz)?;
     let mut plant = sc.inner.plant.clone();
@@ -66,7 +88,7 @@ fn options(
         compensation: None,
         nav: NavRunConfig {
             alignment,
-            subsamples: parse_subsamples(subsamples)?,
+            subsamples,
             ..NavRunConfig::default()
         },
     })
@@ -77,17 +99,26 @@ fn options(
 /// nmi, mean |φ_U| in degrees), the numbers `rins paper table4 --json` lists under `per_seed`.
 /// `duration_s` defaults to the scenario's; `alignment` is `"truth"` (default) or `"self"`;
 /// `subsamples` is the IMU intervals per navigator update (1 to 4; `rins paper table4` uses 4).
+/// `seeds`: whole numbers in [0, 2^64 - 1], none twice. Ctrl-C stops it.
 #[pyfunction]
-#[pyo3(signature = (scenario, seeds, duration_s = None, alignment = None, subsamples = 1))]
+#[pyo3(
+    signature = (scenario, seeds, duration_s = None, alignment = None, subsamples = None),
+    text_signature = "(scenario, seeds, duration_s=None, alignment=None, subsamples=1)"
+)]
 #[allow(clippy::type_complexity)]
 pub fn end_figures(
     py: Python<'_>,
     scenario: &Bound<'_, PyAny>,
-    seeds: Vec<u64>,
+    seeds: &Bound<'_, PyAny>,
     duration_s: Option<f64>,
     alignment: Option<&Bound<'_, PyAny>>,
-    subsamples: i64,
+    subsamples: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Vec<(u64, [f64; 5], [f64; 5])>> {
+    let seeds = crate::args::seeds(seeds)?;
+    let subsamples = match subsamples {
+        Some(n) => crate::args::subsamples(n)?,
+        None => rins_nav::Subsamples::ONE,
+    };
     let sc = PyScenario::resolve(scenario)?;
     let align = match alignment {
         Some(a) => parse_alignment(a)?,
@@ -102,11 +133,20 @@ pub fn end_figures(
     )?;
     rins_scenarios::runner::new_plant(&opt.plant, &sc.inner.source)
         .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
+    check_records(
+        "rins.montecarlo (end_figures)",
+        seeds.len() as u128,
+        "seeds",
+        opt.duration_s,
+        opt.plant.rate_hz,
+        "run fewer seeds at a time (on Dask: a smaller seeds_per_task=) or a shorter duration_s=",
+    )?;
     // Each seed's samples feed both navigators (the Monte Carlo engine: seeds sharing the
     // physics are read out from one plant); the figures are those of runs made one by one.
-    let out = py.detach(|| {
+    let out = crate::interrupt::run(py, |stop| {
         let navs = rins_verify::paper::paired_navs(&opt, &opt.plant);
-        rins_experiments::run_seeds(&opt.plant, &seeds, opt.duration_s, &navs, &|_| {}).map(
+        let progress = |_| stop.check();
+        rins_experiments::run_seeds(&opt.plant, &seeds, opt.duration_s, &navs, &progress).map(
             |runs| {
                 seeds
                     .iter()
@@ -121,7 +161,7 @@ pub fn end_figures(
                     .collect::<Vec<_>>()
             },
         )
-    });
+    })?;
     let out = out.map_err(|e| crate::errors::ScenarioError::new_err(e.to_string()))?;
     Ok(out)
 }
@@ -129,26 +169,33 @@ pub fn end_figures(
 /// The whole `rins paper table4` study in-process: `runs` seeds from the scenario's seed,
 /// uncompensated and compensated, plus the noise-free pair, over `days`; returns the JSON text
 /// `rins paper table4 --json` prints (medians, 5-95 % bands, improvements, per-seed figures),
-/// its navigators updated every `subsamples` intervals (4, as the CLI's default).
+/// its navigators updated every `subsamples` intervals (4, as the CLI's default). `runs`: 1 to
+/// the seeds left from the scenario's `run.seed` to 2^64 - 1. Ctrl-C stops it.
 #[pyfunction]
-#[pyo3(signature = (scenario = None, runs = 2, days = 7.0, alignment = None, subsamples = 4))]
+#[pyo3(
+    signature = (scenario = None, runs = None, days = 7.0, alignment = None, subsamples = None),
+    text_signature = "(scenario=None, runs=2, days=7.0, alignment=None, subsamples=4)"
+)]
 pub fn table4_json(
     py: Python<'_>,
     scenario: Option<&Bound<'_, PyAny>>,
-    runs: usize,
+    runs: Option<&Bound<'_, PyAny>>,
     days: f64,
     alignment: Option<&Bound<'_, PyAny>>,
-    subsamples: i64,
+    subsamples: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<String> {
+    let subsamples = match subsamples {
+        Some(n) => crate::args::subsamples(n)?,
+        None => rins_nav::Subsamples::new(4).map_err(pyo3::exceptions::PyValueError::new_err)?,
+    };
     let sc = match scenario {
         Some(s) => PyScenario::resolve(s)?,
         None => PyScenario::from_path("builtin:paper-16pos-week")?,
     };
-    if runs == 0 {
-        return Err(pyo3::exceptions::PyValueError::new_err(
-            "runs: expected at least 1 seed, got 0",
-        ));
-    }
+    // The seeds are run.seed, run.seed + 1, …: the last must be a 64-bit number.
+    let most = (u64::MAX - sc.inner.plant.seed).saturating_add(1);
+    let runs = crate::args::whole_opt(runs, "runs", 1, most)?.unwrap_or(2);
+    let runs = usize::try_from(runs).unwrap_or(usize::MAX);
     if !(days > 0.0 && days <= 60.0) {
         return Err(pyo3::exceptions::PyValueError::new_err(format!(
             "days: expected a number in (0, 60], got {days}"
@@ -161,7 +208,18 @@ pub fn table4_json(
     let opt = options(&sc, runs, days * 86_400.0, align, subsamples)?;
     rins_scenarios::runner::new_plant(&opt.plant, &sc.inner.source)
         .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
-    let report = py.detach(|| rins_verify::paper::table4(&opt, &|_| {}));
+    // The seeds and the noise-free pair, and the first seed's series kept for the figures.
+    check_records(
+        "rins.table4",
+        runs as u128 + 2,
+        "runs",
+        opt.duration_s,
+        opt.plant.rate_hz,
+        "run fewer runs= or fewer days=",
+    )?;
+    let report = crate::interrupt::run(py, |stop| {
+        rins_verify::paper::table4(&opt, &|_| stop.check())
+    })?;
     serde_json::to_string_pretty(&report)
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))
 }

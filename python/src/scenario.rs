@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::types::{PyDict, PyFloat, PyList, PyTuple};
 use rins_scenarios::file::BUILTIN;
 use rins_scenarios::{Scenario, ScenarioError};
 
@@ -87,9 +87,51 @@ impl PyScenario {
     }
 }
 
-/// The dict as TOML text (through JSON: None, sets and other non-TOML values are refused).
+/// The first float in `v` (a dict's value: nested dicts, lists and tuples are searched) that
+/// is not finite, with its dotted path under `path` (`site.lat_deg`, `parameter[0].values[1]`).
+fn non_finite(v: &Bound<'_, PyAny>, path: &str) -> PyResult<Option<(String, f64)>> {
+    if let Ok(x) = v.cast::<PyFloat>() {
+        let x = x.value();
+        return Ok((!x.is_finite()).then(|| (path.to_string(), x)));
+    }
+    if let Ok(d) = v.cast::<PyDict>() {
+        for (k, x) in d.iter() {
+            let key = k.str()?.to_string();
+            let sub = if path.is_empty() {
+                key
+            } else {
+                format!("{path}.{key}")
+            };
+            if let Some(found) = non_finite(&x, &sub)? {
+                return Ok(Some(found));
+            }
+        }
+        return Ok(None);
+    }
+    if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
+        for (i, x) in v.try_iter()?.enumerate() {
+            if let Some(found) = non_finite(&x?, &format!("{path}[{i}]"))? {
+                return Ok(Some(found));
+            }
+        }
+    }
+    Ok(None)
+}
+
+/// The dict as TOML text (through JSON: None, sets and other non-TOML values are refused, and
+/// a NaN or infinite number is refused naming its field).
 pub fn dict_to_toml(d: &Bound<'_, PyDict>) -> PyResult<String> {
     let py = d.py();
+    if let Some((path, x)) = non_finite(d.as_any(), "")? {
+        let x = if x.is_nan() {
+            "NaN".to_string()
+        } else {
+            x.to_string()
+        };
+        return Err(crate::errors::ScenarioError::new_err(format!(
+            "dict: {path}: expected a finite number, got {x}"
+        )));
+    }
     let json: String = py.import("json")?.call_method1("dumps", (d,))?.extract()?;
     let value: serde_json::Value = serde_json::from_str(&json).map_err(|e| {
         crate::errors::ScenarioError::new_err(format!("dict: not representable as TOML: {e}"))

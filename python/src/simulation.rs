@@ -15,6 +15,7 @@ use rins_plant::thermal::node;
 use rins_plant::units::{DPH, UG};
 use rins_plant::{ImuSample, Plant, Truth};
 
+use crate::memory;
 use crate::scenario::PyScenario;
 
 /// Gimbal position labels, indexed by the `position` code of a chunk (the CSV's `position`
@@ -67,35 +68,103 @@ impl Layout {
             truth,
         }
     }
+
+    /// Bytes of one sample's arrays, as [`Columns::reserve`] reserves them.
+    fn bytes_per_sample(&self) -> u128 {
+        let f = size_of::<f64>() as u128;
+        // sample, position; t_s, Δθ, Δv, the encoders, the sensors' and the chamber's
+        // temperatures.
+        let measured = (size_of::<u64>() + size_of::<u8>()) as u128
+            + f * (1 + 3 + 3 + 2 + node::COUNT as u128 + 1);
+        if !self.truth {
+            return measured;
+        }
+        // Δθ and Δv true, q_bn, the gimbal angles, each effect's 3 rates, the carrier's 10.
+        let effects = 3 * (self.gyro_terms.len() + self.accel_terms.len()) as u128;
+        let carrier = if self.moving_carrier { 10 } else { 0 };
+        measured + f * (3 + 3 + 4 + 2 + effects + carrier)
+    }
 }
+
+/// Who asked for samples, for the messages of [`Simulation::take`].
+#[derive(Clone, Copy)]
+enum Caller {
+    Run,
+    Chunk,
+    Step,
+}
+
+impl Caller {
+    fn name(self) -> &'static str {
+        match self {
+            Caller::Run => "rins.run",
+            Caller::Chunk => "rins.Simulation (a chunk)",
+            Caller::Step => "Simulation.step",
+        }
+    }
+
+    /// What to change when the arrays do not fit.
+    fn hint(self) -> &'static str {
+        match self {
+            Caller::Run => {
+                "take the samples in chunks with rins.Simulation(scenario, chunk=N), or run a \
+                 shorter span with duration_s="
+            }
+            Caller::Chunk => "use a smaller chunk (rins.Simulation(scenario, chunk=N))",
+            Caller::Step => {
+                "step fewer samples at a time, or iterate over rins.Simulation(scenario, chunk=N)"
+            }
+        }
+    }
+}
+
+/// Chunks of at most this many samples are stepped without looking for signals (they take
+/// well under a second even while a gimbal turns with `truth=True`), and so with no thread of
+/// their own and no copy of the plant to go back to.
+const UNINTERRUPTED: u64 = 4096;
+
+/// Samples between looks at the stop flag of a longer chunk.
+const STOP_EVERY: u64 = 64;
 
 fn push3(v: &mut Vec<f64>, x: &Vector3<f64>) {
     v.extend_from_slice(&[x.x, x.y, x.z]);
 }
 
 impl Columns {
-    fn with_capacity(n: usize, l: &Layout) -> Self {
-        let v = |k: usize| Vec::with_capacity(n * k);
-        Self {
+    /// Empty columns with room for `n` samples (the truth columns only with `l.truth`), or
+    /// `MemoryError` naming `what` and the bytes `need` if a reservation fails.
+    fn reserve(n: u64, l: &Layout, what: &str, need: u128, hint: &str) -> PyResult<Self> {
+        let n = u128::from(n);
+        let v = |k: usize| memory::vec::<f64>(n * k as u128, what, need, hint);
+        let t = |k: usize| if l.truth { v(k) } else { Ok(Vec::new()) };
+        Ok(Self {
             n: 0,
-            sample: Vec::with_capacity(n),
-            t_s: v(1),
-            dtheta_rad: v(3),
-            dv_mps: v(3),
-            outer_deg: v(1),
-            inner_deg: v(1),
-            position: Vec::with_capacity(n),
-            temps_c: v(node::COUNT),
-            temp_chamber_c: v(1),
-            dtheta_true_rad: v(3),
-            dv_true_mps: v(3),
-            q_bn: v(4),
-            gimbal_outer_rad: v(1),
-            gimbal_inner_rad: v(1),
-            gyro_dph: l.gyro_terms.iter().map(|_| v(3)).collect(),
-            accel_ug: l.accel_terms.iter().map(|_| v(3)).collect(),
-            carrier: if l.moving_carrier { v(10) } else { Vec::new() },
-        }
+            sample: memory::vec(n, what, need, hint)?,
+            t_s: v(1)?,
+            dtheta_rad: v(3)?,
+            dv_mps: v(3)?,
+            outer_deg: v(1)?,
+            inner_deg: v(1)?,
+            position: memory::vec(n, what, need, hint)?,
+            temps_c: v(node::COUNT)?,
+            temp_chamber_c: v(1)?,
+            dtheta_true_rad: t(3)?,
+            dv_true_mps: t(3)?,
+            q_bn: t(4)?,
+            gimbal_outer_rad: t(1)?,
+            gimbal_inner_rad: t(1)?,
+            gyro_dph: l.gyro_terms.iter().map(|_| t(3)).collect::<PyResult<_>>()?,
+            accel_ug: l
+                .accel_terms
+                .iter()
+                .map(|_| t(3))
+                .collect::<PyResult<_>>()?,
+            carrier: if l.truth && l.moving_carrier {
+                v(10)?
+            } else {
+                Vec::new()
+            },
+        })
     }
 
     /// One sample, computed as the CSV sink computes a row of one sample.
@@ -219,7 +288,8 @@ pub fn samples_of(duration_s: f64, rate_hz: f64) -> PyResult<u64> {
 /// chunk=100000, seed=None, truth=True)`. Iterating yields dicts of numpy arrays of at most `chunk`
 /// samples until `duration_s` (default: the scenario's) is covered; `step(n)` takes `n` more.
 /// `truth=False` leaves out the truth columns (the measured outputs only). The GIL is released
-/// while the plant runs.
+/// while the plant runs; Ctrl-C stops a call within a fraction of a second and leaves the
+/// simulation where it was (the next call gives the same samples).
 #[pyclass(module = "rins", name = "Simulation")]
 pub struct Simulation {
     plant: Mutex<Plant>,
@@ -248,6 +318,19 @@ impl Simulation {
                 "chunk: expected at least 1 sample, got 0",
             ));
         }
+        // A chunk's arrays must fit (checked again before each chunk is reserved).
+        if chunk != u64::MAX {
+            let per = Layout::of(&cfg, truth).bytes_per_sample();
+            let n = chunk.min(total);
+            memory::check(
+                &format!(
+                    "{}: chunk={chunk}: {n} samples × {per} bytes",
+                    Caller::Chunk.name()
+                ),
+                u128::from(n) * per,
+                Caller::Chunk.hint(),
+            )?;
+        }
         let plant = rins_scenarios::runner::new_plant(&cfg, &sc.inner.source)
             .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
         Ok(Self {
@@ -259,34 +342,67 @@ impl Simulation {
         })
     }
 
-    /// Steps `n` samples with the GIL released and returns them as a dict of arrays.
-    fn take<'py>(&mut self, py: Python<'py>, n: u64) -> PyResult<Bound<'py, PyDict>> {
-        let (plant, layout) = (&self.plant, &self.layout);
-        let cols = py.detach(|| {
-            let mut plant = plant.lock().unwrap_or_else(|e| e.into_inner());
-            let mut c = Columns::with_capacity(n as usize, layout);
-            for _ in 0..n {
-                let s = plant.step();
-                c.push(&s, &plant.truth(), layout);
+    /// Steps `n` samples with the GIL released and returns them as a dict of arrays. Their
+    /// bytes are checked, then reserved, before the plant steps (`MemoryError` naming them
+    /// otherwise); a chunk of more than [`UNINTERRUPTED`] samples stops on Ctrl-C and puts the
+    /// plant back as it was.
+    fn take<'py>(
+        &mut self,
+        py: Python<'py>,
+        n: u64,
+        caller: Caller,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let per = self.layout.bytes_per_sample();
+        let need = u128::from(n) * per;
+        let what = format!("{}: {n} samples × {per} bytes", caller.name());
+        memory::check(&what, need, caller.hint())?;
+        let layout = &self.layout;
+        let mut c = Columns::reserve(n, layout, &what, need, caller.hint())?;
+        let plant = self.plant.get_mut().unwrap_or_else(|e| e.into_inner());
+        if n <= UNINTERRUPTED {
+            py.detach(|| {
+                for _ in 0..n {
+                    let s = plant.step();
+                    c.push(&s, &plant.truth(), layout);
+                }
+            });
+        } else {
+            let before = plant.clone();
+            let stepped = crate::interrupt::run(py, |stop| {
+                for k in 0..n {
+                    if k % STOP_EVERY == 0 && stop.requested() {
+                        return;
+                    }
+                    let s = plant.step();
+                    c.push(&s, &plant.truth(), layout);
+                }
+            });
+            if let Err(e) = stepped {
+                *plant = before;
+                return Err(e);
             }
-            c
-        });
+        }
         self.done += n;
-        cols.into_dict(py, &self.layout)
+        c.into_dict(py, &self.layout)
     }
 }
 
 #[pymethods]
 impl Simulation {
     #[new]
-    #[pyo3(signature = (scenario, duration_s = None, chunk = 100_000, seed = None, truth = true))]
+    #[pyo3(
+        signature = (scenario, duration_s = None, chunk = None, seed = None, truth = true),
+        text_signature = "(scenario, duration_s=None, chunk=100000, seed=None, truth=True)"
+    )]
     fn py_new(
         scenario: &Bound<'_, PyAny>,
         duration_s: Option<f64>,
-        chunk: u64,
-        seed: Option<u64>,
+        chunk: Option<&Bound<'_, PyAny>>,
+        seed: Option<&Bound<'_, PyAny>>,
         truth: bool,
     ) -> PyResult<Self> {
+        let chunk = crate::args::whole_opt(chunk, "chunk", 1, u64::MAX)?.unwrap_or(100_000);
+        let seed = crate::args::seed(seed)?;
         Self::new(
             &PyScenario::resolve(scenario)?,
             duration_s,
@@ -297,8 +413,13 @@ impl Simulation {
     }
 
     /// The next `n` samples (beyond `duration_s` too), as a dict of numpy arrays.
-    fn step<'py>(&mut self, py: Python<'py>, n: u64) -> PyResult<Bound<'py, PyDict>> {
-        self.take(py, n)
+    fn step<'py>(
+        &mut self,
+        py: Python<'py>,
+        n: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let n = crate::args::whole(n, "n", 0, u64::MAX)?;
+        self.take(py, n, Caller::Step)
     }
 
     /// Samples stepped so far.
@@ -328,24 +449,26 @@ impl Simulation {
         if n == 0 {
             return Ok(None);
         }
-        self.take(py, n).map(Some)
+        self.take(py, n, Caller::Chunk).map(Some)
     }
 }
 
 /// Runs `scenario` for `duration_s` (default: the scenario's) in one call and returns every
 /// sample as a dict of numpy arrays (keys: docs/python.md); `truth=False` leaves out the truth
-/// columns. The GIL is released while it runs.
+/// columns. The GIL is released while it runs; Ctrl-C stops it. The arrays' bytes are checked
+/// first: `MemoryError` where they do not fit (use `Simulation(chunk=…)` or `duration_s=`).
 #[pyfunction]
 #[pyo3(signature = (scenario, duration_s = None, seed = None, truth = true))]
 pub fn run<'py>(
     py: Python<'py>,
     scenario: &Bound<'py, PyAny>,
     duration_s: Option<f64>,
-    seed: Option<u64>,
+    seed: Option<&Bound<'py, PyAny>>,
     truth: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let seed = crate::args::seed(seed)?;
     let sc = PyScenario::resolve(scenario)?;
     let mut sim = Simulation::new(&sc, duration_s, u64::MAX, seed, truth)?;
     let n = sim.total;
-    sim.take(py, n)
+    sim.take(py, n, Caller::Run)
 }

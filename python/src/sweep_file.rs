@@ -16,7 +16,7 @@ use rins_scenarios::sweep::spec::Align;
 use rins_scenarios::sweep::{SweepPlan, SweepReport, engine};
 
 use crate::errors::{NavigationError, SweepError};
-use crate::montecarlo::{figures, from_figures};
+use crate::montecarlo::{check_records, figures, from_figures};
 use crate::scenario::dict_to_toml;
 
 /// One seed's figures as they travel: `(seed, uncompensated, compensated)`, each in the order
@@ -108,13 +108,25 @@ impl PySweepPlan {
     }
 
     /// Runs every point × seed in-process (the sweep engine `rins sweep` runs, on every core,
-    /// GIL released); returns the JSON `rins sweep --json` prints.
+    /// GIL released; Ctrl-C stops it); returns the JSON `rins sweep --json` prints.
     fn run_json(&self, py: Python<'_>) -> PyResult<String> {
-        let r = py
-            .detach(|| rins_scenarios::sweep::run(&self.inner, &|_| {}))
-            .map_err(|e| {
-                NavigationError::new_err(format!("{}: running the sweep: {e}", self.inner.source))
-            })?;
+        let plan = &self.inner;
+        if let Some(p) = plan.points.first() {
+            check_records(
+                "rins.sweep_file",
+                plan.seeds.len() as u128,
+                "seeds",
+                plan.duration_s,
+                p.plant.rate_hz,
+                "run fewer seeds or fewer days (sweep.seeds, sweep.days)",
+            )?;
+        }
+        let r = crate::interrupt::run(py, |stop| {
+            rins_scenarios::sweep::run(plan, &|_| stop.check())
+        })?
+        .map_err(|e| {
+            NavigationError::new_err(format!("{}: running the sweep: {e}", self.inner.source))
+        })?;
         json(&r)
     }
 
@@ -188,22 +200,33 @@ impl PySweepPlan {
 }
 
 /// One Dask task of a sweep: the per-seed figures of one point's plant (TOML text from
-/// `SweepPlan.point_plants()`) for `seeds`, through the sweep engine (GIL released). Returns
-/// `(seed, uncompensated, compensated)` tuples with the figures of `rins.FIGURES`.
+/// `SweepPlan.point_plants()`) for `seeds`, through the sweep engine (GIL released; Ctrl-C
+/// stops it). Returns `(seed, uncompensated, compensated)` tuples with the figures of
+/// `rins.FIGURES`.
 #[pyfunction]
 pub fn sweep_seed_figures(
     py: Python<'_>,
     plant_toml: &str,
-    seeds: Vec<u64>,
+    seeds: &Bound<'_, PyAny>,
     duration_s: f64,
     alignment: &str,
 ) -> PyResult<Vec<SeedRow>> {
+    let seeds = crate::args::seeds(seeds)?;
     let plant: PlantConfig = toml::from_str(plant_toml)
         .map_err(|e| PyValueError::new_err(format!("plant_toml: {e}")))?;
     let align = align_of(alignment)?;
-    let rows = py
-        .detach(|| engine::seed_figures(&plant, &seeds, duration_s, align, &|_| {}))
-        .map_err(|e| NavigationError::new_err(format!("running the sweep: {e}")))?;
+    check_records(
+        "sweep_seed_figures",
+        seeds.len() as u128,
+        "seeds",
+        duration_s,
+        plant.rate_hz,
+        "give each task fewer seeds (seeds_per_task=)",
+    )?;
+    let rows = crate::interrupt::run(py, |stop| {
+        engine::seed_figures(&plant, &seeds, duration_s, align, &|_| stop.check())
+    })?
+    .map_err(|e| NavigationError::new_err(format!("running the sweep: {e}")))?;
     Ok(rows
         .iter()
         .map(|r| (r.seed, figures(&r.uncompensated), figures(&r.compensated)))

@@ -15,6 +15,14 @@
   figures of both navigators, medians and bands); the same on a LocalCluster(n_workers=2,
   processes=True) equals the in-process result bit for bit; a bad sweep file raises
   rins.SweepError naming the file, line and key with the CLI's words.
+- Memory: under a 6 GiB address-space limit, `rins.run` of the week raises MemoryError naming
+  the bytes it needs (and `Simulation(chunk=…)`, `step(n)`, `navigate` likewise) before
+  allocating, and the interpreter carries on.
+- Ctrl-C: SIGINT stops `rins.montecarlo` of the week (8 seeds), `rins.run` and `rins.navigate`
+  within 2 s with KeyboardInterrupt; an interrupted `Simulation.step` leaves the simulation
+  where it was.
+- Arguments: whole numbers out of range raise ValueError (TypeError for a non-integer) naming
+  the argument and its range; a repeated seed and a NaN in a dict scenario name the entry.
 
 Usage: python test_package.py RINS_BINARY WORK_DIR
 """
@@ -22,6 +30,8 @@ Usage: python test_package.py RINS_BINARY WORK_DIR
 import json
 import math
 import os
+import re
+import signal
 import subprocess
 import sys
 import threading
@@ -424,11 +434,177 @@ def test_sweep_file_errors():
         pass
 
 
+def child(code, **kw):
+    """Runs `code` in a child Python (this interpreter, the same rins) from WORK."""
+    return subprocess.Popen([sys.executable, "-c", code], cwd=WORK, text=True, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, **kw)
+
+
+MEMORY_CHILD = f"""
+import resource
+resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))
+import rins
+for what, call in (
+        ("run", lambda: rins.run({WEEK!r})),
+        ("chunk", lambda: rins.Simulation({WEEK!r}, chunk=10**9)),
+        ("step", lambda: rins.Simulation({WEEK!r}).step(10**12)),
+        ("navigate", lambda: rins.navigate({WEEK!r}, record_every_s=0.01))):
+    try:
+        call()
+        print(what, "accepted")
+    except MemoryError as e:
+        print(what, "MemoryError", e)
+# The interpreter carries on: a short run fits.
+print("after", len(rins.run({SHORT!r}, duration_s=60.0)["t_s"]))
+"""
+
+
+def test_memory_error():
+    """Under a 6 GiB address-space limit the week's arrays do not fit: MemoryError, not SIGABRT."""
+    p = child(MEMORY_CHILD)
+    out, err = p.communicate(timeout=120)
+    assert p.returncode == 0, (p.returncode, out, err)
+    lines = dict(ln.split(" ", 1) for ln in out.splitlines())
+    week = 7 * 86400 * 100
+    for what in ("run", "chunk", "step", "navigate"):
+        assert lines[what].startswith("MemoryError "), (what, lines[what])
+    m = re.search(r"rins\.run: (\d+) samples × (\d+) bytes = (\d+) bytes \([\d.]+ GB\) of arrays, more than this "
+                  r"process can still allocate \((\d+) bytes \([\d.]+ GB\) under its address-space limit",
+                  lines["run"])
+    assert m, lines["run"]
+    n, per, need, left = map(int, m.groups())
+    assert n == week and need == n * per and left < need <= 2**40, (n, per, need, left)
+    assert "rins.Simulation(scenario, chunk=N)" in lines["run"] and "duration_s=" in lines["run"], lines["run"]
+    assert "chunk=1000000000: 60480000 samples" in lines["chunk"] and "smaller chunk" in lines["chunk"], lines["chunk"]
+    assert f"Simulation.step: {10**12} samples" in lines["step"], lines["step"]
+    assert "rins.navigate: 60480001 error records" in lines["navigate"] and "record_every_s=" in lines["navigate"]
+    assert lines["after"] == "6000", lines["after"]
+    print(f"6 GiB address space: rins.run(week) -> MemoryError: {lines['run'][len('MemoryError '):]}")
+
+
+INTERRUPT_CHILD = """
+import sys, rins
+call = {
+    "montecarlo": lambda: rins.montecarlo(%(week)r, range(1, 9)),
+    "run": lambda: rins.run(%(week)r, duration_s=86400.0),
+    "navigate": lambda: rins.navigate(%(week)r),
+}[sys.argv[1]]
+print("ready", flush=True)
+call()
+print("finished", flush=True)
+""" % {"week": WEEK}
+
+
+def test_interrupt():
+    """SIGINT (Ctrl-C) after 3 s stops long calls within 2 s with KeyboardInterrupt."""
+    for what in ("montecarlo", "run", "navigate"):
+        p = subprocess.Popen([sys.executable, "-c", INTERRUPT_CHILD, what], cwd=WORK, text=True,
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        assert p.stdout.readline().strip() == "ready"
+        time.sleep(3.0)
+        assert p.poll() is None, f"{what} ended before the signal"
+        t0 = time.perf_counter()
+        p.send_signal(signal.SIGINT)
+        try:
+            out, err = p.communicate(timeout=30)
+        finally:
+            p.kill()
+        dt = time.perf_counter() - t0
+        assert "KeyboardInterrupt" in err and "finished" not in out, (what, out, err)
+        assert p.returncode != 0, p.returncode
+        assert dt < 2.0, f"{what}: {dt:.2f} s from SIGINT to exit"
+        print(f"Ctrl-C: {what} of the week stopped with KeyboardInterrupt {dt:.2f} s after SIGINT")
+    # An interrupted step leaves the simulation where it was: the next step gives the samples a
+    # fresh simulation gives.
+    sim = rins.Simulation(SHORT, truth=False)
+    first = sim.step(1000)
+    sent = []
+    timer = threading.Timer(0.5, lambda: (sent.append(time.perf_counter()), os.kill(os.getpid(), signal.SIGINT)))
+    timer.start()
+    try:
+        sim.step(2 * 10**7)
+        raise AssertionError("step(2 * 10**7) was not interrupted")
+    except KeyboardInterrupt:
+        dt = time.perf_counter() - sent[0]
+    timer.join()
+    assert dt < 2.0, dt
+    assert sim.samples_done == 1000, sim.samples_done
+    again = sim.step(5000)
+    fresh = rins.Simulation(SHORT, truth=False)
+    fresh.step(1000)
+    ref = fresh.step(5000)
+    for key in ("t_s", "dtheta_rad", "dv_mps"):
+        same_bits(again[key], ref[key], f"{key} of the step after an interrupted one")
+    assert first["t_s"][-1] < again["t_s"][0]
+    print(f"Ctrl-C: Simulation.step(2 * 10**7) stopped {dt:.2f} s after SIGINT, the simulation unchanged")
+
+
+BIG = 2**64
+
+
+def raises(call, exc, *parts):
+    try:
+        call()
+    except exc as e:
+        msg = str(e)
+        for part in parts:
+            assert part in msg, (part, msg)
+        return msg
+    raise AssertionError(f"accepted: expected {exc.__name__} with {parts}")
+
+
+def test_argument_errors():
+    top = f"[0, {BIG - 1}]"
+    sim = rins.Simulation(SHORT, duration_s=60.0)
+    nan = tomllib.loads(rins.builtin_toml(SHORT))
+    nan["site"]["lat_deg"] = float("nan")
+    inf = json.loads(json.dumps(tomllib.loads(rins.builtin_toml(SHORT))))
+    inf["sensor"] = {"gyro": {"position_bias": {"dph": [0.0, float("-inf"), 0.0]}}}
+    cases = [
+        (lambda: rins.run(SHORT, duration_s=1.0, seed=-1), ValueError, f"seed: expected a whole number in {top}, got -1"),
+        (lambda: rins.run(SHORT, duration_s=1.0, seed=BIG), ValueError, f"seed: expected a whole number in {top}, got {BIG}"),
+        (lambda: rins.run(SHORT, duration_s=1.0, seed=1.5), TypeError, f"seed: expected a whole number in {top}, got float 1.5"),
+        (lambda: rins.Simulation(SHORT, chunk=-1), ValueError, f"chunk: expected a whole number in [1, {BIG - 1}], got -1"),
+        (lambda: rins.Simulation(SHORT, chunk=0), ValueError, f"chunk: expected a whole number in [1, {BIG - 1}], got 0"),
+        (lambda: rins.Simulation(SHORT, seed=-2), ValueError, f"seed: expected a whole number in {top}, got -2"),
+        (lambda: sim.step(-3), ValueError, f"n: expected a whole number in {top}, got -3"),
+        (lambda: sim.step(BIG), ValueError, f"n: expected a whole number in {top}, got {BIG}"),
+        (lambda: rins.navigate(SHORT, duration_s=60.0, seed=-1), ValueError, f"seed: expected a whole number in {top}, got -1"),
+        (lambda: rins.navigate(SHORT, duration_s=60.0, subsamples=2**70), ValueError,
+         f"subsamples: expected a whole number in [1, 4], got {2**70}", "1 to 4"),
+        (lambda: rins.montecarlo(WEEK, [3, -1], duration_s=60.0), ValueError,
+         f"seeds[1]: expected a whole number in {top}, got -1"),
+        (lambda: rins.montecarlo(WEEK, [BIG], duration_s=60.0), ValueError, f"seeds[0]: expected a whole number in {top}, got {BIG}"),
+        (lambda: rins.montecarlo(WEEK, [1, 2, 1], duration_s=60.0), ValueError,
+         "seeds[2]: seed 1 is listed twice (also seeds[0]); each seed runs once"),
+        (lambda: rins.montecarlo(WEEK, [], duration_s=60.0), ValueError, "seeds: expected at least one seed, got none"),
+        (lambda: rins.montecarlo(WEEK, [1.5], duration_s=60.0), TypeError, f"seeds[0]: expected a whole number in {top}, got float 1.5"),
+        (lambda: rins.end_figures(WEEK, [7, 7], 60.0), ValueError, "seeds[1]: seed 7 is listed twice (also seeds[0])"),
+        (lambda: sys.modules["rins.montecarlo"]._batches([1, 2], 0), ValueError,
+         f"seeds_per_task: expected a whole number in [1, {BIG - 1}], got 0"),
+        (lambda: rins.table4(WEEK, runs=0, days=0.001), ValueError, "runs: expected a whole number in [1, "),
+        (lambda: rins.table4(WEEK, runs=-1, days=0.001), ValueError, "runs: expected a whole number in [1, ", "got -1"),
+        (lambda: rins.Scenario(nan), rins.ScenarioError, "dict: site.lat_deg: expected a finite number, got NaN"),
+        (lambda: rins.to_toml(inf), rins.ScenarioError, "dict: sensor.gyro.position_bias.dph[1]: expected a finite number, got -inf"),
+    ]
+    for call, exc, *parts in cases:
+        msg = raises(call, exc, *parts)
+    print(f"arguments: {len(cases)} bad values raise ValueError/TypeError naming the argument, e.g. {msg!r}")
+    # numpy integers and the largest seed are whole numbers too.
+    a = rins.run(SHORT, duration_s=1.0, seed=np.uint64(BIG - 1), truth=False)
+    b = rins.run(SHORT, duration_s=1.0, seed=BIG - 1, truth=False)
+    same_bits(a["dtheta_rad"], b["dtheta_rad"], "seed as numpy uint64")
+    assert len(rins.Simulation(SHORT, duration_s=1.0, chunk=np.int64(30)).step(np.int32(7))["t_s"]) == 7
+
+
 if __name__ == "__main__":
     os.makedirs(WORK, exist_ok=True)
     test_hour_equals_csv()
     test_gil_released()
     test_errors()
+    test_argument_errors()
+    test_memory_error()
+    test_interrupt()
     test_montecarlo_equals_cli()
     test_dask_sweep()
     sweep_path, sweep_local = test_sweep_file_equals_cli()
