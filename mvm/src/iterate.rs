@@ -706,7 +706,12 @@ pub fn iterate(
                             .trim_end_matches(" (with a bias correction)")
                             .to_string()
                     })
-                    .collect();
+                    .fold(Vec::new(), |mut v: Vec<String>, e| {
+                        if !v.contains(&e) {
+                            v.push(e);
+                        }
+                        v
+                    });
                 records.push(AcceptedTerm {
                     confusable_with,
                     tau,
@@ -771,16 +776,17 @@ pub fn iterate(
         let mut coefficients = applied.coefficients;
         let last = steps.last_mut().expect("pushed");
         for c in coefficients.iter_mut() {
-            let widen = last
+            let tau = last
                 .accepted
                 .iter()
                 .find(|a| a.effect == c.effect && a.channel == c.channel)
-                .and_then(|a| a.tau)
-                .map_or(1.0, |t| t.coefficient_widening);
-            if let (Some(v), Some(ci)) = (c.fitted, c.ci95.as_mut())
-                && widen > 1.0
-            {
-                *ci = [v - (v - ci[0]) * widen, v + (ci[1] - v) * widen];
+                .and_then(|a| a.tau);
+            if let (Some(t), Some(v), Some(ci)) = (tau, c.fitted, c.ci95.as_mut()) {
+                let w = t.coefficient_widening.max(1.0);
+                *ci = [
+                    (v - (v - ci[0]) * w).min(t.coefficient_ci95[0]),
+                    (v + (ci[1] - v) * w).max(t.coefficient_ci95[1]),
+                ];
             }
         }
         last.coefficients = coefficients;

@@ -214,8 +214,8 @@ struct Refine {
     channel: usize,
     /// The design of its test (it last).
     design: crate::fit::Design,
-    /// The profile over the grid: (τ, χ²).
-    grid: Vec<(f64, f64)>,
+    /// The profile over the grid.
+    grid: Vec<tau::ProfilePoint>,
 }
 
 /// The library columns of channel `c` as the selection reads them (library indices `idx` of
@@ -486,9 +486,10 @@ pub(crate) fn search(
                         .filter(|(u, _)| terms[**u].same_family(&terms[t]))
                         .map(|(u, col)| (terms[*u].tau_s().unwrap_or(f64::NAN), col.clone()))
                         .collect();
-                    let prof = tau::profile(
+                    let grid = tau::profile(
                         &p.design,
                         &a.data[c],
+                        &family.iter().map(|(t, _)| *t).collect::<Vec<_>>(),
                         &family
                             .iter()
                             .map(|(_, col)| col.clone())
@@ -498,11 +499,7 @@ pub(crate) fn search(
                         kept: kept.len(),
                         channel: c,
                         design: p.design.clone(),
-                        grid: family
-                            .iter()
-                            .zip(prof)
-                            .filter_map(|((tau, _), chi2)| chi2.map(|x| (*tau, x)))
-                            .collect(),
+                        grid,
                     });
                 }
                 let child = terms[t].describe();
@@ -663,7 +660,11 @@ fn refine_taus(
     for r in refine {
         let t = &kept[r.kept].1;
         let mut v = Vec::new();
-        for tau_s in tau::fine_around(t.tau_s().unwrap_or(60.0), ratio) {
+        let (lo, hi) = (taus[0], taus[taus.len() - 1]);
+        for tau_s in tau::fine_around(t.tau_s().unwrap_or(60.0), ratio)
+            .into_iter()
+            .filter(|t| (lo..=hi).contains(t))
+        {
             let ft = t.with_tau(tau_s);
             let k = fine_terms.iter().position(|x| *x == ft).unwrap_or_else(|| {
                 fine_terms.push(ft);
@@ -674,30 +675,33 @@ fn refine_taus(
         fine_of.push(v);
     }
     let mom = library::moments(kin, rows, ws, &fine_terms);
-    let mut estimates: Vec<Option<(tau::TauEstimate, f64)>> = Vec::new();
+    // (estimate, grid pick, the coefficient's envelope over the τ interval).
+    let mut estimates: Vec<Option<(tau::TauEstimate, f64, Option<[f64; 2]>)>> = Vec::new();
     for (r, fine) in refine.iter().zip(&fine_of) {
         let cols: Vec<Vec<f64>> = fine
             .iter()
             .map(|(_, k)| mom.column(&fine_terms[*k], r.channel, ws))
             .collect();
-        let prof = tau::profile(&r.design, &a.data[r.channel], &cols);
+        let taus_fine: Vec<f64> = fine.iter().map(|(t, _)| *t).collect();
         let mut pts = r.grid.clone();
-        pts.extend(
-            fine.iter()
-                .zip(prof)
-                .filter_map(|((t, _), c)| c.map(|c| (*t, c))),
-        );
+        pts.extend(tau::profile(&r.design, &a.data[r.channel], &taus_fine, &cols));
         let d = &a.data[r.channel];
-        let min = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        let min = pts.iter().map(|p| p.chi2).fold(f64::INFINITY, f64::min);
         let dof = d.y.len().saturating_sub(r.design.ncols() + 1).max(1) as f64;
         let s2 = (min / dof).max(1.0);
-        estimates
-            .push(tau::estimate(&pts, s2).map(|e| (e, kept[r.kept].1.tau_s().unwrap_or(f64::NAN))));
+        let pairs: Vec<(f64, f64)> = pts.iter().map(|p| (p.tau_s, p.chi2)).collect();
+        estimates.push(tau::estimate(&pairs, s2).map(|e| {
+            (
+                e,
+                kept[r.kept].1.tau_s().unwrap_or(f64::NAN),
+                tau::envelope(&pts, e.chi2_bound),
+            )
+        }));
     }
     // Pass 2: each estimate (rounded to three digits) and ±0.1 % for the derivative.
     let mut final_terms: Vec<Term> = Vec::new();
     for (r, e) in refine.iter().zip(&estimates) {
-        if let Some((e, _)) = e {
+        if let Some((e, _, _)) = e {
             let tau_s = tau::round3(e.tau_s);
             let t = &kept[r.kept].1;
             for f in [1.0, 1.001, 0.999] {
@@ -710,7 +714,7 @@ fn refine_taus(
     }
     let mom = library::moments(kin, rows, ws, &final_terms);
     for (r, e) in refine.iter().zip(estimates) {
-        let Some((e, grid_tau_s)) = e else {
+        let Some((e, grid_tau_s, env)) = e else {
             continue;
         };
         let c = r.channel;
@@ -743,8 +747,17 @@ fn refine_taus(
         let mut widening = 1.0;
         if let Some((coef, se, wide)) = tau::coefficient_with_tau(&x, &a.data[c], &dcol) {
             dt.coefficient = coef / unit;
-            dt.ci95 = [(coef - 1.96 * se) / unit, (coef + 1.96 * se) / unit];
-            widening = wide;
+            // The linearised interval, and the envelope of the intervals over the time
+            // constants the data allow when that is wider (τ left open: the amplitude follows
+            // it far from the estimate, where the linearisation does not reach).
+            let (mut lo, mut hi) = (coef - 1.96 * se, coef + 1.96 * se);
+            if let Some([a, b]) = env {
+                lo = lo.min(a);
+                hi = hi.max(b);
+            }
+            dt.ci95 = [lo / unit, hi / unit];
+            let fixed = se / wide;
+            widening = ((hi - coef).max(coef - lo) / (1.96 * fixed)).max(1.0);
         }
         dt.term = term.describe();
         dt.regressor = term.regressor();
@@ -754,6 +767,7 @@ fn refine_taus(
             open: e.open,
             grid_tau_s,
             coefficient_widening: widening,
+            coefficient_ci95: dt.ci95,
         });
     }
 }

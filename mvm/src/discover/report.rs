@@ -64,6 +64,9 @@ pub struct TauReport {
     /// How much wider the coefficient's interval is with τ free than with τ fixed at its
     /// estimate (the joint fit that writes the model fixes τ and widens its intervals by this).
     pub coefficient_widening: f64,
+    /// The coefficient's 95 % interval with τ free (file units): linearised, and the envelope
+    /// over the time constants the data allow (the joint fit's interval covers it too).
+    pub coefficient_ci95: [f64; 2],
 }
 
 /// A proposal: one term on the axes it was found on, as a declared effect.

@@ -32,19 +32,59 @@ pub fn round3(tau_s: f64) -> f64 {
     (tau_s / f).round() * f
 }
 
-/// The profile of χ² over time constants: the design `x` with its last column replaced by each
-/// of `cols`.
-pub fn profile(x: &Design, d: &ChannelData, cols: &[Vec<f64>]) -> Vec<Option<f64>> {
+/// One point of a profile: the fit with the time constant fixed at `tau_s`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProfilePoint {
+    /// Time constant, s.
+    pub tau_s: f64,
+    /// χ² of the fit.
+    pub chi2: f64,
+    /// The term's coefficient (SI) there.
+    pub theta: f64,
+    /// Its standard error with τ fixed there.
+    pub se: f64,
+}
+
+/// The profile over time constants `taus`: the design `x` with its last column replaced by each
+/// of `cols` (a point whose fit fails or leaves the term unidentified is left out).
+pub fn profile(x: &Design, d: &ChannelData, taus: &[f64], cols: &[Vec<f64>]) -> Vec<ProfilePoint> {
     let last = x.ncols() - 1;
-    cols.iter()
-        .map(|col| {
+    taus.iter()
+        .zip(cols)
+        .filter_map(|(&tau_s, col)| {
             let mut x = x.clone();
             for (r, v) in col.iter().enumerate() {
                 x.x[(r, last)] = *v;
             }
-            wls(&x, d, None).map(|f| f.chi2)
+            let f = wls(&x, d, None)?;
+            f.identified(last).then(|| ProfilePoint {
+                tau_s,
+                chi2: f.chi2,
+                theta: f.theta[last],
+                se: f.cov[(last, last)].sqrt(),
+            })
         })
         .collect()
+}
+
+/// The coefficient's 95 % interval over the time constants the data allow: the envelope of
+/// its intervals with τ fixed at each profile point within the bound `chi2_bound` (a term
+/// whose τ the data leave open is determined only together with it: a decay with τ ≫ the
+/// dwells is a bias and a slope, and its amplitude follows τ).
+pub fn envelope(points: &[ProfilePoint], chi2_bound: f64) -> Option<[f64; 2]> {
+    let inside: Vec<&ProfilePoint> = points.iter().filter(|p| p.chi2 <= chi2_bound).collect();
+    (!inside.is_empty()).then(|| {
+        [
+            inside
+                .iter()
+                .map(|p| p.theta - 1.96 * p.se)
+                .fold(f64::INFINITY, f64::min),
+            inside
+                .iter()
+                .map(|p| p.theta + 1.96 * p.se)
+                .fold(f64::NEG_INFINITY, f64::max),
+        ]
+    })
 }
 
 /// The estimate and interval of τ from a profile `(tau, χ²)` (any order).
@@ -57,6 +97,8 @@ pub struct TauEstimate {
     pub ci95_s: [f64; 2],
     /// Whether each end is open (the profile stays within the bound up to the range's end).
     pub open: [bool; 2],
+    /// The χ² the interval is bounded by (the minimum plus 3.84·s²).
+    pub chi2_bound: f64,
 }
 
 /// The estimate of τ from the profile points `pts` (τ, χ²) and the noise scale `s2`.
@@ -93,6 +135,7 @@ pub fn estimate(pts: &[(f64, f64)], s2: f64) -> Option<TauEstimate> {
         }
     }
     let bound = cmin + CHI2_95 * s2.max(1.0);
+    let chi2_bound = bound;
     let cross = |i: usize, j: usize| {
         // ln τ where the straight line between points i and j meets the bound.
         let (xi, yi) = (p[i].0.ln(), p[i].1);
@@ -118,6 +161,7 @@ pub fn estimate(pts: &[(f64, f64)], s2: f64) -> Option<TauEstimate> {
         tau_s: tau,
         ci95_s: [lo.0.min(tau), hi.0.max(tau)],
         open: [lo.1, hi.1],
+        chi2_bound,
     })
 }
 
