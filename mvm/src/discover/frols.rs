@@ -81,14 +81,15 @@ impl Ortho {
         self.q.par_iter_mut().for_each(|q| remove(q, e));
     }
 
-    /// Candidate `j`'s orthogonal part with its parents not yet `taken` removed too, and
-    /// those parents: what `j` explains beyond them.
+    /// Candidate `j`'s orthogonal part with its parents not yet `taken` removed too, those
+    /// parents, and what they explain of the residual together (χ², their block's part): what
+    /// `j` explains beyond them, and what its block explains with it.
     fn beyond_parents(
         &self,
         j: usize,
         lib: &Candidates,
         taken: &[usize],
-    ) -> (Vec<f64>, Vec<usize>) {
+    ) -> (Vec<f64>, Vec<usize>, f64, usize) {
         let missing: Vec<usize> = lib.parents[j]
             .iter()
             .copied()
@@ -109,7 +110,9 @@ impl Ortho {
                 basis.push(e);
             }
         }
-        (q, missing)
+        let parents_gain = basis.iter().map(|e| dot(e, &self.r).powi(2)).sum();
+        let added = basis.len();
+        (q, missing, parents_gain, added)
     }
 
     /// The candidate (selectable, not in `skip` nor `taken`) that explains most of the
@@ -126,25 +129,36 @@ impl Ortho {
         lib: &Candidates,
     ) -> Option<(usize, f64, Vec<usize>)> {
         let n = self.r.len().max(1) as f64;
-        let s2 = (dot(&self.r, &self.r) / n).max(1.0);
+        // The columns are whitened by the noise floor: one unit of χ² is the noise. (The
+        // residual's own variance would be the unexplained signal's while a large effect
+        // remains, and would demand of a complex term hundreds of units more than the simple
+        // one explains: a lag of the temperature never beat the temperature itself.)
+        let s2 = 1.0;
         let scores: Vec<(usize, f64, f64, Vec<usize>)> = (0..self.q.len())
             .into_par_iter()
             .filter(|j| lib.selectable[*j] && !skip.contains(j) && !taken.contains(j))
             .filter_map(|j| {
                 let owned;
-                let (q, parents): (&[f64], Vec<usize>) =
+                let (q, parents, parents_gain, added): (&[f64], Vec<usize>, f64, usize) =
                     if lib.parents[j].iter().all(|p| taken.contains(p)) {
-                        (&self.q[j], Vec::new())
+                        (&self.q[j], Vec::new(), 0.0, 0)
                     } else {
-                        let (q, p) = self.beyond_parents(j, lib, taken);
+                        let (q, p, pg, added) = self.beyond_parents(j, lib, taken);
                         owned = q;
-                        (&owned, p)
+                        (&owned, p, pg, added)
                     };
                 let qq = dot(q, q);
                 (qq > MIN_ORTHOGONAL_SHARE * self.norm0[j] && qq > 0.0).then(|| {
                     let g = dot(q, &self.r);
                     let gain = g * g / qq;
-                    let penalised = gain - lib.extra_params[j] as f64 * n.ln() * s2;
+                    // Ranked by what its block (the parents it brings and the term) explains,
+                    // each column it adds paying ln n: a square whose linear parent carries
+                    // most of the signal ranks with that signal, not with its small remainder
+                    // beyond the parent (which left a temperature-quadratic scale factor to a
+                    // three-column stand-in). The parsimony rule below still prefers the
+                    // parent alone unless the block explains clearly more.
+                    let penalised =
+                        gain + parents_gain - (lib.extra_params[j] + added) as f64 * n.ln() * s2;
                     (j, penalised, gain, parents)
                 })
             })
