@@ -114,7 +114,7 @@ fn other_steps() -> Design {
             duration_s,
         })
         .collect();
-    d.name = "chamber steps 10→30, 30→15, 12→28 °C and 20 °C; the issue's table".into();
+    d.name = "chamber steps 10→30, 30→15, 12→28 °C and 20 °C; 100 s dwells, 10 °/s moves".into();
     d
 }
 
