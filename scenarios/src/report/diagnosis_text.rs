@@ -40,9 +40,15 @@ impl RenderText for CompareReport {
             self.z_critical
         );
         for c in self.flagged_cells.iter().take(20) {
+            // The time since the table last stopped, for a static cell.
+            let since = match c.since_move_s {
+                [_, hi] if hi == 0.0 => String::new(),
+                [lo, hi] if hi.is_finite() => format!("{lo:.0}-{hi:.0} s after a move"),
+                [lo, _] => format!("> {lo:.0} s after a move"),
+            };
             let _ = writeln!(
                 s,
-                "  {:<8} {:<7} {:<6} {:>5.1}-{:<5.1} °C  {:>7.0}-{:<7.0} s  residual {:>10.5} ± {:.5}  z = {:>6.1}",
+                "  {:<8} {:<7} {:<6} {:>5.1}-{:<5.1} °C  {:>7.0}-{:<7.0} s  {:<22} residual {:>10.5} ± {:.5}  z = {:>6.1}",
                 c.channel,
                 c.position,
                 c.orientation,
@@ -50,6 +56,7 @@ impl RenderText for CompareReport {
                 c.temp_bin_c[1],
                 c.time_window_s[0],
                 c.time_window_s[1],
+                since,
                 c.residual,
                 c.noise_floor,
                 c.z
