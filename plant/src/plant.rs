@@ -537,7 +537,8 @@ impl Plant {
     /// True IMU attitude now as the quaternion q_b^n, in closed form
     /// ([`crate::true_attitude`]): q_c^n·q_v^c·q_z(outer)·q_x(inner) with the carrier's truth
     /// attitude and the gimbal angles of [`Plant::attitude_c_bn`], whose matrix it is to
-    /// rounding. The sinks of the truth compose the same from the truth record
+    /// rounding (to 2e-14 on a ship on the segment rule, whose C_c^n there is interpolated
+    /// apart from the truth's by its own rounding). The sinks of the truth compose the same from the truth record
     /// ([`TruthMount::q_bn_of`]); after a step its angles are these, bit for bit, except on an
     /// isolated table, whose record adds the seed's offset to the reference table's (the
     /// angles then agree to rounding).
