@@ -1,18 +1,19 @@
 //! The attitude quaternion of a rotation matrix, in closed form.
 //!
-//! Every place that turns a direction-cosine matrix (C_b^n, C_c^n, C_v^n) into a unit
-//! quaternion goes through [`quaternion_of`], so the CSV's `q_bn` columns, the Python arrays,
-//! the navigator's start state and the viewers agree bit for bit. A small rotation vector's
-//! quaternion goes through [`quat_from_rotvec`], shared by the navigator and the azimuth
-//! isolation loop.
+//! Every place that turns a direction-cosine matrix (C_c^n, a measured C_b^n) into a unit
+//! quaternion goes through [`quaternion_of`]. The true IMU attitude q_b^n is not converted from
+//! its matrix: it is composed from the carrier's attitude and the gimbal angles
+//! ([`crate::true_attitude`]). A small rotation vector's quaternion goes through
+//! [`quat_from_rotvec`], shared by the navigator and the azimuth isolation loop.
 
 use nalgebra::{Matrix3, Quaternion, Rotation3, UnitQuaternion, Vector3};
 
 /// The unit quaternion of the rotation matrix `c` (orthonormal to rounding), in closed form
 /// (Shepperd's method: the root is taken of 1 + trace when the trace is positive, else of the
 /// largest diagonal term, so half turns, where w = 0, are as exact as any other attitude).
-/// The sign is whichever the branch gives (q and −q are the same attitude). Unlike `UnitQuaternion::from_matrix`, which
-/// iterates from the identity, it does not stall at 180° and costs a few nanoseconds.
+/// The sign is whichever the branch gives (q and −q are the same attitude). Unlike
+/// `UnitQuaternion::from_matrix`, which iterates from the identity, it does not stall at 180°
+/// and costs a few nanoseconds.
 pub fn quaternion_of(c: &Matrix3<f64>) -> UnitQuaternion<f64> {
     UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*c))
 }

@@ -32,6 +32,7 @@ pub mod state;
 pub mod table;
 pub mod thermal;
 pub mod trig;
+pub mod true_attitude;
 pub mod units;
 
 pub use batch::SeedBatch;
@@ -39,3 +40,4 @@ pub use command::GimbalCommand;
 pub use config::{ConfigError, PlantConfig, SensorSpec, VehicleSpec};
 pub use output::{ImuSample, Truth};
 pub use plant::Plant;
+pub use true_attitude::TruthMount;

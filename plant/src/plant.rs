@@ -23,8 +23,9 @@ use crate::stages::motion::Motion;
 use crate::stages::readout::{Readout, ReadoutTerms};
 use crate::stages::sensor_errors::{SensorErrors, TickInput};
 use crate::stages::temperature::{TemperatureField, ThermalEvent};
-use crate::table::{Schedule, body_to_nav};
+use crate::table::{GimbalAngles, Schedule, body_to_nav};
 use crate::thermal::node;
+use crate::true_attitude::TruthMount;
 
 mod isolated;
 
@@ -497,6 +498,12 @@ impl Plant {
         self.lane.readout.temp_readings_c()
     }
 
+    /// The gimbal encoders' readings of the table's true angles in the truth (a measured
+    /// output): the last sample's, and before the first step those of the start angles, rad.
+    pub fn encoder_readings(&self) -> GimbalAngles {
+        self.lane.readout.encoders(self.truth.gimbal.angles)
+    }
+
     /// The chamber temperature over the last interval (the test set-up's, not the unit's), °C.
     pub fn chamber_now_c(&self) -> f64 {
         self.truth.temps.chamber_c
@@ -524,20 +531,44 @@ impl Plant {
 
     /// True IMU attitude C_b^n now (this seed's own table's, with azimuth isolation).
     pub fn attitude_c_bn(&self) -> Matrix3<f64> {
+        match &self.lane.own {
+            None => self.motion.attitude_c_bn(self.clock.tick()),
+            Some(_) => body_to_nav(&self.motion.vehicle_to_nav(), self.true_angles_now()),
+        }
+    }
+
+    /// The true gimbal angles now, those of [`Plant::attitude_c_bn`]: the scheme's with the
+    /// isolation loop's outer offset (this seed's own loop's on an isolated table).
+    fn true_angles_now(&self) -> GimbalAngles {
         let tick = self.clock.tick();
         match &self.lane.own {
-            None => self.motion.attitude_c_bn(tick),
+            None => self.motion.gimbal_truth(tick).angles,
             Some(_) => {
                 let mut a = self.motion.gimbal_now().angles;
                 a.outer_rad += self.own_offset_rad(tick);
-                body_to_nav(&self.motion.vehicle_to_nav(), a)
+                a
             }
         }
     }
 
-    /// True IMU attitude now as the quaternion q_b^n.
+    /// True IMU attitude now as the quaternion q_b^n, in closed form
+    /// ([`crate::true_attitude`]): q_c^n·q_v^c·q_z(outer)·q_x(inner) with the carrier's truth
+    /// attitude and the gimbal angles of [`Plant::attitude_c_bn`], whose matrix it is to
+    /// rounding (to 2e-14 on a ship on the segment rule, whose C_c^n there is interpolated
+    /// apart from the truth's by its own rounding). The sinks of the truth compose the same from the truth record
+    /// ([`TruthMount::q_bn_of`]); after a step its angles are these, bit for bit, except on an
+    /// isolated table, whose record adds the seed's offset to the reference table's (the
+    /// angles then agree to rounding).
     pub fn attitude_q_bn(&self) -> UnitQuaternion<f64> {
-        crate::attitude::quaternion_of(&self.attitude_c_bn())
+        self.truth_mount()
+            .q_bn(&self.carrier_truth().q_cn, self.true_angles_now())
+    }
+
+    /// The mount between the truth's carrier attitude and the table ([`TruthMount`]): the
+    /// identity on the static carrier, the `[vehicle]` mount on a moving one (an external
+    /// carrier attached after building included).
+    pub fn truth_mount(&self) -> TruthMount {
+        TruthMount::new(self.motion.is_moving(), &self.cfg.vehicle)
     }
 
     /// Seed of the noise streams in use.

@@ -4,7 +4,7 @@
 
 use std::sync::Mutex;
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Vector3;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -49,11 +49,11 @@ struct Columns {
 struct Layout {
     gyro_terms: Vec<GyroTerm>,
     accel_terms: Vec<AccelTerm>,
-    /// `[vehicle]`: C_v^n of the static carrier, or the mount C_v^c on a moving one.
-    c_vn: Matrix3<f64>,
+    /// The mount between the truth's carrier attitude and the table, for q_b^n.
+    mount: rins_plant::TruthMount,
     moving_carrier: bool,
     dt_s: f64,
-    /// Gather the truth columns too (the attitude quaternion costs most of a sample's time).
+    /// Gather the truth columns too.
     truth: bool,
 }
 
@@ -62,7 +62,7 @@ impl Layout {
         Self {
             gyro_terms: cfg.sensor.gyro.enabled_terms(),
             accel_terms: cfg.sensor.accel.enabled_terms(),
-            c_vn: cfg.vehicle.c_vn(),
+            mount: rins_plant::TruthMount::of_config(cfg),
             moving_carrier: !cfg.carrier.is_static(),
             dt_s: 1.0 / cfg.rate_hz,
             truth,
@@ -191,15 +191,9 @@ impl Columns {
         }
         push3(&mut self.dtheta_true_rad, &tr.dtheta_true_rad);
         push3(&mut self.dv_true_mps, &tr.dv_true_mps);
-        // On a moving carrier the table's outer axis is fixed to the carrier:
-        // C_b^n = C_c^n·C_v^c·R_z·R_x (docs/carrier.md, Frames).
-        let c_vn = if l.moving_carrier {
-            tr.carrier.q_cn.to_rotation_matrix().into_inner() * l.c_vn
-        } else {
-            l.c_vn
-        };
-        let q =
-            rins_plant::attitude::quaternion_of(&rins_plant::table::body_to_nav(&c_vn, g.angles));
+        // q_b^n = q_c^n·q_v^c·q_z(outer)·q_x(inner) in closed form, the plant's own
+        // composition and the CSV's (docs/carrier.md, Frames).
+        let q = l.mount.q_bn_of(tr);
         self.q_bn.extend_from_slice(&[q.w, q.i, q.j, q.k]);
         self.gimbal_outer_rad.push(g.angles.outer_rad);
         self.gimbal_inner_rad.push(g.angles.inner_rad);

@@ -96,8 +96,9 @@ def ship_truth():
         assert float(s["lon_rad"]) * RUST_DEG_PER_RAD == float(r["lon_deg"]), (s, r)
         for k in ("height_m", "v_e_mps", "v_n_mps", "v_u_mps", "q_cn_w", "q_cn_x", "q_cn_y", "q_cn_z"):
             assert float(s[k]) == float(r[k]), (k, s, r)
-        # q_bn: the CSV composes q_c^n as a matrix with the mount and gimbals, the plant its
-        # exact C_b^n: equal to rounding, same sign convention up to q ~ -q.
+        # q_bn: the CSV and the wire both take the plant's closed-form composition
+        # (rins_plant::true_attitude), so they are expected to agree bit for bit; the bound
+        # (and q ~ -q) is the one of the former matrix routes.
         a = [float(s[f"q_bn_{c}"]) for c in "wxyz"]
         b = [float(r[f"q_bn_{c}"]) for c in "wxyz"]
         sign = -1.0 if a[0] * b[0] < 0 else 1.0

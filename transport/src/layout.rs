@@ -78,8 +78,9 @@ pub struct TruthRecord {
     pub v_enu_mps: [f64; 3],
     /// Carrier attitude q_c^n (w, x, y, z): carrier axes (x starboard, y bow, z up) to ENU.
     pub q_cn: [f64; 4],
-    /// True IMU attitude q_b^n (w, x, y, z): C_c^n·C_v^c·R_z(outer)·R_x(inner) with the true
-    /// gimbal angles (docs/carrier.md, Frames).
+    /// True IMU attitude q_b^n (w, x, y, z): q_c^n·q_v^c·q_z(outer)·q_x(inner) with the true
+    /// gimbal angles, in closed form ([`rins_plant::Plant::attitude_q_bn`]; the quaternion of
+    /// C_c^n·C_v^c·R_z(outer)·R_x(inner), docs/carrier.md, Frames).
     pub q_bn: [f64; 4],
 }
 
@@ -89,9 +90,8 @@ impl TruthRecord {
     pub fn from_plant(plant: &rins_plant::Plant) -> Self {
         let c = plant.carrier_truth();
         let q_cn = c.q_cn.quaternion();
-        let q_bn = nalgebra::UnitQuaternion::from_rotation_matrix(
-            &nalgebra::Rotation3::from_matrix_unchecked(plant.attitude_c_bn()),
-        );
+        // The plant's closed-form truth attitude, as the CSV and the FMU give it.
+        let q_bn = plant.attitude_q_bn();
         let q_bn = q_bn.quaternion();
         Self {
             lat_rad: c.lat_rad,

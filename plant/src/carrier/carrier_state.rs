@@ -1,6 +1,6 @@
 //! The carrier's state at one instant and the quintic Hermite interpolation used inside a tick.
 
-use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
 /// Carrier reference point and attitude at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -57,7 +57,7 @@ impl CarrierState {
     /// rounding, as every exact or interpolated attitude of ordinary motion is); beyond that (an
     /// interpolated attitude that left orthonormality) it is the rotation nearest C_c^n.
     pub fn q_cn(&self) -> UnitQuaternion<f64> {
-        let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(self.c_cn));
+        let q = crate::attitude::quaternion_of(&self.c_cn);
         if (q.as_ref().norm() - 1.0).abs() <= Q_NORM_KEEP {
             q
         } else {
@@ -127,6 +127,7 @@ pub fn quintic_basis(t: f64) -> [[f64; 6]; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Rotation3;
 
     /// An orthonormal C_c^n keeps its quaternion's bits; one that left orthonormality (scaled
     /// by 1 + 1.6e-3, the figure) gives a unit quaternion of the same attitude.

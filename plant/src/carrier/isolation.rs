@@ -17,7 +17,7 @@
 //! never taken from the truth; the loop starts from the attitude at the moment it is switched
 //! on (as the navigator starts aligned from truth).
 
-use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
 use crate::attitude::quat_from_rotvec;
 use crate::earth::{OMEGA_IE_RPS, radii_of_curvature_sin2};
@@ -164,7 +164,8 @@ impl Isolation {
         let c_on = c_bn * rot_x(inner_rad).transpose();
         Self {
             active: true,
-            q_bn: UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*c_bn)),
+            // The loop's own (measured) attitude starts from the matrix it is given.
+            q_bn: crate::attitude::quaternion_of(c_bn),
             prev_dtheta: Vector3::zeros(),
             az0_rad: azimuth_rad(&c_on) - scheme_outer_rad,
             from_rad: offset_rad,

@@ -69,13 +69,29 @@ pub fn run(a: &NavArgs) -> Result<()> {
     Ok(())
 }
 
-/// Longitude in degrees wrapped to [−180°, 180°).
+/// Longitude wrapped to (−π, π], rad. The navigator integrates longitude without wrapping it
+/// (a ship crossing the antimeridian eastwards goes beyond π), so the output wraps it; one
+/// already within the range keeps its bits.
+fn lon_wrapped_rad(lon_rad: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    if lon_rad > -PI && lon_rad <= PI {
+        return lon_rad;
+    }
+    let w = PI - (PI - lon_rad).rem_euclid(TAU);
+    // Rounding may land on −π itself, which the range leaves out.
+    if w <= -PI { w + TAU } else { w }
+}
+
+/// Longitude in degrees, of [`lon_wrapped_rad`]: (−180°, 180°], the same longitude as the
+/// JSON's `lon_rad`.
 fn lon_deg(lon_rad: f64) -> f64 {
-    (lon_rad.to_degrees() + 180.0).rem_euclid(360.0) - 180.0
+    lon_wrapped_rad(lon_rad).to_degrees()
 }
 
 /// The result as one JSON object: degrees and SI units in the names; `lat_rad`/`lon_rad` keep
-/// the exact bits for comparisons; the error figures when the plant published its truth.
+/// the exact bits for comparisons (the longitude wrapped to (−π, π] as `lon_deg` is, its bits
+/// kept when the navigator's is already there); the error figures when the plant published
+/// its truth.
 fn summary_json(s: &rins_transport::NavSummary) -> serde_json::Value {
     let st = s.nav.state().copied();
     let q = st.map(|s| s.q_bn.into_inner());
@@ -101,7 +117,7 @@ fn summary_json(s: &rins_transport::NavSummary) -> serde_json::Value {
         "v_enu_mps": st.map(|s| [s.v_n.x, s.v_n.y, s.v_n.z]),
         "q_bn": q.map(|q| [q.w, q.i, q.j, q.k]),
         "lat_rad": st.map(|s| s.lat_rad),
-        "lon_rad": st.map(|s| s.lon_rad),
+        "lon_rad": st.map(|s| lon_wrapped_rad(s.lon_rad)),
         "north_error_m": fe.map(|e| e.north_m),
         "east_error_m": fe.map(|e| e.east_m),
         "horizontal_error_m": fe.map(|e| e.horizontal_m),
@@ -197,6 +213,37 @@ mod tests {
         }
     }
 
+    /// (−π, π]: within it the bits are kept, beyond it whole turns come off, and both ends
+    /// map into it (π stays, −π becomes π).
+    #[test]
+    fn longitude_is_wrapped_to_minus_pi_exclusive_pi_inclusive() {
+        use std::f64::consts::{PI, TAU};
+        for lon in [0.0, -0.0, 1.0, -3.0, PI, -PI + 1e-15, 3.1] {
+            assert_eq!(lon_wrapped_rad(lon).to_bits(), lon.to_bits(), "{lon}");
+        }
+        assert_eq!(lon_wrapped_rad(-PI), PI);
+        let w = lon_wrapped_rad(PI + TAU);
+        assert!(w <= PI && PI - w < 1e-15, "{w}");
+        // The issue's figure: 3.14287 rad is −179.93°.
+        let w = lon_wrapped_rad(3.14287);
+        assert!((w - (3.14287 - TAU)).abs() < 1e-15, "{w}");
+        assert!(
+            (lon_deg(3.14287) - (-179.93)).abs() < 5e-3,
+            "{}",
+            lon_deg(3.14287)
+        );
+        assert_eq!(lon_deg(3.14287), w.to_degrees());
+        for k in -3..=3 {
+            for lon in [0.5, -2.0, 3.0, -3.05] {
+                let w = lon_wrapped_rad(lon + k as f64 * TAU);
+                assert!(w > -PI && w <= PI, "{k}, {lon}: {w}");
+                assert!((w - lon).abs() < 1e-14, "{k}, {lon}: {w}");
+            }
+        }
+        let big = lon_wrapped_rad(-1e6);
+        assert!(big > -PI && big <= PI, "{big}");
+    }
+
     #[test]
     fn the_output_is_in_degrees_with_the_error_against_the_truth() {
         // Issue 29's ship: 0° N 179.99° E, east at 30 kn; it crosses the antimeridian at ~72 s.
@@ -212,13 +259,18 @@ mod tests {
         let j = summary_json(&s);
         let st = s.nav.state().unwrap();
         assert_eq!(j["lat_deg"].as_f64().unwrap(), st.lat_rad.to_degrees());
-        // East of the antimeridian: printed as west longitude, within ±180°.
+        // East of the antimeridian: printed as west longitude, within ±180°, in degrees and
+        // in radians alike (the navigator's own longitude is beyond π).
         let lon = j["lon_deg"].as_f64().unwrap();
         assert!((-180.0..-179.9).contains(&lon), "{lon}");
         assert!(
             (st.lon_rad.to_degrees() - 360.0 - lon).abs() < 1e-9,
             "{lon}"
         );
+        assert!(st.lon_rad > std::f64::consts::PI, "{}", st.lon_rad);
+        let lon_rad = j["lon_rad"].as_f64().unwrap();
+        assert!((lon_rad - (st.lon_rad - std::f64::consts::TAU)).abs() < 1e-15);
+        assert_eq!(lon_rad.to_degrees(), lon);
         let start_lon = j["start"]["lon_deg"].as_f64().unwrap();
         assert!(
             (start_lon - 179.99).abs() < 1e-9,

@@ -40,9 +40,9 @@ pub struct CsvSink<W: Write> {
     accel_sum: Vec<Vector3<f64>>,
     line: String,
     dt_s: f64,
-    /// `[vehicle]`: C_v^n of the static carrier, or the mount C_v^c in a moving one.
-    c_vn: nalgebra::Matrix3<f64>,
-    /// The carrier moves: write its truth columns, and compose the IMU attitude with it.
+    /// The mount between the truth's carrier attitude and the table, for q_b^n.
+    mount: rins_plant::TruthMount,
+    /// The carrier moves: write its truth columns.
     moving_carrier: bool,
     last: Option<(ImuSample, Truth)>,
     /// Run label written as a leading `run` column (measurement files with several runs).
@@ -144,7 +144,7 @@ impl<W: Write> CsvSink<W> {
             dv_true: Vector3::zeros(),
             line: String::with_capacity(1024),
             dt_s: 1.0 / plant_cfg.rate_hz,
-            c_vn: plant_cfg.vehicle.c_vn(),
+            mount: rins_plant::TruthMount::of_config(plant_cfg),
             moving_carrier,
             last: None,
             run: run.map(str::to_string),
@@ -189,15 +189,9 @@ impl<W: Write> CsvSink<W> {
             for v in [&self.dtheta_true, &self.dv_true] {
                 write!(l, ",{},{},{}", v.x, v.y, v.z)?;
             }
-            // On a moving carrier the table's outer axis is fixed to the carrier:
-            // C_b^n = C_c^n·C_v^c·R_z·R_x (docs/carrier.md, Frames).
-            let c_vn = if self.moving_carrier {
-                tr.carrier.q_cn.to_rotation_matrix().into_inner() * self.c_vn
-            } else {
-                self.c_vn
-            };
-            let c = rins_plant::table::body_to_nav(&c_vn, g.angles);
-            let q = rins_plant::attitude::quaternion_of(&c);
+            // q_b^n = q_c^n·q_v^c·q_z(outer)·q_x(inner) in closed form, the plant's own
+            // composition (docs/carrier.md, Frames).
+            let q = self.mount.q_bn_of(&tr);
             write!(l, ",{},{},{},{}", q.w, q.i, q.j, q.k)?;
         }
         if self.opts.effects {

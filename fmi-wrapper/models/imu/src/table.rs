@@ -200,12 +200,14 @@ fn build_table() -> Table {
     }
 }
 
-/// The knowns an output's value in initialization mode depends on. Outputs of the last
-/// sample (increments, readings, effect terms) are 0 until the first step: none. The plant's
-/// state at the start depends on the start attitude (vehicle and table: `vehicle.*`,
-/// `scheme.*`); the thermal nodes also on the thermal network and the chamber temperature,
-/// the chamber inputs included (tests/… `initial_dependencies_cover_every_known_that_changes_an_initial_output`
-/// checks this list against perturbed parameters).
+/// The knowns an output's value in initialization mode depends on. The increments and effect
+/// terms of the last sample are 0 until the first step: none. The plant's state at the start
+/// depends on the start attitude (vehicle and table: `vehicle.*`, `scheme.*`); the thermal
+/// nodes also on the thermal network and the chamber temperature, the chamber inputs
+/// included; the readings of the initial state on what the true values depend on and on
+/// their sensors (`sensor.temperature.*` and the seed of their noise, `sensor.encoder.*`).
+/// (tests/… `initial_dependencies_cover_every_known_that_changes_an_initial_output` checks
+/// this list against perturbed parameters.)
 fn initial_dependencies(vars: &VariableTable, roles: &[Role], slot: usize) -> Vec<usize> {
     let Role::Output(k, _) = roles[slot] else {
         return Vec::new();
@@ -214,18 +216,28 @@ fn initial_dependencies(vars: &VariableTable, roles: &[Role], slot: usize) -> Ve
     let attitude = |p: &str| p.starts_with("vehicle.") || p.starts_with("scheme.");
     // With external carrier inputs the start attitude is theirs.
     let carrier = |r: &Role| matches!(r, Role::CarrierSwitch | Role::Carrier(_));
+    let thermal = |p: &str| attitude(p) || p.starts_with("thermal.");
+    let temp_sensors = |p: &str| p.starts_with("sensor.temperature.") || p == "run.seed";
+    let temperatures = move |r: &Role, sensors: bool| match r {
+        Role::Param(p) => thermal(p) || (sensors && temp_sensors(p)),
+        Role::Input(i) => matches!(i, Input::ChamberOverride | Input::ChamberTemp),
+        Role::Output(..) | Role::Declared(_) => false,
+        Role::CarrierSwitch | Role::Carrier(_) => true,
+    };
     let depends: Box<dyn Fn(&Role) -> bool> = if name.starts_with("thermal.") {
-        Box::new(move |r| match r {
-            Role::Param(p) => attitude(p) || p.starts_with("thermal."),
-            Role::Input(i) => matches!(i, Input::ChamberOverride | Input::ChamberTemp),
-            Role::Output(..) | Role::Declared(_) => false,
-            Role::CarrierSwitch | Role::Carrier(_) => true,
-        })
+        Box::new(move |r| temperatures(r, false))
+    } else if name.starts_with("imu.temp_") {
+        Box::new(move |r| temperatures(r, true))
     } else if name.starts_with("gimbal.")
         || name == "truth.q_bn"
         || name == "effect.position_weight"
     {
         Box::new(move |r| matches!(r, Role::Param(p) if attitude(p)) || carrier(r))
+    } else if name.starts_with("imu.encoder_") {
+        Box::new(move |r| {
+            matches!(r, Role::Param(p) if attitude(p) || p.starts_with("sensor.encoder."))
+                || carrier(r)
+        })
     } else {
         return Vec::new();
     };

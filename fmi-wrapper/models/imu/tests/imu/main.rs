@@ -11,4 +11,5 @@ mod declared_slots;
 mod fmi3_property;
 mod fmi_property;
 mod fmi_rss;
+mod initial_outputs;
 mod master_fixes;

@@ -1,6 +1,6 @@
 //! What connecting the FMUs in libcosim and ecos exposed (issues 17 and 29), tested on the
-//! built binaries: initial outputs in initialization mode, chamber inputs reaching the initial
-//! state and later steps, Integer codes of the enumerations, FMI 3 `nValues` validated before
+//! built binaries: initial outputs in initialization mode (the temperature readings included),
+//! chamber inputs reaching the initial state and later steps, Integer codes of the enumerations, FMI 3 `nValues` validated before
 //! anything is written and no step after an error, the logEvents messages, and a table of
 //! fault sequences run through both FMI versions (a refused set blocks the end of
 //! initialisation, a refused step leaves NaN increments, and what each refusal says).
@@ -83,6 +83,55 @@ fn thermal_outputs_read_in_initialization_mode_are_the_initial_state() {
     // The first thermal update is after 1 s: the first step keeps the initial state.
     inst.do_step(0.0, 0.01).unwrap();
     assert_eq!(thermal(&fmu, &inst), at35, "after the first step");
+}
+
+/// The temperature sensors' readings (`imu.temp_*_c`, what a master initialising a
+/// controller reads) in initialization mode, after a parameter set, are those of the initial
+/// state, not 0, through both binaries.
+#[test]
+fn temperature_readings_in_initialization_mode_are_the_initial_states() {
+    let mut cfg = rins_plant::presets::paper_16pos_config();
+    cfg.thermal.chamber.temp_c = 35.0;
+    let want = Plant::new(&cfg).unwrap().temp_readings_c().to_vec();
+    assert!(want[node::HOUSING] > 35.0, "{want:?}");
+    let names: Vec<String> = node::NAMES
+        .iter()
+        .map(|n| format!("imu.temp_{n}_c"))
+        .collect();
+    // FMI 2: between fmi2EnterInitializationMode and fmi2ExitInitializationMode.
+    let fmu = library();
+    let inst = fmu.instantiate("readings", false).unwrap();
+    inst.setup_experiment(0.0, None).unwrap();
+    inst.set_real(&[fmu.vr("thermal.chamber.temp_c").unwrap()], &[35.0])
+        .unwrap();
+    inst.enter_initialization_mode().unwrap();
+    let vrs: Vec<u32> = names.iter().map(|n| fmu.vr(n).unwrap()).collect();
+    let mut got = vec![0.0; vrs.len()];
+    inst.get_real(&vrs, &mut got).unwrap();
+    assert_eq!(got, want, "FMI 2, initialization mode");
+    inst.exit_initialization_mode().unwrap();
+    inst.get_real(&vrs, &mut got).unwrap();
+    assert_eq!(got, want, "FMI 2, after initialization");
+    // FMI 3 likewise.
+    let xml = &fmu::description::<RinsImu>(FmiVersion::V3).0;
+    let vr = |n: &str| attr(xml, n, "valueReference").parse::<u32>().unwrap();
+    let vrs: Vec<u32> = names.iter().map(|n| vr(n)).collect();
+    let chamber = vr("thermal.chamber.temp_c");
+    let f = Fmi3::load();
+    let log = Mutex::new(Vec::new());
+    let c = fmi3_instance(&f, &log, false);
+    let mut got = vec![0.0; vrs.len()];
+    // SAFETY: fmi3Functions.h signatures on a live instance, arrays of the lengths passed.
+    unsafe {
+        assert_eq!((f.set_f64)(c, &chamber, 1, &35.0, 1), 0);
+        assert_eq!((f.enter_init)(c, false, 0.0, 0.0, false, 0.0), 0);
+        let n = vrs.len();
+        assert_eq!((f.get_f64)(c, vrs.as_ptr(), n, got.as_mut_ptr(), n), 0);
+        assert_eq!(got, want, "FMI 3, initialization mode");
+        assert_eq!((f.exit_init)(c), 0);
+        assert_eq!((f.terminate)(c), 0);
+        (f.free)(c);
+    }
 }
 
 #[test]
