@@ -14,3 +14,4 @@ mod isolation_reference;
 mod readouts;
 mod state;
 mod state_fuzz;
+mod trajectory_bytes;
