@@ -278,9 +278,11 @@ pub fn run(
 ) -> Result<RunSummary> {
     if !scenario.plant.carrier.is_static() {
         // The IMU FMU has no carrier-truth outputs, so the sinks' carrier columns could not be
-        // filled: refuse rather than write a wrong track.
+        // filled: refuse rather than write a wrong track. The scenario file is named, as every
+        // other refusal of its contents is.
         bail!(
-            "carrier.kind: `rins fmu run` drives the static carrier only (the FMU outputs no carrier truth); connect the RinsCarrier FMU to the IMU FMU's carrier inputs instead (docs/cosimulation.md)"
+            "{}: carrier.kind: `rins fmu run` drives the static carrier only (the FMU outputs no carrier truth); connect the RinsCarrier FMU to the IMU FMU's carrier inputs instead (docs/cosimulation.md)",
+            scenario.source
         );
     }
     let fmu = Fmu2::open(fmu_path).map_err(anyhow::Error::msg)?;

@@ -80,6 +80,70 @@ def run(args, **kw):
     return subprocess.run([RINS, *args], capture_output=True, text=True, check=True, **kw)
 
 
+# Every process started in the background here, stopped by stop_all whatever fails.
+STARTED = []
+
+
+def start(args, **kw):
+    """subprocess.Popen, in a process group of its own and remembered for stop_all. The group is
+    what gets killed: the `rerun` command is a Python wrapper that runs the viewer binary as its
+    child (subprocess.call), so killing the wrapper alone left the viewer (`rerun --port P
+    --save FILE`) running after the suite."""
+    p = subprocess.Popen(args, start_new_session=True, **kw)
+    STARTED.append(p)
+    return p
+
+
+def group_members(pgid):
+    """PIDs of the processes of group `pgid` still running (zombies excluded: they only wait to
+    be reaped by whoever inherited them), from /proc."""
+    pids = []
+    for d in os.listdir("/proc"):
+        if not d.isdigit():
+            continue
+        try:
+            with open(f"/proc/{d}/stat") as f:
+                stat = f.read()
+        except OSError:
+            continue  # ended meanwhile
+        # pid (comm) state ppid pgrp ...: comm may hold spaces and parentheses.
+        state, _ppid, pgrp = stat[stat.rindex(")") + 2:].split()[:3]
+        if state != "Z" and int(pgrp) == pgid:
+            pids.append(int(d))
+    return pids
+
+
+def stop(p):
+    """Kills p and everything it started (its process group), waits for p and until no member
+    of the group runs."""
+    # p's PID names its group only while p (even unreaped) or a member of the group exists: the
+    # kernel reuses the number only after both are gone, when it may be another's to signal.
+    if p.poll() is None or group_members(p.pid):
+        try:
+            os.killpg(p.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass  # ended meanwhile
+    p.wait(timeout=30)
+    for _ in range(100):
+        if not group_members(p.pid):
+            return
+        time.sleep(0.1)
+    raise AssertionError(f"{p.args}: processes {group_members(p.pid)} of its group still run after SIGKILL")
+
+
+def stop_all():
+    """Stops every process start() started (those that ended are only waited for)."""
+    errors = []
+    while STARTED:
+        p = STARTED.pop()
+        try:
+            stop(p)
+        except Exception as e:  # stop the others too, then report
+            errors.append(e)
+    if errors:
+        raise errors[0]
+
+
 SLOW_SAMPLES = 64  # temperatures and effects: mean over every (bucket // 64)th sample
 
 
@@ -177,7 +241,7 @@ def main():
             assert r == rows3[e], e
     # 4. Ctrl-C: the run stops, exits 130, and the recording is complete up to there.
     out4 = os.path.join(WORK, "rr-interrupted")
-    p = subprocess.Popen([RINS, "run", "builtin:paper-16pos-week", "--out", out4, "--rerun", f"save:{out4}/run.rrd", "--rerun-bucket-s", "10"],
+    p = start([RINS, "run", "builtin:paper-16pos-week", "--out", out4, "--rerun", f"save:{out4}/run.rrd", "--rerun-bucket-s", "10"],
                          stderr=subprocess.PIPE, text=True)
     time.sleep(2.0)
     assert p.poll() is None, "the week-long run ended before the interrupt"
@@ -236,7 +300,7 @@ def main():
         for st, row in zip(it["steps"], got):
             assert row[2][0] == st["levels"][c]["ratio"], (ch, st["step"], row, st["levels"][c])
     session = f"rr{os.getpid()}"
-    plant = subprocess.Popen([RINS, "serve", "builtin:paper-16pos-week", "--session", session, "--duration-s", "600",
+    plant = start([RINS, "serve", "builtin:paper-16pos-week", "--session", session, "--duration-s", "600",
                               "--rerun", f"save:{WORK}/rr-serve.rrd", "--rerun-bucket-s", "1"], stderr=subprocess.PIPE, text=True)
     nav = subprocess.run([RINS, "nav", "--connect", session, "builtin:paper-16pos-week", "--duration-s", "600"], capture_output=True, text=True, timeout=120)
     _, err = plant.communicate(timeout=60)
@@ -255,7 +319,7 @@ def main():
     log_path = os.path.join(WORK, "rr-connect-server.log")
     # The server's log goes to a file: a pipe nobody reads fills up and blocks its shutdown.
     with open(log_path, "w") as log:
-        server = subprocess.Popen([RERUN_CLI, "--port", str(port), "--save", got], stdout=log, stderr=subprocess.STDOUT)
+        server = start([RERUN_CLI, "--port", str(port), "--save", got], stdout=log, stderr=subprocess.STDOUT)
     try:
         for _ in range(300):
             with open(log_path) as f:
@@ -279,8 +343,9 @@ def main():
                 break
             time.sleep(0.2)
     finally:
-        server.kill()
-        server.wait()
+        # The viewer binary too, not only the `rerun` wrapper that started it.
+        stop(server)
+        STARTED.remove(server)
     run(["run", "builtin:paper-16pos-short", "--out", out6, "--duration-s", "20", "--rerun", f"save:{out6}/run.rrd", "--rerun-bucket-s", "0.1"])
     rows10, _ = read_rrd(f"{out6}/run.rrd")
     assert len(rows9["/imu/dtheta_rad/x"]) == 200 and rows9["/imu/dtheta_rad/x"] == rows10["/imu/dtheta_rad/x"]
@@ -293,4 +358,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    finally:
+        stop_all()

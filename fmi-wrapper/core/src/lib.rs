@@ -2,7 +2,7 @@
 //!
 //! A generic FMI 2.0 / 3.0 co-simulation layer, without C: the model interface it is generic
 //! over ([`model`]), the variable table ([`vars`]), the FMI state machine ([`instance`]), the FMU
-//! state codec ([`state`]), modelDescription.xml ([`xml`], [`fmu`]), `.fmu` packaging
+//! state codec ([`state`]), the registry of live instance handles ([`live`]), modelDescription.xml ([`xml`], [`fmu`]), `.fmu` packaging
 //! ([`package`], [`zip`]: stored and deflated archives through the `zip` crate) and the C-ABI
 //! helpers both FMI versions share ([`ffi`]). It knows no
 //! model: the exported C functions are in `rins-fmi2` / `rins-fmi3`, generic too, and each model
@@ -11,6 +11,7 @@
 pub mod ffi;
 pub mod fmu;
 pub mod instance;
+pub mod live;
 pub mod model;
 pub mod package;
 pub mod state;

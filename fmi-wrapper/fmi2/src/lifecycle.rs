@@ -78,9 +78,10 @@ pub unsafe fn instantiate<M: Model>(
     r.unwrap_or(std::ptr::null_mut())
 }
 
-/// fmi2FreeInstance.
+/// fmi2FreeInstance: a second free, or a pointer that is no live instance, does nothing
+/// (the host would otherwise abort on a double free).
 pub unsafe fn free_instance<M: Model>(c: fmi2Component) {
-    // SAFETY: `c` is NULL or a handle from fmi2Instantiate of this library.
+    // SAFETY: only a live handle from fmi2Instantiate of this library is freed.
     unsafe { Fmi2::<M>::free_handle(c) }
 }
 

@@ -176,3 +176,38 @@ fn a_second_model_runs_through_the_generic_fmi2_functions() {
         lifecycle::free_instance::<Counter>(c);
     }
 }
+
+#[test]
+fn a_freed_instance_or_a_foreign_pointer_is_refused_without_touching_memory() {
+    let token = CString::new(
+        rins_fmi::fmu::description::<Counter>(rins_fmi::xml::FmiVersion::V2)
+            .1
+            .clone(),
+    )
+    .unwrap();
+    // SAFETY: arguments as the FMI 2.0 standard gives them; the misuse under test is handing
+    // back pointers that are not live instances, which the functions must not dereference.
+    unsafe {
+        let c = lifecycle::instantiate::<Counter>(
+            c"c".as_ptr(),
+            1,
+            token.as_ptr(),
+            std::ptr::null(),
+            std::ptr::null(),
+            0,
+            0,
+        );
+        assert!(!c.is_null());
+        lifecycle::free_instance::<Counter>(c);
+        // A second free is a no-op, and every call on the freed handle returns fmi2Error.
+        lifecycle::free_instance::<Counter>(c);
+        assert_eq!(lifecycle::do_step::<Counter>(c, 0.0, 0.1, 1), 3);
+        assert_eq!(lifecycle::reset::<Counter>(c), 3);
+        // A pointer that never was an instance (here a local variable) is not read either.
+        let mut not_an_instance = [0u64; 4];
+        let p = not_an_instance.as_mut_ptr() as *mut c_void;
+        assert_eq!(lifecycle::terminate::<Counter>(p), 3);
+        lifecycle::free_instance::<Counter>(p);
+        assert_eq!(not_an_instance, [0; 4]);
+    }
+}

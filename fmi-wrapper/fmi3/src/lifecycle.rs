@@ -132,9 +132,10 @@ pub unsafe fn instantiate_co_simulation<M: Model>(
     .unwrap_or(std::ptr::null_mut())
 }
 
-/// fmi3FreeInstance.
+/// fmi3FreeInstance: a second free, or a pointer that is no live instance, does nothing
+/// (the host would otherwise abort on a double free).
 pub unsafe fn free_instance<M: Model>(c: fmi3Instance) {
-    // SAFETY: `c` is NULL or a handle from fmi3InstantiateCoSimulation of this library.
+    // SAFETY: only a live handle from fmi3InstantiateCoSimulation of this library is freed.
     unsafe { Fmi3::<M>::free_handle(c) }
 }
 

@@ -19,6 +19,7 @@ pub mod ship;
 pub mod spec;
 pub mod track;
 pub mod trajectory;
+pub mod trajectory_text;
 pub mod waves;
 
 pub use carrier_state::{CarrierState, CarrierTruth};

@@ -219,14 +219,17 @@ impl Trajectory {
         })
     }
 
-    /// Reads and parses `path` (the plant's one file read, done when it is built).
+    /// Reads and parses `path` (the plant's one file read, done when it is built). Lines are
+    /// bounded and must be text ([`super::trajectory_text`]), so `/dev/zero` or a binary file is
+    /// refused at its first line, in bounded memory.
     pub fn read(path: &str) -> Result<Self, TrajectoryError> {
-        let text = std::fs::read_to_string(path).map_err(|e| TrajectoryError {
+        let file = std::fs::File::open(path).map_err(|e| TrajectoryError {
             source_name: path.into(),
             row: 0,
             column: String::new(),
             message: format!("cannot read: {e}"),
         })?;
+        let text = super::trajectory_text::read_text(file, path)?;
         Self::parse(&text, path)
     }
 

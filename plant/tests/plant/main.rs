@@ -14,4 +14,5 @@ mod isolation_reference;
 mod readouts;
 mod state;
 mod state_fuzz;
+mod trajectory_bytes;
 mod truth_attitude;

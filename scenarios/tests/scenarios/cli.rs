@@ -1,6 +1,6 @@
 //! The `rins` command line as a user meets it: negative numbers reach the range checks, which
 //! name the flag and the range; `rins fmu build` on a fresh build finds or builds its
-//! libraries.
+//! libraries; `rins fmu run` names the scenario file whose carrier it refuses.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -231,6 +231,37 @@ fn fmu_build_outside_a_cargo_target_names_what_to_build() {
             .all(|p| err.contains(&format!("-p {p}")))
             && err.contains("--lib-dir"),
         "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `rins fmu run` refuses a moving carrier before it opens the FMU (issue 44), naming the
+/// scenario file as the scenario loader's own refusals do: with several scenarios in a script,
+/// the message alone says which one to change.
+#[test]
+fn fmu_run_refuses_a_moving_carrier_naming_the_scenario_file() {
+    let dir = tmp("fmu-run-ship");
+    let scenario = dir.join("ship.toml");
+    std::fs::write(
+        &scenario,
+        "[scenario]\nname = \"ship\"\nduration_s = 1.0\n[carrier]\nkind = \"ship\"\n",
+    )
+    .unwrap();
+    let (fmu, out) = (dir.join("RinsImu.fmu"), dir.join("out"));
+    let err = failure(&[
+        "fmu",
+        "run",
+        fmu.to_str().unwrap(),
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        err,
+        format!(
+            "error: {}: carrier.kind: `rins fmu run` drives the static carrier only (the FMU outputs no carrier truth); connect the RinsCarrier FMU to the IMU FMU's carrier inputs instead (docs/cosimulation.md)\n",
+            scenario.display()
+        )
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

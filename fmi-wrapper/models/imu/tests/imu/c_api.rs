@@ -1,16 +1,23 @@
 //! The FMI 2.0 binary tested from the outside through its C API (the importer loads the built
 //! `librins_imu_fmi2.so`): independence of instances, state save/restore and serialisation (also
-//! across processes), and every kind of refused call with its logged reason.
+//! across processes), every kind of refused call with its logged reason, and a caller's misuse
+//! of the instance handle (freed twice, used after free) through the raw C functions.
 //!
 //! Needs the cdylibs: `cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3`
 //! (tests/run-all.sh builds the workspace first).
 
+#![allow(unsafe_code)] // the misuse tests call fmi2FreeInstance on a handle the importer hides
+
+use std::ffi::{CStr, c_char, c_int, c_void};
 use std::path::PathBuf;
+use std::sync::Mutex;
 
 use rins_fmi::fmu;
 use rins_fmi::xml::FmiVersion;
 use rins_fmi_import::{CallError, Fmu2, Instance2, parse_model_description};
 use rins_imu_fmu::{RinsImu, library_file};
+
+use crate::common;
 
 fn library() -> Fmu2 {
     let exe = std::env::current_exe().unwrap();
@@ -440,4 +447,111 @@ fn get_string_with_valid_arrays_reports_the_type() {
         e.log
     );
     inst.get_string(&[], &mut []).unwrap();
+}
+
+/// The FMI 2 logger, as the importer declares it: the FMU calls it as a C variadic function and
+/// passes no arguments after the message, so the fixed ones are all there is to read.
+unsafe extern "C" fn collect_log(
+    env: *mut c_void,
+    _name: *const c_char,
+    status: c_int,
+    _category: *const c_char,
+    message: *const c_char,
+) {
+    if env.is_null() || message.is_null() {
+        return;
+    }
+    // SAFETY: `env` is the Mutex the test passed at instantiation; the message is a C string.
+    let sink = unsafe { &*(env as *const Mutex<Vec<String>>) };
+    let m = unsafe { CStr::from_ptr(message) }.to_string_lossy();
+    sink.lock().unwrap().push(format!("[{status}] {m}"));
+}
+
+/// `fmi2CallbackFunctions` with only the logger.
+#[repr(C)]
+struct Callbacks {
+    logger: Option<
+        unsafe extern "C" fn(*mut c_void, *const c_char, c_int, *const c_char, *const c_char),
+    >,
+    allocate: *const c_void,
+    free: *const c_void,
+    step_finished: *const c_void,
+    env: *mut c_void,
+}
+
+/// A caller's misuse (issue 44): fmi2FreeInstance twice, then fmi2DoStep and fmi2Reset on the
+/// freed instance. The second free does nothing (a double free would abort this process with
+/// "double free or corruption"), the calls return fmi2Error, and nothing is logged for them:
+/// the instance's logger went with it, and the FMU cannot tell whose the pointer was.
+#[test]
+fn a_double_free_and_calls_on_a_freed_instance_are_refused_and_the_process_survives() {
+    type Instantiate = unsafe extern "C" fn(
+        *const c_char,
+        c_int,
+        *const c_char,
+        *const c_char,
+        *const Callbacks,
+        c_int,
+        c_int,
+    ) -> *mut c_void;
+    type Call = unsafe extern "C" fn(*mut c_void) -> c_int;
+    type Free = unsafe extern "C" fn(*mut c_void);
+    type Setup = unsafe extern "C" fn(*mut c_void, c_int, f64, f64, c_int, f64) -> c_int;
+    type DoStep = unsafe extern "C" fn(*mut c_void, f64, f64, c_int) -> c_int;
+    let guid =
+        std::ffi::CString::new(fmu::description::<RinsImu>(FmiVersion::V2).1.clone()).unwrap();
+    let log = Mutex::new(Vec::<String>::new());
+    let callbacks = Callbacks {
+        logger: Some(collect_log),
+        allocate: std::ptr::null(),
+        free: std::ptr::null(),
+        step_finished: std::ptr::null(),
+        env: &log as *const Mutex<Vec<String>> as *mut c_void,
+    };
+    // SAFETY: each symbol is read with its fmi2Functions.h type; `callbacks` and `log` outlive
+    // the instance. The calls after the first free are the misuse under test, which the FMU
+    // must refuse without touching memory.
+    unsafe {
+        let lib = libloading::Library::new(common::library_path(FmiVersion::V2)).unwrap();
+        let instantiate: libloading::Symbol<Instantiate> = lib.get(b"fmi2Instantiate").unwrap();
+        let free: libloading::Symbol<Free> = lib.get(b"fmi2FreeInstance").unwrap();
+        let setup: libloading::Symbol<Setup> = lib.get(b"fmi2SetupExperiment").unwrap();
+        let enter: libloading::Symbol<Call> = lib.get(b"fmi2EnterInitializationMode").unwrap();
+        let exit: libloading::Symbol<Call> = lib.get(b"fmi2ExitInitializationMode").unwrap();
+        let reset: libloading::Symbol<Call> = lib.get(b"fmi2Reset").unwrap();
+        let do_step: libloading::Symbol<DoStep> = lib.get(b"fmi2DoStep").unwrap();
+        let start = |name: &std::ffi::CStr| {
+            let c = instantiate(
+                name.as_ptr(),
+                1,
+                guid.as_ptr(),
+                std::ptr::null(),
+                &callbacks,
+                0,
+                1,
+            );
+            assert!(!c.is_null(), "{:?}", log.lock().unwrap());
+            assert_eq!(setup(c, 0, 0.0, 0.0, 0, 0.0), 0);
+            assert_eq!(enter(c), 0);
+            assert_eq!(exit(c), 0);
+            c
+        };
+        let c = start(c"freed");
+        assert_eq!(do_step(c, 0.0, 0.01, 1), 0);
+        free(c);
+        log.lock().unwrap().clear();
+        free(c);
+        assert_eq!(
+            do_step(c, 0.01, 0.01, 1),
+            3,
+            "fmi2DoStep on a freed instance"
+        );
+        assert_eq!(reset(c), 3, "fmi2Reset on a freed instance");
+        free(c);
+        assert_eq!(*log.lock().unwrap(), Vec::<String>::new());
+        // The library still works: a new instance steps.
+        let c = start(c"after");
+        assert_eq!(do_step(c, 0.0, 0.01, 1), 0);
+        free(c);
+    }
 }

@@ -390,3 +390,79 @@ fn random_fmi3_call_sequences_follow_the_state_machine_and_never_crash() {
     println!("sets accepted/refused, state round trips: {tally:?}");
     assert!(tally.iter().all(|n| *n > 20), "{tally:?}");
 }
+
+/// A caller's misuse (issue 44): fmi3FreeInstance twice, then fmi3DoStep and fmi3Reset on the
+/// freed instance. The second free does nothing (a double free would abort this process with
+/// "double free or corruption"), the calls return fmi3Error, and nothing is logged for them:
+/// the instance's logger went with it, and the FMU cannot tell whose the pointer was.
+#[test]
+fn a_double_free_and_calls_on_a_freed_instance_are_refused_and_the_process_survives() {
+    let xml = &fmu::description::<RinsImu>(FmiVersion::V3).0;
+    let token = CString::new(attr(xml, "instantiationToken").unwrap()).unwrap();
+    let f = Fmi3::load();
+    let log = Mutex::new(Vec::new());
+    let name = CString::new("freed3").unwrap();
+    // SAFETY: fmi3Functions.h signatures; the log outlives the instance. The calls after the
+    // first free are the misuse under test, which the FMU must refuse without touching memory.
+    unsafe {
+        let c = (f.instantiate)(
+            name.as_ptr(),
+            token.as_ptr(),
+            std::ptr::null(),
+            false,
+            true,
+            false,
+            false,
+            std::ptr::null(),
+            0,
+            &log as *const Mutex<Vec<String>> as *mut c_void,
+            Some(logger),
+            std::ptr::null(),
+        );
+        assert!(!c.is_null());
+        assert_eq!(
+            (f.enter_init)(c, false, 0.0, 0.0, false, 0.0),
+            0,
+            "{:?}",
+            log.lock().unwrap()
+        );
+        assert_eq!((f.exit_init)(c), 0, "{:?}", log.lock().unwrap());
+        (f.free)(c);
+        log.lock().unwrap().clear();
+        (f.free)(c);
+        let (mut a, mut b, mut e, mut last) = (false, false, false, -1.0);
+        let s = (f.do_step)(c, 0.0, 0.01, false, &mut a, &mut b, &mut e, &mut last);
+        assert_eq!(s, 3, "fmi3DoStep on a freed instance");
+        assert_eq!(last, -1.0, "no out-pointer written for a freed instance");
+        assert_eq!((f.reset)(c), 3, "fmi3Reset on a freed instance");
+        (f.free)(c);
+        assert_eq!(*log.lock().unwrap(), Vec::<String>::new());
+    }
+    // The library still works: a new instance steps.
+    // SAFETY: as above, used correctly.
+    unsafe {
+        let c = (f.instantiate)(
+            name.as_ptr(),
+            token.as_ptr(),
+            std::ptr::null(),
+            false,
+            false,
+            false,
+            false,
+            std::ptr::null(),
+            0,
+            &log as *const Mutex<Vec<String>> as *mut c_void,
+            Some(logger),
+            std::ptr::null(),
+        );
+        assert!(!c.is_null());
+        assert_eq!((f.enter_init)(c, false, 0.0, 0.0, false, 0.0), 0);
+        assert_eq!((f.exit_init)(c), 0);
+        let (mut a, mut b, mut e, mut last) = (false, false, false, 0.0);
+        assert_eq!(
+            (f.do_step)(c, 0.0, 0.01, false, &mut a, &mut b, &mut e, &mut last),
+            0
+        );
+        (f.free)(c);
+    }
+}
