@@ -684,7 +684,12 @@ fn refine_taus(
             .collect();
         let taus_fine: Vec<f64> = fine.iter().map(|(t, _)| *t).collect();
         let mut pts = r.grid.clone();
-        pts.extend(tau::profile(&r.design, &a.data[r.channel], &taus_fine, &cols));
+        pts.extend(tau::profile(
+            &r.design,
+            &a.data[r.channel],
+            &taus_fine,
+            &cols,
+        ));
         let d = &a.data[r.channel];
         let min = pts.iter().map(|p| p.chi2).fold(f64::INFINITY, f64::min);
         let dof = d.y.len().saturating_sub(r.design.ncols() + 1).max(1) as f64;
