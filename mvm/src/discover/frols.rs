@@ -82,8 +82,10 @@ impl Ortho {
     }
 
     /// Candidate `j`'s orthogonal part with its parents not yet `taken` removed too, those
-    /// parents, and what they explain of the residual together (χ², their block's part): what
-    /// `j` explains beyond them, and what its block explains with it.
+    /// parents, what its library parents (the lower terms of its hierarchy: `T` under `T²`,
+    /// the factors of a product) explain of the residual beyond its catalogue parents (the
+    /// constants, which the catalogue step judges on their own), and how many columns those
+    /// library parents add.
     fn beyond_parents(
         &self,
         j: usize,
@@ -97,7 +99,14 @@ impl Ortho {
             .collect();
         let mut q = self.q[j].clone();
         let mut basis: Vec<Vec<f64>> = Vec::new();
-        for &p in &missing {
+        let (mut parents_gain, mut added) = (0.0, 0);
+        // The catalogue parents first, so a library parent's share is what it adds to them
+        // (the projection of `j` is the same in any order).
+        let ordered = missing
+            .iter()
+            .filter(|p| !lib.selectable[**p])
+            .chain(missing.iter().filter(|p| lib.selectable[**p]));
+        for &p in ordered {
             let mut e = self.q[p].clone();
             for u in &basis {
                 remove(&mut e, u);
@@ -107,11 +116,13 @@ impl Ortho {
                 let inv = 1.0 / n.sqrt();
                 e.iter_mut().for_each(|x| *x *= inv);
                 remove(&mut q, &e);
+                if lib.selectable[p] {
+                    parents_gain += dot(&e, &self.r).powi(2);
+                    added += 1;
+                }
                 basis.push(e);
             }
         }
-        let parents_gain = basis.iter().map(|e| dot(e, &self.r).powi(2)).sum();
-        let added = basis.len();
         (q, missing, parents_gain, added)
     }
 
@@ -151,12 +162,15 @@ impl Ortho {
                 (qq > MIN_ORTHOGONAL_SHARE * self.norm0[j] && qq > 0.0).then(|| {
                     let g = dot(q, &self.r);
                     let gain = g * g / qq;
-                    // Ranked by what its block (the parents it brings and the term) explains,
-                    // each column it adds paying ln n: a square whose linear parent carries
-                    // most of the signal ranks with that signal, not with its small remainder
-                    // beyond the parent (which left a temperature-quadratic scale factor to a
-                    // three-column stand-in). The parsimony rule below still prefers the
-                    // parent alone unless the block explains clearly more.
+                    // Ranked by what its block (the library parents it brings and the term)
+                    // explains beyond the catalogue constants, each column it adds paying
+                    // ln n: a square whose linear parent carries most of the signal ranks with
+                    // that signal, not with its small remainder beyond the parent (which left
+                    // a temperature-quadratic scale factor to a three-column stand-in). The
+                    // constants are left out: counted, a bias change rode in on any product
+                    // that had the bias as a parent and died with it in the joint fit. The
+                    // parsimony rule below still prefers the parent alone unless the block
+                    // explains clearly more.
                     let penalised =
                         gain + parents_gain - (lib.extra_params[j] + added) as f64 * n.ln() * s2;
                     (j, penalised, gain, parents)
