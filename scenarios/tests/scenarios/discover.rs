@@ -715,10 +715,11 @@ fn three_effects_iterated() -> rins_mvm::Iteration {
 /// Three effects at once on the same runs: the catalogue's δβ(T) on z, a block temperature-rate
 /// bias on x and z, a u_x·u_z bias on y. `--iterate` keeps exactly those terms, each true
 /// coefficient inside its interval, and reaches the floor in at most 4 steps. On z the
-/// catalogue's gradient bias (with a bias correction) is accepted first, as a stand-in: in this
-/// thermal model the gradient is the run's self-heating minus τ_b·dT_b/dt, so the two differ
-/// only by a per-run constant; the replacement pass swaps it for the block rate discovered on x
-/// (the stand-in would bias δβ's slope to 0.00320 [0.00305, 0.00334] °/h/K against 0.003).
+/// catalogue's gradient bias (with a bias correction) is a stand-in: in this thermal model the
+/// gradient is the run's self-heating minus τ_b·dT_b/dt, so the two differ only by a per-run
+/// constant (it would bias δβ's slope to 0.00320 [0.00305, 0.00334] °/h/K against 0.003). It is
+/// never kept: either the block rate ranks first (discovery ranks a candidate by its block), or
+/// the replacement pass swaps the stand-in for it.
 #[test]
 fn iterate_keeps_exactly_the_three_effects() {
     let it = three_effects_iterated();
@@ -741,13 +742,15 @@ fn iterate_keeps_exactly_the_three_effects() {
         .filter(|t| t.replaces.is_some())
         .map(|t| (t.channel.as_str(), t.effect.as_str(), t.replaces.as_deref()))
         .collect();
-    assert_eq!(
-        swapped,
-        [(
-            "gyro_z",
-            "custom:b_dtdt_block",
-            Some("gyro.temperature_gradient_bias")
-        )]
+    assert!(
+        swapped.is_empty()
+            || swapped
+                == [(
+                    "gyro_z",
+                    "custom:b_dtdt_block",
+                    Some("gyro.temperature_gradient_bias")
+                )],
+        "{swapped:?}"
     );
     let custom = |name: &str| {
         it.model
