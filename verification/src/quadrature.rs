@@ -2,15 +2,16 @@
 
 use nalgebra::Vector3;
 
-/// 10-point Gauss–Legendre nodes on [-1, 1] (positive half) and weights.
-const NODES: [f64; 5] = [
+/// 10-point Gauss–Legendre nodes on [-1, 1] (positive half); [`WEIGHTS`] are their weights.
+pub const NODES: [f64; 5] = [
     0.148_874_338_981_631_2,
     0.433_395_394_129_247_2,
     0.679_409_568_299_024_4,
     0.865_063_366_688_984_5,
     0.973_906_528_517_171_7,
 ];
-const WEIGHTS: [f64; 5] = [
+/// Weights of [`NODES`].
+pub const WEIGHTS: [f64; 5] = [
     0.295_524_224_714_752_9,
     0.269_266_719_309_996_4,
     0.219_086_362_515_982,

@@ -4,7 +4,7 @@
 use clap::{Parser, Subcommand};
 use rins_scenarios::commands::{
     self, bench_diagnosis, calibrate, campaign, compare, diagnose, fmu, measure, paper, run,
-    scenarios, sweep, verify,
+    scenarios, schemes, sweep, verify,
 };
 #[cfg(feature = "transport")]
 use rins_scenarios::commands::{nav, serve};
@@ -58,6 +58,10 @@ enum Command {
     /// The reference navigator as a separate process, consuming a served IMU stream.
     #[cfg(feature = "transport")]
     Nav(nav::NavArgs),
+    /// Rotation schemes as a design space: what each scheme leaves of each effect, worst cases
+    /// over a class of position-dependent biases, scheme search, simulation (docs/schemes.md).
+    #[command(subcommand)]
+    Schemes(schemes::SchemesCommand),
     /// List the built-in scenarios, or print one.
     Scenarios(scenarios::ScenariosArgs),
     /// Sweep scenario keys over a list or a grid, each point x seeds through the Monte Carlo
@@ -70,6 +74,7 @@ fn main() -> std::process::ExitCode {
     commands::exit_code(match Cli::parse().command {
         Command::Run(a) => run::run(&a),
         Command::Verify(c) => verify::run(&c),
+        Command::Schemes(c) => schemes::run(&c),
         Command::Paper(a) => paper::run(&a),
         Command::Calibrate(a) => calibrate::run(&a),
         Command::Campaign(a) => campaign::run(&a),

@@ -14,6 +14,7 @@ pub mod nav;
 pub mod paper;
 pub mod run;
 pub mod scenarios;
+pub mod schemes;
 pub mod sea;
 #[cfg(feature = "transport")]
 pub mod serve;

@@ -1,0 +1,134 @@
+//! What a per-cycle residual does to a static navigator after N days: the linear free-inertial
+//! error model (psi-angle form, states φ_E, φ_N, φ_U, δv_E, δv_N, δL, δλ; the vertical channel
+//! held) driven by the residual's mean, propagated exactly and averaged over the Schuler
+//! period that ends at the end, as the verification's closed forms are (`rins verify ins`).
+
+use nalgebra::{SMatrix, SVector, Vector3};
+use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity, radii_of_curvature};
+use serde::Serialize;
+
+/// Propagation step, s (|F·h| ≈ 0.08 at the Schuler rate: the 14-term series is exact to
+/// rounding).
+const STEP_S: f64 = 60.0;
+
+type M7 = SMatrix<f64, 7, 7>;
+type M75 = SMatrix<f64, 7, 5>;
+
+/// Navigation errors after the run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct NavAfter {
+    /// North position error, m.
+    pub north_m: f64,
+    /// East position error, m (longitude error × R_N cos L).
+    pub east_m: f64,
+    /// Horizontal position error, m.
+    pub horizontal_m: f64,
+    /// Azimuth error φ_U, arcmin.
+    pub heading_arcmin: f64,
+}
+
+/// The static navigator's Schuler-averaged response at one latitude and duration to constant
+/// navigation-frame errors: gyro drift ε (E, N, U; rad/s) and accelerometer error ∇ (E, N;
+/// m/s²). Linear: one matrix, applied to any residual.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StaticResponse {
+    /// Latitude, rad.
+    pub lat_rad: f64,
+    /// Duration, days.
+    pub days: f64,
+    /// Rows: north m, east m, azimuth rad; columns: ε_E, ε_N, ε_U, ∇_E, ∇_N.
+    pub matrix: SMatrix<f64, 3, 5>,
+}
+
+fn model(lat: f64) -> (M7, M75, f64, f64, f64) {
+    let w = OMEGA_IE_RPS;
+    let (s, c) = lat.sin_cos();
+    let (rm, rn) = radii_of_curvature(lat);
+    let r = (rm * rn).sqrt();
+    let g = normal_gravity(lat, 0.0);
+    let mut f = M7::zeros();
+    // φ̇ = −ω_ie × φ + δω_ie(δL) + δω_en(δv) − ε
+    let om = Vector3::new(0.0, w * c, w * s);
+    f.fixed_view_mut::<3, 3>(0, 0)
+        .copy_from(&(-om.cross_matrix()));
+    f[(0, 4)] = -1.0 / r;
+    f[(1, 3)] = 1.0 / r;
+    f[(2, 3)] = s / c / r;
+    f[(1, 5)] = -w * s;
+    f[(2, 5)] = w * c;
+    // δv̇ = f × φ − 2ω_ie × δv + ∇
+    f[(3, 1)] = -g;
+    f[(4, 0)] = g;
+    f[(3, 4)] = 2.0 * w * s;
+    f[(4, 3)] = -2.0 * w * s;
+    f[(5, 4)] = 1.0 / rm;
+    f[(6, 3)] = 1.0 / (rn * c);
+    let mut b = M75::zeros();
+    for i in 0..3 {
+        b[(i, i)] = -1.0;
+    }
+    b[(3, 3)] = 1.0;
+    b[(4, 4)] = 1.0;
+    let schuler_s = std::f64::consts::TAU / (g / r).sqrt();
+    (f, b, rm, rn * c, schuler_s)
+}
+
+impl StaticResponse {
+    /// The response after `days` at latitude `lat_rad`.
+    pub fn new(lat_rad: f64, days: f64) -> Self {
+        let (f, b, rm, rn_cos, schuler_s) = model(lat_rad);
+        let fh = f * STEP_S;
+        let mut phi = M7::identity();
+        let mut gamma = M7::identity() * STEP_S;
+        let mut term = M7::identity();
+        for k in 1..14 {
+            term = term * fh / k as f64;
+            phi += term;
+            gamma += term * (STEP_S / (k + 1) as f64);
+        }
+        let gamma = gamma * b;
+        let end_s = days * 86_400.0;
+        let steps = (end_s / STEP_S).round() as usize;
+        let mut x = M75::zeros();
+        let mut sum = M75::zeros();
+        let mut n = 0usize;
+        for k in 1..=steps {
+            x = phi * x + gamma;
+            let t = k as f64 * STEP_S;
+            if t > end_s - schuler_s {
+                sum += x;
+                n += 1;
+            }
+        }
+        let mean = sum / n.max(1) as f64;
+        let mut m = SMatrix::<f64, 3, 5>::zeros();
+        for j in 0..5 {
+            m[(0, j)] = mean[(5, j)] * rm;
+            m[(1, j)] = mean[(6, j)] * rn_cos;
+            m[(2, j)] = mean[(2, j)];
+        }
+        Self {
+            lat_rad,
+            days,
+            matrix: m,
+        }
+    }
+
+    /// Errors for a mean gyro drift `eps_rps` (E, N, U) and accelerometer error `acc_mps2`
+    /// (E, N; its vertical part drives the held vertical channel only).
+    pub fn apply(&self, eps_rps: &Vector3<f64>, acc_mps2: &Vector3<f64>) -> NavAfter {
+        let u = SVector::<f64, 5>::new(eps_rps.x, eps_rps.y, eps_rps.z, acc_mps2.x, acc_mps2.y);
+        let y = self.matrix * u;
+        NavAfter {
+            north_m: y[0],
+            east_m: y[1],
+            horizontal_m: y[0].hypot(y[1]),
+            heading_arcmin: y[2].to_degrees() * 60.0,
+        }
+    }
+
+    /// North and east position (m) per unit gyro drift component `axis` (rad/s).
+    pub fn position_per_drift(&self, axis: usize) -> [f64; 2] {
+        [self.matrix[(0, axis)], self.matrix[(1, axis)]]
+    }
+}
