@@ -8,9 +8,13 @@ use serde::Serialize;
 
 use crate::cycle::{Cycle, CycleError, Piece, PieceKind};
 use crate::effects::{EffectSet, Group, Sensor};
-use crate::response::{NavAfter, StaticResponse};
+use crate::response::{NavAfter, StaticResponse, periodic_response};
 use crate::scheme_file::SchemeFile;
 use crate::trig_exact::{CHECK_ANGLES, SAMPLES, TrigPoly};
+
+/// Longest step of the time-resolved navigation input, s (a move lasts 90 s, the Schuler
+/// period 84 min).
+pub const NAV_STEP_S: f64 = 20.0;
 
 /// Relative agreement under which a sampled polynomial counts as the effect itself.
 const EXACT_CHECK_REL: f64 = 1e-11;
@@ -64,8 +68,14 @@ pub struct EffectResidual {
     pub surviving_fraction: f64,
     /// Mean over the cycle (E, N, U): °/h (gyro) or µg (accelerometer).
     pub mean: [f64; 3],
-    /// What the mean does to a static navigator after the analysis's days.
+    /// What the effect does to a static navigator after the analysis's days: the linear error
+    /// model driven by C·δ through the whole run, cycle after cycle (time-resolved in steps of at
+    /// most [`NAV_STEP_S`]), averaged over the last Schuler period.
     pub after: NavAfter,
+    /// The same driven by the cycle's mean alone: what a per-cycle residual says. The
+    /// difference from [`EffectResidual::after`] is what happens inside a cycle (an attitude
+    /// error built over one move and undone by a later one tilts the navigator meanwhile).
+    pub after_mean: NavAfter,
 }
 
 /// One scheme's analysis.
@@ -99,6 +109,10 @@ impl SchemeAnalysis {
 }
 
 struct Sums {
+    /// Per channel, the mean of C·δ over each step of the cycle.
+    bins: Vec<Vec<Vector3<f64>>>,
+    bin_s: f64,
+    start_s: f64,
     total: Vec<Vector3<f64>>,
     stationary: Vec<Vector3<f64>>,
     rotation: Vec<Vector3<f64>>,
@@ -127,8 +141,11 @@ fn quadrature(
         for (x, w) in NODES.iter().zip(WEIGHTS) {
             for t in [mid - half * x, mid + half * x] {
                 set.eval(&cycle.state(piece, t), &mut buf);
+                let bin = (((t - sums.start_s) / sums.bin_s).floor().max(0.0) as usize)
+                    .min(sums.bins[0].len() - 1);
                 for (i, v) in buf.iter().enumerate() {
                     let wv = v * (w * half);
+                    sums.bins[i][bin] += wv / sums.bin_s;
                     sums.total[i] += wv;
                     if piece.moving() {
                         sums.rotation[i] += wv;
@@ -210,7 +227,11 @@ pub fn analyse_scheme(
     let cycle = Cycle::new(&file.scheme)?;
     let mut set = set.clone();
     let n = set.channels().len();
+    let bins = (cycle.period_s / NAV_STEP_S).ceil().max(1.0) as usize;
     let mut sums = Sums {
+        bins: vec![vec![Vector3::zeros(); bins]; n],
+        bin_s: cycle.period_s / bins as f64,
+        start_s: cycle.start_s,
         total: vec![Vector3::zeros(); n],
         stationary: vec![Vector3::zeros(); n],
         rotation: vec![Vector3::zeros(); n],
@@ -235,6 +256,20 @@ pub fn analyse_scheme(
             }
         }
     }
+    let inputs: Vec<Vec<[f64; 5]>> = set
+        .channels()
+        .iter()
+        .zip(&sums.bins)
+        .map(|(ch, b)| {
+            b.iter()
+                .map(|v| match ch.sensor {
+                    Sensor::Gyro => [v.x, v.y, v.z, 0.0, 0.0],
+                    Sensor::Accel => [0.0, 0.0, 0.0, v.x, v.y],
+                })
+                .collect()
+        })
+        .collect();
+    let resolved = periodic_response(opt.lat_rad, opt.days, sums.bin_s, &inputs);
     let effects = set
         .channels()
         .iter()
@@ -269,7 +304,8 @@ pub fn analyse_scheme(
                     0.0
                 },
                 mean: (mean_si / ch.sensor.unit_si()).into(),
-                after: response.apply(&eps, &acc),
+                after: resolved[i],
+                after_mean: response.apply(&eps, &acc),
             }
         })
         .collect();

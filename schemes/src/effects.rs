@@ -92,6 +92,9 @@ pub struct EffectSet {
     gyro: GyroModel,
     accel: AccelModel,
     gravity_mps2: f64,
+    /// Earth rate in the navigation frame (E, N, U), rad/s: zero unless
+    /// [`EffectSet::with_earth_rate`].
+    earth_rate_n: Vector3<f64>,
     /// Effects left out, with why.
     pub skipped: Vec<(String, String)>,
 }
@@ -139,8 +142,18 @@ impl EffectSet {
             gyro: GyroModel::new(&GyroSpec::default()),
             accel: AccelModel::new(&AccelSpec::default()),
             gravity_mps2,
+            earth_rate_n: Vector3::zeros(),
             skipped: Vec::new(),
         }
+    }
+
+    /// Adds the Earth rate at latitude `lat_rad` to the body rate every effect sees: a scale
+    /// factor or misalignment on it is C·S·Cᵀ·ω_ie, rectified in part by any scheme (as the
+    /// accelerometer scale factor is on gravity). Eq. 8 and Eq. 11 are stated without it.
+    pub fn with_earth_rate(mut self, lat_rad: f64) -> Self {
+        let w = rins_plant::earth::OMEGA_IE_RPS;
+        self.earth_rate_n = Vector3::new(0.0, w * lat_rad.cos(), w * lat_rad.sin());
+        self
     }
 
     /// The channels, in evaluation order.
@@ -397,12 +410,12 @@ impl EffectSet {
     }
 
     /// C_b^n·δ for every channel at the table state `st`: rad/s (gyros) or m/s² (accelerometers)
-    /// in the navigation frame (E, N, U), written to `out` (one entry per channel). No Earth
-    /// rate enters the body rate: its product with a 5 ppm scale factor is 8e-5 °/h, modulated.
+    /// in the navigation frame (E, N, U), written to `out` (one entry per channel). The body
+    /// rate is the table's plus the Earth rate when [`EffectSet::with_earth_rate`] set one.
     pub fn eval(&mut self, st: &TableState, out: &mut [Vector3<f64>]) {
         let c: Matrix3<f64> = st.c_bn();
         let ct = c.transpose();
-        let omega = st.body_rate_rps();
+        let omega = st.body_rate_rps() + ct * self.earth_rate_n;
         let f_b = ct * Vector3::new(0.0, 0.0, self.gravity_mps2);
         let ctx = TermContext {
             dt_s: 1.0,

@@ -3,7 +3,7 @@
 //! held) driven by the residual's mean, propagated exactly and averaged over the Schuler
 //! period that ends at the end, as the verification's closed forms are (`rins verify ins`).
 
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::{DMatrix, SMatrix, SVector, Vector3};
 use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity, radii_of_curvature};
 use serde::Serialize;
 
@@ -73,20 +73,73 @@ fn model(lat: f64) -> (M7, M75, f64, f64, f64) {
     (f, b, rm, rn * c, schuler_s)
 }
 
+/// Φ = e^{F·h} and Γ = ∫₀ʰ e^{F·s} ds·B by the series (|F·h| ≤ 0.08 for h ≤ 60 s).
+fn discretise(f: &M7, b: &M75, h: f64) -> (M7, M75) {
+    let fh = f * h;
+    let mut phi = M7::identity();
+    let mut gamma = M7::identity() * h;
+    let mut term = M7::identity();
+    for k in 1..14 {
+        term = term * fh / k as f64;
+        phi += term;
+        gamma += term * (h / (k + 1) as f64);
+    }
+    (phi, gamma * b)
+}
+
+/// The static navigator's errors after `days` at `lat_rad` for inputs that repeat every cycle:
+/// `inputs[c][k]` is channel c's mean over step k of the cycle (k = 0..K−1, each `step_s`
+/// long) as (ε_E, ε_N, ε_U, ∇_E, ∇_N). Unlike the mean drift this keeps what happens inside a
+/// cycle: an attitude error that builds up over a move and is undone only later tilts the
+/// navigator meanwhile, and a forcing near the Schuler period is not averaged away.
+pub fn periodic_response(
+    lat_rad: f64,
+    days: f64,
+    step_s: f64,
+    inputs: &[Vec<[f64; 5]>],
+) -> Vec<NavAfter> {
+    let (f, b, rm, rn_cos, schuler_s) = model(lat_rad);
+    let (phi, gamma) = discretise(&f, &b, step_s);
+    let phi = DMatrix::from_column_slice(7, 7, phi.as_slice());
+    let gamma = DMatrix::from_column_slice(7, 5, gamma.as_slice());
+    let channels = inputs.len();
+    let k_len = inputs.first().map_or(1, Vec::len).max(1);
+    // One 5 × C input matrix per step of the cycle, the states of every channel side by side.
+    let u: Vec<DMatrix<f64>> = (0..k_len)
+        .map(|k| DMatrix::from_fn(5, channels, |r, c| inputs[c][k][r]))
+        .collect();
+    let gu: Vec<DMatrix<f64>> = u.iter().map(|m| &gamma * m).collect();
+    let end_s = days * 86_400.0;
+    let steps = (end_s / step_s).round() as usize;
+    let mut x = DMatrix::<f64>::zeros(7, channels);
+    let mut sum = DMatrix::<f64>::zeros(7, channels);
+    let mut n = 0usize;
+    for k in 0..steps {
+        x = &phi * &x + &gu[k % k_len];
+        if (k + 1) as f64 * step_s > end_s - schuler_s {
+            sum += &x;
+            n += 1;
+        }
+    }
+    let mean = sum / n.max(1) as f64;
+    (0..channels)
+        .map(|c| {
+            let (north, east) = (mean[(5, c)] * rm, mean[(6, c)] * rn_cos);
+            NavAfter {
+                north_m: north,
+                east_m: east,
+                horizontal_m: north.hypot(east),
+                heading_arcmin: mean[(2, c)].to_degrees() * 60.0,
+            }
+        })
+        .collect()
+}
+
 impl StaticResponse {
     /// The response after `days` at latitude `lat_rad`.
     pub fn new(lat_rad: f64, days: f64) -> Self {
         let (f, b, rm, rn_cos, schuler_s) = model(lat_rad);
-        let fh = f * STEP_S;
-        let mut phi = M7::identity();
-        let mut gamma = M7::identity() * STEP_S;
-        let mut term = M7::identity();
-        for k in 1..14 {
-            term = term * fh / k as f64;
-            phi += term;
-            gamma += term * (STEP_S / (k + 1) as f64);
-        }
-        let gamma = gamma * b;
+        let (phi, gamma) = discretise(&f, &b, STEP_S);
         let end_s = days * 86_400.0;
         let steps = (end_s / STEP_S).round() as usize;
         let mut x = M75::zeros();

@@ -53,6 +53,9 @@ pub struct AnalyseArgs {
     /// Write analysis.json and the figure into this folder.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Write the HTML report (verdict, tables, figure) as DIR/report.html.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
 }
 
 /// Arguments of `rins schemes design`.
@@ -91,6 +94,9 @@ pub struct DesignArgs {
     /// Write design.json and each design as a scheme file into this folder.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Write the HTML report as DIR/report.html.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
 }
 
 /// Arguments of `rins schemes verify`.
@@ -196,7 +202,9 @@ fn analyse(a: &AnalyseArgs) -> Result<()> {
     })?;
     let lat = a.lat_deg.to_radians();
     let g = rins_plant::earth::normal_gravity(lat, 0.0);
-    let mut set = EffectSet::empty(g).with_catalogue(&sensor);
+    let mut set = EffectSet::empty(g)
+        .with_earth_rate(lat)
+        .with_catalogue(&sensor);
     if let Some(p) = &a.declared {
         let (gy, ac) = declared(p)?;
         set = set
@@ -237,7 +245,13 @@ fn analyse(a: &AnalyseArgs) -> Result<()> {
             dir.join("analysis.json"),
             serde_json::to_string_pretty(&report)?,
         )?;
-        write_analysis_figure(&report, &dir.join("schemes_week"))?;
+        write_analysis_figure(&report, dir)?;
+    }
+    if let Some(dir) = &a.report {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        write_analysis_figure(&report, dir)?;
+        let page = crate::html::results::schemes_analyse(&report, dir, dir)?;
+        eprintln!("report: {}", page.display());
     }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
@@ -245,6 +259,15 @@ fn analyse(a: &AnalyseArgs) -> Result<()> {
         print!("{}", analysis_text(&report));
     }
     Ok(())
+}
+
+/// A metre figure for the text tables: values below 0.05 m print as 0.0 (no "-0.0").
+fn metres(v: f64) -> String {
+    if v.abs() < 0.05 {
+        "0.0".into()
+    } else {
+        format!("{v:.1}")
+    }
 }
 
 fn analysis_text(r: &AnalyseReport) -> String {
@@ -272,7 +295,7 @@ fn analysis_text(r: &AnalyseReport) -> String {
         }
         s.push_str(&format!("{:34}", e.effect));
         for a in &r.analyses {
-            s.push_str(&format!(" {:>17.1}", a.effects[k].after.east_m));
+            s.push_str(&format!(" {:>17}", metres(a.effects[k].after.east_m)));
         }
         s.push('\n');
     }
@@ -300,20 +323,25 @@ fn analysis_text(r: &AnalyseReport) -> String {
             "invariant member", b.invariant_horizontal_m
         ));
     }
-    let worst_rel = r
+    // Both methods exist for constant-rate moves; compare where the residual is not zero to
+    // rounding (a cancelled residual has no relative precision).
+    let pairs: Vec<f64> = r
         .analyses
         .iter()
         .flat_map(|a| {
-            a.effects
-                .iter()
-                .filter_map(|e| e.methods_rel_diff.map(|d| (d, e.modulated, e.per_cycle)))
+            a.effects.iter().filter_map(|e| {
+                let d = e.methods_rel_diff?;
+                (nalgebra::Vector3::from(e.per_cycle).norm() > 1e-9 * e.modulated).then_some(d)
+            })
         })
-        .filter(|(_, m, p)| nalgebra::Vector3::from(*p).norm() > 1e-9 * m)
-        .map(|(d, _, _)| d)
-        .fold(0.0, f64::max);
-    s.push_str(&format!(
-        "\nQuadrature against exact integration (where moves run at constant rate): largest relative difference {worst_rel:.1e}\n"
-    ));
+        .collect();
+    if !pairs.is_empty() {
+        s.push_str(&format!(
+            "\nQuadrature against exact integration ({} effect-scheme pairs with constant-rate moves and a residual): largest relative difference {:.1e}\n",
+            pairs.len(),
+            pairs.iter().cloned().fold(0.0, f64::max)
+        ));
+    }
     for (k, why) in &a0.skipped {
         s.push_str(&format!("not analysed: {k}: {why}\n"));
     }
@@ -321,7 +349,23 @@ fn analysis_text(r: &AnalyseReport) -> String {
     s
 }
 
-fn write_analysis_figure(r: &AnalyseReport, path: &Path) -> Result<()> {
+/// A short category name for an effect key (the figure's x axis).
+fn short(key: &str) -> String {
+    key.replace("gyro.", "g.")
+        .replace("accel.", "a.")
+        .replace("custom.", "")
+        .replace("scale_factor_asymmetry", "asym")
+        .replace("scale_factor", "SF")
+        .replace("misalignment", "mis")
+        .replace("g_sensitivity", "gsens")
+        .replace("position_bias", "dbeta")
+        .replace("dither_bias", "dither")
+        .replace("nav_field_bias", "field")
+}
+
+/// Two figures: each catalogue (and declared) effect's east error under every scheme, and the
+/// worst case over each class; log scale, values below 1 m drawn at 1 m.
+fn write_analysis_figure(r: &AnalyseReport, dir: &Path) -> Result<()> {
     let a0 = &r.analyses[0];
     let keys: Vec<&str> = a0
         .effects
@@ -332,7 +376,7 @@ fn write_analysis_figure(r: &AnalyseReport, path: &Path) -> Result<()> {
         })
         .map(|e| e.effect.as_str())
         .collect();
-    let value = |m: f64| m.abs().max(1e-3).log10();
+    let value = |m: f64| m.abs().max(1.0).log10();
     let mut lines = Vec::new();
     let mut class_lines = Vec::new();
     for (j, a) in r.analyses.iter().enumerate() {
@@ -370,41 +414,33 @@ fn write_analysis_figure(r: &AnalyseReport, path: &Path) -> Result<()> {
             Kind::Dots,
         ));
     }
-    let numbers: Vec<String> = (1..=keys.len()).map(|k| k.to_string()).collect();
-    let names: Vec<&str> = numbers.iter().map(String::as_str).collect();
-    let panels = [
-        Panel::new(
-            format!(
-                "Effects at {} magnitudes: {}",
-                "preset",
-                keys.iter()
-                    .enumerate()
-                    .map(|(k, key)| format!("{} {key}", k + 1))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-            "log10 |east error| (m)",
-            lines,
-        )
-        .categorical(&names),
-        Panel::new(
-            format!(
-                "Worst case over each class, coefficients within {} deg/h",
-                r.bounds[0].bound_dph
-            ),
+    let names: Vec<String> = keys.iter().map(|k| short(k)).collect();
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    write_figure(
+        &dir.join("schemes_effects"),
+        &format!(
+            "East error of each effect after {} days, schemes side by side",
+            a0.days
+        ),
+        "effect (g. gyro, a. accelerometer)",
+        &[
+            Panel::new("below 1 m drawn at 1 m", "log10 |east error| (m)", lines)
+                .categorical(&names),
+        ],
+    )?;
+    write_figure(
+        &dir.join("schemes_classes"),
+        &format!(
+            "Worst case over each class after {} days, coefficients within {} deg/h",
+            a0.days, r.bounds[0].bound_dph
+        ),
+        "class",
+        &[Panel::new(
+            "below 1 m drawn at 1 m",
             "log10 worst horizontal (m)",
             class_lines,
         )
-        .categorical(&CLASSES),
-    ];
-    write_figure(
-        path,
-        &format!(
-            "What each scheme leaves after {} days (static navigator, Schuler-averaged)",
-            a0.days
-        ),
-        "effect / class",
-        &panels,
+        .categorical(&["general b(u)", "anisotropic", "plant dbeta"])],
     )?;
     Ok(())
 }
@@ -483,6 +519,10 @@ fn run_design(a: &DesignArgs) -> Result<()> {
             std::fs::write(dir.join(format!("{}.toml", c.file.name)), c.file.to_toml())?;
         }
     }
+    if let Some(dir) = &a.report {
+        let page = crate::html::results::schemes_design(&r, dir)?;
+        eprintln!("report: {}", page.display());
+    }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
@@ -518,7 +558,8 @@ fn verify(a: &VerifyArgs) -> Result<()> {
     };
     let resp = StaticResponse::new(opt.lat_rad, a.days);
     let g = rins_plant::earth::normal_gravity(opt.lat_rad, 0.0);
-    let mut rows = Vec::new();
+    // Every (scheme, case) is one independent week: all of them on every core.
+    let mut tasks = Vec::new();
     for s in &schemes {
         let mut dbeta = rins_plant::SensorSpec::default();
         dbeta.gyro.position_bias.enabled = true;
@@ -528,30 +569,39 @@ fn verify(a: &VerifyArgs) -> Result<()> {
         let worst = class_bound(&general, CLASSES[0], a.bound_dph).expect("general class");
         let mut worst_sensor = rins_plant::SensorSpec::default();
         worst_sensor.gyro.custom = basis::as_declared(&coefficient_table(&worst));
-        for (case, sensor) in [
-            ("plant delta-beta", dbeta),
-            ("general b(u) worst case", worst_sensor),
-        ] {
+        tasks.push((s, "plant delta-beta", dbeta));
+        tasks.push((s, "general b(u) worst case", worst_sensor));
+        tasks.push((
+            s,
+            "Table 3 sensors, noise off",
+            rins_plant::presets::paper_table3(),
+        ));
+    }
+    use rayon::prelude::*;
+    let rows: Vec<VerifyRow> = tasks
+        .par_iter()
+        .map(|(s, case, sensor)| {
+            let base = EffectSet::empty(g).with_earth_rate(opt.lat_rad);
             let set = if sensor.gyro.custom.is_empty() {
-                EffectSet::empty(g).with_catalogue(&sensor)
+                base.with_catalogue(sensor)
             } else {
-                EffectSet::empty(g).with_declared(&sensor.gyro.custom, false)?
+                base.with_declared(&sensor.gyro.custom, false)?
             };
             let an = analyse_scheme(s, &set, &opt, &resp)?;
             let analysed: f64 = an.effects.iter().map(|e| e.after.east_m).sum();
             let sim =
-                simulate::simulate(s, &sensor, a.days, a.rate_hz).map_err(anyhow::Error::msg)?;
-            rows.push(VerifyRow {
+                simulate::simulate(s, sensor, a.days, a.rate_hz).map_err(anyhow::Error::msg)?;
+            Ok(VerifyRow {
                 scheme: s.name.clone(),
-                case: case.into(),
+                case: (*case).into(),
                 analysed_east_m: analysed,
                 simulated_east_m: sim.east_m,
                 simulated_end_east_nmi: sim.end_east_nmi,
                 rel_diff: (sim.east_m - analysed).abs() / analysed.abs().max(1e-9),
                 wall_s: sim.wall_s,
-            });
-        }
-    }
+            })
+        })
+        .collect::<Result<_>>()?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&rows)?);
     } else {

@@ -13,6 +13,7 @@ mod diagnose;
 mod iterate;
 mod page_parts;
 mod paired;
+mod schemes;
 
 pub use analytic::analytic_sections;
 pub use calibration::calibration;
@@ -21,3 +22,4 @@ pub use compare::compare;
 pub use diagnose::diagnose;
 pub use iterate::iterate;
 pub use paired::{paired, paired_sections};
+pub use schemes::{schemes_analyse, schemes_design};

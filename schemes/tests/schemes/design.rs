@@ -4,7 +4,8 @@ use rins_schemes::bound::CLASSES;
 use rins_schemes::design::{DesignOptions, design};
 
 /// Under the general b(u) no design goes below the invariant member, and the 16-position
-/// scheme already sits on it; under the plant's u_z-only δβ the search finds a scheme that
+/// scheme already sits within 0.1 % of it (what it adds is the within-cycle excursion), so no
+/// design can halve it; under the plant's u_z-only δβ the search finds a scheme that
 /// cuts the worst case by more than half while every constant error still cancels.
 #[test]
 fn the_general_class_cannot_be_halved_and_the_plant_class_can() {
@@ -21,8 +22,12 @@ fn the_general_class_cannot_be_halved_and_the_plant_class_can() {
     assert!(inv > 0.0);
     let r16 = general.reference.bounds[0].worst_horizontal_m;
     assert!(
-        (r16 - inv).abs() <= 1e-9 * inv,
+        r16 >= inv && r16 <= 1.001 * inv,
         "16-position {r16} vs invariant {inv}"
+    );
+    assert!(
+        0.5 * r16 < inv,
+        "halving would go below the invariant member"
     );
     for c in &general.best {
         assert!(c.bounds[0].worst_horizontal_m >= inv * (1.0 - 1e-9));
