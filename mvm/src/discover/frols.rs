@@ -319,9 +319,18 @@ pub fn select(
             continue;
         };
         test.delta_bic += lib.extra_params[j] as f64 * ln_n;
-        let theta = test.fit.theta[test.fit.theta.len() - 1];
-        if theta.abs() * lib.sf_regressor_range[j] > crate::fit::MAX_GYRO_SCALE_FACTOR {
-            // An implausible scale factor: a bias in disguise; the next best.
+        // The term last, its parents before it.
+        let theta = &test.fit.theta;
+        let implausible = parents
+            .iter()
+            .chain(std::iter::once(&j))
+            .zip(theta.len() - parents.len() - 1..)
+            .any(|(&k, i)| {
+                theta[i].abs() * lib.sf_regressor_range[k] > crate::fit::MAX_GYRO_SCALE_FACTOR
+            });
+        if implausible {
+            // An implausible scale factor (the term's, or a parent's it brings): a bias in
+            // disguise; the next best.
             continue;
         }
         // The block (parents and term) must improve the model too: parents that explain
