@@ -25,6 +25,11 @@ pub const RESAMPLES: usize = 100;
 /// A candidate whose part orthogonal to the model keeps less than this share of its norm² is
 /// (nearly) in the model already: not selectable.
 const MIN_ORTHOGONAL_SHARE: f64 = 1e-8;
+/// How many refused blocks (a term with library parents it brings) one step of the selection
+/// passes over before it stops: a block ranks by what its parents and the term explain
+/// together, so a square whose linear parent carries the signal can rank above the right
+/// term, fail the gate, and must not end the search.
+pub const MAX_REFUSED_BLOCKS: usize = 3;
 
 /// The orthogonal-regression state of one channel: residual and candidates orthogonal to the
 /// model so far, all whitened (and weighted for a bootstrap resample).
@@ -262,7 +267,11 @@ pub struct Pick {
 
 /// Forward selection on one channel: at most `max_terms` library terms of `lib` on top of the
 /// design `base` (the catalogue's accepted effects), each with its parents (which enter the
-/// model with it). Returns the kept terms in order and the first one the gate refused, if any.
+/// model with it). A refused candidate that brought library parents (a block) does not end the
+/// search: it is dropped and the next best is tried, at most [`MAX_REFUSED_BLOCKS`] times a
+/// step; a refused term without library parents (or one block too many) ends it. Returns the
+/// kept terms in order and, if the search ended on a refusal, the first term the gate refused
+/// in that last step.
 pub fn select(
     d: &ChannelData,
     base: &Design,
@@ -283,6 +292,9 @@ pub fn select(
     let mut tried: Vec<usize> = Vec::new();
     let mut taken: Vec<usize> = Vec::new();
     let ln_n = (d.y.len() as f64).ln();
+    // The refusals of this step: the first refused, and how many blocks were passed over.
+    let mut miss: Option<Pick> = None;
+    let mut refused_blocks = 0;
     while kept.len() < max_terms {
         let Some((j, err, parents)) = o.best(&tried, &taken, lib) else {
             break;
@@ -307,9 +319,18 @@ pub fn select(
             continue;
         };
         test.delta_bic += lib.extra_params[j] as f64 * ln_n;
-        let theta = test.fit.theta[test.fit.theta.len() - 1];
-        if theta.abs() * lib.sf_regressor_range[j] > crate::fit::MAX_GYRO_SCALE_FACTOR {
-            // An implausible scale factor: a bias in disguise; the next best.
+        // The term last, its parents before it.
+        let theta = &test.fit.theta;
+        let implausible = parents
+            .iter()
+            .chain(std::iter::once(&j))
+            .zip(theta.len() - parents.len() - 1..)
+            .any(|(&k, i)| {
+                theta[i].abs() * lib.sf_regressor_range[k] > crate::fit::MAX_GYRO_SCALE_FACTOR
+            });
+        if implausible {
+            // An implausible scale factor (the term's, or a parent's it brings): a bias in
+            // disguise; the next best.
             continue;
         }
         // The block (parents and term) must improve the model too: parents that explain
@@ -330,8 +351,18 @@ pub fn select(
             design: x1.clone(),
         };
         if !passes {
-            return (kept, Some(pick));
+            let block = pick.parents.iter().any(|&p| lib.selectable[p]);
+            miss.get_or_insert(pick);
+            if block && refused_blocks < MAX_REFUSED_BLOCKS {
+                // A block refused (its parents may carry the signal on their own, or the
+                // term below it is the right one): the next best.
+                refused_blocks += 1;
+                continue;
+            }
+            return (kept, miss);
         }
+        miss = None;
+        refused_blocks = 0;
         for &p in &pick.parents {
             o.take(p);
             taken.push(p);
@@ -342,7 +373,7 @@ pub fn select(
         x = x1;
         kept.push(pick);
     }
-    (kept, None)
+    (kept, miss)
 }
 
 /// `x` with the column `col` (file unit `unit`) appended.
