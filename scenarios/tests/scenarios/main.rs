@@ -19,6 +19,7 @@ mod preset_path;
 mod scenario_errors;
 mod scenario_files;
 mod scenario_fuzz;
+mod schemes_cli;
 mod sea;
 mod sweep;
 #[cfg(feature = "transport")]
