@@ -22,6 +22,7 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use super::carrier_state::CarrierState;
 use super::track::wrap_lon_rad;
 use crate::earth::radii_of_curvature;
+use crate::message::Num;
 use crate::units::DEG;
 
 /// Columns, in any order.
@@ -130,7 +131,11 @@ impl Trajectory {
                     .parse::<f64>()
                     .map_err(|_| err(row, COLUMNS[c], format!("not a number: {f:?}")))?;
                 if !x.is_finite() {
-                    return Err(err(row, COLUMNS[c], format!("{x} is not a finite number")));
+                    return Err(err(
+                        row,
+                        COLUMNS[c],
+                        format!("{} is not a finite number", Num(*x)),
+                    ));
                 }
             }
             let lat_max = super::track::MAX_LAT_DEG;
@@ -138,7 +143,7 @@ impl Trajectory {
                 return Err(err(
                     row,
                     "lat_deg",
-                    format!("expected [-{lat_max}, {lat_max}], got {}", v[1]),
+                    format!("expected [-{lat_max}, {lat_max}], got {}", Num(v[1])),
                 ));
             }
             let q = Quaternion::new(v[7], v[8], v[9], v[10]);
@@ -148,7 +153,7 @@ impl Trajectory {
                     "q_cn_w",
                     format!(
                         "quaternion (q_cn_w, q_cn_x, q_cn_y, q_cn_z) has norm {}, expected 1 within {QUAT_NORM_TOL}",
-                        q.norm()
+                        Num(q.norm())
                     ),
                 ));
             }
@@ -174,7 +179,11 @@ impl Trajectory {
             return Err(err(
                 2,
                 "t_s",
-                format!("time not increasing: {} after {}", times[1], times[0]),
+                format!(
+                    "time not increasing: {} after {}",
+                    Num(times[1]),
+                    Num(times[0])
+                ),
             ));
         }
         for k in 1..rows.len() {
@@ -183,7 +192,11 @@ impl Trajectory {
                 return Err(err(
                     k + 1,
                     "t_s",
-                    format!("time step {d} s, expected the file's uniform step {dt} s"),
+                    format!(
+                        "time step {} s, expected the file's uniform step {} s",
+                        Num(d),
+                        Num(dt)
+                    ),
                 ));
             }
             let (a, b) = (&rows[k - 1], &rows[k]);
@@ -200,7 +213,9 @@ impl Trajectory {
                         k + 1,
                         col,
                         format!(
-                            "position jump: moved {d_m:.3} m since the previous row, the velocities give {expect:.3} m (tolerance {JUMP_ABS_TOL_M} m + {} %)",
+                            "position jump: moved {:.3} m since the previous row, the velocities give {:.3} m (tolerance {JUMP_ABS_TOL_M} m + {} %)",
+                            Num(d_m),
+                            Num(expect),
                             JUMP_REL_TOL * 100.0
                         ),
                     ));

@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
+use rins_plant::message::Num;
 use rins_verify::paper::{Table4Options, Table4Report};
 
 use super::args::{RerunArgs, whole};
@@ -103,7 +104,7 @@ fn headline(a: &PaperArgs) -> Result<()> {
 pub fn check_runs_days(runs: i64, days: f64) -> Result<usize> {
     let runs = whole("--runs", runs, 1, usize::MAX, "seed")?;
     if !(days > 0.0 && days <= 60.0) {
-        anyhow::bail!("--days: expected a number in (0, 60], got {days}");
+        anyhow::bail!("--days: expected a number in (0, 60], got {}", Num(days));
     }
     Ok(runs)
 }
