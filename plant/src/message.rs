@@ -66,6 +66,37 @@ pub fn expected_in(v: f64, lo: f64, hi: f64) -> String {
     }
 }
 
+/// Characters of a name or a text that [`quote`] keeps.
+pub const QUOTE_CHARS: usize = 80;
+
+/// `s` in double quotes, escaped (control characters as escapes), cut to its first
+/// [`QUOTE_CHARS`] characters with `…` (a 5000-character column name is not echoed whole).
+pub fn quote(s: &str) -> String {
+    let mut out: String = s
+        .chars()
+        .take(QUOTE_CHARS)
+        .flat_map(char::escape_debug)
+        .collect();
+    if s.chars().nth(QUOTE_CHARS).is_some() {
+        out.push('…');
+    }
+    format!("\"{out}\"")
+}
+
+/// Where in a file of a header and data rows (a trajectory, a measurement file) an error lies,
+/// for its message: `row` counts data rows from 1, 0 is the header (with a `column`) or the
+/// file as a whole (without one); an empty `column` is the whole row. So "the whole file",
+/// "header, column \"lat_deg\"", "row 3" or "row 3, column \"t_s\"", never `row 0,
+/// column ""`.
+pub fn file_location(row: usize, column: &str) -> String {
+    match (row, column.is_empty()) {
+        (0, true) => "the whole file".into(),
+        (0, false) => format!("header, column {}", quote(column)),
+        (r, true) => format!("row {r}"),
+        (r, false) => format!("row {r}, column {}", quote(column)),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -109,5 +140,19 @@ mod tests {
             "a finite number in [0, 20]"
         );
         assert_eq!(expected_in(1e300, 0.0, 20.0), "a number in [0, 20]");
+    }
+
+    /// Issue 44: file-level errors said `row 0, column ""`.
+    #[test]
+    fn file_locations_name_the_file_the_header_or_the_row() {
+        assert_eq!(file_location(0, ""), "the whole file");
+        assert_eq!(file_location(0, "t_s"), "header, column \"t_s\"");
+        assert_eq!(file_location(4, ""), "row 4");
+        assert_eq!(file_location(4, "lat_deg"), "row 4, column \"lat_deg\"");
+        let long = "x".repeat(100);
+        assert_eq!(
+            file_location(1, &long),
+            format!("row 1, column \"{}…\"", "x".repeat(80))
+        );
     }
 }

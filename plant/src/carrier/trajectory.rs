@@ -41,9 +41,11 @@ pub const JUMP_ABS_TOL_M: f64 = 0.1;
 /// See [`JUMP_ABS_TOL_M`].
 pub const JUMP_REL_TOL: f64 = 0.01;
 
-/// An error in a trajectory file; `row` counts data rows from 1 (the header is row 0).
+/// An error in a trajectory file; `row` counts data rows from 1 (the header is row 0). The
+/// message says where ([`crate::message::file_location`]): the whole file (row 0 without a
+/// column), the header's column, the row, or the row's column.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{source_name}: row {row}, column {column:?}: {message}")]
+#[error("{source_name}: {}: {message}", crate::message::file_location(*.row, .column))]
 pub struct TrajectoryError {
     /// File name.
     pub source_name: String,
@@ -117,11 +119,28 @@ impl Trajectory {
         for (r, line) in lines.enumerate() {
             let row = r + 1;
             let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-            if fields.len() != header.len() {
+            if fields.len() < header.len() {
+                // A short row: the first column it lacks.
+                return Err(err(
+                    row,
+                    &header[fields.len()],
+                    format!(
+                        "missing: the row ends before this column ({} fields, the header has {})",
+                        fields.len(),
+                        header.len()
+                    ),
+                ));
+            }
+            if fields.len() > header.len() {
                 return Err(err(
                     row,
                     "",
-                    format!("{} fields, the header has {}", fields.len(), header.len()),
+                    format!(
+                        "{} fields, the header has {} (the last is {})",
+                        fields.len(),
+                        header.len(),
+                        crate::message::quote(&header[header.len() - 1])
+                    ),
                 ));
             }
             let mut v = [0.0; 11];
@@ -172,7 +191,11 @@ impl Trajectory {
             });
         }
         if rows.len() < 2 {
-            return Err(err(rows.len(), "t_s", "need at least two data rows".into()));
+            return Err(err(
+                0,
+                "",
+                format!("need at least two data rows, got {}", rows.len()),
+            ));
         }
         let dt = times[1] - times[0];
         if dt <= 0.0 {
