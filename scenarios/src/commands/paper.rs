@@ -91,6 +91,7 @@ fn headline(a: &PaperArgs) -> Result<()> {
         &format!("Section 3.1 / Table 4 ({} seeds)", t4.runs),
         "One week of static navigation of the 16-position RINS at 36.6 N 123.6 E with the Table 3 sensors, uncompensated and with delta-beta compensated.",
     );
+    crate::html::results::paired_verdict(&mut page, &t4_report, false)?;
     crate::html::results::paired_sections(&mut page, &t4_report, false, &a.out)?;
     let path = page.write(a.report.as_ref().unwrap_or(&a.out))?;
     println!("  HTML report: {}", path.display());

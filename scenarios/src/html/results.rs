@@ -20,4 +20,4 @@ pub use campaign::campaign;
 pub use compare::compare;
 pub use diagnose::diagnose;
 pub use iterate::iterate;
-pub use paired::{paired, paired_sections};
+pub use paired::{paired, paired_sections, paired_verdict};
