@@ -102,9 +102,8 @@ impl<'s, 'a> Chunker<'s, 'a> {
             self.hand_on(self.pending.rows)?;
         }
         if self.row0 < 2 {
-            return Err(self
-                .layout
-                .err(self.row0, "t_s", "need at least two data rows".into()));
+            let got = format!("need at least two data rows, got {}", self.row0);
+            return Err(self.layout.err(0, "", got));
         }
         Ok(self.row0)
     }

@@ -247,7 +247,9 @@ impl ColumnMap {
                             line,
                             &name,
                             format!(
-                                "factor must be finite and non-zero, offset finite (got {f}, {o})"
+                                "factor must be finite and non-zero, offset finite (got {}, {})",
+                                crate::ranges::show(f),
+                                crate::ranges::show(o)
                             ),
                         ));
                     }

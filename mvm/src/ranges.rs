@@ -144,14 +144,9 @@ pub fn bound(name: &str) -> Option<Bound> {
 }
 
 /// A number for a message: plain when short, in exponent form when huge or tiny (a 1e300 is
-/// not printed as 301 digits).
+/// not printed as 301 digits): the workspace's one rule, [`rins_plant::message::num`].
 pub fn show(v: f64) -> String {
-    let a = v.abs();
-    if a != 0.0 && !(1e-4..1e7).contains(&a) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
-    }
+    rins_plant::message::num(v)
 }
 
 /// Source name of documented column `name` (for errors: the column as the file calls it),

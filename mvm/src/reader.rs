@@ -19,20 +19,12 @@ use crate::ranges;
 pub const MAX_LINE: usize = 64 << 10;
 
 /// Characters of a field or line quoted in an error.
-const QUOTE_CHARS: usize = 80;
+const QUOTE_CHARS: usize = rins_plant::message::QUOTE_CHARS;
 
 /// The first [`QUOTE_CHARS`] characters of `s`, escaped (NUL and control bytes shown as
-/// escapes), with `…` when cut.
+/// escapes), with `…` when cut: [`rins_plant::message::quote`].
 pub(crate) fn quote(s: &str) -> String {
-    let mut out: String = s
-        .chars()
-        .take(QUOTE_CHARS)
-        .flat_map(char::escape_debug)
-        .collect();
-    if s.chars().nth(QUOTE_CHARS).is_some() {
-        out.push('…');
-    }
-    format!("\"{out}\"")
+    rins_plant::message::quote(s)
 }
 
 /// The message for a line of `len` bytes (longer than [`MAX_LINE`]) that starts with `start`.
@@ -152,15 +144,17 @@ impl Measurement {
 }
 
 /// An error in a measurement file; `row` counts data rows from 1 (the header is row 0). The
-/// message quotes the column to its first 80 characters.
+/// message says where ([`rins_plant::message::file_location`]): the whole file (row 0 without a
+/// column), the header's column, the row, or the row's column, quoted to its first 80
+/// characters.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{source_name}: row {row}, column {}: {message}", quote(.column))]
+#[error("{source_name}: {}: {message}", rins_plant::message::file_location(*.row, .column))]
 pub struct MeasurementError {
     /// File.
     pub source_name: String,
-    /// Data row (1-based; 0 = header).
+    /// Data row (1-based; 0 = the header, or the whole file when `column` is empty).
     pub row: usize,
-    /// Column name.
+    /// Column name (empty: the whole row, or the whole file).
     pub column: String,
     /// What is wrong.
     pub message: String,
@@ -283,11 +277,26 @@ fn parse_rows(
             }
             a = b + 1;
         }
-        if count != header.len() {
+        if count < header.len() {
+            // A short row: the first column it lacks.
+            return Err(err(
+                row,
+                &header[count],
+                format!(
+                    "missing: the row ends before this column ({count} fields, header has {})",
+                    header.len()
+                ),
+            ));
+        }
+        if count > header.len() {
             return Err(err(
                 row,
                 "",
-                format!("{count} fields, header has {}", header.len()),
+                format!(
+                    "{count} fields, header has {} (the last is {})",
+                    header.len(),
+                    quote(header.last().map_or("", String::as_str))
+                ),
             ));
         }
     }

@@ -1,6 +1,7 @@
 //! Table commands from the navigation computer (a real RINS navigation computer drives its own
 //! table): they replace the configured scheme from the next output interval on.
 
+use crate::message::Num;
 use crate::table::GimbalAngles;
 use crate::table::scheme::{GimbalAxis, ResolvedStep};
 
@@ -53,13 +54,15 @@ impl ActiveCommand {
             } => {
                 if !outer_rad.is_finite() || !inner_rad.is_finite() {
                     return Err(format!(
-                        "gimbal target must be finite, got outer {outer_rad} rad, inner {inner_rad} rad"
+                        "gimbal target must be finite, got outer {} rad, inner {} rad",
+                        Num(*outer_rad),
+                        Num(*inner_rad)
                     ));
                 }
                 if !rate_ok(*rate_rps) {
                     return Err(format!(
                         "gimbal rate must be in (0, 100] deg/s, got {} deg/s",
-                        rate_rps.to_degrees()
+                        Num(rate_rps.to_degrees())
                     ));
                 }
                 let moves = [
@@ -88,9 +91,9 @@ impl ActiveCommand {
                     {
                         return Err(format!(
                             "gimbal step {i}: angle must be finite within ±3600 deg, rate in (0, 100] deg/s, dwell ≥ 0 s; got {} deg, {} deg/s, {} s",
-                            s.angle_rad.to_degrees(),
-                            s.rate_rps.to_degrees(),
-                            s.dwell_s
+                            Num(s.angle_rad.to_degrees()),
+                            Num(s.rate_rps.to_degrees()),
+                            Num(s.dwell_s)
                         ));
                     }
                 }

@@ -7,6 +7,7 @@ use crate::earth::{EarthSpec, SiteSpec};
 use crate::effects::encoder::EncoderSpec;
 use crate::effects::temp_sensor::TempSensorSpec;
 use crate::effects::{AccelSpec, GyroSpec};
+use crate::message::{self, Num};
 use crate::params::ParamValue;
 use crate::table::{SchemeKind, SchemeSpec};
 use crate::thermal::{CHAMBER_MAX_C, CHAMBER_MIN_C, ThermalSpec};
@@ -116,8 +117,19 @@ impl Checker {
         if !ok {
             self.errors.push(ConfigError {
                 path: path.into(),
-                expected: format!("a number in [{lo}, {hi}]"),
-                got: format!("{v}"),
+                expected: message::expected_in(v, lo, hi),
+                got: message::num(v),
+            });
+        }
+    }
+    /// Range check of a whole number, echoed exactly (as a real, 2^63 - 1 would read
+    /// 9.223372036854776e18).
+    fn range_whole(&mut self, path: &str, u: u64, lo: f64, hi: f64) {
+        if !(u as f64 >= lo && u as f64 <= hi) {
+            self.errors.push(ConfigError {
+                path: path.into(),
+                expected: format!("a whole number in {}", message::range(lo, hi)),
+                got: u.to_string(),
             });
         }
     }
@@ -168,13 +180,10 @@ impl PlantConfig {
     pub fn validate(&self) -> Result<(), Vec<ConfigError>> {
         let mut c = Checker { errors: Vec::new() };
         for p in crate::params::flatten(self) {
-            let v = match p.value {
-                ParamValue::Real(v) => v,
-                ParamValue::Integer(u) => u as f64,
-                _ => continue,
-            };
-            if let Some((lo, hi)) = p.range {
-                c.range(&p.path, v, lo, hi);
+            match (p.value, p.range) {
+                (ParamValue::Real(v), Some((lo, hi))) => c.range(&p.path, v, lo, hi),
+                (ParamValue::Integer(u), Some((lo, hi))) => c.range_whole(&p.path, u, lo, hi),
+                _ => {}
             }
         }
         self.validate_scheme(&mut c);
@@ -227,7 +236,7 @@ impl PlantConfig {
                 c.fail(
                     &format!("scheme.steps[{i}].angle_deg"),
                     "a non-zero angle in [-3600, 3600]",
-                    format!("{}", st.angle_deg),
+                    message::num(st.angle_deg),
                 );
             }
         }
@@ -271,7 +280,7 @@ impl PlantConfig {
             c.fail(
                 "thermal.step_s",
                 "a whole multiple of the output interval 1/run.rate_hz",
-                format!("{} s at {} Hz", t.step_s, self.rate_hz),
+                format!("{} s at {} Hz", Num(t.step_s), Num(self.rate_hz)),
             );
         }
         let mut last = f64::NEG_INFINITY;
@@ -283,10 +292,15 @@ impl PlantConfig {
                 CHAMBER_MAX_C,
             );
             if !(p[0].is_finite() && p[0] > last) {
+                let got = if i == 0 {
+                    Num(p[0]).to_string()
+                } else {
+                    format!("{} after {}", Num(p[0]), Num(last))
+                };
                 c.fail(
                     &format!("thermal.chamber.profile[{i}][0]"),
-                    "times strictly increasing",
-                    format!("{} after {}", p[0], last),
+                    "finite times, strictly increasing",
+                    got,
                 );
             }
             last = p[0];

@@ -21,6 +21,7 @@ pub mod config;
 pub mod earth;
 pub mod effects;
 pub mod kinematics;
+pub mod message;
 pub mod output;
 pub mod params;
 pub mod plant;

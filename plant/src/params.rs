@@ -534,7 +534,8 @@ fn put(path: &str, slot: &mut Slot<'_>, value: &ParamValue) -> Result<(), Put> {
             Ok(x as u64)
         } else {
             Err(Put::Bad(invalid(format!(
-                "expected a whole number ≥ 0, got {x}"
+                "expected a whole number ≥ 0, got {}",
+                crate::message::Num(x)
             ))))
         }
     };

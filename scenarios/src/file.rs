@@ -7,6 +7,7 @@ use rins_plant::carrier::{AfterEnd, CarrierKind, CarrierSpec};
 use rins_plant::config::{SensorSpec, VehicleSpec};
 use rins_plant::earth::{EarthSpec, SiteSpec};
 use rins_plant::effects::{AccelSpec, GyroSpec};
+use rins_plant::message::Num;
 use rins_plant::table::SchemeSpec;
 use rins_plant::thermal::ThermalSpec;
 use rins_plant::{PlantConfig, presets};
@@ -399,7 +400,7 @@ impl Scenario {
                 "scenario.duration_s".into(),
                 format!(
                     "expected a number in (0, 1e7], got {}",
-                    self.meta.duration_s
+                    Num(self.meta.duration_s)
                 ),
             ));
         }
@@ -417,9 +418,10 @@ impl Scenario {
                     problems.push((
                         "campaign.temps_c".into(),
                         format!(
-                            "expected chamber temperatures in [{}, {}] °C (the thermal model's range), got {t} at run {i}",
+                            "expected chamber temperatures in [{}, {}] °C (the thermal model's range), got {} at run {i}",
                             rins_plant::thermal::CHAMBER_MIN_C,
-                            rins_plant::thermal::CHAMBER_MAX_C
+                            rins_plant::thermal::CHAMBER_MAX_C,
+                            Num(*t)
                         ),
                     ));
                 }

@@ -152,11 +152,14 @@ pub fn write_figures(dir: &Path, r: &IterationReport) -> Result<Vec<PathBuf>> {
             })
             .collect();
         lines.push(Line::new("noise floor", floor(0.0), GREY, Kind::Dashed));
-        panels.push(Panel::new(
-            format!("{title}: residual RMS / noise floor after each step"),
-            "residual / floor",
-            lines,
-        ));
+        panels.push(
+            Panel::new(
+                format!("{title}: residual RMS / noise floor after each step"),
+                "residual / floor",
+                lines,
+            )
+            .whole_x(),
+        );
     }
     files.extend(write_figure(
         &dir.join("iteration_history.svg"),

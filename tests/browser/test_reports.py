@@ -5,7 +5,10 @@ features), dumps the DOM and logs to stderr; the page must log no console messag
 load, every expected figure must be an inline SVG with drawn content and a non-zero size, every
 number cell (data-src/data-json/data-value) must equal the value at its path in the command's
 --json output (the exact value, and the shown text to its last digit), and a screenshot is
-taken (a PNG of the window size, not blank).
+taken (a PNG of the window size, not blank). The result pages of diagnose, diagnose --iterate,
+compare, sweep and paper (table4, table5 and the headline) must open with their verdict: the
+first block after the title and the command line is the verdict section, and each of its
+numbers (data-json) and counts (data-json-len, an array's length) equals the --json output.
 
 Usage: python3 tests/browser/test_reports.py RINS_BINARY
 """
@@ -57,13 +60,16 @@ class Page(HTMLParser):
             self.figures[self.stack_fig]["svg"] = (a.get("width"), a.get("height"))
         elif self.stack_fig and tag in ("path", "polyline", "line", "circle", "rect", "polygon", "text"):
             self.figures[self.stack_fig]["elements"] += 1
-        if tag == "td" and "data-json" in a:
-            self.cell = {"src": a["data-src"], "path": a["data-json"], "value": a["data-value"], "text": ""}
+        if tag in ("td", "span") and "data-json" in a:
+            self.cell = {"src": a["data-src"], "path": a["data-json"], "value": a["data-value"],
+                         "text": "", "tag": tag}
+        elif tag in ("td", "span") and "data-json-len" in a:
+            self.cell = {"src": a["data-src"], "len": a["data-json-len"], "text": "", "tag": tag}
 
     def handle_endtag(self, tag):
         if tag == "figure":
             self.stack_fig = None
-        if tag == "td" and self.cell is not None:
+        if self.cell is not None and tag == self.cell["tag"]:
             self.cells.append(self.cell)
             self.cell = None
 
@@ -94,6 +100,44 @@ def png_size(path):
     return struct.unpack(">II", head[16:24])
 
 
+# The pages that must open with a verdict that agrees with the JSON.
+VERDICT_PAGES = {"paper", "table4", "table5", "diagnose", "compare", "iterate", "sweep"}
+# The title, the command line, then the verdict: the first block of the page's content.
+VERDICT_FIRST = re.compile(
+    r'<body[^>]*>\s*<h1>[^<]*</h1>\s*<p class="meta">.*?</p>\s*'
+    r'(<section class="verdict" id="verdict">.*?</section>)', re.S)
+
+
+def check_cells(name, cells, sources):
+    """Every number cell equals its JSON value (and shows it to its last digit); every count
+    equals its array's length."""
+    for c in cells:
+        if "len" in c:
+            want = len(lookup(sources[c["src"]], c["len"]))
+            assert int(c["text"].strip()) == want, (
+                f"{name}: {c['src']}:{c['len']} counts {c['text']!r}, json has {want}")
+            continue
+        want = lookup(sources[c["src"]], c["path"])
+        got = float(c["value"])
+        assert got == want, f"{name}: {c['src']}:{c['path']} page {got!r} vs json {want!r}"
+        shown = c["text"].strip()
+        assert abs(float(shown) - want) <= last_digit(shown) * (1 + 1e-9) + 1e-300, (
+            f"{name}: {c['path']} shows {shown} for {want!r}")
+
+
+def check_verdict(name, dom, sources):
+    """The verdict is the page's first block and its numbers are the JSON's; returns them."""
+    m = VERDICT_FIRST.search(dom)
+    assert m, f"{name}: the page does not open with its verdict: {dom[dom.find('<body'):][:600]}"
+    v = Page()
+    v.feed(m.group(1))
+    v.close()
+    assert any("path" in c for c in v.cells) or any("len" in c for c in v.cells), (
+        f"{name}: the verdict quotes no number of the result: {m.group(1)[:400]}")
+    check_cells(f"{name} verdict", v.cells, sources)
+    return len(v.cells)
+
+
 def check_report(name, html, sources, figures, shots):
     url = "file://" + os.path.abspath(html)
     with tempfile.TemporaryDirectory() as profile:
@@ -115,13 +159,8 @@ def check_report(name, html, sources, figures, shots):
         assert g["svg"] and all(v and float(v) > 0 for v in g["svg"]), f"{name}: {f} has no size"
         assert g["elements"] > 30, f"{name}: {f} is nearly empty ({g['elements']} elements)"
     assert page.cells, f"{name}: no number cells"
-    for c in page.cells:
-        want = lookup(sources[c["src"]], c["path"])
-        got = float(c["value"])
-        assert got == want, f"{name}: {c['src']}:{c['path']} page {got!r} vs json {want!r}"
-        shown = c["text"].strip()
-        assert abs(float(shown) - want) <= last_digit(shown) * (1 + 1e-9) + 1e-300, (
-            f"{name}: {c['path']} shows {shown} for {want!r}")
+    check_cells(name, page.cells, sources)
+    verdict = check_verdict(name, p.stdout, sources) if name in VERDICT_PAGES else 0
     with tempfile.TemporaryDirectory() as profile:
         shot = os.path.join(shots, f"{name}.png")
         subprocess.run(
@@ -131,7 +170,8 @@ def check_report(name, html, sources, figures, shots):
     w, h = png_size(shot)
     assert (w, h) == (1000, 1400), f"{name}: screenshot {w}x{h}"
     assert os.path.getsize(shot) > 20_000, f"{name}: blank screenshot"
-    print(f"  {name}: {len(page.figures)} figures, {len(page.cells)} numbers equal to --json, "
+    first = f", verdict first ({verdict} numbers)" if verdict else ""
+    print(f"  {name}: {len(page.figures)} figures, {len(page.cells)} numbers equal to --json{first}, "
           f"screenshot {os.path.getsize(shot) // 1024} KiB")
 
 

@@ -15,8 +15,60 @@ fn good() -> String {
 
 fn error(text: &str) -> (usize, String, String) {
     let e = parse(text, "m.csv").expect_err("must be refused");
-    assert!(e.to_string().starts_with("m.csv: row "), "{e}");
+    let at = if e.row > 0 {
+        "m.csv: row "
+    } else {
+        "m.csv: header, column "
+    };
+    assert!(e.to_string().starts_with(at), "{e}");
     (e.row, e.column, e.message)
+}
+
+/// Issue 44: an error about the whole file, or the header, says so (it read `row 0, column
+/// ""`), and a short row names the first column it lacks (it named none).
+#[test]
+fn file_level_errors_say_so_and_a_short_row_names_its_first_missing_column() {
+    let g = good();
+    let said = |text: &str| {
+        parse(text, "m.csv")
+            .expect_err("must be refused")
+            .to_string()
+    };
+    assert_eq!(
+        said(""),
+        "m.csv: the whole file: empty file: expected a header row"
+    );
+    let one_row: String = g.lines().take(2).map(|l| format!("{l}\n")).collect();
+    assert_eq!(
+        said(&one_row),
+        "m.csv: the whole file: need at least two data rows, got 1"
+    );
+    assert_eq!(
+        said(&g.replace(",run,segment", ",run,t_s")),
+        "m.csv: header, column \"t_s\": duplicate column"
+    );
+    assert_eq!(
+        said(&g.replace(",r1,zup\n0.2", ",r1\n0.2")),
+        "m.csv: row 1, column \"segment\": missing: the row ends before this column (11 fields, \
+         header has 12)"
+    );
+    assert_eq!(
+        said(&g.replace("30.1,r1,zup\n0.2", "30.1\n0.2")),
+        "m.csv: row 1, column \"run\": missing: the row ends before this column (10 fields, \
+         header has 12)"
+    );
+    assert_eq!(
+        said(&g.replace(",r1,zup\n0.2", ",r1,zup,7\n0.2")),
+        "m.csv: row 1: 13 fields, header has 12 (the last is \"segment\")"
+    );
+    let missing = std::env::temp_dir().join(format!("rins-no-such-{}.csv", std::process::id()));
+    assert_eq!(
+        read(&missing).expect_err("no file").to_string(),
+        format!(
+            "{}: the whole file: cannot read: No such file or directory (os error 2)",
+            missing.display()
+        )
+    );
 }
 
 #[test]

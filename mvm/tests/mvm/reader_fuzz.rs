@@ -46,8 +46,12 @@ fn shape(text: &str) -> (Vec<String>, usize) {
 fn check_refusal(e: &MeasurementError, bytes: &[u8], name: &str, ctx: &str) {
     let text = e.to_string();
     assert_eq!(e.source_name, name, "{ctx}: {text}");
+    // Where, as the one location rule writes it: the whole file, the header's column, the row.
     assert!(
-        text.starts_with(&format!("{name}: row {}", e.row)),
+        text.starts_with(&format!(
+            "{name}: {}: ",
+            rins_plant::message::file_location(e.row, &e.column)
+        )),
         "{ctx}: {text}"
     );
     if let Err(u) = std::str::from_utf8(bytes) {
@@ -63,10 +67,20 @@ fn check_refusal(e: &MeasurementError, bytes: &[u8], name: &str, ctx: &str) {
         assert!(e.message.contains("empty file"), "{ctx}: {text}");
         return;
     }
-    if e.column.is_empty() {
-        // A row with the wrong number of fields: the row and both counts are named.
+    if e.column.is_empty() && e.row == 0 {
+        // An error of the whole file: too few rows, or a line too long to be one.
         assert!(
-            e.row > 0 && e.message.contains(&format!("header has {}", header.len())),
+            e.message.contains("need at least two data rows")
+                || e.message.contains("longer than the limit"),
+            "{ctx}: {text}"
+        );
+        return;
+    }
+    if e.column.is_empty() {
+        // A row with more fields than the header (a short one names its first missing
+        // column): the row and both counts are named.
+        assert!(
+            e.message.contains(&format!("header has {}", header.len())),
             "{ctx}: no column in {text}"
         );
         return;

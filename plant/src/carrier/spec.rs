@@ -1,5 +1,6 @@
 //! The `[carrier]` section: what carries the table (static, a ship, a trajectory file).
 
+use crate::message::Num;
 use serde::{Deserialize, Serialize};
 
 /// Which carrier moves the table.
@@ -309,22 +310,31 @@ pub fn validate_sea(sea: &SeaSpec, fail: &mut dyn FnMut(&str, &str, String)) {
             "carrier.ship.sea.band",
             "the shortest then the longest frequency, band[0] < band[1], each in [0.1, 10] \
              (multiples of the peak frequency; an empty band has no waves)",
-            format!("[{lo}, {hi}]"),
+            format!("[{}, {}]", Num(lo), Num(hi)),
         );
     }
     let (hs, tp) = sea.hs_tp();
-    if sea.spectrum != SpectrumKind::None && sea.steepness() >= MAX_STEEPNESS {
+    // A height or period outside its own range is reported by the range check alone (with an
+    // infinite or vanishing one the limits below would read "tp_s above inf s").
+    let within = |v: f64, path: &str| {
+        crate::params::range_for(path).is_none_or(|(lo, hi)| v >= lo && v <= hi)
+    };
+    let in_range = within(hs, "carrier.ship.sea.hs_m") && within(tp, "carrier.ship.sea.tp_s");
+    if sea.spectrum != SpectrumKind::None && in_range && sea.steepness() >= MAX_STEEPNESS {
         let lambda = G_WAVE_MPS2 * tp * tp / (2.0 * std::f64::consts::PI);
         let tp_min = (hs / MAX_STEEPNESS * 2.0 * std::f64::consts::PI / G_WAVE_MPS2).sqrt();
         fail(
             "carrier.ship.sea.hs_m",
             &format!(
-                "a significant wave height below λp/7 = {:.3} m for tp_s = {tp} s (significant \
-                 steepness Hs/λp < 1/7, λp = g·Tp²/(2π) = {lambda:.3} m: steeper waves break), \
-                 or tp_s above {tp_min:.3} s for this height",
-                lambda * MAX_STEEPNESS
+                "a significant wave height below λp/7 = {:.3} m for tp_s = {} s (significant \
+                 steepness Hs/λp < 1/7, λp = g·Tp²/(2π) = {:.3} m: steeper waves break), \
+                 or tp_s above {:.3} s for this height",
+                Num(lambda * MAX_STEEPNESS),
+                Num(tp),
+                Num(lambda),
+                Num(tp_min),
             ),
-            format!("hs_m = {hs} (steepness {:.3})", sea.steepness()),
+            format!("hs_m = {} (steepness {:.3})", Num(hs), Num(sea.steepness())),
         );
     }
 }
@@ -338,9 +348,9 @@ pub fn polar_problem(ship: &ShipSpec, until_s: f64) -> Option<(String, String, S
     let l = ship.legs.get(x.leg)?;
     let last = x.leg + 1 == ship.legs.len();
     let span = if last && until_s > track_end_s(ship) {
-        format!("continued to the end of the run at {until_s} s")
+        format!("continued to the end of the run at {} s", Num(until_s))
     } else {
-        format!("{} s long", l.duration_s)
+        format!("{} s long", Num(l.duration_s))
     };
     Some((
         format!("carrier.ship.legs[{}]", x.leg),
@@ -352,7 +362,11 @@ pub fn polar_problem(ship: &ShipSpec, until_s: f64) -> Option<(String, String, S
         ),
         format!(
             "leg {} (heading {} °, {} kn, {span}) would reach latitude {:.3} ° at t = {:.0} s",
-            x.leg, l.heading_deg, l.speed_kn, x.lat_deg, x.t_s
+            x.leg,
+            Num(l.heading_deg),
+            Num(l.speed_kn),
+            x.lat_deg,
+            x.t_s
         ),
     ))
 }
@@ -483,9 +497,7 @@ mod tests {
         let e = errors(&ship_with(|s| s.legs[0].duration_s = 0.0));
         assert_eq!(e.len(), 1, "{e:?}");
         assert!(
-            e[0].starts_with(
-                "carrier.ship.legs[0].duration_s: expected a number in [0.001, 100000000]"
-            ),
+            e[0].starts_with("carrier.ship.legs[0].duration_s: expected a number in [0.001, 1e8]"),
             "{e:?}"
         );
         for (lon, ok) in [

@@ -22,6 +22,7 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use super::carrier_state::CarrierState;
 use super::track::wrap_lon_rad;
 use crate::earth::radii_of_curvature;
+use crate::message::Num;
 use crate::units::DEG;
 
 /// Columns, in any order.
@@ -40,9 +41,11 @@ pub const JUMP_ABS_TOL_M: f64 = 0.1;
 /// See [`JUMP_ABS_TOL_M`].
 pub const JUMP_REL_TOL: f64 = 0.01;
 
-/// An error in a trajectory file; `row` counts data rows from 1 (the header is row 0).
+/// An error in a trajectory file; `row` counts data rows from 1 (the header is row 0). The
+/// message says where ([`crate::message::file_location`]): the whole file (row 0 without a
+/// column), the header's column, the row, or the row's column.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{source_name}: row {row}, column {column:?}: {message}")]
+#[error("{source_name}: {}: {message}", crate::message::file_location(*.row, .column))]
 pub struct TrajectoryError {
     /// File name.
     pub source_name: String,
@@ -116,11 +119,28 @@ impl Trajectory {
         for (r, line) in lines.enumerate() {
             let row = r + 1;
             let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-            if fields.len() != header.len() {
+            if fields.len() < header.len() {
+                // A short row: the first column it lacks.
+                return Err(err(
+                    row,
+                    &header[fields.len()],
+                    format!(
+                        "missing: the row ends before this column ({} fields, the header has {})",
+                        fields.len(),
+                        header.len()
+                    ),
+                ));
+            }
+            if fields.len() > header.len() {
                 return Err(err(
                     row,
                     "",
-                    format!("{} fields, the header has {}", fields.len(), header.len()),
+                    format!(
+                        "{} fields, the header has {} (the last is {})",
+                        fields.len(),
+                        header.len(),
+                        crate::message::quote(&header[header.len() - 1])
+                    ),
                 ));
             }
             let mut v = [0.0; 11];
@@ -130,7 +150,11 @@ impl Trajectory {
                     .parse::<f64>()
                     .map_err(|_| err(row, COLUMNS[c], format!("not a number: {f:?}")))?;
                 if !x.is_finite() {
-                    return Err(err(row, COLUMNS[c], format!("{x} is not a finite number")));
+                    return Err(err(
+                        row,
+                        COLUMNS[c],
+                        format!("{} is not a finite number", Num(*x)),
+                    ));
                 }
             }
             let lat_max = super::track::MAX_LAT_DEG;
@@ -138,7 +162,7 @@ impl Trajectory {
                 return Err(err(
                     row,
                     "lat_deg",
-                    format!("expected [-{lat_max}, {lat_max}], got {}", v[1]),
+                    format!("expected [-{lat_max}, {lat_max}], got {}", Num(v[1])),
                 ));
             }
             let q = Quaternion::new(v[7], v[8], v[9], v[10]);
@@ -148,7 +172,7 @@ impl Trajectory {
                     "q_cn_w",
                     format!(
                         "quaternion (q_cn_w, q_cn_x, q_cn_y, q_cn_z) has norm {}, expected 1 within {QUAT_NORM_TOL}",
-                        q.norm()
+                        Num(q.norm())
                     ),
                 ));
             }
@@ -167,14 +191,22 @@ impl Trajectory {
             });
         }
         if rows.len() < 2 {
-            return Err(err(rows.len(), "t_s", "need at least two data rows".into()));
+            return Err(err(
+                0,
+                "",
+                format!("need at least two data rows, got {}", rows.len()),
+            ));
         }
         let dt = times[1] - times[0];
         if dt <= 0.0 {
             return Err(err(
                 2,
                 "t_s",
-                format!("time not increasing: {} after {}", times[1], times[0]),
+                format!(
+                    "time not increasing: {} after {}",
+                    Num(times[1]),
+                    Num(times[0])
+                ),
             ));
         }
         for k in 1..rows.len() {
@@ -183,7 +215,11 @@ impl Trajectory {
                 return Err(err(
                     k + 1,
                     "t_s",
-                    format!("time step {d} s, expected the file's uniform step {dt} s"),
+                    format!(
+                        "time step {} s, expected the file's uniform step {} s",
+                        Num(d),
+                        Num(dt)
+                    ),
                 ));
             }
             let (a, b) = (&rows[k - 1], &rows[k]);
@@ -200,7 +236,9 @@ impl Trajectory {
                         k + 1,
                         col,
                         format!(
-                            "position jump: moved {d_m:.3} m since the previous row, the velocities give {expect:.3} m (tolerance {JUMP_ABS_TOL_M} m + {} %)",
+                            "position jump: moved {:.3} m since the previous row, the velocities give {:.3} m (tolerance {JUMP_ABS_TOL_M} m + {} %)",
+                            Num(d_m),
+                            Num(expect),
                             JUMP_REL_TOL * 100.0
                         ),
                     ));

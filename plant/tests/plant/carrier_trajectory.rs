@@ -4,6 +4,7 @@
 use crate::carrier_common::{ship_config, with_sea_state};
 use nalgebra::{Rotation3, UnitQuaternion};
 use rins_plant::Plant;
+use rins_plant::carrier::trajectory::COLUMNS;
 use rins_plant::carrier::{Carrier, CarrierState, Trajectory};
 
 fn row(t: f64, s: &CarrierState) -> String {
@@ -96,6 +97,50 @@ fn refused(text: &str) -> (usize, String, String) {
     let e = Trajectory::parse(text, "bad.csv").expect_err("must be refused");
     assert!(e.to_string().starts_with("bad.csv: row "), "{e}");
     (e.row, e.column, e.message)
+}
+
+/// Issue 44: an error about the whole file, or the header, says so (it read `row 0, column
+/// ""`), and a short row names the first column it lacks (it named none).
+#[test]
+fn file_level_errors_say_so_and_a_short_row_names_its_first_missing_column() {
+    let said = |text: &str| {
+        Trajectory::parse(text, "bad.csv")
+            .expect_err("must be refused")
+            .to_string()
+    };
+    assert_eq!(
+        said("# nothing but a comment\n"),
+        "bad.csv: the whole file: empty file: expected a header row"
+    );
+    let good = file_with(0, |_| {});
+    let one_row: String = good.lines().take(2).map(|l| format!("{l}\n")).collect();
+    assert_eq!(
+        said(&one_row),
+        "bad.csv: the whole file: need at least two data rows, got 1"
+    );
+    assert_eq!(
+        said(&good.replacen("q_cn_z", "q_cn_z,speed", 1)),
+        format!("bad.csv: header, column \"speed\": unknown column; expected {COLUMNS:?}")
+    );
+    assert_eq!(
+        said(&good.replacen(",q_cn_z", "", 1)),
+        "bad.csv: header, column \"q_cn_z\": missing required column"
+    );
+    assert_eq!(
+        said(&file_with(3, |f| f.truncate(7))),
+        "bad.csv: row 3, column \"q_cn_w\": missing: the row ends before this column (7 fields, \
+         the header has 11)"
+    );
+    assert_eq!(
+        said(&file_with(2, |f| f.push("0".into()))),
+        "bad.csv: row 2: 12 fields, the header has 11 (the last is \"q_cn_z\")"
+    );
+    let missing = std::env::temp_dir().join(format!("rins-no-such-{}.csv", std::process::id()));
+    let missing = missing.to_str().unwrap();
+    assert_eq!(
+        Trajectory::read(missing).expect_err("no file").to_string(),
+        format!("{missing}: the whole file: cannot read: No such file or directory (os error 2)")
+    );
 }
 
 #[test]

@@ -34,7 +34,7 @@ fn a_file_of_zero_bytes_is_refused_at_its_first_line_by_the_line_limit() {
     assert_eq!(
         refusal(&name),
         format!(
-            "{name}: row 0, column \"\": line 1: longer than the limit of 65536 bytes (not a trajectory row: a file without line breaks, or binary data); it starts {} (at byte 0 of the file)",
+            "{name}: the whole file: line 1: longer than the limit of 65536 bytes (not a trajectory row: a file without line breaks, or binary data); it starts {} (at byte 0 of the file)",
             zeros_quoted()
         )
     );
@@ -49,9 +49,7 @@ fn a_file_of_random_bytes_is_refused_naming_the_file_and_line() {
     let name = p.display().to_string();
     assert_eq!(
         refusal(&name),
-        format!(
-            "{name}: row 0, column \"\": line 1: not UTF-8 text: byte 0xfe at byte 0 of the file"
-        )
+        format!("{name}: the whole file: line 1: not UTF-8 text: byte 0xfe at byte 0 of the file")
     );
     let _ = std::fs::remove_file(&p);
 }
@@ -62,7 +60,7 @@ fn a_nul_byte_in_a_row_is_refused_with_its_row_line_and_byte() {
     let e = read_text(&text[..], "nul.csv").expect_err("must be refused");
     assert_eq!(
         e.to_string(),
-        "nul.csv: row 2, column \"\": line 4: a NUL byte at byte 139 of the file (not CSV text: binary data); the line starts \"0.01,45\\0,7,0,0,0,0,1,0,0,0\""
+        "nul.csv: row 2: line 4: a NUL byte at byte 139 of the file (not CSV text: binary data); the line starts \"0.01,45\\0,7,0,0,0,0,1,0,0,0\""
     );
     assert_eq!(text[139], 0);
 }
@@ -126,7 +124,7 @@ fn dev_zero_is_refused_under_a_one_gib_address_space_limit_without_a_crash() {
         out.status
     );
     let expected = format!(
-        "refused: /dev/zero: row 0, column \"\": line 1: longer than the limit of 65536 bytes (not a trajectory row: a file without line breaks, or binary data); it starts {} (at byte 0 of the file)",
+        "refused: /dev/zero: the whole file: line 1: longer than the limit of 65536 bytes (not a trajectory row: a file without line breaks, or binary data); it starts {} (at byte 0 of the file)",
         zeros_quoted()
     );
     // The harness prints the test's name on the same line (--nocapture).

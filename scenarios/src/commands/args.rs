@@ -6,6 +6,7 @@
 use std::path::Path;
 
 use anyhow::Result;
+use rins_plant::message::Num;
 
 use crate::file::{Override, Scenario};
 
@@ -58,7 +59,7 @@ pub fn load(path: &Path, o: &Overrides) -> Result<Scenario> {
 /// Checks a positive, finite number given to `flag`.
 pub fn positive(flag: &str, v: f64) -> Result<f64> {
     if !(v > 0.0 && v.is_finite()) {
-        anyhow::bail!("{flag} must be a positive number, got {v}");
+        anyhow::bail!("{flag}: expected a finite number > 0, got {}", Num(v));
     }
     Ok(v)
 }
@@ -95,7 +96,10 @@ impl RerunArgs {
         if let Some(b) = self.rerun_bucket_s
             && !(b > 0.0 && b.is_finite())
         {
-            anyhow::bail!("--rerun-bucket-s: expected a positive number of seconds, got {b}");
+            anyhow::bail!(
+                "--rerun-bucket-s: expected a finite number of seconds > 0, got {}",
+                Num(b)
+            );
         }
         Ok(self.rerun.as_deref().map(str::parse).transpose()?)
     }

@@ -65,15 +65,21 @@ pub fn load_data(a: &DataArgs) -> Result<(PlantConfig, RowCache, Options)> {
         .as_deref()
         .map(|p| rins_mvm::colmap::ColumnMap::load(p, rins_mvm::reader::classify))
         .transpose()?;
+    // The flags are checked before the data file is read (which may take minutes).
+    let (window_s, temp_bin_k, time_window_s) = (
+        positive("--window-s", a.window_s)?,
+        positive("--temp-bin-k", a.temp_bin_k)?,
+        positive("--time-window-s", a.time_window_s)?,
+    );
     let h = RowCache::read(&a.data, map.as_ref(), rins_mvm::row_cache::CHUNK_ROWS)?;
     let (model, note) = rins_mvm::with_site(&sc.plant, h.first_site());
     if let Some(n) = note {
         eprintln!("{}", n);
     }
     let opts = Options {
-        window_s: positive("--window-s", a.window_s)?,
-        temp_bin_k: positive("--temp-bin-k", a.temp_bin_k)?,
-        time_window_s: positive("--time-window-s", a.time_window_s)?,
+        window_s,
+        temp_bin_k,
+        time_window_s,
         column_map: map.map(|m| m.summary()),
         ..Default::default()
     };

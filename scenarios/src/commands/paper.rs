@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
+use rins_plant::message::Num;
 use rins_verify::paper::{Table4Options, Table4Report};
 
 use super::args::{RerunArgs, whole};
@@ -90,6 +91,7 @@ fn headline(a: &PaperArgs) -> Result<()> {
         &format!("Section 3.1 / Table 4 ({} seeds)", t4.runs),
         "One week of static navigation of the 16-position RINS at 36.6 N 123.6 E with the Table 3 sensors, uncompensated and with delta-beta compensated.",
     );
+    crate::html::results::paired_verdict(&mut page, &t4_report, false)?;
     crate::html::results::paired_sections(&mut page, &t4_report, false, &a.out)?;
     let path = page.write(a.report.as_ref().unwrap_or(&a.out))?;
     println!("  HTML report: {}", path.display());
@@ -103,7 +105,7 @@ fn headline(a: &PaperArgs) -> Result<()> {
 pub fn check_runs_days(runs: i64, days: f64) -> Result<usize> {
     let runs = whole("--runs", runs, 1, usize::MAX, "seed")?;
     if !(days > 0.0 && days <= 60.0) {
-        anyhow::bail!("--days: expected a number in (0, 60], got {days}");
+        anyhow::bail!("--days: expected a number in (0, 60], got {}", Num(days));
     }
     Ok(runs)
 }

@@ -219,6 +219,7 @@ fn analyse(a: &AnalyseArgs) -> Result<()> {
     let opt = AnalyseOptions {
         lat_rad: lat,
         days: a.days,
+        time_resolved: true,
     };
     let resp = StaticResponse::new(lat, a.days);
     use rayon::prelude::*;

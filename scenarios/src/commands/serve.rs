@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use anyhow::Result;
+use rins_plant::message::Num;
 use rins_transport::{Mode, ServeOptions};
 
 use super::args::{Overrides, RerunArgs, load, positive, whole};
@@ -62,7 +63,10 @@ pub fn run(a: &ServeArgs) -> Result<()> {
         Mode::FreeRunning
     };
     if let Some(k) = a.pace.filter(|k| !(*k > 0.0 && k.is_finite())) {
-        anyhow::bail!("--pace must be a positive real-time factor, got {k}");
+        anyhow::bail!(
+            "--pace: expected a real-time factor, a finite number > 0, got {}",
+            Num(k)
+        );
     }
     let opts = ServeOptions {
         mode,

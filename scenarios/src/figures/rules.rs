@@ -8,7 +8,8 @@
 //!   touches, chosen from the data ([`place_legend`]); when no corner is free the y range gets
 //!   headroom above the data, and when the legend is too tall for that it goes outside, right of
 //!   the plot;
-//! * tick labels never read "-0" or "-0.0" ([`tick_label`]);
+//! * tick labels never read "-0" or "-0.0" ([`tick_label`]); an axis of whole numbers (the
+//!   iteration steps, `Panel::whole_x`) is ticked at whole numbers only ([`whole_tick_label`]);
 //! * a categorical axis (table position, channel, effect) is labelled with its category names
 //!   at integer positions, never with numeric ticks (drawn in [`super::plot`]);
 //! * print size: a figure is laid out to be printed one column wide, [`PRINT_WIDTH_IN`] = 3.5 in
@@ -265,6 +266,18 @@ pub fn place_legend(
         );
     }
     LegendPlace::Outside
+}
+
+/// A tick label of an axis of whole numbers (iteration steps): `v` without decimals when it is
+/// a whole number, nothing otherwise, so such an axis never reads 0.5 or 1.5 (the iteration
+/// history ticked its step axis at 0.0, 0.5, 1.0).
+pub fn whole_tick_label(v: f64) -> String {
+    if (v - v.round()).abs() <= 1e-9 * v.abs().max(1.0) {
+        // `+ 0.0`: -0 prints as 0.
+        format!("{}", v.round() + 0.0)
+    } else {
+        String::new()
+    }
 }
 
 /// A tick label for `v` on an axis spanning `span`: enough decimals for the tick step, no

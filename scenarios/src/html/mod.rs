@@ -6,6 +6,10 @@
 //! Every number of a table is looked up in the serialised result ([`Doc::num`]) — the JSON
 //! `--json` prints — and carries its JSON path (`data-src`, `data-json`) and exact value
 //! (`data-value`), so a test can check the page against the JSON (tests/browser/).
+//!
+//! A result page opens with its verdict ([`Report::verdict`]): a few sentences in words and
+//! numbers saying what the command found, before any figure or table, its numbers (and counts,
+//! [`Doc::count`]) carrying their JSON paths as the tables' do.
 
 pub mod results;
 pub mod sweep;
@@ -41,6 +45,15 @@ pub enum Cell {
     },
     /// A published value of the paper (not in our JSON).
     Paper(f64, usize),
+    /// The length of the array at `path` of the result (a count of cells, effects, steps).
+    Count {
+        /// Which JSON document.
+        src: &'static str,
+        /// Dot-separated path of the array.
+        path: String,
+        /// Its length.
+        n: usize,
+    },
 }
 
 /// A serialised result and the name the page gives it.
@@ -64,6 +77,18 @@ impl Doc<'_> {
                 sig,
             },
             None => Cell::Text("n/a".into()),
+        }
+    }
+
+    /// The length of the array at `path`, as a count cell (a path that is not an array counts
+    /// 0, a programming error the browser test catches).
+    pub fn count(&self, path: &str) -> Cell {
+        Cell::Count {
+            src: self.src,
+            path: path.to_string(),
+            n: lookup(self.json, path)
+                .and_then(Value::as_array)
+                .map_or(0, Vec::len),
         }
     }
 
@@ -117,12 +142,46 @@ fn cell_html(c: &Cell) -> String {
         ),
         // As printed in the paper (its own digits).
         Cell::Paper(v, _) => format!("<td class=\"num paper\" title=\"published value\">{v}</td>"),
+        Cell::Count { src, path, n } => format!(
+            "<td class=\"num\" data-src=\"{src}\" data-json-len=\"{}\">{n}</td>",
+            escape(path)
+        ),
     }
+}
+
+/// A cell inside a verdict sentence: text as it is, a number or a count as a `span` carrying
+/// its JSON path as a table cell does.
+fn inline_html(c: &Cell) -> String {
+    match c {
+        Cell::Text(t) => escape(t),
+        Cell::Json {
+            src,
+            path,
+            value,
+            sig,
+        } => format!(
+            "<span class=\"num\" data-src=\"{src}\" data-json=\"{}\" data-value=\"{value:?}\">{}</span>",
+            escape(path),
+            format_sig(*value, *sig)
+        ),
+        Cell::Paper(v, _) => format!("<span class=\"paper\" title=\"published value\">{v}</span>"),
+        Cell::Count { src, path, n } => format!(
+            "<span class=\"num\" data-src=\"{src}\" data-json-len=\"{}\">{n}</span>",
+            escape(path)
+        ),
+    }
+}
+
+/// Words of a verdict sentence: `Cell::Text`.
+pub fn words(t: impl Into<String>) -> Cell {
+    Cell::Text(t.into())
 }
 
 /// A report page under construction.
 pub struct Report {
     title: String,
+    /// The verdict's sentences, written first whenever they were added.
+    verdict: Vec<Vec<Cell>>,
     body: String,
     figures: usize,
     paper_values: bool,
@@ -133,10 +192,17 @@ impl Report {
     pub fn new(title: &str) -> Self {
         Self {
             title: title.into(),
+            verdict: Vec::new(),
             body: String::new(),
             figures: 0,
             paper_values: false,
         }
+    }
+
+    /// A sentence of the page's verdict: its words and numbers in order. The verdict opens the
+    /// page, before every other block, in the order the sentences were added.
+    pub fn verdict(&mut self, sentence: Vec<Cell>) {
+        self.verdict.push(sentence);
     }
 
     /// A heading and a paragraph (either may be empty).
@@ -201,11 +267,12 @@ impl Report {
              <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\
              <title>{t}</title><style>{STYLE}</style></head><body>\n<h1>{t}</h1>\n\
              <p class=\"meta\">Made by <code id=\"command\">{c}</code> with rins {v}.{p}</p>\n\
-             {b}<footer>rins {v} · {f} figures · self-contained: no scripts, fonts or network</footer>\n\
+             {verdict}{b}<footer>rins {v} · {f} figures · self-contained: no scripts, fonts or network</footer>\n\
              </body></html>\n",
             t = escape(&self.title),
             c = escape(&command.join(" ")),
             v = env!("CARGO_PKG_VERSION"),
+            verdict = self.verdict_html(),
             b = self.body,
             f = self.figures,
             p = if self.paper_values {
@@ -220,6 +287,22 @@ impl Report {
     }
 }
 
+impl Report {
+    /// The verdict block (empty without sentences).
+    fn verdict_html(&self) -> String {
+        if self.verdict.is_empty() {
+            return String::new();
+        }
+        let mut out = String::from("<section class=\"verdict\" id=\"verdict\"><h2>Verdict</h2>\n");
+        for sentence in &self.verdict {
+            let text: String = sentence.iter().map(inline_html).collect();
+            let _ = writeln!(out, "<p>{text}</p>");
+        }
+        out.push_str("</section>\n");
+        out
+    }
+}
+
 /// The page's only style sheet (system fonts only).
 const STYLE: &str = "body{font-family:system-ui,sans-serif;max-width:980px;margin:1em auto;\
 padding:0 1em;color:#222}h1{font-size:1.5em}h2{font-size:1.2em;margin-top:1.6em;border-bottom:1px solid #ccc}\
@@ -227,7 +310,9 @@ table{border-collapse:collapse;margin:.8em 0;font-size:.9em}caption{text-align:l
 padding:.3em 0}th,td{border:1px solid #ccc;padding:.2em .5em}td.num{text-align:right;\
 font-variant-numeric:tabular-nums}td.paper{background:#fdf3d8}figure{margin:1em 0}\
 figure svg{max-width:100%;height:auto;border:1px solid #eee}figcaption{font-size:.9em;color:#444}\
-.meta,footer{font-size:.85em;color:#555}footer{margin-top:2em}";
+.meta,footer{font-size:.85em;color:#555}footer{margin-top:2em}\
+.verdict{background:#eef5ee;border-left:4px solid #4a8a4a;padding:.2em 1em;margin:1em 0}\
+.verdict h2{margin-top:.4em;border:none}.verdict p{margin:.4em 0}";
 
 #[cfg(test)]
 mod tests {
@@ -249,5 +334,36 @@ mod tests {
         assert_eq!(format_sig(2.7088, 5), "2.7088");
         assert_eq!(format_sig(1234567.0, 3), "1.23e6");
         assert_eq!(escape("<a & \"b\">"), "&lt;a &amp; &quot;b&quot;&gt;");
+    }
+
+    /// Issue 44: the verdict is the first block after the title and the command line, however
+    /// late it was added, and its numbers and counts carry their JSON paths.
+    #[test]
+    fn the_verdict_opens_the_page_with_its_numbers_and_counts() {
+        let json = serde_json::json!({"x": 0.0123456, "cells": [1, 2, 3]});
+        let d = Doc {
+            src: "t",
+            json: &json,
+        };
+        let mut r = Report::new("T");
+        r.table("table", &["a"], vec![vec![d.num("x", 3)]]);
+        r.verdict(vec![
+            words("x is "),
+            d.num("x", 3),
+            words(", "),
+            d.count("cells"),
+        ]);
+        let dir = std::env::temp_dir().join(format!("rins-verdict-{}", std::process::id()));
+        let page = std::fs::read_to_string(r.write(&dir).unwrap()).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        let after_meta = &page[page.find("</p>\n").unwrap() + 5..];
+        assert!(
+            after_meta.starts_with(
+                "<section class=\"verdict\" id=\"verdict\"><h2>Verdict</h2>\n<p>x is <span \
+                 class=\"num\" data-src=\"t\" data-json=\"x\" data-value=\"0.0123456\">0.0123</span>, \
+                 <span class=\"num\" data-src=\"t\" data-json-len=\"cells\">3</span></p>\n</section>\n<table>"
+            ),
+            "{after_meta}"
+        );
     }
 }

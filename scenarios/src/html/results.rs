@@ -21,5 +21,5 @@ pub use campaign::campaign;
 pub use compare::compare;
 pub use diagnose::diagnose;
 pub use iterate::iterate;
-pub use paired::{paired, paired_sections};
+pub use paired::{paired, paired_sections, paired_verdict};
 pub use schemes::{schemes_analyse, schemes_design};

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 
-use super::{Cell, Doc, Report};
+use super::{Cell, Doc, Report, words};
 use crate::sweep::outputs::PER_SEED;
 use crate::sweep::{NAVIGATORS, SweepReport};
 
@@ -32,6 +32,56 @@ fn value_cell(d: &Doc, r: &SweepReport, k: usize, i: usize) -> Cell {
     }
 }
 
+/// The verdict: per output, the smallest and the largest median over the points for each
+/// navigator, with the points' swept values.
+fn verdict(page: &mut Report, d: &Doc, r: &SweepReport) {
+    page.verdict(vec![
+        words(format!("{} points × ", r.points.len())),
+        d.count("seeds"),
+        words(format!(
+            " seeds, {} swept; the medians over the seeds range as follows.",
+            r.parameters
+                .iter()
+                .map(|p| p.key.as_str())
+                .collect::<Vec<_>>()
+                .join(" × ")
+        )),
+    ]);
+    let median = |k: usize, nav: &str, o: &str| {
+        super::lookup(d.json, &format!("points.{k}.{nav}.{o}.median"))
+            .and_then(serde_json::Value::as_f64)
+            .unwrap_or(f64::NAN)
+    };
+    for o in &r.outputs {
+        let mut s = vec![words(format!("{} ({}, {}): ", o.name, o.what, o.unit))];
+        for (n, nav) in NAVIGATORS.iter().enumerate() {
+            let order = |a: &usize, b: &usize| {
+                median(*a, nav, &o.name).total_cmp(&median(*b, nav, &o.name))
+            };
+            let (Some(lo), Some(hi)) = (
+                (0..r.points.len()).min_by(order),
+                (0..r.points.len()).max_by(order),
+            ) else {
+                continue;
+            };
+            if n > 0 {
+                s.push(words("; "));
+            }
+            s.push(words(format!("{nav} from ")));
+            s.push(d.num(&format!("points.{lo}.{nav}.{}.median", o.name), 4));
+            s.push(words(" ("));
+            s.push(d.text(&format!("points.{lo}.label")));
+            s.push(words(") to "));
+            s.push(d.num(&format!("points.{hi}.{nav}.{}.median", o.name), 4));
+            s.push(words(" ("));
+            s.push(d.text(&format!("points.{hi}.label")));
+            s.push(words(")"));
+        }
+        s.push(words("."));
+        page.verdict(s);
+    }
+}
+
 /// Writes `out/report.html` for `r`, with the figures of `fig_dir`.
 pub fn report(r: &SweepReport, fig_dir: &Path, out: &Path) -> Result<PathBuf> {
     let v = serde_json::to_value(r)?;
@@ -41,6 +91,7 @@ pub fn report(r: &SweepReport, fig_dir: &Path, out: &Path) -> Result<PathBuf> {
     };
     let keys: Vec<&str> = r.parameters.iter().map(|p| p.key.as_str()).collect();
     let mut page = Report::new(&format!("Sweep {}: {}", r.name, keys.join(" × ")));
+    verdict(&mut page, &d, r);
     page.text(
         "",
         &format!(

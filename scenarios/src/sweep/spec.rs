@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 
 use rins_plant::PlantConfig;
 use rins_plant::carrier::CarrierKind;
+use rins_plant::message::{self, Num};
 use rins_plant::params::{self, Param, ParamValue};
 use serde::Deserialize;
 
@@ -401,13 +402,17 @@ fn duration(s: &RawSweep, sc: &Scenario, p: &mut Problems) -> f64 {
         } else {
             "(0, 1e7] s"
         };
-        p.push(field, format!("expected a number in {range}, got {got}"));
+        p.push(
+            field,
+            format!("expected a number in {range}, got {}", Num(got)),
+        );
     } else if d * sc.plant.rate_hz < 1.0 {
         p.push(
             field,
             format!(
-                "expected at least one sample at the scenario's {} Hz, got {d} s",
-                sc.plant.rate_hz
+                "expected at least one sample at the scenario's {} Hz, got {} s",
+                Num(sc.plant.rate_hz),
+                Num(d)
             ),
         );
     }
@@ -580,12 +585,14 @@ fn parameters(
 fn value_of(v: &toml::Value, param: &Param) -> Result<ParamValue, String> {
     let number = |x: f64| -> Result<f64, String> {
         if !x.is_finite() {
-            return Err(format!("expected a finite number, got {x}"));
+            return Err(format!("expected a finite number, got {}", Num(x)));
         }
         match param.range {
             Some((lo, hi)) if !(lo..=hi).contains(&x) => Err(format!(
-                "expected a number in [{lo}, {hi}] {}, got {x}",
-                param.unit
+                "expected a number in {} {}, got {}",
+                message::range(lo, hi),
+                param.unit,
+                Num(x)
             )),
             _ => Ok(x),
         }

@@ -1,6 +1,7 @@
 //! The `rins` command line as a user meets it: negative numbers reach the range checks, which
-//! name the flag and the range; `rins fmu build` on a fresh build finds or builds its
-//! libraries; `rins fmu run` names the scenario file whose carrier it refuses.
+//! name the flag and the range (and echo the value short: 1e300, not 301 digits); `rins fmu
+//! build` on a fresh build finds or builds its libraries; `rins fmu run` names the scenario file
+//! whose carrier it refuses.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -112,6 +113,38 @@ fn negative_numbers_reach_the_range_check_which_names_flag_and_range() {
         out,
     ]);
     assert!(err.contains("missing.toml"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue 44: a positive flag given inf, 1e-300 or 1e300 names the flag, says the value must be
+/// finite and above 0, and echoes the value short ("--time-window-s must be a positive number,
+/// got inf" before; -1e300 as 302 characters). The flags are checked before the data file is
+/// read.
+#[test]
+fn positive_flags_say_finite_and_echo_the_value_short() {
+    let dir = tmp("positive");
+    let data = dir.join("never-read.csv");
+    for (flag, value, echo) in [
+        ("--time-window-s", "inf", "inf"),
+        ("--window-s", "-1e300", "-1e300"),
+        // `=`: clap takes "-1e-300" (a negative exponent) for a flag, not a negative number.
+        ("--temp-bin-k", "-1e-300", "-1e-300"),
+        ("--time-window-s", "0", "0"),
+    ] {
+        let err = failure(&[
+            "compare",
+            "--model",
+            "builtin:calibration-z-up",
+            "--data",
+            data.to_str().unwrap(),
+            &format!("{flag}={value}"),
+        ]);
+        assert_eq!(
+            err.trim_end(),
+            format!("error: {flag}: expected a finite number > 0, got {echo}"),
+            "{flag} {value}"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

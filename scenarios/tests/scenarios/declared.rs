@@ -264,7 +264,7 @@ fn bad_declarations_name_the_line() {
         (
             "coef = [0.0, 0.0, 0.0]",
             "coef = [0.0, 0.0, 1e308]",
-            "expected a number in [-1000000000, 1000000000]",
+            "expected a number in [-1e9, 1e9], got 1e308",
         ),
     ];
     for (from, to, says) in cases {

@@ -617,3 +617,76 @@ fn the_png_font_has_the_unit_glyphs() {
     }
     assert_ne!(draw("µ"), draw("°"));
 }
+
+/// Issue 44: the iteration history's step axis is ticked at whole steps (it read 0.0, 0.5,
+/// 1.0 for two steps): every x tick label of `iteration_history.svg` is a whole number, and
+/// with few steps every step is ticked. The x tick labels are the rows of numeric texts that
+/// share one y at several x (a y axis's labels share one x).
+#[test]
+fn the_iteration_history_ticks_whole_steps() {
+    use rins_mvm::CHANNELS;
+    use rins_mvm::iterate::{IterationReport, Level, Step};
+    let dir = std::env::temp_dir().join(format!("rins-iter-ticks-{}", std::process::id()));
+    for n in [2usize, 3, 4, 6, 13, 41] {
+        let steps = (0..n)
+            .map(|k| Step {
+                step: k,
+                levels: CHANNELS
+                    .iter()
+                    .enumerate()
+                    .map(|(c, ch)| Level {
+                        channel: ch.to_string(),
+                        unit: "deg/h".into(),
+                        residual_rms: 1.0,
+                        noise_floor_rms: 1.0,
+                        ratio: 1.0 + (c + 1) as f64 * 0.7 / (k + 1) as f64,
+                    })
+                    .collect(),
+                flagged_cells: n - k,
+                accepted: Vec::new(),
+                coefficients: Vec::new(),
+            })
+            .collect();
+        let report = IterationReport {
+            source: "t.csv".into(),
+            steps,
+            reached_floor: false,
+            stop: "test".into(),
+            unexplained: Vec::new(),
+            cells_before: Vec::new(),
+            cells_after: Vec::new(),
+            z_critical: 4.0,
+            closest_to_gate: Vec::new(),
+        };
+        rins_scenarios::iteration::write_figures(&dir, &report).unwrap();
+        let svg = std::fs::read_to_string(dir.join("iteration_history.svg")).unwrap();
+        let mut rows: std::collections::BTreeMap<i32, Vec<(i32, &str)>> = Default::default();
+        for (x, y, t) in svg_texts(&svg) {
+            if t.parse::<f64>().is_ok() {
+                rows.entry(y).or_default().push((x, t));
+            }
+        }
+        let x_rows: Vec<Vec<&str>> = rows
+            .values()
+            .filter(|r| r.len() >= 2 && r.iter().any(|(x, _)| *x != r[0].0))
+            .map(|r| r.iter().map(|(_, t)| *t).collect())
+            .collect();
+        assert_eq!(
+            x_rows.len(),
+            2,
+            "{n} steps: one step axis per panel: {rows:?}"
+        );
+        for labels in x_rows {
+            assert!(
+                labels.iter().all(|t| t.parse::<u64>().is_ok()),
+                "{n} steps: a tick between steps: {labels:?}"
+            );
+            assert_eq!(labels.first(), Some(&"0"), "{n} steps: {labels:?}");
+            if n <= 6 {
+                let every: Vec<String> = (0..n).map(|k| k.to_string()).collect();
+                assert_eq!(labels, every, "{n} steps: each step ticked");
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -71,3 +71,36 @@ fn encoder_and_temperature_sensor_keys_are_scenario_keys() {
         "{e}"
     );
 }
+
+/// Issue 44: a bad number is echoed as it reads, not as hundreds of digits (1e300 was printed
+/// with 301, 1e-300 with 302 characters) nor as digits that look exact (2^63 - 1 given to a
+/// real-valued key read "9223372036854776000"); an infinite value is said to need to be finite,
+/// and a sea height or period outside its range is reported by its range alone (it also gave
+/// "tp_s above inf s … (steepness inf)").
+#[test]
+fn huge_tiny_and_infinite_numbers_are_echoed_readably() {
+    let e = err(
+        "[scenario]\nname = \"x\"\n[site]\nlat_deg = 9223372036854775807\n\
+         [sensor]\ngyro.bias = { enabled = true, dph = [1e300, -1e-300, 0.0] }\n\
+         [carrier]\nkind = \"ship\"\n[carrier.ship.sea]\nspectrum = \"jonswap\"\nhs_m = inf\ntp_s = 1e-300\n",
+    );
+    let want = "t.toml: invalid scenario:\n\
+        \x20 line 4, column 11: site.lat_deg: expected a number in [-89, 89], got 9.223372036854776e18\n\
+        \x20 line 6, column 38: sensor.gyro.bias.dph[0]: expected a number in [-100, 100], got 1e300\n\
+        \x20 line 11, column 8: carrier.ship.sea.hs_m: expected a finite number in [0, 20], got inf\n\
+        \x20 line 12, column 8: carrier.ship.sea.tp_s: expected a number in [2, 30], got 1e-300";
+    assert_eq!(e, want);
+    // In range, too steep: the limits are finite numbers, written short.
+    let e = err(
+        "[scenario]\nname = \"x\"\n[carrier]\nkind = \"ship\"\n[carrier.ship.sea]\n\
+         spectrum = \"jonswap\"\nhs_m = 20\ntp_s = 2\n",
+    );
+    assert_eq!(
+        e,
+        "t.toml: invalid scenario:\n\
+         \x20 line 7, column 8: carrier.ship.sea.hs_m: expected a significant wave height below \
+         λp/7 = 0.892 m for tp_s = 2 s (significant steepness Hs/λp < 1/7, λp = g·Tp²/(2π) = \
+         6.243 m: steeper waves break), or tp_s above 9.471 s for this height, got hs_m = 20 \
+         (steepness 3.204)"
+    );
+}

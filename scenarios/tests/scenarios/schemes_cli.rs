@@ -57,7 +57,10 @@ fn analyse_json_and_report_agree_and_the_invariant_bounds_every_scheme() {
     }
     let page = std::fs::read_to_string(dir.join("report.html")).unwrap();
     let first_h2 = page.find("<h2>").expect("a section");
-    assert!(page[first_h2..].starts_with("<h2>Verdict</h2>"), "verdict first");
+    assert!(
+        page[first_h2..].starts_with("<h2>Verdict</h2>"),
+        "verdict first"
+    );
     let verdict_end = page[first_h2..].find("</p>").unwrap() + first_h2;
     let shown = format!("{:.1}", inv);
     let shown_sig = rins_scenarios::html::format_sig(inv, 4);
@@ -98,7 +101,9 @@ fn designs_read_back_as_scheme_files() {
         .find(|b| b["class"] == "plant-delta-beta")
         .unwrap();
     let got = b["worst_horizontal_m"].as_f64().unwrap();
-    let want = r["best"][0]["bounds"][2]["worst_horizontal_m"].as_f64().unwrap();
+    let want = r["best"][0]["bounds"][2]["worst_horizontal_m"]
+        .as_f64()
+        .unwrap();
     assert!((got - want).abs() <= 1e-6 * want, "{got} vs {want}");
 }
 
@@ -106,7 +111,10 @@ fn designs_read_back_as_scheme_files() {
 fn bad_input_names_the_file_field_or_flag() {
     let dir = tmp("bad");
     let err = failure(&["schemes", "analyse", "no-such-scheme"]);
-    assert!(err.contains("no-such-scheme") && err.contains("sixteen-position"), "{err}");
+    assert!(
+        err.contains("no-such-scheme") && err.contains("sixteen-position"),
+        "{err}"
+    );
     let f = dir.join("bad.toml");
     std::fs::write(
         &f,
@@ -114,7 +122,10 @@ fn bad_input_names_the_file_field_or_flag() {
     )
     .unwrap();
     let err = failure(&["schemes", "analyse", f.to_str().unwrap()]);
-    assert!(err.contains("bad.toml") && err.contains("scheme.steps[0].rate_dps"), "{err}");
+    assert!(
+        err.contains("bad.toml") && err.contains("scheme.steps[0].rate_dps"),
+        "{err}"
+    );
     let err = failure(&["schemes", "analyse", "--bound-dph", "0"]);
     assert!(err.contains("--bound-dph") && err.contains("> 0"), "{err}");
     let err = failure(&["schemes", "design", "--positions", "7"]);
@@ -126,5 +137,8 @@ fn bad_input_names_the_file_field_or_flag() {
     )
     .unwrap();
     let err = failure(&["schemes", "analyse", f.to_str().unwrap()]);
-    assert!(err.contains("open") && err.contains("start attitude"), "{err}");
+    assert!(
+        err.contains("open") && err.contains("start attitude"),
+        "{err}"
+    );
 }

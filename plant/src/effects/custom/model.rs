@@ -212,7 +212,7 @@ impl CustomModel {
                 fail(
                     "regressor",
                     "a product that stays finite over the signals' ranges (docs/effects.md)",
-                    format!("{:?} reaches {bound}", s.regressor),
+                    format!("{:?} reaches {}", s.regressor, crate::message::Num(bound)),
                 );
             }
             for i in 0..3 {
@@ -221,7 +221,7 @@ impl CustomModel {
                     fail(
                         &format!("coef[{i}]"),
                         "0 on an axis not listed in axes",
-                        format!("{c}"),
+                        crate::message::num(c),
                     );
                 } else if bound.is_finite() && !(c * file_unit_si * bound * input_bound).is_finite()
                 {
@@ -231,7 +231,7 @@ impl CustomModel {
                             "a coefficient whose contribution stays finite over the signals' ranges (|{}| ≤ {bound:e})",
                             s.regressor
                         ),
-                        format!("{c}"),
+                        crate::message::num(c),
                     );
                 }
             }

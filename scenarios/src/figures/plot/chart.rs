@@ -174,7 +174,20 @@ pub(super) fn draw_panel<DB: DrawingBackend>(
         .map_err(|x| e(&x))?;
     let (xs, ys) = (x1 - x0, y1 - y0);
     let y_fmt = |v: &f64| rules::tick_label(*v, ys);
-    let x_fmt = |v: &f64| rules::tick_label(*v, xs);
+    let x_fmt = |v: &f64| {
+        if p.whole_x {
+            rules::whole_tick_label(*v)
+        } else {
+            rules::tick_label(*v, xs)
+        }
+    };
+    let x_labels = ((pw / (x_ticks_w + 3 * em_px(TEXT_PT) as i32).max(1)).clamp(2, 10)) as usize;
+    // At most one tick per whole number in range: plotters' nicest step is then 1, 2, 5, …
+    let x_labels = if p.whole_x {
+        x_labels.min(((x1.floor() - x0.ceil()) as usize + 1).max(1))
+    } else {
+        x_labels
+    };
     let y_desc = rules::typeset(p.y_label);
     let x_desc = if last {
         rules::typeset(x_label)
@@ -189,7 +202,7 @@ pub(super) fn draw_panel<DB: DrawingBackend>(
         .axis_desc_style(tf.clone())
         .max_light_lines(0)
         .y_labels(((ph / line_px(TEXT_PT)).max(4)) as usize)
-        .x_labels(((pw / (x_ticks_w + 3 * em_px(TEXT_PT) as i32).max(1)).clamp(2, 10)) as usize)
+        .x_labels(x_labels)
         .y_label_formatter(&y_fmt)
         .x_label_formatter(&x_fmt);
     if !x_desc.is_empty() {

@@ -61,6 +61,9 @@ pub struct Panel<'a> {
     pub lines: Vec<Line<'a>>,
     /// Category names of a categorical x axis, category k at x = k (empty: numeric x).
     pub categories: Vec<String>,
+    /// A numeric x axis of whole numbers (steps, counts): ticked at whole numbers only
+    /// ([`crate::figures::rules::whole_tick_label`]), never at 0.5.
+    pub whole_x: bool,
 }
 
 impl<'a> Panel<'a> {
@@ -71,7 +74,15 @@ impl<'a> Panel<'a> {
             y_label,
             lines,
             categories: Vec::new(),
+            whole_x: false,
         }
+    }
+
+    /// The same panel with an x axis of whole numbers (iteration steps): ticks at whole
+    /// numbers only, labelled without decimals.
+    pub fn whole_x(mut self) -> Self {
+        self.whole_x = true;
+        self
     }
 
     /// The same panel with a categorical x axis: `names[k]` labels x = k.

@@ -4,7 +4,7 @@ use anyhow::Result;
 use serde::Serialize;
 
 use super::page_parts::json;
-use crate::html::{Doc, Report};
+use crate::html::{Doc, Report, words};
 
 /// The analytic verification's checks (Eq. 8, Eq. 11, Table 2) into `r`.
 pub fn analytic_sections<T: Serialize>(r: &mut Report, report: &T, n_checks: usize) -> Result<()> {
@@ -13,6 +13,26 @@ pub fn analytic_sections<T: Serialize>(r: &mut Report, report: &T, n_checks: usi
         src: "analytic",
         json: &v,
     };
+    let passed = v
+        .pointer("/checks")
+        .and_then(serde_json::Value::as_array)
+        .map_or(0, |c| {
+            c.iter()
+                .filter(|x| x.pointer("/pass").and_then(serde_json::Value::as_bool) == Some(true))
+                .count()
+        });
+    r.verdict(vec![
+        words(format!(
+            "Analytic verification (Eq. 8, Eq. 11, Table 2): {}, {passed} of ",
+            if passed == n_checks {
+                "passed"
+            } else {
+                "FAILED"
+            }
+        )),
+        d.count("checks"),
+        words(" checks within their limits."),
+    ]);
     r.text(
         "Analytic verification (Eq. 8, Eq. 11, Table 2)",
         "Each check's measured value against its limit; a check passes when the value is at most the limit.",

@@ -8,7 +8,7 @@ use serde::Serialize;
 use serde_json::Value;
 
 use super::page_parts::{MVM_FIGURES, figures, json};
-use crate::html::{Cell, Doc, Report};
+use crate::html::{Cell, Doc, Report, words};
 
 /// A scenario key's unit as a reader writes it (°/h, µg, K², °C).
 fn display_unit(unit: &str) -> String {
@@ -34,6 +34,7 @@ pub fn diagnose<T: Serialize>(
         json: &v,
     };
     let mut r = Report::new("Model vs measurements: which effects explain the residual");
+    verdict(&mut r, &d, &v);
     r.text("", &format!("Measurements: {}. Gate: delta-BIC < -10, Bonferroni p < 0.01, cross-validation gain > 0.", d.text("source").as_text()));
     r.table(
         "Candidate effects ranked by delta-BIC",
@@ -100,6 +101,92 @@ pub fn diagnose<T: Serialize>(
     discovery(&mut r, &d);
     figures(&mut r, dir, &MVM_FIGURES)?;
     r.write(dir)
+}
+
+/// Most accepted effects (and keys of each) the verdict names; the tables list them all.
+const VERDICT_EFFECTS: usize = 5;
+
+/// The verdict: which effects are missing with their values and intervals, how far each
+/// channel's residual falls and to what floor, the flagged cells before and after.
+fn verdict(r: &mut Report, d: &Doc, v: &Value) {
+    let accepted = v
+        .pointer("/accepted")
+        .and_then(Value::as_array)
+        .cloned()
+        .unwrap_or_default();
+    if accepted.is_empty() {
+        r.verdict(vec![
+            words("No effect passes the gate (delta-BIC < -10, Bonferroni p < 0.01, cross-validation gain > 0): "),
+            d.count("flagged_cells"),
+            words(" cells of the model-vs-measurement map are flagged, and no candidate effect explains them beyond the noise (the closest are ranked below)."),
+        ]);
+        return;
+    }
+    let mut s = vec![
+        words("Missing from the model: "),
+        d.count("accepted"),
+        words(" effects pass the gate and are fitted: "),
+    ];
+    let mut channels: Vec<String> = Vec::new();
+    for (j, a) in accepted.iter().enumerate().take(VERDICT_EFFECTS) {
+        let channel = a.pointer("/channel").and_then(Value::as_str).unwrap_or("?");
+        if !channels.iter().any(|c| c == channel) {
+            channels.push(channel.to_string());
+        }
+        if j > 0 {
+            s.push(words("; "));
+        }
+        s.push(d.text(&format!("accepted.{j}.effect")));
+        s.push(words(format!(" on {channel} (")));
+        let keys = a
+            .pointer("/keys")
+            .and_then(Value::as_array)
+            .cloned()
+            .unwrap_or_default();
+        for (i, key) in keys.iter().enumerate() {
+            let key = key.as_str().unwrap_or("?");
+            if i > 0 {
+                s.push(words(", "));
+            }
+            s.push(words(format!("{key} = ")));
+            s.push(d.num(&format!("accepted.{j}.coefficient.{i}"), 4));
+            s.push(words(" ["));
+            s.push(d.num(&format!("accepted.{j}.ci95.{i}.0"), 4));
+            s.push(words(", "));
+            s.push(d.num(&format!("accepted.{j}.ci95.{i}.1"), 4));
+            s.push(words(format!(
+                "] {}",
+                display_unit(rins_plant::params::unit_for(key))
+            )));
+        }
+        s.push(words(")"));
+    }
+    if accepted.len() > VERDICT_EFFECTS {
+        s.push(words("; the others in the tables below"));
+    }
+    s.push(words(" (95 % intervals in brackets)."));
+    r.verdict(s);
+    let mut s = vec![words(
+        "Residual RMS before → after the fitted effects, with the noise floor: ",
+    )];
+    for (k, c) in channels.iter().enumerate() {
+        if k > 0 {
+            s.push(words("; "));
+        }
+        s.push(words(format!("{c} ")));
+        s.push(d.num(&format!("residual_rms_before.{c}"), 4));
+        s.push(words(" → "));
+        s.push(d.num(&format!("residual_rms_after.{c}"), 4));
+        s.push(words(" (floor "));
+        s.push(d.num(&format!("noise_floor_rms.{c}"), 4));
+        s.push(words(")"));
+    }
+    s.push(words(". Flagged cells: "));
+    s.push(d.count("flagged_cells"));
+    s.push(words(" before, "));
+    s.push(d.count("flagged_cells_after"));
+    s.push(words(" after."));
+    r.verdict(s);
 }
 
 /// The `--discover` proposals (when the report has them), every figure from the JSON.

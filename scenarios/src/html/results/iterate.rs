@@ -9,7 +9,7 @@ use serde::Serialize;
 use serde_json::Value;
 
 use super::page_parts::{figures, json};
-use crate::html::{Cell, Doc, Report};
+use crate::html::{Cell, Doc, Report, words};
 
 const ITERATION_FIGURES: [(&str, &str); 2] = [
     (
@@ -30,6 +30,7 @@ pub fn iterate<T: Serialize>(report: &T, dir: &Path) -> Result<PathBuf> {
         json: &v,
     };
     let mut r = Report::new("Model vs measurements: iterating to the noise floor");
+    verdict(&mut r, &d, &v);
     r.text(
         "",
         &format!(
@@ -159,4 +160,85 @@ pub fn iterate<T: Serialize>(report: &T, dir: &Path) -> Result<PathBuf> {
     }
     figures(&mut r, dir, &ITERATION_FIGURES)?;
     r.write(dir)
+}
+
+/// The verdict: the terms kept, each channel's residual over its floor at step 0 and at the
+/// last step, the flagged cells before and after, and why the iteration stopped.
+fn verdict(r: &mut Report, d: &Doc, v: &Value) {
+    let steps = v
+        .pointer("/steps")
+        .and_then(Value::as_array)
+        .cloned()
+        .unwrap_or_default();
+    let last = steps.len().saturating_sub(1);
+    let mut kept = Vec::new();
+    for (k, st) in steps.iter().enumerate() {
+        let accepted = st
+            .pointer("/accepted")
+            .and_then(Value::as_array)
+            .cloned()
+            .unwrap_or_default();
+        for (j, a) in accepted.iter().enumerate() {
+            if a.pointer("/kept").and_then(Value::as_bool) == Some(true) {
+                kept.push(format!("steps.{k}.accepted.{j}"));
+            }
+        }
+    }
+    let mut s = if kept.is_empty() {
+        vec![words(
+            "No term was kept: the model as given is as close to the data as the gate can tell",
+        )]
+    } else {
+        let mut s = vec![words(format!(
+            "{} term{} kept in {last} step{}: ",
+            kept.len(),
+            if kept.len() == 1 { "" } else { "s" },
+            if last == 1 { "" } else { "s" }
+        ))];
+        for (i, t) in kept.iter().enumerate() {
+            if i > 0 {
+                s.push(words(", "));
+            }
+            s.push(d.text(&format!("{t}.effect")));
+            s.push(words(" on "));
+            s.push(d.text(&format!("{t}.channel")));
+            s.push(words(" ("));
+            s.push(d.text(&format!("{t}.found_by")));
+            s.push(words(")"));
+        }
+        s
+    };
+    s.push(words(". Stopped: "));
+    s.push(d.text("stop"));
+    s.push(words("."));
+    r.verdict(s);
+    let levels = steps
+        .first()
+        .and_then(|st| st.pointer("/levels"))
+        .and_then(Value::as_array)
+        .map_or(0, Vec::len);
+    let mut s = vec![words(format!(
+        "Residual RMS over the noise floor, step 0 (the model as given) → step {last}: "
+    ))];
+    for c in 0..levels {
+        if c > 0 {
+            s.push(words(", "));
+        }
+        s.push(d.text(&format!("steps.0.levels.{c}.channel")));
+        s.push(words(" "));
+        s.push(d.num(&format!("steps.0.levels.{c}.ratio"), 3));
+        s.push(words(" → "));
+        s.push(d.num(&format!("steps.{last}.levels.{c}.ratio"), 3));
+    }
+    s.push(words(" (1 is the floor); flagged cells "));
+    s.push(d.num("steps.0.flagged_cells", 1));
+    s.push(words(" → "));
+    s.push(d.num(&format!("steps.{last}.flagged_cells"), 1));
+    s.push(words(
+        match v.pointer("/reached_floor").and_then(Value::as_bool) {
+            Some(true) => ": every channel at its noise floor.",
+            _ => ".",
+        },
+    ));
+    r.verdict(s);
 }

@@ -53,6 +53,7 @@ impl Cell {
             Cell::Json { value, sig, .. } | Cell::Paper(value, sig) => {
                 crate::html::format_sig(*value, *sig)
             }
+            Cell::Count { n, .. } => n.to_string(),
         }
     }
 }

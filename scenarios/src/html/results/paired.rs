@@ -9,7 +9,7 @@ use rins_verify::paper::{published, published_table5};
 use serde::Serialize;
 
 use super::page_parts::{figures, json};
-use crate::html::{Cell, Doc, Report};
+use crate::html::{Cell, Doc, Report, words};
 
 const PAIRED_COLUMNS: [&str; 9] = [
     "quantity",
@@ -172,6 +172,60 @@ pub fn paired_sections<T: Serialize>(
     )
 }
 
+/// The verdict of a paired study (Table 4, or Table 5 with `table5`) into `r`: what the δβ
+/// compensation does to the end-of-run longitude and horizontal errors, ours beside the
+/// paper's improvement.
+pub fn paired_verdict<T: Serialize>(r: &mut Report, report: &T, table5: bool) -> Result<()> {
+    let v = json(report)?;
+    let (src, lon, paper_lon) = if table5 {
+        ("table5", "lon_nm", 82.12)
+    } else {
+        ("table4", "abs_lon_nm", 59.44)
+    };
+    let d = Doc { src, json: &v };
+    let f = |k: &str| {
+        v.pointer(k)
+            .and_then(serde_json::Value::as_f64)
+            .unwrap_or(0.0)
+    };
+    // The days as given (7, 0.05): the significant digits of the shortest form, at most 4.
+    let days_sig = format!("{:e}", f("/days"))
+        .split('e')
+        .next()
+        .map_or(1, |m| m.chars().filter(char::is_ascii_digit).count())
+        .min(4);
+    r.verdict(vec![
+        words(format!(
+            "{}: over ",
+            if table5 { "Table 5" } else { "Table 4" }
+        )),
+        d.num("runs", 1),
+        words(if f("/runs") == 1.0 { " seed" } else { " seeds" }),
+        words(" of "),
+        d.num("days", days_sig),
+        words(" days, δβ compensation takes the median "),
+        words(if table5 {
+            "longitude error"
+        } else {
+            "|longitude error|"
+        }),
+        words(" from "),
+        d.num(&format!("uncompensated.{lon}.median"), 4),
+        words(" to "),
+        d.num(&format!("compensated.{lon}.median"), 4),
+        words(" nmi (improvement "),
+        d.num("improvement_pct.lon", 4),
+        words(" %; the paper's: "),
+        Cell::Paper(paper_lon, 4),
+        words(" %), and the median horizontal error from "),
+        d.num("uncompensated.horizontal_nm.median", 4),
+        words(" to "),
+        d.num("compensated.horizontal_nm.median", 4),
+        words(" nmi."),
+    ]);
+    Ok(())
+}
+
 /// `rins paper table4` / `table5 --report DIR`.
 pub fn paired<T: Serialize>(
     report: &T,
@@ -184,6 +238,7 @@ pub fn paired<T: Serialize>(
     } else {
         "Section 3.1 / Table 4: 16-position RINS, uncompensated vs compensated"
     });
+    paired_verdict(&mut r, report, table5)?;
     paired_sections(&mut r, report, table5, fig_dir)?;
     r.write(out)
 }

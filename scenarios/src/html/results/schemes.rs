@@ -33,14 +33,21 @@ pub fn schemes_analyse<T: Serialize>(report: &T, fig_dir: &Path, dir: &Path) -> 
     };
     let mut r = Report::new("Rotation schemes: what each leaves of each effect");
     // The verdict: the general class's floor and the scheme that leaves least of each class.
-    let mut verdict = Vec::new();
     if let Some(k) = bounds.iter().position(|b| b["class"] == CLASSES[0]) {
-        verdict.push(format!(
-            "Under the general position-dependent bias b(u) with every coefficient within {} deg/h, no scheme can leave less than the invariant member b_i = B u_i: {} m after {} days, the same under every scheme.",
-            format_sig(as_f64(&v, &format!("/bounds/{k}/bound_dph")), 3),
-            format_sig(as_f64(&v, &format!("/bounds/{k}/invariant_horizontal_m")), 4),
-            format_sig(as_f64(&v, "/analyses/0/days"), 3),
-        ));
+        r.verdict(vec![
+            Cell::Text(
+                "Under the general position-dependent bias b(u) with every coefficient within "
+                    .into(),
+            ),
+            d.num(&format!("bounds.{k}.bound_dph"), 3),
+            Cell::Text(
+                " deg/h, no scheme can leave less than the invariant member b_i = B u_i: ".into(),
+            ),
+            d.num(&format!("bounds.{k}.invariant_horizontal_m"), 4),
+            Cell::Text(" m after ".into()),
+            d.num("analyses.0.days", 3),
+            Cell::Text(" days, the same under every scheme.".into()),
+        ]);
     }
     for class in CLASSES {
         let best = analyses
@@ -48,20 +55,19 @@ pub fn schemes_analyse<T: Serialize>(report: &T, fig_dir: &Path, dir: &Path) -> 
             .filter_map(|a| {
                 let s = a["scheme"].as_str()?;
                 let k = bound_index(s, class)?;
-                Some((
-                    s.to_string(),
-                    as_f64(&v, &format!("/bounds/{k}/worst_horizontal_m")),
-                ))
+                Some((k, as_f64(&v, &format!("/bounds/{k}/worst_horizontal_m"))))
             })
             .min_by(|a, b| a.1.total_cmp(&b.1));
-        if let Some((s, w)) = best {
-            verdict.push(format!(
-                "Least worst case over {class}: {s} ({} m).",
-                format_sig(w, 4)
-            ));
+        if let Some((k, _)) = best {
+            r.verdict(vec![
+                Cell::Text(format!("Least worst case over {class}: ")),
+                d.text(&format!("bounds.{k}.scheme")),
+                Cell::Text(" (".into()),
+                d.num(&format!("bounds.{k}.worst_horizontal_m"), 4),
+                Cell::Text(" m).".into()),
+            ]);
         }
     }
-    r.text("Verdict", &verdict.join(" "));
     let mut columns = vec!["class"];
     let names: Vec<String> = analyses
         .iter()
@@ -146,21 +152,31 @@ pub fn schemes_design<T: Serialize>(report: &T, dir: &Path) -> Result<PathBuf> {
     let best = as_f64(&v, &format!("/best/0/bounds/{k}/worst_horizontal_m"));
     let mut r = Report::new("Rotation scheme search");
     let ratio = best / reference;
-    r.text(
-        "Verdict",
-        &format!(
-            "Searched class {class}: the best design leaves {} of the 16-position scheme's worst case ({}). The general class cannot go below its invariant member, {} m; on this table (body x never vertical) the anisotropic part cannot go below {} m.{}",
-            format_sig(ratio, 3),
+    r.verdict(vec![
+        Cell::Text(format!("Searched class {class}: the best design leaves ")),
+        d.num(&format!("best.0.bounds.{k}.worst_horizontal_m"), 4),
+        Cell::Text(" m against the 16-position scheme's ".into()),
+        d.num(&format!("reference.bounds.{k}.worst_horizontal_m"), 4),
+        Cell::Text(format!(
+            " m ({}, ratio {}).",
             if ratio <= 0.5 { "halved" } else { "not halved" },
-            format_sig(as_f64(&v, "/invariant_m"), 4),
-            format_sig(as_f64(&v, "/anisotropic_floor_m"), 4),
+            format_sig(ratio, 3)
+        )),
+    ]);
+    r.verdict(vec![
+        Cell::Text("The general class cannot go below its invariant member, ".into()),
+        d.num("invariant_m", 4),
+        Cell::Text(" m; on this table (body x never vertical) its anisotropic part cannot go below ".into()),
+        d.num("anisotropic_floor_m", 4),
+        Cell::Text(format!(
+            " m.{}",
             if class == "plant-delta-beta" {
                 " Caveat: under the plant's u_z-only delta-beta a scheme that keeps z near horizontal makes it a constant that rotation cancels, an artefact of the model."
             } else {
                 ""
             }
-        ),
-    );
+        )),
+    ]);
     let n = v["best"].as_array().map_or(0, Vec::len);
     let mut rows = vec![{
         let mut row = vec![Cell::Text("sixteen-position".into())];
