@@ -435,3 +435,175 @@ pub fn bootstrap(d: &ChannelData, base: &Design, lib: &Candidates, picked: &[usi
         .map(|i| hits.iter().filter(|h| h[i]).count() as f64 / RESAMPLES as f64)
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand_distr::{Distribution, StandardNormal};
+
+    /// Windows of the synthetic channel.
+    const N: usize = 200;
+    /// Cross-validation folds (windows interleaved).
+    const FOLDS: usize = 5;
+
+    /// Column `k` of an orthogonal set over the windows: cos(2π·k·r/N), norm² N/2 (k < N/2).
+    fn wave(k: usize) -> Vec<f64> {
+        (0..N)
+            .map(|r| (2.0 * std::f64::consts::PI * (k * r) as f64 / N as f64).cos())
+            .collect()
+    }
+
+    /// A channel of unit noise variance whose sums are `signal` plus unit Gaussian noise
+    /// (fixed seed).
+    fn channel(signal: &[(f64, &[f64])]) -> ChannelData {
+        let mut rng = ChaCha8Rng::seed_from_u64(42);
+        let y = (0..N)
+            .map(|r| {
+                let noise: f64 = StandardNormal.sample(&mut rng);
+                signal.iter().map(|(a, c)| a * c[r]).sum::<f64>() + noise
+            })
+            .collect();
+        ChannelData {
+            channel: 0,
+            y,
+            v: vec![1.0; N],
+            dur: vec![1.0; N],
+            fold: (0..N).map(|r| r % FOLDS).collect(),
+            folds: FOLDS,
+        }
+    }
+
+    /// The discovery gate (ΔBIC < −10, p below 0.05 over the candidates, a positive
+    /// cross-validated gain).
+    fn gate(tests: usize) -> Gate {
+        Gate {
+            max_delta_bic: -10.0,
+            alpha: 0.05,
+            tests,
+            min_cv_gain_pct: 0.0,
+        }
+    }
+
+    /// A library of `cols`, each of complexity `complexity[i]`, with `parents[i]`, all
+    /// selectable, no time constants and no scale-factor bound.
+    fn library(cols: Vec<Vec<f64>>, complexity: Vec<u8>, parents: Vec<Vec<usize>>) -> Candidates {
+        let k = cols.len();
+        Candidates {
+            cols,
+            units: vec![1.0; k],
+            complexity,
+            parents,
+            selectable: vec![true; k],
+            extra_params: vec![0; k],
+            sf_regressor_range: vec![0.0; k],
+        }
+    }
+
+    fn empty_base() -> Design {
+        Design {
+            x: DMatrix::zeros(N, 0),
+            unit: Vec::new(),
+        }
+    }
+
+    /// A block that ranks first on its parent's signal and is refused (the term adds ~50 χ² to
+    /// its parent, which ranks it above the parent alone, but on top of the parent, with the
+    /// third term still unexplained, its ΔBIC is positive) is passed over: the parent alone,
+    /// then the third term, are kept.
+    #[test]
+    fn a_refused_block_with_selectable_parents_passes_to_the_next_best() {
+        let (p, t, c) = (wave(3), wave(7), wave(11));
+        // χ² of each (norm² N/2 = 100): parent 10 000, term 50, third 2000.
+        let d = channel(&[(10.0, &p), (0.5f64 * 2f64.sqrt(), &t), (20f64.sqrt(), &c)]);
+        let lib = library(vec![p, t, c], vec![0, 1, 0], vec![vec![], vec![0], vec![]]);
+        let (kept, miss) = select(&d, &empty_base(), &lib, &gate(3), 3);
+        let terms: Vec<usize> = kept.iter().map(|k| k.term).collect();
+        assert_eq!(
+            terms,
+            [0, 2],
+            "kept {terms:?}, miss {:?}",
+            miss.map(|m| m.term)
+        );
+        assert!(kept.iter().all(|k| k.parents.is_empty() && k.passes));
+        assert!(miss.is_none(), "the search ended on no refusal");
+        // The block was the first choice (and refused, as nothing it brought was kept).
+        let o = Ortho::new(
+            whiten(&d.y, &d, None),
+            &[],
+            lib.cols.iter().map(|c| whiten(c, &d, None)).collect(),
+        );
+        let (first, _, parents) = o.best(&[], &[], &lib).unwrap();
+        assert_eq!((first, parents), (1, vec![0]));
+    }
+
+    /// A refused term without library parents ends the search, even though a term below it
+    /// would pass: its signal lies in one cross-validation fold only, so it ranks first but
+    /// predicts nothing on the other folds.
+    #[test]
+    fn a_refused_single_term_ends_the_search() {
+        let one_fold: Vec<f64> = (0..N)
+            .map(|r| if r % FOLDS == 0 { 1.0 } else { 0.0 })
+            .collect();
+        let c = wave(11);
+        let d = channel(&[(5.0, &one_fold), (2.0, &c)]);
+        let lib = library(
+            vec![one_fold.clone(), c.clone()],
+            vec![0, 0],
+            vec![vec![], vec![]],
+        );
+        let (kept, miss) = select(&d, &empty_base(), &lib, &gate(2), 2);
+        assert!(
+            kept.is_empty(),
+            "kept {:?}",
+            kept.iter().map(|k| k.term).collect::<Vec<_>>()
+        );
+        let miss = miss.expect("the refusal is reported");
+        assert_eq!(miss.term, 0);
+        assert!(!miss.passes && miss.parents.is_empty());
+        assert!(
+            miss.test.delta_bic < -10.0 && !(miss.test.cv_gain_pct > 0.0),
+            "{:?}",
+            miss.test
+        );
+        // The second term passes on its own: the search ended on the refusal, not for want of
+        // a candidate.
+        let lib2 = library(vec![c.clone()], vec![0], vec![vec![]]);
+        let (kept2, _) = select(&d, &empty_base(), &lib2, &gate(2), 2);
+        assert_eq!(kept2.iter().map(|k| k.term).collect::<Vec<_>>(), [0]);
+        // The same term as a block (with a selectable parent that explains nothing) is passed
+        // over, and the search goes on to the second term.
+        let zero_signal = wave(5);
+        let lib3 = library(
+            vec![one_fold, c, zero_signal],
+            vec![1, 0, 0],
+            vec![vec![2], vec![], vec![]],
+        );
+        let (kept3, _) = select(&d, &empty_base(), &lib3, &gate(3), 3);
+        assert_eq!(kept3.first().map(|k| k.term), Some(1));
+    }
+
+    /// A block whose term implies a plausible scale factor but whose library parent does not
+    /// (its coefficient times its regressor's range beyond 0.1 %) is passed over, and so is
+    /// the parent alone: the third term is kept, the block never.
+    #[test]
+    fn a_block_whose_parent_implies_an_implausible_scale_factor_is_refused() {
+        let (p, t, c) = (wave(3), wave(7), wave(11));
+        // χ²: parent 10 000, term 2500, third 2500 (passes with the rest unexplained).
+        let d = channel(&[(10.0, &p), (5.0, &t), (5.0, &c)]);
+        let mut lib = library(vec![p, t, c], vec![0, 1, 0], vec![vec![], vec![0], vec![]]);
+        // Parent: 10 × 2e-4 = 2e-3 > 1e-3; term: 5 × 1e-5 = 5e-5, well inside.
+        lib.sf_regressor_range = vec![2e-4, 1e-5, 0.0];
+        let (kept, _) = select(&d, &empty_base(), &lib, &gate(3), 3);
+        let terms: Vec<usize> = kept.iter().map(|k| k.term).collect();
+        assert_eq!(terms, [2], "kept {terms:?}");
+        // Without the parent's bound the block is kept with its parent, first: the bound, not
+        // the gate, refused it.
+        lib.sf_regressor_range = vec![0.0, 1e-5, 0.0];
+        let (kept, _) = select(&d, &empty_base(), &lib, &gate(3), 3);
+        assert_eq!((kept[0].term, kept[0].parents.clone()), (1, vec![0]));
+        let theta = &kept[0].test.fit.theta;
+        assert!((theta[1] - 5.0).abs() < 0.5);
+        assert!(theta[1].abs() * 1e-5 < crate::fit::MAX_GYRO_SCALE_FACTOR);
+        assert!(theta[0].abs() * 2e-4 > crate::fit::MAX_GYRO_SCALE_FACTOR);
+    }
+}
