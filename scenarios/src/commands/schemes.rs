@@ -39,10 +39,10 @@ pub struct AnalyseArgs {
     #[arg(long)]
     pub declared: Option<PathBuf>,
     /// Bound on every coefficient of the classes' worst cases, °/h.
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
     pub bound_dph: f64,
     /// Days of the navigation figures.
-    #[arg(long, default_value_t = 7.0)]
+    #[arg(long, default_value_t = 7.0, allow_negative_numbers = true)]
     pub days: f64,
     /// Latitude of the static navigator, °.
     #[arg(long, default_value_t = 36.6, allow_negative_numbers = true)]
@@ -65,28 +65,28 @@ pub struct DesignArgs {
     #[arg(long, default_value = "general-b(u)")]
     pub class: String,
     /// Bound on every coefficient of the class, °/h.
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
     pub bound_dph: f64,
     /// Positions per cycle searched (even).
-    #[arg(long, value_delimiter = ',', default_value = "8,16,32")]
+    #[arg(long, value_delimiter = ',', default_value = "8,16,32", allow_negative_numbers = true)]
     pub positions: Vec<usize>,
     /// Dwell after every move, s.
-    #[arg(long, default_value_t = 180.0)]
+    #[arg(long, default_value_t = 180.0, allow_negative_numbers = true)]
     pub dwell_s: f64,
     /// Table rate, °/s.
-    #[arg(long, default_value_t = 2.0)]
+    #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
     pub rate_dps: f64,
     /// Table acceleration, °/s² (inf: constant-rate moves).
-    #[arg(long, default_value_t = 20.0)]
+    #[arg(long, default_value_t = 20.0, allow_negative_numbers = true)]
     pub accel_dps2: f64,
     /// Longest cycle, s.
-    #[arg(long, default_value_t = 14_400.0)]
+    #[arg(long, default_value_t = 14_400.0, allow_negative_numbers = true)]
     pub max_cycle_s: f64,
     /// Seed of the search.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
     pub seed: u64,
     /// Designs reported (and written).
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = 3, allow_negative_numbers = true)]
     pub top: usize,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -106,16 +106,16 @@ pub struct VerifyArgs {
     #[arg(required = true)]
     pub schemes: Vec<String>,
     /// Simulated days.
-    #[arg(long, default_value_t = 7.0)]
+    #[arg(long, default_value_t = 7.0, allow_negative_numbers = true)]
     pub days: f64,
     /// IMU rate, Hz.
-    #[arg(long, default_value_t = 100.0)]
+    #[arg(long, default_value_t = 100.0, allow_negative_numbers = true)]
     pub rate_hz: f64,
     /// δβ of the plant's model on every axis, °/h (Table 3: 0.005).
-    #[arg(long, default_value_t = 0.005)]
+    #[arg(long, default_value_t = 0.005, allow_negative_numbers = true)]
     pub delta_beta_dph: f64,
     /// Bound of the general class whose worst-case coefficients are declared and run, °/h.
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
     pub bound_dph: f64,
     /// Print JSON instead of text.
     #[arg(long)]
