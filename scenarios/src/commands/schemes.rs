@@ -68,7 +68,12 @@ pub struct DesignArgs {
     #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
     pub bound_dph: f64,
     /// Positions per cycle searched (even).
-    #[arg(long, value_delimiter = ',', default_value = "8,16,32", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "8,16,32",
+        allow_negative_numbers = true
+    )]
     pub positions: Vec<usize>,
     /// Dwell after every move, s.
     #[arg(long, default_value_t = 180.0, allow_negative_numbers = true)]
