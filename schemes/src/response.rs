@@ -4,7 +4,7 @@
 //! period that ends at the end, as the verification's closed forms are (`rins verify ins`).
 
 use nalgebra::{DMatrix, SMatrix, SVector, Vector3};
-use rins_plant::earth::{OMEGA_IE_RPS, normal_gravity, radii_of_curvature};
+use rins_plant::earth::{normal_gravity, radii_of_curvature};
 use serde::Serialize;
 
 /// Propagation step, s (|F·h| ≈ 0.08 at the Schuler rate: the 14-term series is exact to
@@ -41,28 +41,11 @@ pub struct StaticResponse {
 }
 
 fn model(lat: f64) -> (M7, M75, f64, f64, f64) {
-    let w = OMEGA_IE_RPS;
-    let (s, c) = lat.sin_cos();
     let (rm, rn) = radii_of_curvature(lat);
     let r = (rm * rn).sqrt();
     let g = normal_gravity(lat, 0.0);
-    let mut f = M7::zeros();
-    // φ̇ = −ω_ie × φ + δω_ie(δL) + δω_en(δv) − ε
-    let om = Vector3::new(0.0, w * c, w * s);
-    f.fixed_view_mut::<3, 3>(0, 0)
-        .copy_from(&(-om.cross_matrix()));
-    f[(0, 4)] = -1.0 / r;
-    f[(1, 3)] = 1.0 / r;
-    f[(2, 3)] = s / c / r;
-    f[(1, 5)] = -w * s;
-    f[(2, 5)] = w * c;
-    // δv̇ = f × φ − 2ω_ie × δv + ∇
-    f[(3, 1)] = -g;
-    f[(4, 0)] = g;
-    f[(3, 4)] = 2.0 * w * s;
-    f[(4, 3)] = -2.0 * w * s;
-    f[(5, 4)] = 1.0 / rm;
-    f[(6, 3)] = 1.0 / (rn * c);
+    let c = lat.cos();
+    let f = rins_verify::ins::static_error_matrix(lat);
     let mut b = M75::zeros();
     for i in 0..3 {
         b[(i, i)] = -1.0;

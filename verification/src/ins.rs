@@ -264,10 +264,11 @@ pub struct ArwCase {
     pub analytic_week_sigma_m: [f64; 2],
 }
 
-/// Linear static INS error model, states [φE, φN, φU, δvE, δvN, δL, δλ], driven by white gyro
-/// noise of density `arw` (rad/√s) on each axis; returns the position 1σ (north, east) in m
-/// after `hours`, by covariance propagation with a 1 s step.
-pub fn arw_position_sigma(arw: f64, lat: f64, hours: f64) -> (f64, f64) {
+/// The linear static INS error model's matrix F (ψ-angle form, vertical channel held), states
+/// [φE, φN, φU, δvE, δvN, δL, δλ]: φ̇ = −ω_ie × φ + δω_ie(δL) + δω_en(δv) − ε and
+/// δv̇ = f × φ − 2ω_ie × δv + ∇. Shared by the ARW covariance here and by the schemes analysis
+/// (`rins-schemes`), which drives it with a scheme's residual.
+pub fn static_error_matrix(lat: f64) -> SMatrix<f64, 7, 7> {
     let w = OMEGA_IE_RPS;
     let (s, c) = lat.sin_cos();
     let (rm, rn) = radii_of_curvature(lat);
@@ -291,6 +292,16 @@ pub fn arw_position_sigma(arw: f64, lat: f64, hours: f64) -> (f64, f64) {
     // position
     f[(5, 4)] = 1.0 / rm;
     f[(6, 3)] = 1.0 / (rn * c);
+    f
+}
+
+/// Linear static INS error model ([`static_error_matrix`]) driven by white gyro noise of
+/// density `arw` (rad/√s) on each axis; returns the position 1σ (north, east) in m after
+/// `hours`, by covariance propagation with a 1 s step.
+pub fn arw_position_sigma(arw: f64, lat: f64, hours: f64) -> (f64, f64) {
+    let (rm, rn) = radii_of_curvature(lat);
+    let c = lat.cos();
+    let f = static_error_matrix(lat);
     let h = 1.0;
     let fh = f * h;
     let mut phi = SMatrix::<f64, 7, 7>::identity();
