@@ -297,11 +297,21 @@ pub const MAX_GYRO_SCALE_FACTOR: f64 = 1e-3;
 /// for nor against it.
 pub const FOLD_SE_RATIO: f64 = 3.0;
 
+/// How much worse than its share of the data (a standard error √folds times the one on all the
+/// data) a fold's held-out windows may determine an extra coefficient, beside the base columns,
+/// for that fold to judge it. Held-out windows in which the candidate is the base's own column
+/// (a dither bias ∝ u_z² on a run of Z-up and Z-down dwells only is the bias there) test
+/// nothing of it: the two models differ there only by how each split the level in training,
+/// and the gain's sign is chance.
+pub const HELD_OUT_SE_RATIO: f64 = 3.0;
+
 /// The cross-validated gain of the design `x` over its first `base_cols` columns, %, and the
 /// CV RMSE with `x` (rate units): both models are fitted on each fold's training windows and
-/// predict its held-out ones, over the folds whose training data determine every extra
-/// coefficient of `x` within [`FOLD_SE_RATIO`] of its standard error on all the data (`full`,
-/// the fit of `x` on all windows). No such fold: gain 0.
+/// predict its held-out ones, over the folds that can judge the extra coefficients: the
+/// training data determine each within [`FOLD_SE_RATIO`] of its standard error on all the data
+/// (`full`, the fit of `x` on all windows), and the held-out data, beside the base columns,
+/// within [`HELD_OUT_SE_RATIO`] of their share. No such fold: the gain is NaN, undecided, and
+/// the gate ([`Gate::passes_test`]) leaves the decision to ΔBIC and the F test.
 pub fn paired_cv(x: &Design, base_cols: usize, full: &Fit, d: &ChannelData) -> (f64, f64) {
     let x0 = x.select(&(0..base_cols).collect::<Vec<_>>());
     let (mut sse0, mut sse1, mut count) = (0.0, 0.0, 0usize);
@@ -318,6 +328,18 @@ pub fn paired_cv(x: &Design, base_cols: usize, full: &Fit, d: &ChannelData) -> (
         if !determined {
             continue;
         }
+        let held: Vec<bool> = train.iter().map(|t| !t).collect();
+        let share = (d.folds as f64).sqrt() * HELD_OUT_SE_RATIO;
+        let testable = wls(x, d, Some(&held)).is_some_and(|fh| {
+            (base_cols..x.ncols()).all(|k| {
+                !full.identified(k)
+                    || fh.identified(k)
+                        && fh.cov[(k, k)].sqrt() <= share * full.cov[(k, k)].sqrt()
+            })
+        });
+        if !testable {
+            continue;
+        }
         let f0 = wls(&x0, d, Some(&train));
         for r in (0..d.y.len()).filter(|&r| d.fold[r] == f) {
             let p1: f64 = (0..x.ncols()).map(|c| x[(r, c)] * f1.theta[c]).sum();
@@ -331,7 +353,7 @@ pub fn paired_cv(x: &Design, base_cols: usize, full: &Fit, d: &ChannelData) -> (
         }
     }
     if count == 0 || !(sse0 > 0.0) {
-        return (0.0, f64::NAN);
+        return (f64::NAN, f64::NAN);
     }
     (
         100.0 * (1.0 - (sse1 / sse0).sqrt()),
@@ -489,7 +511,8 @@ impl Gate {
     pub fn passes_test(&self, delta_bic: f64, p_value: f64, cv_gain_pct: f64) -> bool {
         delta_bic < self.max_delta_bic
             && p_value < self.alpha / self.tests.max(1) as f64
-            && cv_gain_pct > self.min_cv_gain_pct
+            // NaN: no fold can judge the candidate (see [`paired_cv`]); ΔBIC and F decide.
+            && (cv_gain_pct.is_nan() || cv_gain_pct > self.min_cv_gain_pct)
     }
 }
 

@@ -121,8 +121,13 @@ pub fn render_text(r: &IterationReport) -> String {
         for m in &r.closest_to_gate {
             let _ = writeln!(
                 s,
-                "  {} on {}: dBIC {:.1}, p {:.2e}, CV {:.2} %: {}",
-                m.effect, m.channel, m.delta_bic, m.p_value, m.cv_rmse_gain_pct, m.failed
+                "  {} on {}: dBIC {:.1}, p {:.2e}, CV {}: {}",
+                m.effect,
+                m.channel,
+                m.delta_bic,
+                m.p_value,
+                crate::report::diagnosis_text::cv_phrase(m.cv_rmse_gain_pct),
+                m.failed
             );
         }
     }

@@ -109,7 +109,7 @@ impl RenderText for DiagnoseReport {
         column_map(&mut s, self.column_map.as_ref());
         let _ = writeln!(
             s,
-            "{}: candidates ranked by delta-BIC (gate: delta-BIC < -10, Bonferroni p < 0.01, CV gain > 0)",
+            "{}: candidates ranked by delta-BIC (gate: delta-BIC < -10, Bonferroni p < 0.01, CV gain > 0 where a fold can judge it)",
             self.source
         );
         let _ = writeln!(
@@ -135,12 +135,12 @@ impl RenderText for DiagnoseReport {
                 .collect();
             let _ = writeln!(
                 s,
-                "{:<36} {:<8} {:>10.1} {:>10.2e} {:>8.2}  {}  {}",
+                "{:<36} {:<8} {:>10.1} {:>10.2e} {:>8}  {}  {}",
                 r.effect,
                 r.channel,
                 r.delta_bic,
                 r.p_value,
-                r.cv_rmse_gain_pct,
+                cv_cell(r.cv_rmse_gain_pct),
                 if r.passes_gate { "PASS" } else { "-   " },
                 coef.join(" ")
             );
@@ -174,8 +174,12 @@ impl RenderText for DiagnoseReport {
             for r in &self.accepted {
                 let _ = writeln!(
                     s,
-                    "  {} on {} (dBIC {:.1}, p {:.2e}, CV {:.2} %)",
-                    r.effect, r.channel, r.delta_bic, r.p_value, r.cv_rmse_gain_pct
+                    "  {} on {} (dBIC {:.1}, p {:.2e}, CV {})",
+                    r.effect,
+                    r.channel,
+                    r.delta_bic,
+                    r.p_value,
+                    cv_phrase(r.cv_rmse_gain_pct)
                 );
             }
         }
@@ -218,7 +222,7 @@ fn discovery(s: &mut String, d: &rins_mvm::discover::DiscoveryReport) {
         for t in &p.terms {
             let _ = writeln!(
                 s,
-                "    {} {}: {} [{}, {}] {}, dBIC {:.1}, p {:.2e}, CV {:.2} %, ERR {:.4}, bootstrap {:.2}",
+                "    {} {}: {} [{}, {}] {}, dBIC {:.1}, p {:.2e}, CV {}, ERR {:.4}, bootstrap {:.2}",
                 t.channel,
                 t.term,
                 num(t.coefficient),
@@ -227,7 +231,7 @@ fn discovery(s: &mut String, d: &rins_mvm::discover::DiscoveryReport) {
                 t.unit,
                 t.delta_bic,
                 t.p_value,
-                t.cv_rmse_gain_pct,
+                cv_phrase(t.cv_rmse_gain_pct),
                 t.err,
                 t.bootstrap_frequency
             );
@@ -287,8 +291,12 @@ fn discovery(s: &mut String, d: &rins_mvm::discover::DiscoveryReport) {
     for t in &d.refused {
         let _ = writeln!(
             s,
-            "  nearest miss on {}: {} (dBIC {:.1}, p {:.2e}, CV {:.2} %)",
-            t.channel, t.term, t.delta_bic, t.p_value, t.cv_rmse_gain_pct
+            "  nearest miss on {}: {} (dBIC {:.1}, p {:.2e}, CV {})",
+            t.channel,
+            t.term,
+            t.delta_bic,
+            t.p_value,
+            cv_phrase(t.cv_rmse_gain_pct)
         );
     }
 }
@@ -319,5 +327,24 @@ fn collinearity(rho: f64, vif: f64) -> String {
         format!("{rho}, identical on this data")
     } else {
         format!("{rho}, VIF {vif:.0}")
+    }
+}
+
+/// A cross-validated gain in a table's column: `0.12`, or `n/a` when no fold could judge the
+/// candidate (NaN: `rins_mvm::fit::paired_cv`).
+pub(crate) fn cv_cell(gain_pct: f64) -> String {
+    if gain_pct.is_nan() {
+        "n/a".into()
+    } else {
+        format!("{gain_pct:.2}")
+    }
+}
+
+/// A cross-validated gain in a sentence: `0.12 %`, or `n/a (no fold can judge it)`.
+pub(crate) fn cv_phrase(gain_pct: f64) -> String {
+    if gain_pct.is_nan() {
+        "n/a (no fold can judge it)".into()
+    } else {
+        format!("{gain_pct:.2} %")
     }
 }
