@@ -173,7 +173,7 @@ fn near_misses(an: &Analysis) -> Vec<NearMiss> {
         if !(dbic < -10.0) {
             f.push("ΔBIC ≥ −10");
         }
-        if !(cv > 0.0) {
+        if cv <= 0.0 {
             f.push("CV gain ≤ 0");
         }
         if f.is_empty() && !passes {
@@ -706,6 +706,23 @@ pub fn iterate(
                             .trim_end_matches(" (with a bias correction)")
                             .to_string()
                     })
+                    // Confusability is mutual: an effect of the ranking that names this one
+                    // confusable with it (nearly as good on this data, nearly collinear) is
+                    // named here too, though this one's own row, fitted without a bias
+                    // correction, may not list it.
+                    .chain(
+                        diag.report
+                            .ranking
+                            .iter()
+                            .filter(|r| r.channel == CHANNELS[c] && r.effect != *name)
+                            .filter(|r| {
+                                r.confusable_with.iter().any(|x| {
+                                    x.effect.trim_end_matches(" (with a bias correction)")
+                                        == name.as_str()
+                                })
+                            })
+                            .map(|r| r.effect.clone()),
+                    )
                     .fold(Vec::new(), |mut v: Vec<String>, e| {
                         if !v.contains(&e) {
                             v.push(e);
