@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use anyhow::{Context, Result, bail};
-use rins_mvm_trials::bench::{markdown, plan, run as run_trials};
+use rins_mvm_trials::bench::{markdown, plan, run as run_trials, with_paired_controls};
 use rins_mvm_trials::classes::Class;
 
 /// Arguments of `rins bench-diagnosis`.
@@ -22,6 +22,11 @@ pub struct BenchDiagnosisArgs {
     /// Classes to draw from, comma-separated (default: every class, controls included).
     #[arg(long, value_delimiter = ',')]
     pub classes: Vec<String>,
+    /// Skip the paired controls: by default every trial that hides something is run again on
+    /// the same design, model and noise with nothing hidden (indices after the trials'), so the
+    /// false-claim rate is measured on as many controls as there are effect trials.
+    #[arg(long)]
+    pub no_paired_controls: bool,
     /// Only these trial indices of the plan (replay a failing trial alone).
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub only: Vec<usize>,
@@ -59,6 +64,9 @@ pub fn run(a: &BenchDiagnosisArgs) -> Result<()> {
             .collect::<Result<_>>()?
     };
     let mut specs = plan(a.trials as usize, a.seed, &classes);
+    if !a.no_paired_controls {
+        specs = with_paired_controls(specs);
+    }
     if !a.only.is_empty() {
         if let Some(bad) = a.only.iter().find(|i| **i >= specs.len()) {
             bail!("--only {bad}: the plan has trials 0 to {}", specs.len() - 1);
@@ -73,9 +81,14 @@ pub fn run(a: &BenchDiagnosisArgs) -> Result<()> {
         if !o.score.correct {
             bar.suspend(|| {
                 eprintln!(
-                    "trial {} ({}): missing {:?}, extra {:?}; {}",
+                    "trial {} ({}{}): missing {:?}, extra {:?}; {}",
                     o.spec.index,
                     o.spec.class.name(),
+                    if o.spec.paired_control {
+                        ", paired control"
+                    } else {
+                        ""
+                    },
                     o.score.missing,
                     o.score.extra,
                     o.stop

@@ -340,3 +340,49 @@ fn a_benchmark_subset_is_right_and_claims_nothing_on_controls() {
     assert_eq!(again.score.correct, report.outcomes[5].score.correct);
     assert_eq!(again.hidden, report.outcomes[5].hidden);
 }
+
+/// A paired control is its trial drawn as it is with nothing hidden: the same design, model
+/// and noise seed, so the false-claim rate is measured on the effect trials' own designs.
+#[test]
+fn a_paired_control_is_its_trial_with_nothing_hidden() {
+    let specs =
+        rins_mvm_trials::bench::with_paired_controls(plan(4, 7, &[Class::GyroBias, Class::Control]));
+    // Two effect trials (0, 2) and two drawn controls (1, 3): two paired controls, 4 and 5.
+    assert_eq!(specs.len(), 6);
+    for (control, of) in [(4, 0), (5, 2)] {
+        let (c, t) = (specs[control], specs[of]);
+        assert!(c.paired_control && c.is_control() && !t.is_control());
+        assert_eq!((c.index, c.seed, c.class), (control, t.seed, t.class));
+        let (dc, dt) = (
+            rins_mvm_trials::bench::draw_trial(c),
+            rins_mvm_trials::bench::draw_trial(t),
+        );
+        assert!(dc.hidden.is_empty() && !dt.hidden.is_empty());
+        assert_eq!(dc.design.name, dt.design.name);
+        assert_eq!(dc.noise_seed, dt.noise_seed);
+        assert_eq!(format!("{:?}", dc.model), format!("{:?}", dt.model));
+    }
+}
+
+/// The benchmark's misses at oracle z ≥ 8 of seed 1 (docs/model-vs-measurements.md), replayed:
+/// trial 5 keeps the housing temperature's rate for a gradient bias, which the gradient's own
+/// ranking row names confusable with it (mutual, so the kept term names the gradient); trial
+/// 31's dither bias ∝ u_z² is judged by no fold (its held-out runs are Z-up and Z-down only,
+/// where it is the bias) and is kept on ΔBIC, F and resampling; trial 37's quadratic scale
+/// factor is z 11 in all but under 6 beyond its linear twin, so it is not a strong trial.
+#[test]
+fn the_benchmark_misses_at_strong_z_of_seed_1_are_answered() {
+    use rins_mvm_trials::bench::{STRONG_Z, run_trial};
+    let specs = plan(200, 1, &Class::all());
+    for i in [5, 31] {
+        let o = run_trial(specs[i]);
+        assert!(
+            o.score.correct,
+            "trial {i}: missing {:?}, extra {:?}; {}",
+            o.score.missing, o.score.extra, o.stop
+        );
+    }
+    let o = run_trial(specs[37]);
+    assert!(o.z[0] >= STRONG_Z, "drawn z {}", o.z[0]);
+    assert!(o.z_demanded[0] < 6.0, "z beyond the twin {}", o.z_demanded[0]);
+}
