@@ -4,7 +4,8 @@ use std::any::TypeId;
 use std::sync::Mutex;
 
 use crate::model::Model;
-use crate::xml::{FmiVersion, Header, model_description};
+use crate::standard::FmiVersion;
+use crate::xml::{Header, model_description};
 
 /// Model identifier (binary and `.fmu` name) of `M`'s FMU for `version`.
 pub fn model_identifier<M: Model>(version: FmiVersion) -> &'static str {

@@ -4,17 +4,8 @@
 
 use std::fmt::Write;
 
-use crate::instance::LOG_CATEGORIES;
+use crate::standard::{FmiVersion, LOG_CATEGORIES};
 use crate::vars::{Causality, Kind, ScalarVar, Value, VariableTable};
-
-/// Which standard.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FmiVersion {
-    /// FMI 2.0 co-simulation.
-    V2,
-    /// FMI 3.0 co-simulation.
-    V3,
-}
 
 /// What goes in the header besides the variables.
 #[derive(Clone, Debug)]

@@ -16,7 +16,7 @@
 use std::ffi::{CString, c_char, c_void};
 
 use rins_fmi::fmu;
-use rins_fmi::xml::FmiVersion;
+use rins_fmi::standard::FmiVersion;
 use rins_fmi_import::{Fmu2, parse_model_description};
 use rins_imu_fmu::RinsImu;
 
