@@ -84,7 +84,6 @@ pub(super) fn description(
         unit_definitions: Some(UnitDefinitions {
             units: super::units(table)
                 .into_iter()
-                .into_iter()
                 .map(|(name, si)| Fmi2Unit {
                     name: name.into(),
                     base_unit: si.as_ref().map(|u| base_unit!(fmi2::BaseUnit, u)),
