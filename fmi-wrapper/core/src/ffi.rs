@@ -9,10 +9,10 @@ use std::ffi::{CStr, c_char, c_void};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use crate::fmu;
-use crate::instance::{FmiError, Instance, LOG_CATEGORIES, Status};
+use crate::instance::{FmiError, Instance, Status};
 use crate::live;
 use crate::model::Model;
-use crate::xml::FmiVersion;
+use crate::standard::{FmiVersion, LOG_CATEGORIES};
 
 /// The caller's array of `n` elements at `p` (NULL only when `n` is 0).
 ///

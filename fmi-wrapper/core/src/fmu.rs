@@ -4,7 +4,8 @@ use std::any::TypeId;
 use std::sync::Mutex;
 
 use crate::model::Model;
-use crate::xml::{FmiVersion, Header, model_description};
+use crate::standard::FmiVersion;
+use crate::xml::{Header, model_description};
 
 /// Model identifier (binary and `.fmu` name) of `M`'s FMU for `version`.
 pub fn model_identifier<M: Model>(version: FmiVersion) -> &'static str {
@@ -27,6 +28,10 @@ pub fn header<M: Model>(version: FmiVersion) -> Header {
 
 /// modelDescription.xml and token of `M`'s FMU for `version`, computed once per model and
 /// version (a pure function of the code; instantiation compares tokens on every call).
+///
+/// # Panics
+/// If `M`'s table cannot be described ([`model_description`]): a bug of the model's code, like
+/// a malformed table. The FMI entry points that reach this call it inside `catch_unwind`.
 pub fn description<M: Model>(version: FmiVersion) -> &'static (String, String) {
     // A `static` in a generic function is shared by every `M`: key the memo by type. Entries
     // are computed once and never change, so leaking them gives plain `&'static` references.
@@ -37,11 +42,10 @@ pub fn description<M: Model>(version: FmiVersion) -> &'static (String, String) {
     if let Some((_, _, d)) = memo.iter().find(|(t, v, _)| *t == key && *v == version) {
         return d;
     }
-    let d: &'static (String, String) = Box::leak(Box::new(model_description(
-        version,
-        M::table(),
-        &header::<M>(version),
-    )));
+    let h = header::<M>(version);
+    let d = model_description(version, M::table(), &h)
+        .unwrap_or_else(|e| panic!("modelDescription of {}: {e}", h.model_identifier));
+    let d: &'static (String, String) = Box::leak(Box::new(d));
     memo.push((key, version, d));
     d
 }

@@ -44,22 +44,6 @@ impl FmiError {
     }
 }
 
-/// Log categories the FMUs declare.
-pub const LOG_CATEGORIES: [(&str, &str); 3] = [
-    (
-        "logStatusError",
-        "Calls that fail, with the reason (always reported)",
-    ),
-    (
-        "logStatusWarning",
-        "Calls that succeed with a remark (always reported)",
-    ),
-    (
-        "logEvents",
-        "Instantiation, mode changes (initialization, step mode, terminate, reset) and every doStep with its start time and size (only with loggingOn)",
-    ),
-];
-
 /// Where the instance is in its life.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Mode {

@@ -1,7 +1,8 @@
 //! # rins-fmi
 //!
-//! A generic FMI 2.0 / 3.0 co-simulation layer, without C: the model interface it is generic
-//! over ([`model`]), the variable table ([`vars`]), the FMI state machine ([`instance`]), the FMU
+//! A generic FMI 2.0 / 3.0 co-simulation layer, without C: what the standard fixes for every
+//! model ([`standard`]: the version, the log categories; it imports nothing else of the crate),
+//! the model interface it is generic over ([`model`]), the variable table ([`vars`]), the FMI state machine ([`instance`]), the FMU
 //! state codec ([`state`]), the registry of live instance handles ([`live`]), modelDescription.xml ([`xml`], [`fmu`]), `.fmu` packaging
 //! ([`package`], [`zip`]: stored and deflated archives through the `zip` crate) and the C-ABI
 //! helpers both FMI versions share ([`ffi`]). It knows no
@@ -14,6 +15,7 @@ pub mod instance;
 pub mod live;
 pub mod model;
 pub mod package;
+pub mod standard;
 pub mod state;
 pub mod vars;
 pub mod xml;

@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 
 use crate::fmu::{self, model_identifier};
 use crate::model::Model;
+use crate::standard::FmiVersion;
 use crate::vars::{Causality, Kind, VariableTable};
-use crate::xml::FmiVersion;
 
 /// File name of `M`'s FMU for `version`.
 pub fn fmu_file<M: Model>(version: FmiVersion) -> String {

@@ -10,7 +10,7 @@
 
 use std::ops::Range;
 
-use crate::xml::FmiVersion;
+use crate::standard::FmiVersion;
 
 /// Type of a scalar.
 #[derive(Clone, Copy, Debug, PartialEq)]

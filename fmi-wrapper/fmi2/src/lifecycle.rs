@@ -6,7 +6,7 @@ use std::ffi::c_char;
 use rins_fmi::ffi::{check_log_categories, check_token, text};
 use rins_fmi::instance::{FmiError, Instance, Status};
 use rins_fmi::model::Model;
-use rins_fmi::xml::FmiVersion;
+use rins_fmi::standard::FmiVersion;
 
 use crate::*;
 

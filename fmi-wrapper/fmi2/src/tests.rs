@@ -93,7 +93,7 @@ impl Model for Counter {
 #[test]
 fn a_second_model_runs_through_the_generic_fmi2_functions() {
     let token = CString::new(
-        rins_fmi::fmu::description::<Counter>(rins_fmi::xml::FmiVersion::V2)
+        rins_fmi::fmu::description::<Counter>(rins_fmi::standard::FmiVersion::V2)
             .1
             .clone(),
     )
@@ -180,7 +180,7 @@ fn a_second_model_runs_through_the_generic_fmi2_functions() {
 #[test]
 fn a_freed_instance_or_a_foreign_pointer_is_refused_without_touching_memory() {
     let token = CString::new(
-        rins_fmi::fmu::description::<Counter>(rins_fmi::xml::FmiVersion::V2)
+        rins_fmi::fmu::description::<Counter>(rins_fmi::standard::FmiVersion::V2)
             .1
             .clone(),
     )

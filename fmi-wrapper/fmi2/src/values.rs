@@ -4,8 +4,8 @@
 use rins_fmi::ffi::{slice, slice_mut};
 use rins_fmi::instance::{FmiError, Mode};
 use rins_fmi::model::Model;
+use rins_fmi::standard::FmiVersion;
 use rins_fmi::vars::{Kind, Value};
-use rins_fmi::xml::FmiVersion;
 
 use crate::*;
 

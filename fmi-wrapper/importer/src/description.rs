@@ -1,6 +1,9 @@
-//! Reading an FMI 2.0 modelDescription.xml: the GUID, model identifier and variables.
+//! Reading an FMI 2.0 modelDescription.xml, with fmi-schema (the typed definition the exporter
+//! writes with): the GUID, model identifier and variables.
 
-use std::collections::HashMap;
+use fmi_schema::fmi2::{Fmi2ModelDescription, ScalarVariableElement};
+use fmi_schema::minimal::MinModelDescription;
+use fmi_schema::traits::FmiModelDescription;
 
 /// A variable as the modelDescription declares it.
 #[derive(Clone, Debug, PartialEq)]
@@ -15,74 +18,133 @@ pub struct Variable {
     pub causality: String,
 }
 
-/// Attributes of every `<tag ...>` in `xml`, in order (enough for modelDescription files).
-fn tags(xml: &str) -> Vec<(String, HashMap<String, String>)> {
-    let mut out = Vec::new();
-    let mut rest = xml;
-    while let Some(i) = rest.find('<') {
-        rest = &rest[i + 1..];
-        let Some(end) = rest.find('>') else { break };
-        let body = rest[..end].trim_end_matches('/');
-        rest = &rest[end + 1..];
-        if body.starts_with(['?', '!', '/']) {
-            continue;
-        }
-        let (name, mut attrs_text) = body.split_once(char::is_whitespace).unwrap_or((body, ""));
-        let mut attrs = HashMap::new();
-        while let Some(eq) = attrs_text.find("=\"") {
-            let key = attrs_text[..eq].trim().to_string();
-            let after = &attrs_text[eq + 2..];
-            let Some(close) = after.find('"') else { break };
-            let v = after[..close]
-                .replace("&quot;", "\"")
-                .replace("&lt;", "<")
-                .replace("&gt;", ">")
-                .replace("&amp;", "&");
-            attrs.insert(key, v);
-            attrs_text = &after[close + 1..];
-        }
-        out.push((name.to_string(), attrs));
-    }
-    out
-}
-
-/// The GUID and variables of an FMI 2.0 modelDescription.
+/// The GUID, model identifier and variables of an FMI 2.0 co-simulation modelDescription.
 pub fn parse_model_description(xml: &str) -> Result<(String, String, Vec<Variable>), String> {
-    let t = tags(xml);
-    let root = t
-        .iter()
-        .find(|(n, _)| n == "fmiModelDescription")
-        .ok_or("no fmiModelDescription element")?;
-    if root.1.get("fmiVersion").map(String::as_str) != Some("2.0") {
+    // The version first, so that an FMI 3 file is refused for what it is rather than for a
+    // missing `guid`.
+    let min: MinModelDescription = fmi_schema::deserialize(xml).map_err(|e| e.to_string())?;
+    if min.fmi_version != "2.0" {
         return Err(format!(
             "this importer reads FMI 2.0; the FMU says fmiVersion {:?}",
-            root.1.get("fmiVersion")
+            min.fmi_version
         ));
     }
-    let guid = root.1.get("guid").cloned().ok_or("no guid")?;
-    let id = t
-        .iter()
-        .find(|(n, _)| n == "CoSimulation")
-        .and_then(|(_, a)| a.get("modelIdentifier").cloned())
+    let md = Fmi2ModelDescription::deserialize(xml).map_err(|e| e.to_string())?;
+    let id = md
+        .co_simulation
+        .as_ref()
+        .map(|cs| cs.model_identifier.clone())
         .ok_or("not a co-simulation FMU")?;
-    let mut vars = Vec::new();
-    for (i, (name, attrs)) in t.iter().enumerate() {
-        if name != "ScalarVariable" {
-            continue;
+    let vars = md
+        .model_variables
+        .variables
+        .iter()
+        .map(|v| Variable {
+            name: v.name.clone(),
+            vr: v.value_reference,
+            type_name: match v.elem {
+                ScalarVariableElement::Real(_) => "Real",
+                ScalarVariableElement::Integer(_) => "Integer",
+                ScalarVariableElement::Boolean(_) => "Boolean",
+                ScalarVariableElement::String => "String",
+                ScalarVariableElement::Enumeration => "Enumeration",
+            }
+            .into(),
+            causality: v.causality.to_string(),
+        })
+        .collect();
+    Ok((md.guid, id, vars))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rins_fmi::standard::FmiVersion;
+    use rins_fmi::vars::{Causality, Kind, OutputDecl, ScalarVar, Value, VariableTable};
+    use rins_fmi::xml::{Header, model_description};
+
+    fn scalar(name: &str, kind: Kind, causality: Causality, start: Value) -> ScalarVar {
+        ScalarVar {
+            name: name.into(),
+            array: name.into(),
+            kind,
+            causality,
+            unit: None,
+            start,
+            range: None,
+            description: format!("{name} <&> \"quoted\""),
         }
-        let type_name = t.get(i + 1).map(|(n, _)| n.clone()).unwrap_or_default();
-        vars.push(Variable {
-            name: attrs.get("name").cloned().unwrap_or_default(),
-            vr: attrs
-                .get("valueReference")
-                .and_then(|v| v.parse().ok())
-                .ok_or("ScalarVariable without a valueReference")?,
-            type_name,
-            causality: attrs
-                .get("causality")
-                .cloned()
-                .unwrap_or_else(|| "local".into()),
-        });
     }
-    Ok((guid, id, vars))
+
+    #[test]
+    fn it_reads_what_the_exporter_writes() {
+        let colour = Kind::Enumeration {
+            type_name: "Colour",
+            items: &["red", "green"],
+        };
+        let out = OutputDecl {
+            name: "y".into(),
+            len: Some(2),
+            kind: Kind::Real,
+            unit: Some("m"),
+            start: vec![Value::Real(0.0)],
+            description: "out".into(),
+        };
+        let mut scalars = vec![
+            ScalarVar {
+                unit: Some("s"),
+                range: Some((0.0, f64::INFINITY)),
+                ..scalar("gain", Kind::Real, Causality::Parameter, Value::Real(1.5))
+            },
+            scalar("n", Kind::Integer, Causality::Input, Value::Integer(3)),
+            scalar(
+                "on",
+                Kind::Boolean,
+                Causality::Parameter,
+                Value::Boolean(true),
+            ),
+            scalar("c", colour, Causality::Parameter, Value::Enumeration(1)),
+        ];
+        scalars.extend(out.scalars());
+        let table = VariableTable::with_enum_codes(scalars);
+        let h = Header {
+            model_identifier: "Probe".into(),
+            description: "a probe".into(),
+            generation_tool: "test".into(),
+            stop_time_s: 1.0,
+            step_size_s: 0.1,
+        };
+        let (xml, token) = model_description(FmiVersion::V2, &table, &h).unwrap();
+        let (guid, id, vars) = parse_model_description(&xml).unwrap();
+        assert_eq!((guid.as_str(), id.as_str()), (token.as_str(), "Probe"));
+        let want: Vec<Variable> = table
+            .scalars
+            .iter()
+            .enumerate()
+            .map(|(slot, s)| Variable {
+                name: s.name.clone(),
+                vr: slot as u32,
+                type_name: match s.kind {
+                    Kind::Real => "Real",
+                    Kind::Integer => "Integer",
+                    Kind::Boolean => "Boolean",
+                    Kind::Enumeration { .. } => "Enumeration",
+                }
+                .into(),
+                causality: match s.causality {
+                    Causality::Parameter => "parameter",
+                    Causality::Input => "input",
+                    Causality::Output => "output",
+                }
+                .into(),
+            })
+            .collect();
+        assert_eq!(vars, want);
+        // The enumeration's Integer code follows the variables it was made from.
+        assert_eq!(vars.last().unwrap().name, "c_code");
+
+        let (xml3, _) = model_description(FmiVersion::V3, &table, &h).unwrap();
+        let e = parse_model_description(&xml3).unwrap_err();
+        assert!(e.contains("reads FMI 2.0") && e.contains("3.0"), "{e}");
+    }
 }

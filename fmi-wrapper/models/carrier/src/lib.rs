@@ -11,9 +11,9 @@
 use std::sync::OnceLock;
 
 use rins_fmi::model::{Model, ModelInfo};
+use rins_fmi::standard::FmiVersion;
 use rins_fmi::state::{StateReader, StateWriter};
 use rins_fmi::vars::{Value, VariableTable};
-use rins_fmi::xml::FmiVersion;
 use rins_plant::PlantConfig;
 use rins_plant::carrier::track::MAX_LAT_DEG;
 use rins_plant::carrier::{Carrier, CarrierState};

@@ -9,7 +9,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use rins_fmi::fmu;
-use rins_fmi::xml::FmiVersion;
+use rins_fmi::standard::FmiVersion;
 use rins_fmi_import::{Fmu2, parse_model_description};
 use rins_imu_fmu::{RinsImu, library_file};
 use rins_plant::Plant;

@@ -1,6 +1,6 @@
 //! Packs the FMUs from built libraries: `cargo run -p rins-imu-fmu --example pack -- LIB_DIR
 //! OUT_DIR` (the `rins fmu build` command does the same).
-use rins_fmi::xml::FmiVersion;
+use rins_fmi::standard::FmiVersion;
 use rins_imu_fmu::{RinsImu, library_file};
 
 fn main() {

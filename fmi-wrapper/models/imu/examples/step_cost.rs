@@ -15,14 +15,18 @@ fn main() {
         }
         Some("fmu") => {
             let exe = std::env::current_exe().unwrap();
-            let so = exe
-                .parent()
-                .and_then(|d| d.parent())
-                .unwrap()
-                .join(rins_imu_fmu::library_file(rins_fmi::xml::FmiVersion::V2));
+            let so =
+                exe.parent()
+                    .and_then(|d| d.parent())
+                    .unwrap()
+                    .join(rins_imu_fmu::library_file(
+                        rins_fmi::standard::FmiVersion::V2,
+                    ));
             let (guid, _, vars) = rins_fmi_import::parse_model_description(
-                &rins_fmi::fmu::description::<rins_imu_fmu::RinsImu>(rins_fmi::xml::FmiVersion::V2)
-                    .0,
+                &rins_fmi::fmu::description::<rins_imu_fmu::RinsImu>(
+                    rins_fmi::standard::FmiVersion::V2,
+                )
+                .0,
             )
             .unwrap();
             let lib = rins_fmi_import::Fmu2::load(&so, guid, vars).unwrap();

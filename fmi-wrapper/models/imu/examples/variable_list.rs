@@ -6,7 +6,7 @@ fn main() {
         "{}",
         rins_fmi::package::variable_list(
             rins_imu_fmu::RinsImu::table(),
-            rins_fmi::xml::FmiVersion::V3
+            rins_fmi::standard::FmiVersion::V3
         )
     );
 }

@@ -11,9 +11,9 @@ use std::sync::OnceLock;
 
 use nalgebra::Vector3;
 use rins_fmi::model::{Model, ModelInfo};
+use rins_fmi::standard::FmiVersion;
 use rins_fmi::state::{StateReader, StateWriter};
 use rins_fmi::vars::{Value, VariableTable};
-use rins_fmi::xml::FmiVersion;
 use rins_plant::carrier::CarrierKind;
 use rins_plant::carrier::external::CarrierSample;
 use rins_plant::{GimbalCommand, ImuSample, Plant, PlantConfig};

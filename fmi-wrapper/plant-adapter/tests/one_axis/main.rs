@@ -8,9 +8,9 @@ use std::sync::OnceLock;
 
 use rins_fmi::instance::Instance;
 use rins_fmi::model::{Model, ModelInfo};
+use rins_fmi::standard::FmiVersion;
 use rins_fmi::state::{StateReader, StateWriter};
 use rins_fmi::vars::{Causality, Kind, OutputDecl, Value, VariableTable};
-use rins_fmi::xml::FmiVersion;
 use rins_fmi_plant::{InputRow, PlantParams};
 
 /// The scenario keys the model exposes: the gyro biases (an FMI 3 array is whole; the model

@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use std::sync::Mutex;
 
 use rins_fmi::fmu;
-use rins_fmi::xml::FmiVersion;
+use rins_fmi::standard::FmiVersion;
 use rins_fmi_import::{CallError, Fmu2, Instance2, parse_model_description};
 use rins_imu_fmu::{RinsImu, library_file};
 

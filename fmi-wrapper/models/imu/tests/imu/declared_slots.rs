@@ -7,8 +7,8 @@
 //! Needs the cdylib: `cargo build --release -p rins-imu-fmi2`.
 
 use rins_fmi::fmu;
+use rins_fmi::standard::FmiVersion;
 use rins_fmi::vars::Value;
-use rins_fmi::xml::FmiVersion;
 use rins_fmi_import::{Fmu2, Instance2, parse_model_description};
 use rins_imu_fmu::RinsImu;
 use rins_imu_fmu::declared::slot_values;

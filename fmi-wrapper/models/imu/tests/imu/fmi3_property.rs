@@ -18,7 +18,7 @@ use std::sync::Mutex;
 use rand::{Rng, RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rins_fmi::fmu;
-use rins_fmi::xml::FmiVersion;
+use rins_fmi::standard::FmiVersion;
 use rins_imu_fmu::RinsImu;
 
 use crate::common::{Fmi3, Inst};

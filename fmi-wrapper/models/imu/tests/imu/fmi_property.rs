@@ -20,7 +20,7 @@ use std::path::PathBuf;
 use rand::{Rng, RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rins_fmi::fmu;
-use rins_fmi::xml::FmiVersion;
+use rins_fmi::standard::FmiVersion;
 use rins_fmi_import::{CallError, Fmu2, Instance2, StateHandle, Variable, parse_model_description};
 use rins_imu_fmu::{RinsImu, library_file};
 

@@ -13,7 +13,7 @@ use std::ffi::{CStr, CString, c_char, c_void};
 use std::sync::Mutex;
 
 use rins_fmi::fmu;
-use rins_fmi::xml::FmiVersion;
+use rins_fmi::standard::FmiVersion;
 use rins_fmi_import::{Fmu2, Instance2, parse_model_description};
 use rins_imu_fmu::RinsImu;
 use rins_plant::Plant;

@@ -7,7 +7,7 @@
 use std::ffi::{c_char, c_void};
 use std::path::PathBuf;
 
-use rins_fmi::xml::FmiVersion;
+use rins_fmi::standard::FmiVersion;
 use rins_imu_fmu::library_file;
 
 /// The built FMI library of `version` beside the test binaries' folder.
