@@ -18,6 +18,7 @@ pub mod runner;
 pub mod sinks;
 pub mod spans;
 pub mod sweep;
+pub mod truth;
 
 /// The plotting helpers under their former path (`crate::diagnose` draws with them).
 pub use figures::plot as plots;

@@ -5,10 +5,12 @@ features), dumps the DOM and logs to stderr; the page must log no console messag
 load, every expected figure must be an inline SVG with drawn content and a non-zero size, every
 number cell (data-src/data-json/data-value) must equal the value at its path in the command's
 --json output (the exact value, and the shown text to its last digit), and a screenshot is
-taken (a PNG of the window size, not blank). The result pages of diagnose, diagnose --iterate,
-compare, sweep and paper (table4, table5 and the headline) must open with their verdict: the
-first block after the title and the command line is the verdict section, and each of its
-numbers (data-json) and counts (data-json-len, an array's length) equals the --json output.
+taken (a PNG of the window size, not blank). Every result page (diagnose, diagnose --iterate,
+compare, sweep, paper with table4, table5 and the headline, calibrate, campaign, sea and
+schemes analyse) must open with its verdict: the first block after the title and the command
+line is the verdict section, each of its numbers (data-json) and counts (data-json-len, an
+array's length) equals the --json output, and the block right after it is the figure that
+shows the verdict (KEY_FIGURE), before any table.
 
 Usage: python3 tests/browser/test_reports.py RINS_BINARY
 """
@@ -100,8 +102,15 @@ def png_size(path):
     return struct.unpack(">II", head[16:24])
 
 
-# The pages that must open with a verdict that agrees with the JSON.
-VERDICT_PAGES = {"paper", "table4", "table5", "diagnose", "compare", "iterate", "sweep"}
+# The pages that must open with a verdict that agrees with the JSON, and the figure that must
+# come directly after it.
+KEY_FIGURE = {
+    "paper": "fig3_position_error", "table4": "fig3_position_error",
+    "table5": "fig3_position_error", "diagnose": "bias_by_position",
+    "compare": "bias_by_position", "iterate": "iteration_history", "sweep": "sweep_lon_nm",
+    "calibrate": "calibration_beta", "campaign": "fig8_dbeta_vs_temperature",
+    "sea": "sea_end_error", "schemes": "schemes_classes",
+}
 # The title, the command line, then the verdict: the first block of the page's content.
 VERDICT_FIRST = re.compile(
     r'<body[^>]*>\s*<h1>[^<]*</h1>\s*<p class="meta">.*?</p>\s*'
@@ -126,9 +135,14 @@ def check_cells(name, cells, sources):
 
 
 def check_verdict(name, dom, sources):
-    """The verdict is the page's first block and its numbers are the JSON's; returns them."""
+    """The verdict is the page's first block, its numbers are the JSON's and the figure that
+    shows it comes next; returns how many numbers it quotes."""
     m = VERDICT_FIRST.search(dom)
     assert m, f"{name}: the page does not open with its verdict: {dom[dom.find('<body'):][:600]}"
+    key = KEY_FIGURE[name]
+    after = dom[m.end():].lstrip()
+    assert after.startswith(f'<figure id="{key}" data-figure="{key}">'), (
+        f"{name}: the verdict is not followed by its figure {key}: {after[:300]}")
     v = Page()
     v.feed(m.group(1))
     v.close()
@@ -160,7 +174,7 @@ def check_report(name, html, sources, figures, shots):
         assert g["elements"] > 30, f"{name}: {f} is nearly empty ({g['elements']} elements)"
     assert page.cells, f"{name}: no number cells"
     check_cells(name, page.cells, sources)
-    verdict = check_verdict(name, p.stdout, sources) if name in VERDICT_PAGES else 0
+    verdict = check_verdict(name, p.stdout, sources)
     with tempfile.TemporaryDirectory() as profile:
         shot = os.path.join(shots, f"{name}.png")
         subprocess.run(
@@ -170,7 +184,7 @@ def check_report(name, html, sources, figures, shots):
     w, h = png_size(shot)
     assert (w, h) == (1000, 1400), f"{name}: screenshot {w}x{h}"
     assert os.path.getsize(shot) > 20_000, f"{name}: blank screenshot"
-    first = f", verdict first ({verdict} numbers)" if verdict else ""
+    first = f", verdict first ({verdict} numbers) then {KEY_FIGURE[name]}"
     print(f"  {name}: {len(page.figures)} figures, {len(page.cells)} numbers equal to --json{first}, "
           f"screenshot {os.path.getsize(shot) // 1024} KiB")
 
@@ -270,7 +284,11 @@ def main():
     sw = j(["sweep", f"{t}/sweep.toml", "--json", "--out", f"{t}/sweep", "--report", f"{t}/sweep"])
     check_report("sweep", f"{t}/sweep/report.html", {"sweep": sw},
                  ["sweep_lon_nm", "sweep_abs_lon_nm"], shots)
-    checked += 9
+    # The rotation schemes' analysis (every built-in scheme x every effect, well under a second).
+    sch = j(["schemes", "analyse", "--json", "--report", f"{t}/schemes"])
+    check_report("schemes", f"{t}/schemes/report.html", {"schemes": sch},
+                 ["schemes_effects", "schemes_classes"], shots)
+    checked += 10
     print(f"{checked} passed, 0 failed: HTML reports in headless Chromium")
 
 

@@ -10,6 +10,8 @@
 
 use std::ops::Range;
 
+use rins_message::Num;
+
 use crate::standard::FmiVersion;
 
 /// Type of a scalar.
@@ -298,13 +300,21 @@ impl VariableTable {
         self.scalars.iter().position(|s| s.name == name)
     }
 
-    /// Checks `v` against slot `slot`'s kind and range; the error says what was expected.
+    /// Checks `v` against slot `slot`'s kind and range; the error says what was expected, its
+    /// numbers as the rest of rins echoes them ([`rins_message::Num`]: 1e-300, not 300 digits).
     pub fn check(&self, slot: usize, v: Value) -> Result<(), String> {
         let s = &self.scalars[slot];
-        let range = |x: f64| match s.range {
+        let range = |x: f64, shown: String| match s.range {
+            // An infinite value of a finite range is not read as too large a number.
+            Some((lo, hi)) if !x.is_finite() && lo.is_finite() && hi.is_finite() => Err(format!(
+                "{} = {shown} is not finite: expected {}",
+                s.name,
+                rins_message::expected_in(x, lo, hi)
+            )),
             Some((lo, hi)) if !(x >= lo && x <= hi) => Err(format!(
-                "{} = {x} is outside its range [{lo}, {hi}]",
-                s.name
+                "{} = {shown} is outside its range {}",
+                s.name,
+                rins_message::range(lo, hi)
             )),
             _ => Ok(()),
         };
@@ -312,8 +322,9 @@ impl VariableTable {
             (Kind::Real, Value::Real(x)) if x.is_nan() => {
                 Err(format!("{} = NaN is not a number", s.name))
             }
-            (Kind::Real, Value::Real(x)) => range(x),
-            (Kind::Integer, Value::Integer(u)) => range(u as f64),
+            (Kind::Real, Value::Real(x)) => range(x, Num(x).to_string()),
+            // A whole number is echoed exactly (its digits are its value).
+            (Kind::Integer, Value::Integer(u)) => range(u as f64, u.to_string()),
             (Kind::Boolean, Value::Boolean(_)) => Ok(()),
             (Kind::Enumeration { items, type_name }, Value::Enumeration(i)) if i >= items.len() => {
                 // FMI values below 1 arrive as `usize::MAX` (no item): no overflow here.
@@ -330,7 +341,7 @@ impl VariableTable {
             (Kind::Enumeration { .. }, Value::Enumeration(_)) => Ok(()),
             (k, v) => {
                 let got = match v {
-                    Value::Real(x) => format!("the Real {x}"),
+                    Value::Real(x) => format!("the Real {}", Num(x)),
                     Value::Integer(u) => format!("the Integer {u}"),
                     Value::Boolean(b) => format!("the Boolean {b}"),
                     Value::Enumeration(i) => format!("enumeration item {}", i.wrapping_add(1)),
@@ -527,5 +538,72 @@ mod tests {
         assert_eq!(t.scalars[0].start, Value::Real(1.0));
         assert_eq!(t.arrays[0].dims, [2]);
         assert_eq!(t.scalars[1].causality, Causality::Output);
+    }
+
+    /// Issue 44: range messages echoed numbers raw (1e-300 as 300 digits, 1e300 as 301, 2^63
+    /// as "9223372036854775808" for a Real); they go through the one formatter of rins'
+    /// messages, and an infinite value is asked to be finite.
+    #[test]
+    fn range_messages_echo_numbers_short_and_exact() {
+        let two63 = 9_223_372_036_854_775_808.0_f64;
+        let t = VariableTable::new(vec![
+            real("a", "a"),
+            ScalarVar {
+                range: Some((1e-3, 1e300)),
+                ..real("w", "w")
+            },
+            ScalarVar {
+                kind: Kind::Integer,
+                start: Value::Integer(0),
+                range: Some((0.0, 2_147_483_647.0)),
+                ..real("n", "n")
+            },
+        ]);
+        let cases: [(usize, Value, &str); 9] = [
+            (
+                0,
+                Value::Real(1e300),
+                "a = 1e300 is outside its range [-1, 1]",
+            ),
+            (
+                0,
+                Value::Real(-1e300),
+                "a = -1e300 is outside its range [-1, 1]",
+            ),
+            (
+                1,
+                Value::Real(1e-300),
+                "w = 1e-300 is outside its range [0.001, 1e300]",
+            ),
+            (
+                0,
+                Value::Real(two63),
+                "a = 9.223372036854776e18 is outside its range [-1, 1]",
+            ),
+            (
+                0,
+                Value::Real(f64::INFINITY),
+                "a = inf is not finite: expected a finite number in [-1, 1]",
+            ),
+            (
+                0,
+                Value::Real(f64::NEG_INFINITY),
+                "a = -inf is not finite: expected a finite number in [-1, 1]",
+            ),
+            (0, Value::Real(f64::NAN), "a = NaN is not a number"),
+            (
+                2,
+                Value::Integer(1 << 63),
+                "n = 9223372036854775808 is outside its range [0, 2147483647]",
+            ),
+            (
+                2,
+                Value::Real(1e300),
+                "n is an Integer variable (FMI 3: UInt64), got the Real 1e300",
+            ),
+        ];
+        for (slot, v, want) in cases {
+            assert_eq!(t.check(slot, v).unwrap_err(), want);
+        }
     }
 }

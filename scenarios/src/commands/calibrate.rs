@@ -8,6 +8,7 @@ use rins_nav::calibration::{CalibrationConfig, Estimator};
 use crate::figures::calibration::write_calibration_figure;
 use crate::file::Scenario;
 use crate::report::{CalibrationRun, RenderText};
+use crate::truth::CalibrationReport;
 
 /// Arguments of `rins calibrate`.
 #[derive(clap::Args, Debug)]
@@ -31,18 +32,22 @@ pub struct CalibrateArgs {
     pub report: Option<PathBuf>,
 }
 
-/// Calibrates the scenario's plant (Fig. 4-5, Eq. 16-19), writes `calibration.json` and the
-/// figure, and prints β at each position and δβ = β_down − β_up.
+/// Calibrates the scenario's plant (Fig. 4-5, Eq. 16-19), writes `calibration.json` (with the
+/// plant's δβ beside the estimate) and the figure, and prints β at each position and
+/// δβ = β_down − β_up.
 pub fn run(a: &CalibrateArgs) -> Result<()> {
     let sc = Scenario::load(&a.scenario)?;
     let cfg = calibration_config(&sc, &a.estimator);
-    let r = rins_experiments::calibration::calibrate(&sc.plant, &cfg)?;
+    let r = CalibrationReport::new(
+        rins_experiments::calibration::calibrate(&sc.plant, &cfg)?,
+        &sc.plant,
+    );
     super::create_dir(&a.out)?;
     std::fs::write(
         a.out.join("calibration.json"),
         serde_json::to_string_pretty(&r)?,
     )?;
-    write_calibration_figure(&r, &a.out)?;
+    write_calibration_figure(&r.calibration, &a.out)?;
     if let Some(dir) = &a.report {
         let page = crate::html::results::calibration(&r, &a.estimator, &a.out, dir)?;
         eprintln!("report: {}", page.display());
@@ -52,7 +57,8 @@ pub fn run(a: &CalibrateArgs) -> Result<()> {
         return Ok(());
     }
     let text = CalibrationRun {
-        result: &r,
+        result: &r.calibration,
+        truth: Some(&r.truth),
         estimator: &a.estimator,
         segment_s: cfg.segment_s,
     };

@@ -10,6 +10,7 @@ use super::calibrate::calibration_config;
 use crate::figures::calibration::write_campaign_figure;
 use crate::file::Scenario;
 use crate::report::RenderText;
+use crate::truth::CampaignReport;
 
 /// Arguments of `rins campaign`.
 #[derive(clap::Args, Debug)]
@@ -34,17 +35,17 @@ pub struct CampaignArgs {
 /// Runs the campaign, writes its outputs and prints the runs and fits.
 pub fn run(a: &CampaignArgs) -> Result<()> {
     let sc = Scenario::load(&a.scenario)?;
-    let c = run_campaign_from(&sc, a.ref_temp_c)?;
+    let c = CampaignReport::new(run_campaign_from(&sc, a.ref_temp_c)?, &sc.plant);
     write_outputs(&c, &a.out)?;
     if let Some(dir) = &a.report {
-        let page = crate::html::results::campaign(&c, c.runs.len(), &a.out, dir)?;
+        let page = crate::html::results::campaign(&c, c.campaign.runs.len(), &a.out, dir)?;
         eprintln!("report: {}", page.display());
     }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&c)?);
         return Ok(());
     }
-    print!("{}", c.render_text());
+    print!("{}", c.campaign.render_text());
     println!(
         "  compensation file: {}",
         a.out.join("dbeta-compensation.toml").display()
@@ -69,11 +70,15 @@ pub fn run_campaign_from(sc: &Scenario, ref_temp_c: f64) -> Result<Campaign> {
     )?)
 }
 
-/// `campaign.json`, the compensation file `dbeta-compensation.toml` and the Figure 8
-/// counterpart in `out`.
-pub fn write_outputs(c: &Campaign, out: &Path) -> Result<()> {
+/// `campaign.json` (with the plant's δβ beside the fits), the compensation file
+/// `dbeta-compensation.toml` and the Figure 8 counterpart in `out`.
+pub fn write_outputs(report: &CampaignReport, out: &Path) -> Result<()> {
     super::create_dir(out)?;
-    std::fs::write(out.join("campaign.json"), serde_json::to_string_pretty(c)?)?;
+    std::fs::write(
+        out.join("campaign.json"),
+        serde_json::to_string_pretty(report)?,
+    )?;
+    let c = &report.campaign;
     // Written as a scenario fragment: the plant loads it as a scenario (or paste the table into
     // one), the navigator with `rins paper table5 --compensation`.
     let mut gyro = toml::Table::new();

@@ -17,7 +17,6 @@ use super::args::RerunArgs;
 use super::paper::check_runs_days;
 use crate::figures::plot::{Kind, Line, Panel, write_svg};
 use crate::file::Scenario;
-use crate::html::{Cell, Doc, Report};
 
 /// Arguments of `rins paper sea`.
 #[derive(clap::Args, Debug)]
@@ -69,8 +68,9 @@ pub enum SeaOfSeeds {
 const UNC: RGBColor = RGBColor(200, 40, 40);
 /// Compensated case.
 const COMP: RGBColor = RGBColor(30, 90, 200);
-/// Category names of the end-error figure, in [`SeaReport::cases`] order.
-const CASES: [&str; 3] = ["static reference", "ship", "ship + isolation"];
+/// Category names of the end-error figure (and the rows of the page), in
+/// [`SeaReport::cases`] order.
+pub const CASES: [&str; 3] = ["static reference", "ship", "ship + isolation"];
 
 /// What the end-error figure plots, per case (written to `sea_end_error.json` so a test can
 /// compare it with `sea.json`).
@@ -142,7 +142,7 @@ pub fn run(a: &SeaArgs) -> Result<()> {
         println!("  figures and sea.json in {}", a.out.display());
     }
     if let Some(dir) = &a.report {
-        let page = report(&r, &a.out, dir)?;
+        let page = crate::html::results::sea(&r, &a.out, dir)?;
         eprintln!("report: {}", page.display());
     }
     Ok(())
@@ -283,93 +283,4 @@ pub fn end_error_panels(data: &[EndErrorData], runs: usize) -> Vec<Panel<'static
     )
     .categorical(&CASES);
     vec![end, nf]
-}
-
-/// The HTML page: summary table (numbers from sea.json) and the figures in `fig_dir`.
-pub fn report(r: &SeaReport, fig_dir: &Path, out: &Path) -> Result<PathBuf> {
-    let v = serde_json::to_value(r)?;
-    let d = Doc {
-        src: "sea",
-        json: &v,
-    };
-    let mut page =
-        Report::new("At sea: 16-position RINS on a ship, without and with azimuth isolation");
-    page.text(
-        "Setup",
-        &format!(
-            "{} seeds x {:.2} days. The paper's 16-position scheme and Table 3 sensors on a ship at 10-15 kn with course changes in sea state 4-5, beside the same sensors on the static carrier. {} The navigator starts aligned from truth on the moving base; delta-beta is compensated with the plant's own coefficients.",
-            r.runs,
-            r.days,
-            match r.sea_seed {
-                Some(seed) => format!("Every seed sails the same sea (sea seed {seed}): the seeds differ in their sensors only."),
-                None => "Each seed sails its own sea, drawn from its run seed.".into(),
-            }
-        ),
-    );
-    let keys = ["static_reference", "ship", "ship_isolated"];
-    let rows = keys
-        .iter()
-        .zip(CASES)
-        .map(|(k, name)| {
-            let mut row = vec![Cell::Text(name.to_string())];
-            for case in ["uncompensated", "compensated"] {
-                for q in ["median", "p05", "p95"] {
-                    row.push(d.num(&format!("{k}.{case}.horizontal_nm.{q}"), 4));
-                }
-            }
-            row.push(d.num(&format!("{k}.improvement_pct.horizontal"), 3));
-            row.push(d.num(&format!("{k}.noise_free.uncompensated.horizontal_nm"), 4));
-            row.push(d.num(&format!("{k}.noise_free.compensated.horizontal_nm"), 4));
-            row
-        })
-        .collect();
-    page.table(
-        "Horizontal error at the end (nmi)",
-        &[
-            "case",
-            "uncompensated median",
-            "5 %",
-            "95 %",
-            "compensated median",
-            "5 %",
-            "95 %",
-            "improvement %",
-            "noise-free unc",
-            "noise-free comp",
-        ],
-        rows,
-    );
-    page.table(
-        "Ideal IMU on the ship (every sensor error off)",
-        &[
-            "isolation",
-            "max horizontal error (m)",
-            "max attitude error (rad)",
-        ],
-        (0..2)
-            .map(|k| {
-                vec![
-                    Cell::Text(["off", "on"][k].into()),
-                    d.num(&format!("ideal.{k}.max_horizontal_m"), 3),
-                    d.num(&format!("ideal.{k}.max_attitude_rad"), 3),
-                ]
-            })
-            .collect(),
-    );
-    for (stem, caption) in [
-        (
-            "sea_horizontal_error",
-            "Horizontal error of the first seed, per case (envelopes: min-max per pixel column with the mean).",
-        ),
-        (
-            "sea_end_error",
-            "End-of-run horizontal error per case: median and 5-95 % band over the seeds; below, the noise-free pair.",
-        ),
-    ] {
-        let f = fig_dir.join(format!("{stem}.svg"));
-        if f.exists() {
-            page.figure(&f, caption)?;
-        }
-    }
-    page.write(out)
 }

@@ -8,6 +8,7 @@ use super::args::RerunArgs;
 use super::campaign::{run_campaign_from, write_outputs};
 use super::paper::{check_runs_days, run_paired};
 use crate::file::Scenario;
+use crate::truth::CampaignReport;
 
 /// Arguments of `rins paper table5`.
 #[derive(clap::Args, Debug)]
@@ -47,9 +48,10 @@ pub fn run(a: &Table5Args) -> Result<()> {
         Some(path) => read_compensation(path)?,
         None => {
             eprintln!("no --compensation given: running the 37-run campaign first");
-            let c = run_campaign_from(&Scenario::load(Path::new("builtin:campaign-37"))?, 25.0)?;
+            let camp = Scenario::load(Path::new("builtin:campaign-37"))?;
+            let c = CampaignReport::new(run_campaign_from(&camp, 25.0)?, &camp.plant);
             write_outputs(&c, &a.out.join("campaign"))?;
-            c.compensation()
+            c.campaign.compensation()
         }
     };
     let sc = Scenario::load(&a.scenario)?;

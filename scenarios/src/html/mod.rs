@@ -9,7 +9,8 @@
 //!
 //! A result page opens with its verdict ([`Report::verdict`]): a few sentences in words and
 //! numbers saying what the command found, before any figure or table, its numbers (and counts,
-//! [`Doc::count`]) carrying their JSON paths as the tables' do.
+//! [`Doc::count`]) carrying their JSON paths as the tables' do. The figure that shows the
+//! verdict ([`Report::key_figure`]) comes directly after it, then the rest of the page.
 
 pub mod results;
 pub mod sweep;
@@ -111,6 +112,14 @@ pub fn lookup<'v>(v: &'v Value, path: &str) -> Option<&'v Value> {
     })
 }
 
+/// Significant digits of `x`'s shortest round-trip form (`0.02` → 1, `180` → 2), so a value
+/// given by the user (a swept value, the days of a run) is shown as written.
+pub fn digits(x: f64) -> usize {
+    let e = format!("{x:e}");
+    let mantissa = e.split('e').next().unwrap_or("");
+    mantissa.chars().filter(char::is_ascii_digit).count().max(1)
+}
+
 /// `v` with `sig` significant figures (fixed notation between 1e-4 and 1e6).
 pub fn format_sig(v: f64, sig: usize) -> String {
     if !v.is_finite() {
@@ -182,6 +191,8 @@ pub struct Report {
     title: String,
     /// The verdict's sentences, written first whenever they were added.
     verdict: Vec<Vec<Cell>>,
+    /// The figures that show the verdict, written right after it.
+    key: String,
     body: String,
     figures: usize,
     paper_values: bool,
@@ -193,6 +204,7 @@ impl Report {
         Self {
             title: title.into(),
             verdict: Vec::new(),
+            key: String::new(),
             body: String::new(),
             figures: 0,
             paper_values: false,
@@ -239,6 +251,21 @@ impl Report {
 
     /// The SVG at `path`, inline, with `caption` under it. A missing file is an error naming it.
     pub fn figure(&mut self, path: &Path, caption: &str) -> Result<()> {
+        let html = self.figure_html(path, caption)?;
+        self.body.push_str(&html);
+        Ok(())
+    }
+
+    /// A figure that shows the verdict: written directly after the verdict block, before every
+    /// other block, in the order such figures were added. A missing file is an error naming it.
+    pub fn key_figure(&mut self, path: &Path, caption: &str) -> Result<()> {
+        let html = self.figure_html(path, caption)?;
+        self.key.push_str(&html);
+        Ok(())
+    }
+
+    /// The `figure` element of the SVG at `path` (counted in the footer).
+    fn figure_html(&mut self, path: &Path, caption: &str) -> Result<String> {
         let svg = std::fs::read_to_string(path)
             .with_context(|| format!("report: cannot read the figure {}", path.display()))?;
         // The XML declaration is not allowed inside HTML.
@@ -247,14 +274,12 @@ impl Report {
             .file_stem()
             .map_or(String::new(), |s| s.to_string_lossy().into_owned());
         self.figures += 1;
-        let _ = writeln!(
-            self.body,
-            "<figure id=\"{n}\" data-figure=\"{n}\">{}<figcaption><b>{n}.svg</b> — {}</figcaption></figure>",
+        Ok(format!(
+            "<figure id=\"{n}\" data-figure=\"{n}\">{}<figcaption><b>{n}.svg</b> — {}</figcaption></figure>\n",
             &svg[start..],
             escape(caption),
             n = escape(&name)
-        );
-        Ok(())
+        ))
     }
 
     /// Writes `dir/report.html` and returns its path. The footer names the command line and
@@ -267,12 +292,13 @@ impl Report {
              <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\
              <title>{t}</title><style>{STYLE}</style></head><body>\n<h1>{t}</h1>\n\
              <p class=\"meta\">Made by <code id=\"command\">{c}</code> with rins {v}.{p}</p>\n\
-             {verdict}{b}<footer>rins {v} · {f} figures · self-contained: no scripts, fonts or network</footer>\n\
+             {verdict}{k}{b}<footer>rins {v} · {f} figures · self-contained: no scripts, fonts or network</footer>\n\
              </body></html>\n",
             t = escape(&self.title),
             c = escape(&command.join(" ")),
             v = env!("CARGO_PKG_VERSION"),
             verdict = self.verdict_html(),
+            k = self.key,
             b = self.body,
             f = self.figures,
             p = if self.paper_values {
@@ -365,5 +391,39 @@ mod tests {
             ),
             "{after_meta}"
         );
+    }
+
+    /// Issue 44: the figure that shows the verdict comes directly after it, before the tables
+    /// and the other figures, however late it was added.
+    #[test]
+    fn the_key_figure_follows_the_verdict() {
+        let dir = std::env::temp_dir().join(format!("rins-key-figure-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let svg = |stem: &str| {
+            let f = dir.join(format!("{stem}.svg"));
+            std::fs::write(
+                &f,
+                format!("<?xml version=\"1.0\"?><svg id=\"{stem}\"></svg>"),
+            )
+            .unwrap();
+            f
+        };
+        let (other, key) = (svg("other"), svg("key"));
+        let mut r = Report::new("T");
+        r.table("table", &["a"], vec![vec![words("x")]]);
+        r.figure(&other, "other").unwrap();
+        r.verdict(vec![words("v")]);
+        r.key_figure(&key, "shows v").unwrap();
+        let page = std::fs::read_to_string(r.write(&dir).unwrap()).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        let after = &page[page.find("</section>\n").unwrap() + 11..];
+        assert!(
+            after.starts_with(
+                "<figure id=\"key\" data-figure=\"key\"><svg id=\"key\"></svg><figcaption>\
+                 <b>key.svg</b> — shows v</figcaption></figure>\n<table>"
+            ),
+            "{after}"
+        );
+        assert!(page.contains("· 2 figures ·"), "{page}");
     }
 }

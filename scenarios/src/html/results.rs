@@ -14,6 +14,7 @@ mod iterate;
 mod page_parts;
 mod paired;
 mod schemes;
+mod sea;
 
 pub use analytic::analytic_sections;
 pub use calibration::calibration;
@@ -23,3 +24,4 @@ pub use diagnose::diagnose;
 pub use iterate::iterate;
 pub use paired::{paired, paired_sections, paired_verdict};
 pub use schemes::{schemes_analyse, schemes_design};
+pub use sea::sea;

@@ -1,7 +1,7 @@
-//! The report page of `rins sweep --report DIR`: what was swept, per output a table of the
-//! median and 5–95 % band at every point for both navigators with its figure, and each seed's
-//! figures (up to [`MAX_SEED_ROWS`] rows; the CSV has them all). Every number is a cell of the
-//! sweep's JSON (`src` "sweep").
+//! The report page of `rins sweep --report DIR`: the verdict, each output's figure (which shows
+//! it), what was swept, per output a table of the median and 5–95 % band at every point for
+//! both navigators, and each seed's figures (up to [`MAX_SEED_ROWS`] rows; the CSV has them
+//! all). Every number is a cell of the sweep's JSON (`src` "sweep").
 
 use std::path::{Path, PathBuf};
 
@@ -14,19 +14,11 @@ use crate::sweep::{NAVIGATORS, SweepReport};
 /// Most per-seed rows the page lists.
 pub const MAX_SEED_ROWS: usize = 200;
 
-/// Significant digits of `x`'s shortest round-trip form (`0.02` → 1, `180` → 2), so a swept
-/// value is shown as written.
-fn digits(x: f64) -> usize {
-    let e = format!("{x:e}");
-    let mantissa = e.split('e').next().unwrap_or("");
-    mantissa.chars().filter(char::is_ascii_digit).count().max(1)
-}
-
 /// The cell of swept value `i` at point `k`: a number with its JSON path, or text.
 fn value_cell(d: &Doc, r: &SweepReport, k: usize, i: usize) -> Cell {
     let v = &r.points[k].values[i];
     if let Some(x) = v.as_f64().filter(|_| v.is_number()) {
-        d.num(&format!("points.{k}.values.{i}"), digits(x))
+        d.num(&format!("points.{k}.values.{i}"), super::digits(x))
     } else {
         d.text(&format!("points.{k}.values.{i}"))
     }
@@ -161,9 +153,10 @@ pub fn report(r: &SweepReport, fig_dir: &Path, out: &Path) -> Result<PathBuf> {
             &columns,
             rows,
         );
+        // Each output's figure shows its verdict sentence: directly after the verdict.
         let f = fig_dir.join(format!("sweep_{}.svg", o.name));
         if f.exists() {
-            page.figure(
+            page.key_figure(
                 &f,
                 &format!(
                     "{} against {}: the median over the seeds (line) with the 5-95 % band (bar) at each point, one line per value of the other swept keys; uncompensated (top) and δβ-compensated (bottom) navigator. Lines of one x are set slightly apart so their bars stay visible.",

@@ -7,11 +7,14 @@ use rins_nav::calibration::Calibration;
 use rins_nav::campaign::Campaign;
 
 use super::RenderText;
+use crate::truth::CalibrationTruth;
 
 /// A calibration with the settings it ran with (the result itself does not carry them).
 pub struct CalibrationRun<'a> {
     /// The estimates.
     pub result: &'a Calibration,
+    /// The plant's δβ beside the estimate, when known.
+    pub truth: Option<&'a CalibrationTruth>,
     /// Drift estimator name (`coupled` or `paper`).
     pub estimator: &'a str,
     /// Navigation time in each position, s.
@@ -56,6 +59,14 @@ impl RenderText for CalibrationRun<'_> {
             "  delta-beta = beta_down - beta_up = [{:+.5}, {:+.5}, {:+.5}] +- [{:.5}, {:.5}, {:.5}] deg/h",
             d[0], d[1], d[2], e[0], e[1], e[2]
         );
+        if let Some(t) = self.truth {
+            let (p, k) = (t.delta_beta_dph, t.error_se);
+            let _ = writeln!(
+                s,
+                "  the plant's delta-beta = [{:+.5}, {:+.5}, {:+.5}] deg/h: the estimate is off by [{:.1}, {:.1}, {:.1}] SE",
+                p[0], p[1], p[2], k[0], k[1], k[2]
+            );
+        }
         s
     }
 }

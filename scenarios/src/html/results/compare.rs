@@ -7,7 +7,7 @@ use anyhow::Result;
 use serde::Serialize;
 use serde_json::Value;
 
-use super::page_parts::{MVM_FIGURES, figures, json};
+use super::page_parts::{MVM_FIGURES, figures_with_key, json};
 use crate::html::{Doc, Report, words};
 
 /// `rins compare --report DIR`.
@@ -70,7 +70,9 @@ pub fn compare<T: Serialize>(
             })
             .collect(),
     );
-    figures(&mut r, dir, &MVM_FIGURES)?;
+    // The mean residual per position against its noise floor shows the verdict (with a
+    // diagnosis, before and after the fitted effects).
+    figures_with_key(&mut r, dir, &MVM_FIGURES, "bias_by_position")?;
     r.write(dir)
 }
 

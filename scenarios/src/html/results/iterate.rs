@@ -8,7 +8,7 @@ use anyhow::Result;
 use serde::Serialize;
 use serde_json::Value;
 
-use super::page_parts::{figures, json};
+use super::page_parts::{figures_with_key, json};
 use crate::html::{Cell, Doc, Report, words};
 
 const ITERATION_FIGURES: [(&str, &str); 2] = [
@@ -158,7 +158,7 @@ pub fn iterate<T: Serialize>(report: &T, dir: &Path) -> Result<PathBuf> {
             .collect();
         r.text("What stays unexplained", &text.join("; "));
     }
-    figures(&mut r, dir, &ITERATION_FIGURES)?;
+    figures_with_key(&mut r, dir, &ITERATION_FIGURES, "iteration_history")?;
     r.write(dir)
 }
 

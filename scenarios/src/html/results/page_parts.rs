@@ -1,5 +1,6 @@
 //! Pieces several result pages share: the result as JSON, the figures a page shows by file
-//! stem, the figures of `rins compare` and `rins diagnose`, and a cell's text.
+//! stem (the one that shows the verdict first), the figures of `rins compare` and
+//! `rins diagnose`, and a cell's text.
 
 use std::path::Path;
 
@@ -14,11 +15,23 @@ pub(super) fn json<T: Serialize>(v: &T) -> Result<Value> {
     Ok(serde_json::to_value(v)?)
 }
 
-/// Adds `dir/<stem>.svg` for each (stem, caption) whose file exists.
-pub(super) fn figures(r: &mut Report, dir: &Path, list: &[(&str, &str)]) -> Result<()> {
+/// Adds `dir/<stem>.svg` for each (stem, caption) whose file exists: the one of stem `key` as
+/// the figure that shows the verdict, directly after it ([`Report::key_figure`]), the others
+/// where the page adds them.
+pub(super) fn figures_with_key(
+    r: &mut Report,
+    dir: &Path,
+    list: &[(&str, &str)],
+    key: &str,
+) -> Result<()> {
     for (stem, caption) in list {
         let f = dir.join(format!("{stem}.svg"));
-        if f.exists() {
+        if !f.exists() {
+            continue;
+        }
+        if *stem == key {
+            r.key_figure(&f, caption)?;
+        } else {
             r.figure(&f, caption)?;
         }
     }

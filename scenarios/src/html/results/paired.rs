@@ -8,7 +8,7 @@ use anyhow::Result;
 use rins_verify::paper::{published, published_table5};
 use serde::Serialize;
 
-use super::page_parts::{figures, json};
+use super::page_parts::{figures_with_key, json};
 use crate::html::{Cell, Doc, Report, words};
 
 const PAIRED_COLUMNS: [&str; 9] = [
@@ -160,7 +160,8 @@ pub fn paired_sections<T: Serialize>(
     );
     let att_nf = format!("{f2} counterpart for the noise-free pair: the deterministic part alone.");
     let pos_nf = format!("{f3} counterpart for the noise-free pair.");
-    figures(
+    // The position errors over the run, uncompensated and compensated, show the verdict.
+    figures_with_key(
         r,
         dir,
         &[
@@ -169,6 +170,7 @@ pub fn paired_sections<T: Serialize>(
             ("fig2_attitude_error_noise_free", &att_nf),
             ("fig3_position_error_noise_free", &pos_nf),
         ],
+        "fig3_position_error",
     )
 }
 
@@ -188,12 +190,8 @@ pub fn paired_verdict<T: Serialize>(r: &mut Report, report: &T, table5: bool) ->
             .and_then(serde_json::Value::as_f64)
             .unwrap_or(0.0)
     };
-    // The days as given (7, 0.05): the significant digits of the shortest form, at most 4.
-    let days_sig = format!("{:e}", f("/days"))
-        .split('e')
-        .next()
-        .map_or(1, |m| m.chars().filter(char::is_ascii_digit).count())
-        .min(4);
+    // The days as given (7, 0.05), at most 4 digits.
+    let days_sig = crate::html::digits(f("/days")).min(4);
     r.verdict(vec![
         words(format!(
             "{}: over ",

@@ -8,7 +8,7 @@ use anyhow::Result;
 use serde::Serialize;
 use serde_json::Value;
 
-use super::page_parts::{figures, json};
+use super::page_parts::{figures_with_key, json};
 use crate::html::{Cell, Doc, Report, format_sig};
 
 const CLASSES: [&str; 3] = ["general-b(u)", "general-anisotropic", "plant-delta-beta"];
@@ -122,7 +122,7 @@ pub fn schemes_analyse<T: Serialize>(report: &T, fig_dir: &Path, dir: &Path) -> 
         "Models",
         "Every effect is evaluated by the plant's own models at a uniform reference temperature, without Earth rate in the body rate. The plant's delta-beta depends on u_z alone (Eq. 9): a scheme that keeps z horizontal turns it into a constant, an artefact of that model; the general b(u) has each gyro's bias depend on the whole up direction to second order. Navigation figures: the static free-inertial error model after the run, averaged over the last Schuler period.",
     );
-    figures(
+    figures_with_key(
         &mut r,
         fig_dir,
         &[
@@ -135,6 +135,7 @@ pub fn schemes_analyse<T: Serialize>(report: &T, fig_dir: &Path, dir: &Path) -> 
                 "The worst case over each class with every coefficient within the bound, schemes side by side; under the general b(u) no scheme goes below the invariant member.",
             ),
         ],
+        "schemes_classes",
     )?;
     r.write(dir)
 }
