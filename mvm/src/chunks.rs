@@ -4,7 +4,8 @@
 //! split, because the replay starts each segment afresh (docs/measurement-format.md, "Memory").
 
 use crate::header::{Kind, Layout};
-use crate::reader::{Acc, Measurement, MeasurementError, finish};
+use crate::measurement::{Measurement, MeasurementError};
+use crate::reader::{Acc, finish};
 
 /// What receives a file's rows, chunk after chunk in file order: each chunk a checked
 /// measurement of whole segments.

@@ -20,7 +20,7 @@ use std::path::Path;
 
 use serde::Deserialize;
 
-use crate::reader::MeasurementError;
+use crate::measurement::MeasurementError;
 
 /// One mapped column.
 #[derive(Clone, Debug, PartialEq)]

@@ -34,6 +34,7 @@ mod header;
 pub mod heredity;
 pub mod history;
 pub mod iterate;
+pub mod measurement;
 pub mod parquet;
 mod prepare;
 pub mod ranges;

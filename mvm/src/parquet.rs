@@ -24,7 +24,8 @@ use rayon::prelude::*;
 use crate::chunks::{ChunkSink, Chunker};
 use crate::colmap::ColumnMap;
 use crate::header::{Kind, Layout};
-use crate::reader::{Acc, LabelColumn, Measurement, MeasurementError};
+use crate::measurement::{LabelColumn, Measurement, MeasurementError};
+use crate::reader::Acc;
 
 /// Whether the file starts with the Parquet magic bytes.
 pub fn is_parquet(path: &Path) -> bool {

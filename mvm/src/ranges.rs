@@ -5,7 +5,7 @@
 //! comparison takes over a file finite (10^9 rows of at most 2^53 stay below 10^25).
 
 use crate::header::{Kind, Layout};
-use crate::reader::{Measurement, MeasurementError};
+use crate::measurement::{Measurement, MeasurementError};
 
 /// Largest angular rate an angular increment may show, °/s: a navigation-grade gyro's range is
 /// a few hundred °/s and a rotating table turns at tens of °/s.

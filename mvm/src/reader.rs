@@ -3,7 +3,6 @@
 //! column, and nothing is silently dropped. Every value must lie in its column's physical range
 //! ([`ranges`]), and a line may be at most [`MAX_LINE`] bytes long.
 
-use std::collections::BTreeMap;
 use std::io::Read;
 use std::path::Path;
 
@@ -11,6 +10,7 @@ pub use crate::chunks::ChunkSink;
 use crate::chunks::Chunker;
 use crate::colmap::ColumnMap;
 use crate::header::{Kind, Layout};
+use crate::measurement::{LabelColumn, Measurement, MeasurementError};
 
 use crate::ranges;
 
@@ -38,164 +38,6 @@ fn long_line(len: &str, start: &str) -> String {
 /// The first bytes of `bytes` as text, for [`long_line`] (invalid UTF-8 shown as U+FFFD).
 fn start_of(bytes: &[u8]) -> String {
     String::from_utf8_lossy(&bytes[..bytes.len().min(4 * QUOTE_CHARS)]).into_owned()
-}
-
-/// Columns every file needs (plus attitude and at least one temperature).
-pub const REQUIRED: [&str; 7] = [
-    "t_s",
-    "dtheta_x_rad",
-    "dtheta_y_rad",
-    "dtheta_z_rad",
-    "dv_x_mps",
-    "dv_y_mps",
-    "dv_z_mps",
-];
-/// Attitude as gimbal angles …
-pub const GIMBAL: [&str; 2] = ["outer_deg", "inner_deg"];
-/// … or as the IMU quaternion q_b^n.
-pub const QUATERNION: [&str; 4] = ["q_bn_w", "q_bn_x", "q_bn_y", "q_bn_z"];
-/// Optional numeric columns with a fixed meaning.
-pub const OPTIONAL: [&str; 4] = ["sample", "lat_deg", "lon_deg", "height_m"];
-/// Optional label columns.
-pub const LABELS: [&str; 3] = ["run", "segment", "position"];
-/// Prefixes of optional numeric families: temperatures, truth and per-effect columns.
-pub const FAMILIES: [(&str, &str); 5] = [
-    ("temp_", "_c"),
-    ("dtheta_true_", "_rad"),
-    ("dv_true_", "_mps"),
-    ("gyro_", "_dph"),
-    ("accel_", "_ug"),
-];
-
-/// Units a quantity may wrongly be given in, to say what was expected.
-const WRONG_UNITS: [&str; 12] = [
-    "_deg", "_arcsec", "_mrad", "_urad", "_dph", "_dps", "_g", "_ug", "_ms", "_min", "_h", "_k",
-];
-
-/// A parsed measurement file.
-#[derive(Clone, Debug, Default)]
-pub struct Measurement {
-    /// Numeric columns by name.
-    pub columns: BTreeMap<String, Vec<f64>>,
-    /// Label columns by name.
-    pub labels: BTreeMap<String, LabelColumn>,
-    /// Data rows.
-    pub rows: usize,
-    /// Row ranges [start, end) of each (run, segment).
-    pub segments: Vec<(String, String, usize, usize)>,
-    /// Source columns a column map said to ignore.
-    pub ignored: Vec<String>,
-    /// When `t_s` was read from a Parquet time type (TIMESTAMP, TIME or INT96): the first row's
-    /// time in ns since the Unix epoch (TIMESTAMP, INT96) or since midnight (TIME); `t_s`
-    /// counts seconds from it.
-    pub t0_ns: Option<i64>,
-}
-
-/// A label column: the distinct labels and, per row, the index of its label (labels repeat
-/// over millions of rows; one string each is enough).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct LabelColumn {
-    /// Distinct labels in order of first appearance.
-    pub names: Vec<String>,
-    /// Per row, the index into `names`.
-    pub index: Vec<u32>,
-}
-
-impl LabelColumn {
-    /// Label of row `i`.
-    pub fn get(&self, i: usize) -> &str {
-        &self.names[self.index[i] as usize]
-    }
-
-    pub(crate) fn push(&mut self, label: &str) {
-        let k = match self.index.last() {
-            Some(&k) if self.names[k as usize] == label => k,
-            _ => match self.names.iter().position(|n| n == label) {
-                Some(k) => k as u32,
-                None => {
-                    self.names.push(label.to_string());
-                    (self.names.len() - 1) as u32
-                }
-            },
-        };
-        self.index.push(k);
-    }
-
-    fn append(&mut self, other: LabelColumn) {
-        for i in other.index {
-            self.push(&other.names[i as usize]);
-        }
-    }
-}
-
-impl Measurement {
-    /// A numeric column.
-    pub fn col(&self, name: &str) -> Option<&[f64]> {
-        self.columns.get(name).map(Vec::as_slice)
-    }
-    /// Names of the temperature columns.
-    pub fn temperature_columns(&self) -> Vec<&str> {
-        self.columns
-            .keys()
-            .filter(|k| k.starts_with("temp_") && k.ends_with("_c"))
-            .map(String::as_str)
-            .collect()
-    }
-}
-
-/// An error in a measurement file; `row` counts data rows from 1 (the header is row 0). The
-/// message says where ([`rins_plant::message::file_location`]): the whole file (row 0 without a
-/// column), the header's column, the row, or the row's column, quoted to its first 80
-/// characters.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{source_name}: {}: {message}", rins_plant::message::file_location(*.row, .column))]
-pub struct MeasurementError {
-    /// File.
-    pub source_name: String,
-    /// Data row (1-based; 0 = the header, or the whole file when `column` is empty).
-    pub row: usize,
-    /// Column name (empty: the whole row, or the whole file).
-    pub column: String,
-    /// What is wrong.
-    pub message: String,
-}
-
-/// Whether `name` is a documented column: `Ok(true)` numeric, `Ok(false)` a label, `Err` why
-/// not (a known quantity in another unit, or an unknown column).
-pub fn classify(name: &str) -> Result<bool, String> {
-    // Ok(true): numeric, Ok(false): label.
-    if REQUIRED.contains(&name)
-        || GIMBAL.contains(&name)
-        || QUATERNION.contains(&name)
-        || OPTIONAL.contains(&name)
-    {
-        return Ok(true);
-    }
-    if LABELS.contains(&name) {
-        return Ok(false);
-    }
-    if FAMILIES
-        .iter()
-        .any(|(p, s)| name.starts_with(p) && name.ends_with(s) && name.len() > p.len() + s.len())
-    {
-        return Ok(true);
-    }
-    // A known quantity in a wrong unit?
-    for want in REQUIRED.iter().chain(&GIMBAL).chain(&OPTIONAL[1..]) {
-        let base = want.rsplit_once('_').map(|(b, _)| b).unwrap_or(want);
-        if let Some(unit) = name
-            .strip_prefix(base)
-            .filter(|u| WRONG_UNITS.contains(u) || u.starts_with('_'))
-        {
-            return Err(format!(
-                "unit {unit:?} not accepted; expected {want} (convert it with a column map, --map FILE: docs/measurement-format.md)"
-            ));
-        }
-    }
-    Err(format!(
-        "unknown column; accepted: {:?}, {:?} or {:?}, {:?}, labels {:?}, and families temp_*_c, dtheta_true_*_rad, dv_true_*_mps, gyro_*_dph, accel_*_ug; a logger's own names and units are read with a column map (--map FILE: source column -> documented column with its unit, or ignore it; docs/measurement-format.md)",
-        REQUIRED, GIMBAL, QUATERNION, OPTIONAL, LABELS
-    ))
 }
 
 /// Whether a line is data (not blank, not a `#` comment).
@@ -384,27 +226,6 @@ impl Acc {
     }
 }
 
-/// Appends chunk `m` (the rows after those of `into`) to `into`.
-fn append_chunk(into: &mut Measurement, m: Measurement) {
-    if into.rows == 0 {
-        *into = m;
-        return;
-    }
-    let r0 = into.rows;
-    for (name, v) in m.columns {
-        into.columns.entry(name).or_default().extend(v);
-    }
-    for (name, l) in m.labels {
-        into.labels.entry(name).or_default().append(l);
-    }
-    into.segments.extend(
-        m.segments
-            .into_iter()
-            .map(|(r, s, a, b)| (r, s, a + r0, b + r0)),
-    );
-    into.rows += m.rows;
-}
-
 /// Parses measurement CSV text; `source_name` appears in every error.
 pub fn parse(text: &str, source_name: &str) -> Result<Measurement, MeasurementError> {
     parse_with(text, source_name, None)
@@ -445,7 +266,7 @@ pub fn parse_with(
     acc.add_from(&layout, &text[offset..], 0)?;
     let mut all = Measurement::default();
     let mut sink = |m| {
-        append_chunk(&mut all, m);
+        all.append_chunk(m);
         Ok(())
     };
     let mut chunker = Chunker::new(layout, usize::MAX, &mut sink);
@@ -579,7 +400,7 @@ pub fn read(path: &Path) -> Result<Measurement, MeasurementError> {
 pub fn read_with(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, MeasurementError> {
     let mut all = Measurement::default();
     stream_with(path, map, usize::MAX, &mut |m| {
-        append_chunk(&mut all, m);
+        all.append_chunk(m);
         Ok(())
     })?;
     Ok(all)
@@ -622,7 +443,7 @@ pub fn read_from(
 ) -> Result<Measurement, MeasurementError> {
     let mut all = Measurement::default();
     stream_from(input, source_name, map, usize::MAX, &mut |m| {
-        append_chunk(&mut all, m);
+        all.append_chunk(m);
         Ok(())
     })?;
     Ok(all)
