@@ -248,8 +248,8 @@ impl ColumnMap {
                             &name,
                             format!(
                                 "factor must be finite and non-zero, offset finite (got {}, {})",
-                                crate::ranges::show(f),
-                                crate::ranges::show(o)
+                                rins_plant::message::num(f),
+                                rins_plant::message::num(o)
                             ),
                         ));
                     }

@@ -21,11 +21,10 @@ use parquet::file::writer::SerializedFileWriter;
 use parquet::schema::types::{ColumnDescriptor, Type};
 use rayon::prelude::*;
 
-use crate::chunks::{ChunkSink, Chunker};
+use crate::chunks::{Acc, ChunkSink, Chunker};
 use crate::colmap::ColumnMap;
 use crate::header::{Kind, Layout};
 use crate::measurement::{LabelColumn, Measurement, MeasurementError};
-use crate::reader::Acc;
 
 /// Whether the file starts with the Parquet magic bytes.
 pub fn is_parquet(path: &Path) -> bool {

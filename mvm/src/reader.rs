@@ -1,18 +1,16 @@
 //! The measurement format (docs/measurement-format.md): CSV that another tool can write, with
 //! units in the column names. The reader is strict: every problem is an error naming the row and
 //! column, and nothing is silently dropped. Every value must lie in its column's physical range
-//! ([`ranges`]), and a line may be at most [`MAX_LINE`] bytes long.
+//! ([`crate::ranges`]), and a line may be at most [`MAX_LINE`] bytes long.
 
 use std::io::Read;
 use std::path::Path;
 
 pub use crate::chunks::ChunkSink;
-use crate::chunks::Chunker;
+use crate::chunks::{Acc, Chunker};
 use crate::colmap::ColumnMap;
 use crate::header::{Kind, Layout};
 use crate::measurement::{LabelColumn, Measurement, MeasurementError};
-
-use crate::ranges;
 
 /// Longest line accepted, bytes (a header of a few hundred columns is a few kB; a longer line is
 /// not a measurement row and is reported by its length and start, never echoed).
@@ -145,85 +143,27 @@ fn parse_rows(
     Ok((nums, labs, row - row0))
 }
 
-/// Columns filled so far.
-pub(crate) struct Acc {
-    /// Numeric columns (empty for labels and ignored ones).
-    pub nums: Vec<Vec<f64>>,
-    /// Label columns.
-    pub labs: Vec<LabelColumn>,
-    /// Rows.
-    pub rows: usize,
-}
-
-impl Acc {
-    pub(crate) fn new(l: &Layout) -> Self {
-        Self {
-            nums: vec![Vec::new(); l.header.len()],
-            labs: vec![LabelColumn::default(); l.header.len()],
-            rows: 0,
-        }
+/// Parses the complete lines of `chunk` into `acc`, in two halves on both cores; `before` rows
+/// of the file precede these rows (for error rows).
+fn parse_into(
+    acc: &mut Acc,
+    l: &Layout,
+    chunk: &str,
+    before: usize,
+) -> Result<(), MeasurementError> {
+    let mid = chunk.len() / 2;
+    let cut = chunk[mid..].find('\n').map_or(chunk.len(), |k| mid + k + 1);
+    let (first, second) = chunk.split_at(cut);
+    let row0 = before + acc.rows;
+    let (a, b) = rayon::join(
+        || parse_rows(first, row0, &l.raw, &l.kind, &l.source),
+        // Row numbers of the second half continue the first half's.
+        || parse_rows(second, row0 + count_rows(first), &l.raw, &l.kind, &l.source),
+    );
+    for (nums, labs, rows) in [a?, b?] {
+        acc.append(Acc { nums, labs, rows });
     }
-
-    /// The first `k` rows, which leave `self`.
-    pub(crate) fn split_front(&mut self, k: usize) -> Acc {
-        let front = |v: &mut Vec<f64>| {
-            if v.is_empty() {
-                return Vec::new();
-            }
-            let back = v.split_off(k);
-            std::mem::replace(v, back)
-        };
-        let nums = self.nums.iter_mut().map(front).collect();
-        let labs = self
-            .labs
-            .iter_mut()
-            .map(|l| {
-                if l.index.is_empty() {
-                    return LabelColumn::default();
-                }
-                let back = l.index.split_off(k);
-                LabelColumn {
-                    names: l.names.clone(),
-                    index: std::mem::replace(&mut l.index, back),
-                }
-            })
-            .collect();
-        self.rows -= k;
-        Acc {
-            nums,
-            labs,
-            rows: k,
-        }
-    }
-
-    /// Appends the rows of `other`.
-    pub(crate) fn append(&mut self, other: Acc) {
-        for (x, y) in self.nums.iter_mut().zip(other.nums) {
-            x.extend(y);
-        }
-        for (x, y) in self.labs.iter_mut().zip(other.labs) {
-            x.append(y);
-        }
-        self.rows += other.rows;
-    }
-
-    /// Parses the complete lines of `chunk`, in two halves on both cores; `before` rows of the
-    /// file precede these rows (for error rows).
-    fn add_from(&mut self, l: &Layout, chunk: &str, before: usize) -> Result<(), MeasurementError> {
-        let mid = chunk.len() / 2;
-        let cut = chunk[mid..].find('\n').map_or(chunk.len(), |k| mid + k + 1);
-        let (first, second) = chunk.split_at(cut);
-        let row0 = before + self.rows;
-        let (a, b) = rayon::join(
-            || parse_rows(first, row0, &l.raw, &l.kind, &l.source),
-            // Row numbers of the second half continue the first half's.
-            || parse_rows(second, row0 + count_rows(first), &l.raw, &l.kind, &l.source),
-        );
-        for (nums, labs, rows) in [a?, b?] {
-            self.append(Acc { nums, labs, rows });
-        }
-        Ok(())
-    }
+    Ok(())
 }
 
 /// Parses measurement CSV text; `source_name` appears in every error.
@@ -263,7 +203,7 @@ pub fn parse_with(
     })?;
     let layout = Layout::new(header_line, source_name, map)?;
     let mut acc = Acc::new(&layout);
-    acc.add_from(&layout, &text[offset..], 0)?;
+    parse_into(&mut acc, &layout, &text[offset..], 0)?;
     let mut all = Measurement::default();
     let mut sink = |m| {
         all.append_chunk(m);
@@ -273,119 +213,6 @@ pub fn parse_with(
     chunker.push(acc)?;
     chunker.end()?;
     Ok(all)
-}
-
-/// Builds the measurement from the parsed columns of whole segments and checks segments, time
-/// and the physical ranges ([`ranges`]); `t0_ns` is the origin of a `t_s` read from a Parquet
-/// time type; the rows follow `row0` rows of the file (for error rows).
-pub(crate) fn finish(
-    layout: &Layout,
-    acc: Acc,
-    t0_ns: Option<i64>,
-    row0: usize,
-) -> Result<Measurement, MeasurementError> {
-    let err = |row: usize, column: &str, message: String| layout.err(row0 + row, column, message);
-    let mut m = Measurement {
-        rows: acc.rows,
-        t0_ns,
-        ..Measurement::default()
-    };
-    for (i, (n, l)) in acc.nums.into_iter().zip(acc.labs).enumerate() {
-        let h = layout.header[i].clone();
-        match layout.kind[i] {
-            Kind::Skip => m.ignored.push(layout.raw[i].clone()),
-            Kind::Label => {
-                m.labels.insert(h, l);
-            }
-            Kind::Num => {
-                let mut n = n;
-                let (f, o) = layout.conv[i];
-                if (f, o) != (1.0, 0.0) {
-                    for (k, v) in n.iter_mut().enumerate() {
-                        *v = *v * f + o;
-                        if !v.is_finite() {
-                            return Err(err(
-                                k + 1,
-                                &layout.raw[i],
-                                format!(
-                                    "not finite after the column map's conversion (x {f} + {o})"
-                                ),
-                            ));
-                        }
-                    }
-                }
-                m.columns.insert(h, n);
-            }
-        }
-    }
-    // Values out of their physical range, before time is looked at (a t_s of 1e30 is a unit
-    // mistake, not a gap).
-    ranges::check_values(&m, layout, row0)?;
-    // Segments: consecutive rows with the same (run, segment) labels.
-    let label = |name: &str, i: usize| m.labels.get(name).map_or(u32::MAX, |c| c.index[i]);
-    let name = |col: &str, i: usize| {
-        m.labels
-            .get(col)
-            .map_or(String::new(), |c| c.get(i).to_string())
-    };
-    let mut start = 0;
-    let mut segments = Vec::new();
-    for i in 1..=m.rows {
-        if i == m.rows
-            || label("run", i) != label("run", start)
-            || label("segment", i) != label("segment", start)
-        {
-            segments.push((name("run", start), name("segment", start), start, i));
-            start = i;
-        }
-    }
-    m.segments = segments;
-    // Time strictly increasing within a segment, and evenly spaced (a gap means lost samples).
-    let t_col = ranges::source_of(layout, "t_s").0;
-    let t = &m.columns["t_s"];
-    // Each row's interval; a segment's first row takes the segment's median interval (a
-    // one-row segment the longest interval accepted).
-    let mut dt_s = vec![ranges::ROW_INTERVAL_S[1]; m.rows];
-    for &(_, _, a, b) in &m.segments {
-        if b - a < 2 {
-            continue;
-        }
-        let mut d: Vec<f64> = t[a..b].windows(2).map(|w| w[1] - w[0]).collect();
-        for (k, dt) in d.iter().enumerate() {
-            if *dt <= 0.0 {
-                return Err(err(
-                    a + k + 2,
-                    &t_col,
-                    format!(
-                        "time not increasing: {} after {}",
-                        ranges::show(t[a + k + 1]),
-                        ranges::show(t[a + k])
-                    ),
-                ));
-            }
-        }
-        dt_s[a + 1..b].copy_from_slice(&d);
-        d.sort_by(f64::total_cmp);
-        let median = d[d.len() / 2];
-        dt_s[a] = median;
-        for k in a + 1..b {
-            let dt = t[k] - t[k - 1];
-            // The last row of a decimated file may be shorter; a longer step is a gap.
-            if dt > median * 1.01 + 1e-9 {
-                return Err(err(
-                    k + 1,
-                    &t_col,
-                    format!(
-                        "gap: {} s since the previous row, the segment's interval is {} s (start a new segment or run after a gap)",
-                        ranges::show(dt),
-                        ranges::show(median)
-                    ),
-                ));
-            }
-        }
-    }
-    ranges::check_rows(&m, layout, &dt_s, row0)?;
-    Ok(m)
 }
 
 /// Reads and parses a measurement file, streaming it in [`PIECE`]-byte pieces (a multi-GB
@@ -512,7 +339,7 @@ pub fn stream_from(
             }
             if let Some(c) = &mut chunker {
                 let mut acc = Acc::new(c.layout());
-                acc.add_from(c.layout(), body, rows)?;
+                parse_into(&mut acc, c.layout(), body, rows)?;
                 rows += acc.rows;
                 c.push(acc)?;
             }
