@@ -458,9 +458,15 @@ fn no_panic<T>(
     })
 }
 
-/// Reads a Parquet measurement file; `map` names and converts its columns as for CSV.
+/// Reads a Parquet measurement file; `map` names and converts its columns as for CSV
+/// ([`crate::reader::read_with`] reads either format).
 pub fn read(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, MeasurementError> {
-    crate::reader::read_with(path, map)
+    let mut all = Measurement::default();
+    stream(path, map, usize::MAX, &mut |m| {
+        all.append_chunk(m);
+        Ok(())
+    })?;
+    Ok(all)
 }
 
 /// Reads a Parquet measurement file one row group at a time (its columns on both cores) and

@@ -7,8 +7,9 @@
 use std::path::PathBuf;
 
 use rins_mvm::colmap::ColumnMap;
+use rins_mvm::csv::{parse, parse_with};
 use rins_mvm::measurement::{Measurement, classify};
-use rins_mvm::reader::{parse, parse_with, read, read_with};
+use rins_mvm::reader::{read, read_with};
 
 fn example() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/examples/measurement-example.csv")

@@ -261,7 +261,7 @@ fn model() -> PlantConfig {
 fn history(m: &PlantConfig, hidden: &Hidden, seed: u64) -> History {
     let text = dataset_text(m, hidden, seed);
     to_history(
-        rins_mvm::reader::parse(&text, "dataset").unwrap(),
+        rins_mvm::csv::parse(&text, "dataset").unwrap(),
         "dataset",
     )
     .unwrap()
@@ -271,7 +271,7 @@ fn history(m: &PlantConfig, hidden: &Hidden, seed: u64) -> History {
 fn history_runs(m: &PlantConfig, hidden: &Hidden, seed: u64, runs: &[(f64, f64)]) -> History {
     let text = dataset_text_runs(m, hidden, seed, runs);
     to_history(
-        rins_mvm::reader::parse(&text, "dataset").unwrap(),
+        rins_mvm::csv::parse(&text, "dataset").unwrap(),
         "dataset",
     )
     .unwrap()
