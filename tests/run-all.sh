@@ -15,6 +15,9 @@ features=(--features rins-scenarios/rerun)
 echo "== cargo fmt --check =="
 cargo fmt --all --check
 
+echo "== import circles (tests/import_cycles.py: only those docs/architecture.md names) =="
+python3 tests/import_cycles.py .
+
 echo "== cargo build (the FMI shared libraries are loaded by the tests) =="
 cargo build --workspace --release "${features[@]}"
 target_dir="${CARGO_TARGET_DIR:-target}"

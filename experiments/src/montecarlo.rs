@@ -16,9 +16,9 @@ use rins_nav::strapdown_lanes::{LANES, StrapdownLanes};
 use rins_plant::{PlantConfig, SeedBatch};
 
 use crate::session::{
-    Alignment, NavRun, NavRunConfig, PROGRESS_EVERY, SessionError, initial_state,
-    run_with_progress, tracker_for,
+    Alignment, NavRun, NavRunConfig, PROGRESS_EVERY, SessionError, run_with_progress, tracker_for,
 };
+use crate::tracker::initial_state;
 
 /// Runs `seeds` of `cfg` for `nav_s` seconds; each seed's samples feed one navigator per
 /// entry of `navs`. Returns, per seed in order, one run per navigator. `progress` receives

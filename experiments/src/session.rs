@@ -7,7 +7,7 @@ use rins_plant::effects::gyro::PositionBiasSpec;
 use rins_plant::units::{DPSH, UG};
 use rins_plant::{ImuSample, Plant};
 
-use crate::tracker::Tracker;
+use crate::tracker::{Tracker, initial_state};
 
 pub use rins_nav::alignment::Alignment;
 use rins_nav::alignment::{FineAlignment, coarse, correct_attitude};
@@ -193,30 +193,6 @@ pub(crate) fn tracker_for(
         tracker.on_moving_carrier(plant.config().vehicle.c_vn())
     } else {
         tracker
-    }
-}
-
-/// The navigator's start aligned from truth: the table's attitude, and the site at rest (static
-/// carrier) or the carrier's reference point with its velocity (moving carrier: the navigator
-/// starts aligned from truth on the moving base; there is no moored dwell).
-pub(crate) fn initial_state(plant: &Plant) -> NavState {
-    if plant.moving_carrier() {
-        let c = plant.truth().carrier;
-        return NavState {
-            q_bn: plant.attitude_q_bn(),
-            v_n: c.v_n,
-            lat_rad: c.lat_rad,
-            lon_rad: c.lon_rad,
-            height_m: c.height_m,
-        };
-    }
-    let site = *plant.site();
-    NavState {
-        q_bn: plant.attitude_q_bn(),
-        v_n: Vector3::zeros(),
-        lat_rad: site.lat_rad,
-        lon_rad: site.lon_rad,
-        height_m: site.height_m,
     }
 }
 

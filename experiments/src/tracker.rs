@@ -16,7 +16,29 @@ use rins_plant::earth::Site;
 use rins_plant::effects::gyro::PositionBiasSpec;
 use rins_plant::{ImuSample, Plant, Truth};
 
-use crate::session::initial_state;
+/// The navigator's start aligned from truth: the table's attitude, and the site at rest (static
+/// carrier) or the carrier's reference point with its velocity (moving carrier: the navigator
+/// starts aligned from truth on the moving base; there is no moored dwell).
+pub(crate) fn initial_state(plant: &Plant) -> NavState {
+    if plant.moving_carrier() {
+        let c = plant.truth().carrier;
+        return NavState {
+            q_bn: plant.attitude_q_bn(),
+            v_n: c.v_n,
+            lat_rad: c.lat_rad,
+            lon_rad: c.lon_rad,
+            height_m: c.height_m,
+        };
+    }
+    let site = *plant.site();
+    NavState {
+        q_bn: plant.attitude_q_bn(),
+        v_n: Vector3::zeros(),
+        lat_rad: site.lat_rad,
+        lon_rad: site.lon_rad,
+        height_m: site.height_m,
+    }
+}
 
 /// A strapdown navigator with δβ compensation and error records every `record_every_s`.
 pub struct Tracker {

@@ -20,7 +20,7 @@ use std::path::Path;
 
 use serde::Deserialize;
 
-use crate::reader::MeasurementError;
+use crate::measurement::MeasurementError;
 
 /// One mapped column.
 #[derive(Clone, Debug, PartialEq)]
@@ -248,8 +248,8 @@ impl ColumnMap {
                             &name,
                             format!(
                                 "factor must be finite and non-zero, offset finite (got {}, {})",
-                                crate::ranges::show(f),
-                                crate::ranges::show(o)
+                                rins_plant::message::num(f),
+                                rins_plant::message::num(o)
                             ),
                         ));
                     }

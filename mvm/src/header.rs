@@ -3,7 +3,7 @@
 //! conversion.
 
 use crate::colmap::{ColumnMap, Resolved};
-use crate::reader::{GIMBAL, MeasurementError, QUATERNION, REQUIRED, classify};
+use crate::measurement::{GIMBAL, MeasurementError, QUATERNION, REQUIRED, classify};
 
 /// How a source column is read.
 #[derive(Clone, Copy, Debug, PartialEq)]

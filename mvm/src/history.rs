@@ -6,7 +6,7 @@ use std::ops::Range;
 use rins_plant::PlantConfig;
 use rins_plant::carrier::CarrierKind;
 
-use crate::reader::{Measurement, MeasurementError};
+use crate::measurement::{Measurement, MeasurementError};
 
 /// IMU attitude over the history.
 #[derive(Clone, Debug, PartialEq)]

@@ -4,9 +4,10 @@
 //! plant's catalogue that explain the residual, and fits the chosen ones into the model
 //! (docs/model-vs-measurements.md).
 //!
-//! The steps, each in its own module: [`reader`] (the strict measurement CSV reader,
-//! docs/measurement-format.md), [`colmap`] (column maps for a logger's own names and units),
-//! [`parquet`] (the same format in Parquet), [`history`] (the measured rows in SI), [`rows`] (the
+//! The steps, each in its own module: [`reader`] (the strict measurement reader,
+//! docs/measurement-format.md: [`csv`] or [`parquet`] by the file's first bytes, into a
+//! [`measurement::Measurement`]), [`colmap`] (column maps for a logger's own names and units),
+//! [`history`] (the measured rows in SI), [`rows`] (the
 //! rows walked chunk by chunk of whole segments), [`row_cache`] (a file streamed once into a
 //! temporary file and walked back by every pass, so memory does not grow with the file),
 //! [`replay`] (model
@@ -26,6 +27,7 @@ pub mod apply;
 mod chunks;
 pub mod colmap;
 mod compare;
+pub mod csv;
 pub mod custom;
 pub mod discover;
 pub mod fit;
@@ -34,6 +36,7 @@ mod header;
 pub mod heredity;
 pub mod history;
 pub mod iterate;
+pub mod measurement;
 pub mod parquet;
 mod prepare;
 pub mod ranges;

@@ -21,10 +21,10 @@ use parquet::file::writer::SerializedFileWriter;
 use parquet::schema::types::{ColumnDescriptor, Type};
 use rayon::prelude::*;
 
-use crate::chunks::{ChunkSink, Chunker};
+use crate::chunks::{Acc, ChunkSink, Chunker};
 use crate::colmap::ColumnMap;
 use crate::header::{Kind, Layout};
-use crate::reader::{Acc, LabelColumn, Measurement, MeasurementError};
+use crate::measurement::{LabelColumn, Measurement, MeasurementError};
 
 /// Whether the file starts with the Parquet magic bytes.
 pub fn is_parquet(path: &Path) -> bool {
@@ -458,9 +458,15 @@ fn no_panic<T>(
     })
 }
 
-/// Reads a Parquet measurement file; `map` names and converts its columns as for CSV.
+/// Reads a Parquet measurement file; `map` names and converts its columns as for CSV
+/// ([`crate::reader::read_with`] reads either format).
 pub fn read(path: &Path, map: Option<&ColumnMap>) -> Result<Measurement, MeasurementError> {
-    crate::reader::read_with(path, map)
+    let mut all = Measurement::default();
+    stream(path, map, usize::MAX, &mut |m| {
+        all.append_chunk(m);
+        Ok(())
+    })?;
+    Ok(all)
 }
 
 /// Reads a Parquet measurement file one row group at a time (its columns on both cores) and

@@ -4,8 +4,11 @@
 //! the column, the value and the allowed range. Bounded values also keep every sum the
 //! comparison takes over a file finite (10^9 rows of at most 2^53 stay below 10^25).
 
+// Numbers in messages: the workspace's one rule (a 1e300 is not printed as 301 digits).
+use rins_plant::message::num;
+
 use crate::header::{Kind, Layout};
-use crate::reader::{Measurement, MeasurementError};
+use crate::measurement::{Measurement, MeasurementError};
 
 /// Largest angular rate an angular increment may show, °/s: a navigation-grade gyro's range is
 /// a few hundred °/s and a rotating table turns at tens of °/s.
@@ -143,12 +146,6 @@ pub fn bound(name: &str) -> Option<Bound> {
     })
 }
 
-/// A number for a message: plain when short, in exponent form when huge or tiny (a 1e300 is
-/// not printed as 301 digits): the workspace's one rule, [`rins_plant::message::num`].
-pub fn show(v: f64) -> String {
-    rins_plant::message::num(v)
-}
-
 /// Source name of documented column `name` (for errors: the column as the file calls it),
 /// with the documented name when a column map renamed it.
 pub(crate) fn source_of(layout: &Layout, name: &str) -> (String, String) {
@@ -189,9 +186,9 @@ fn first_bad_value(v: &[f64], b: Bound) -> Bad {
         k,
         format!(
             "{} is outside the physical range: expected {what} [{}, {}{close}, {why}",
-            show(v[k]),
-            show(lo),
-            show(hi)
+            num(v[k]),
+            num(lo),
+            num(hi)
         ),
     ))
 }
@@ -235,9 +232,9 @@ pub(crate) fn check_rows(
             "t_s".into(),
             format!(
                 "row interval {} s outside [{}, {}] s (1 MHz to one row a day)",
-                show(dt_s[k]),
-                show(ROW_INTERVAL_S[0]),
-                show(ROW_INTERVAL_S[1])
+                num(dt_s[k]),
+                num(ROW_INTERVAL_S[0]),
+                num(ROW_INTERVAL_S[1])
             ),
         ));
     }
@@ -255,9 +252,9 @@ pub(crate) fn check_rows(
             name.clone(),
             format!(
                 "{} {unit} over a row of {} s is outside the physical range: |x| <= {rate_text} x the row interval = {} {unit}",
-                show(v[k]),
-                show(dt_s[k]),
-                show(rate * dt_s[k])
+                num(v[k]),
+                num(dt_s[k]),
+                num(rate * dt_s[k])
             ),
         ))
     }));
@@ -274,12 +271,12 @@ pub(crate) fn check_rows(
                 "q_bn_w".into(),
                 format!(
                     "quaternion (q_bn_w, q_bn_x, q_bn_y, q_bn_z) = ({}, {}, {}, {}) has norm {}: expected within {} of 1",
-                    show(w[k]),
-                    show(x[k]),
-                    show(y[k]),
-                    show(z[k]),
-                    show(norm(k)),
-                    show(QUATERNION_NORM_TOL)
+                    num(w[k]),
+                    num(x[k]),
+                    num(y[k]),
+                    num(z[k]),
+                    num(norm(k)),
+                    num(QUATERNION_NORM_TOL)
                 ),
             ));
         }

@@ -1,5 +1,8 @@
 //! The reports of a comparison and a diagnosis, as `rins compare --json` and
-//! `rins diagnose --json` print them (display units: °/h for gyros, µg for accelerometers).
+//! `rins diagnose --json` print them (display units: °/h for gyros, µg for accelerometers); what
+//! discovery found is in [`discovery`].
+
+pub mod discovery;
 
 use std::collections::BTreeMap;
 
@@ -235,5 +238,5 @@ pub struct DiagnoseReport {
     pub column_map: Option<crate::colmap::MapSummary>,
     /// What `--discover` found (absent without it).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub discovery: Option<crate::discover::DiscoveryReport>,
+    pub discovery: Option<discovery::DiscoveryReport>,
 }

@@ -12,7 +12,7 @@ use std::path::Path;
 
 use crate::colmap::ColumnMap;
 use crate::history::{Attitude, History, chunk_to_history};
-use crate::reader::{Measurement, MeasurementError};
+use crate::measurement::{Measurement, MeasurementError};
 use crate::rows::{InfoSums, Rows, RowsInfo};
 
 /// Rows per chunk (whole segments are added until a chunk holds at least this many): about

@@ -14,7 +14,27 @@ use rins_plant::earth::{OMEGA_IE_RPS, radii_and_gravity_sin2};
 use rins_plant::real::{Divisor, Real, Reciprocal};
 use rins_plant::trig::GridTrig;
 
-use crate::strapdown::VerticalChannel;
+use serde::{Deserialize, Serialize};
+
+/// How the unstable vertical channel is handled.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", tag = "mode")]
+pub enum VerticalChannel {
+    /// Height held at `ref_height_m`, vertical velocity zero (the usual choice for static and
+    /// marine INS tests; accelerometer errors then do not reach the vertical).
+    Hold {
+        /// Reference height, m.
+        ref_height_m: f64,
+    },
+    /// Second-order loop to the reference height: ḣ = v_U − (2/τ)·δh, v̇_U = a_U − δh/τ²
+    /// (critically damped, time constant τ).
+    Damped {
+        /// Reference height, m.
+        ref_height_m: f64,
+        /// Loop time constant, s.
+        tau_s: f64,
+    },
+}
 
 /// One navigator's solution as the equations use it, and the previous interval's increments
 /// (for the coning and sculling terms).
@@ -175,20 +195,6 @@ pub(crate) fn update<T: Real>(
     update_frame(s, &body, dt_s, vertical);
 }
 
-/// Integrates the increments of `dtheta.len()` intervals of `dt_s` each (2 to 4; `dv` as many)
-/// in one update, with their N-sample coning and sculling combination ([`crate::subsamples`]).
-#[inline(always)]
-pub(crate) fn update_subsamples<T: Real>(
-    s: &mut Solution<T>,
-    dtheta: &[[T; 3]],
-    dv: &[[T; 3]],
-    dt_s: f64,
-    vertical: VerticalChannel,
-) {
-    let body = crate::subsamples::combine(dtheta, dv);
-    update_frame(s, &body, dt_s * dtheta.len() as f64, vertical);
-}
-
 /// Coning and sculling of one interval with the previous one (which it then becomes).
 #[inline(always)]
 fn one_plus_previous<T: Real>(
@@ -214,7 +220,7 @@ fn one_plus_previous<T: Real>(
 /// The rest of an update over `dt_s` from the body's part: velocity, position and attitude in
 /// the navigation frame.
 #[inline(always)]
-fn update_frame<T: Real>(
+pub(crate) fn update_frame<T: Real>(
     s: &mut Solution<T>,
     body: &BodyIncrement<T>,
     dt_s: f64,

@@ -10,30 +10,11 @@
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use rins_plant::earth::{OMEGA_IE_RPS, radii_of_curvature_sin2};
 use rins_plant::trig::GridTrig;
-use serde::{Deserialize, Serialize};
 
+// The equations take it, so it is defined with them; its path is this module.
 use crate::mechanisation::Solution;
+pub use crate::mechanisation::VerticalChannel;
 use crate::subsamples::Subsamples;
-
-/// How the unstable vertical channel is handled.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case", tag = "mode")]
-pub enum VerticalChannel {
-    /// Height held at `ref_height_m`, vertical velocity zero (the usual choice for static and
-    /// marine INS tests; accelerometer errors then do not reach the vertical).
-    Hold {
-        /// Reference height, m.
-        ref_height_m: f64,
-    },
-    /// Second-order loop to the reference height: ḣ = v_U − (2/τ)·δh, v̇_U = a_U − δh/τ²
-    /// (critically damped, time constant τ).
-    Damped {
-        /// Reference height, m.
-        ref_height_m: f64,
-        /// Loop time constant, s.
-        tau_s: f64,
-    },
-}
 
 /// Position, velocity and attitude.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -199,13 +180,7 @@ impl Strapdown {
             }
         });
         let mut m = self.solution();
-        crate::mechanisation::update_subsamples(
-            &mut m,
-            &th[..n],
-            &dvs[..n],
-            self.dt_s,
-            self.vertical,
-        );
+        crate::subsamples::update_subsamples(&mut m, &th[..n], &dvs[..n], self.dt_s, self.vertical);
         self.set_solution(&m);
         self.pending = 0;
     }

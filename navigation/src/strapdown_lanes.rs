@@ -9,8 +9,9 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3, Vector4};
 use rins_plant::real::{Lanes, Real};
 use rins_plant::trig::GridTrig;
 
-use crate::mechanisation::{Solution, up_in_body, update, update_subsamples};
+use crate::mechanisation::{Solution, up_in_body, update};
 use crate::strapdown::{MAX_PENDING, NavState, Strapdown, VerticalChannel};
+use crate::subsamples::update_subsamples;
 
 /// Navigators per [`StrapdownLanes`]: one AVX-512 vector of f64 (two AVX2 vectors).
 pub const LANES: usize = 8;

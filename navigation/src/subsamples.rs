@@ -13,7 +13,9 @@
 //! once per N intervals, the body terms a combination; the navigator's state and its body up
 //! direction move at the update.
 
-use crate::mechanisation::{BodyIncrement, add, cross, scale};
+use crate::mechanisation::{
+    BodyIncrement, Solution, VerticalChannel, add, cross, scale, update_frame,
+};
 use rins_plant::real::Real;
 
 /// Intervals per navigator update: 1 (every interval, one-plus-previous coning and sculling)
@@ -101,6 +103,21 @@ pub(crate) fn combine<T: Real>(dtheta: &[[T; 3]], dv: &[[T; 3]]) -> BodyIncremen
         phi,
         dv_sf: add(&add(&sum_dv, &rotation), &sculling),
     }
+}
+
+/// Integrates the increments of `dtheta.len()` intervals of `dt_s` each (2 to 4; `dv` as many)
+/// in one update: their combination ([`combine`]), then the navigation frame turned once over
+/// N·Δt ([`crate::mechanisation`]).
+#[inline(always)]
+pub(crate) fn update_subsamples<T: Real>(
+    s: &mut Solution<T>,
+    dtheta: &[[T; 3]],
+    dv: &[[T; 3]],
+    dt_s: f64,
+    vertical: VerticalChannel,
+) {
+    let body = combine(dtheta, dv);
+    update_frame(s, &body, dt_s * dtheta.len() as f64, vertical);
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@
 //! processes' speeds.
 
 pub mod action;
+mod error;
 pub mod layout;
 pub mod nav_side;
 pub mod pace;
@@ -20,13 +21,14 @@ pub mod session;
 pub mod signals;
 
 pub use action::NavAction;
+pub use error::TransportError;
 pub use nav_side::{
     FinalError, NavOptions, NavProcessor, NavSummary, ScheduledCommand, fold_digest, navigate,
     navigate_probed,
 };
 pub use plant_side::{Mode, ServeOptions, ServeSummary, serve, serve_observed, serve_probed};
 pub use probe::Stage;
-pub use session::{Session, TransportError};
+pub use session::Session;
 
 /// The in-process reference: the same plant and navigator without the transport, with the same
 /// commands applied at the same ticks (the first tick of the batch after `after_seq`), the

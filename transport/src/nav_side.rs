@@ -9,12 +9,13 @@ use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
 use rins_plant::PlantConfig;
 
 use crate::action::NavAction;
+use crate::error::TransportError;
 use crate::layout::{
     FLAG_END, FLAG_INTERRUPTED, FLAG_REFUSED, FLAG_TRUTH, ImuBatch, ImuRecord, LAYOUT_VERSION,
     NavCommand, NavSolution, StartRecord, TruthRecord, kind,
 };
 use crate::probe::Stage;
-use crate::session::{Session, TransportError, ipc};
+use crate::session::{Session, ipc};
 use iceoryx2::service::port_factory::PortFactory as _;
 
 /// The reference navigation over the stream, with a digest of every state it passes through.

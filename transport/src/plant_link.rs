@@ -12,10 +12,96 @@ use iceoryx2::port::{BackpressureAction, BackpressureInfo};
 use iceoryx2::prelude::*;
 use rins_plant::Plant;
 
-use crate::layout::{FLAG_END, FLAG_REFUSED, ImuBatch, NavCommand, StartRecord, kind};
-use crate::plant_side::{Mode, ServeOptions, ServeSummary, apply, check_command};
+use crate::action::NavAction;
+use crate::error::TransportError;
+use crate::layout::{
+    FLAG_END, FLAG_REFUSED, ImuBatch, LAYOUT_VERSION, NavCommand, StartRecord, kind,
+};
 use crate::probe::Stage;
-use crate::session::{Session, TransportError, cleanup_dead_nodes, ipc};
+use crate::session::{Session, cleanup_dead_nodes, ipc};
+
+/// Delivery mode.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Mode {
+    /// The plant advances only when the navigator has acknowledged the previous batch:
+    /// deterministic whatever the speeds. Commands apply at the first tick of the next batch.
+    Lockstep,
+    /// As fast as the navigator consumes (backpressure, no loss). Commands apply at the first
+    /// tick of the next batch sent after they arrive.
+    FreeRunning,
+}
+
+/// How the plant serves.
+#[derive(Clone, Debug)]
+pub struct ServeOptions {
+    /// Delivery mode.
+    pub mode: Mode,
+    /// Records per message, 1 … 64.
+    pub batch: usize,
+    /// Real-time factor (simulated seconds per wall second); `None` runs as fast as possible.
+    pub pace: Option<f64>,
+    /// How long to wait for a navigator to connect (also after it dies), and for a live
+    /// navigator to take or acknowledge a batch before it counts as stalled.
+    pub peer_timeout: Duration,
+    /// After the navigator dies, wait for a new one and resend from the first unacknowledged
+    /// batch (instead of failing).
+    pub wait_for_restart: bool,
+}
+
+/// What the plant did.
+#[derive(Debug, Default)]
+pub struct ServeSummary {
+    /// Samples published.
+    pub samples: u64,
+    /// Batches published.
+    pub batches: u64,
+    /// Commands applied: (tick, command).
+    pub commands: Vec<(u64, NavCommand)>,
+    /// Navigator deaths survived.
+    pub restarts: u32,
+    /// Messages reporting what happened (peer deaths, restarts).
+    pub events: Vec<String>,
+    /// Wall time, s.
+    pub wall_s: f64,
+    /// Ended by SIGINT/SIGTERM.
+    pub interrupted: bool,
+}
+
+/// Refuses a command of another layout version or an unknown kind (docs/transport.md).
+pub(crate) fn check_command(c: &NavCommand) -> Result<(), TransportError> {
+    if c.layout_version != LAYOUT_VERSION {
+        return Err(TransportError::CommandVersion {
+            got: c.layout_version,
+            want: LAYOUT_VERSION,
+        });
+    }
+    if c.kind > kind::AZIMUTH_ISOLATION_OFF {
+        return Err(TransportError::CommandRefused {
+            kind: c.kind,
+            seq: c.ack_seq,
+            reason: "this kind is unknown (0 acknowledge, 1 move-to, 2 stop, 3 hello, 4 azimuth isolation on, 5 azimuth isolation off)".into(),
+        });
+    }
+    Ok(())
+}
+
+pub(crate) fn apply(
+    plant: &mut Plant,
+    c: &NavCommand,
+    summary: &mut ServeSummary,
+) -> Result<(), TransportError> {
+    if let Some(action) = NavAction::from_command(c) {
+        action
+            .apply(plant)
+            .map_err(|reason| TransportError::CommandRefused {
+                kind: c.kind,
+                seq: c.ack_seq,
+                reason,
+            })?;
+        summary.commands.push((plant.samples_done(), *c));
+    }
+    Ok(())
+}
 
 /// How often the waits look for dead or departed peers.
 pub const CHECK: Duration = Duration::from_millis(50);

@@ -15,7 +15,10 @@ use iceoryx2::service::port_factory::PortFactory as _;
 use iceoryx2::service::port_factory::publish_subscribe::PortFactory;
 use iceoryx2::service::static_config::messaging_pattern::MessagingPattern as StaticPattern;
 
-use crate::session::TransportError;
+use crate::error::TransportError;
+
+/// Messages each subscriber can hold before the publisher waits (no loss: backpressure).
+pub const BUFFER: usize = 16;
 
 /// The settings rins creates a service with, and what it requires of one a peer created.
 #[derive(Clone, Copy, Debug)]
@@ -37,7 +40,7 @@ pub struct ServiceSpec {
 /// `rins/S/imu`: one plant, no loss, no replay.
 pub const IMU: ServiceSpec = ServiceSpec {
     safe_overflow: false,
-    buffer: crate::session::BUFFER,
+    buffer: BUFFER,
     history: 0,
     history_must_match: true,
     max_publishers: 1,
@@ -47,7 +50,7 @@ pub const IMU: ServiceSpec = ServiceSpec {
 /// `rins/S/cmd`: one navigator commands the plant, no loss.
 pub const CMD: ServiceSpec = ServiceSpec {
     safe_overflow: false,
-    buffer: crate::session::BUFFER,
+    buffer: BUFFER,
     history: 0,
     history_must_match: true,
     max_publishers: 1,
@@ -57,7 +60,7 @@ pub const CMD: ServiceSpec = ServiceSpec {
 /// `rins/S/nav`: the latest solution for anyone (overwriting is fine).
 pub const NAV: ServiceSpec = ServiceSpec {
     safe_overflow: true,
-    buffer: crate::session::BUFFER,
+    buffer: BUFFER,
     history: 1,
     history_must_match: false,
     max_publishers: 2,

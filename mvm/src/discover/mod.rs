@@ -15,10 +15,11 @@
 pub mod frols;
 pub mod library;
 pub mod propose;
-mod report;
 pub mod tau;
 
-pub use report::{
+// The report types live with the other report types (crate::report), beneath everything that
+// builds them; named here too, as what discovery returns.
+pub use crate::report::discovery::{
     Dependent, DiscoveredTerm, DiscoveryReport, Identical, Proposal, Superseded, TauReport,
 };
 

@@ -7,7 +7,9 @@
 use std::path::PathBuf;
 
 use rins_mvm::colmap::ColumnMap;
-use rins_mvm::reader::{Measurement, classify, parse, parse_with, read, read_with};
+use rins_mvm::csv::{parse, parse_with};
+use rins_mvm::measurement::{Measurement, classify};
+use rins_mvm::reader::{read, read_with};
 
 fn example() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/examples/measurement-example.csv")
@@ -191,7 +193,7 @@ fn parse_raw(text: &str) -> Measurement {
     m.rows = rows.len();
     for (i, h) in header.iter().enumerate() {
         if ["status", "run", "seg"].contains(h) {
-            let mut l = rins_mvm::reader::LabelColumn::default();
+            let mut l = rins_mvm::measurement::LabelColumn::default();
             l.names = rows
                 .iter()
                 .map(|r| r[i].to_string())

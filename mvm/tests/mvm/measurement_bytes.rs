@@ -1,5 +1,5 @@
 //! A measurement file that is not text is refused with the file byte offset and the data row of
-//! the first bad byte, also past the first piece (`reader::PIECE`) the reader parses at a time.
+//! the first bad byte, also past the first piece (`csv::PIECE`) the reader parses at a time.
 
 use std::io::Write;
 
@@ -70,7 +70,7 @@ fn a_bad_byte_in_the_header_is_row_0() {
 fn a_bad_byte_after_the_first_64_mb_names_its_row_and_file_offset() {
     // Rows of 40 to 47 bytes: the bad one is past the first piece.
     let offset = check("large", 1_700_000, 1_650_000);
-    assert!(offset > rins_mvm::reader::PIECE as u64, "{offset}");
+    assert!(offset > rins_mvm::csv::PIECE as u64, "{offset}");
 }
 
 /// A reader that counts the bytes taken from `inner` and gives at most `chunk` per read (as a
@@ -94,14 +94,14 @@ impl<R: std::io::Read> std::io::Read for Counted<R> {
 fn an_endless_stream_without_line_breaks_stops_at_once_with_bounded_reading() {
     use std::io::Read;
     // 1 TB of NUL bytes, as /dev/zero: the reader takes one piece and stops.
-    let piece = rins_mvm::reader::PIECE;
+    let piece = rins_mvm::csv::PIECE;
     let mut zeros = Counted {
         inner: std::io::repeat(0).take(1 << 40),
         taken: 0,
         chunk: usize::MAX,
     };
     let start = std::time::Instant::now();
-    let e = rins_mvm::reader::read_from(&mut zeros, "zeros", None).expect_err("no lines");
+    let e = rins_mvm::csv::read_from(&mut zeros, "zeros", None).expect_err("no lines");
     assert_eq!(e.row, 0, "{e}");
     assert!(
         e.message.contains(&format!("more than {piece} bytes")) && e.message.contains("65536"),
@@ -126,7 +126,7 @@ fn an_endless_stream_without_line_breaks_stops_at_once_with_bounded_reading() {
         taken: 0,
         chunk: usize::MAX,
     };
-    let e = rins_mvm::reader::read_from(&mut long, "long.csv", None).expect_err("long line");
+    let e = rins_mvm::csv::read_from(&mut long, "long.csv", None).expect_err("long line");
     assert_eq!(e.row, 2, "{e}");
     assert!(
         e.message
@@ -135,7 +135,7 @@ fn an_endless_stream_without_line_breaks_stops_at_once_with_bounded_reading() {
     );
     assert!(e.to_string().len() < 500, "{} bytes", e.to_string().len());
     assert!(
-        long.taken <= rins_mvm::reader::PIECE as u64 + (64 << 10),
+        long.taken <= rins_mvm::csv::PIECE as u64 + (64 << 10),
         "{} bytes read",
         long.taken
     );
@@ -165,7 +165,7 @@ fn a_file_read_from_a_pipe_in_small_pieces_is_the_file() {
             taken: 0,
             chunk,
         };
-        let m = rins_mvm::reader::read_from(piped, "pipe", None).unwrap();
+        let m = rins_mvm::csv::read_from(piped, "pipe", None).unwrap();
         assert_eq!(m.columns, whole.columns, "chunk {chunk}");
         assert_eq!(m.labels, whole.labels, "chunk {chunk}");
         assert_eq!(m.segments, whole.segments, "chunk {chunk}");

@@ -1,7 +1,8 @@
 //! The measurement format (docs/measurement-format.md): a good file parses with its segments,
 //! every kind of bad file is refused with its row and column, and the shipped example parses.
 
-use rins_mvm::reader::{parse, read};
+use rins_mvm::csv::parse;
+use rins_mvm::reader::read;
 
 fn good() -> String {
     "t_s,dtheta_x_rad,dtheta_y_rad,dtheta_z_rad,dv_x_mps,dv_y_mps,dv_z_mps,outer_deg,inner_deg,temp_gyro_x_c,run,segment\n\

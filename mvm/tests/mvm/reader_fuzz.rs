@@ -8,7 +8,9 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rins_mvm::reader::{MeasurementError, parse, read};
+use rins_mvm::csv::parse;
+use rins_mvm::measurement::MeasurementError;
+use rins_mvm::reader::read;
 
 const SEED: u64 = 0x5eed_0016;
 /// Mutated copies of the example, parsed from text.

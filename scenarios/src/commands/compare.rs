@@ -63,7 +63,7 @@ pub fn load_data(a: &DataArgs) -> Result<(PlantConfig, RowCache, Options)> {
     let map = a
         .map
         .as_deref()
-        .map(|p| rins_mvm::colmap::ColumnMap::load(p, rins_mvm::reader::classify))
+        .map(|p| rins_mvm::colmap::ColumnMap::load(p, rins_mvm::measurement::classify))
         .transpose()?;
     // The flags are checked before the data file is read (which may take minutes).
     let (window_s, temp_bin_k, time_window_s) = (

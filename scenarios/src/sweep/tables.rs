@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use anyhow::{Context, Result};
-use rins_mvm::reader::{LabelColumn, Measurement};
+use rins_mvm::measurement::{LabelColumn, Measurement};
 
 use super::outputs::PER_SEED;
 use super::result::{NAVIGATORS, SweepReport, value_text};

@@ -6,7 +6,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rins_mvm::reader as measurement;
+use rins_mvm::csv;
 use rins_mvm::{Effect, History, Options, analyse, to_history};
 use rins_plant::PlantConfig;
 use rins_scenarios::file::Scenario;
@@ -168,7 +168,7 @@ fn model() -> PlantConfig {
 
 fn history(m: &PlantConfig) -> History {
     let text = dataset_text(m);
-    to_history(measurement::parse(&text, "dataset").unwrap(), "dataset").unwrap()
+    to_history(csv::parse(&text, "dataset").unwrap(), "dataset").unwrap()
 }
 
 #[test]

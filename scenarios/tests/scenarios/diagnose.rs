@@ -5,7 +5,7 @@
 //! and a residual within 10 % of the noise floor. Controls: nothing hidden (nothing claimed),
 //! an effect outside the catalogue (nothing claimed, remainder localised) and a confusable pair.
 
-use rins_mvm::reader as measurement;
+use rins_mvm::csv;
 use rins_mvm::{Attitude, DiagnoseReport, Effect, History, Options, analyse, to_history};
 use rins_plant::PlantConfig;
 use rins_plant::effects::{GyroTerm, gyro};
@@ -84,7 +84,7 @@ fn dataset(
     rins_scenarios::diagnose::write_measurements(&path, &runs).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     let _ = std::fs::remove_file(&path);
-    let m = measurement::parse(&text, "dataset").unwrap();
+    let m = csv::parse(&text, "dataset").unwrap();
     to_history(m, "dataset").unwrap()
 }
 

@@ -260,21 +260,13 @@ fn model() -> PlantConfig {
 
 fn history(m: &PlantConfig, hidden: &Hidden, seed: u64) -> History {
     let text = dataset_text(m, hidden, seed);
-    to_history(
-        rins_mvm::reader::parse(&text, "dataset").unwrap(),
-        "dataset",
-    )
-    .unwrap()
+    to_history(rins_mvm::csv::parse(&text, "dataset").unwrap(), "dataset").unwrap()
 }
 
 /// The history of [`dataset_text_runs`].
 fn history_runs(m: &PlantConfig, hidden: &Hidden, seed: u64, runs: &[(f64, f64)]) -> History {
     let text = dataset_text_runs(m, hidden, seed, runs);
-    to_history(
-        rins_mvm::reader::parse(&text, "dataset").unwrap(),
-        "dataset",
-    )
-    .unwrap()
+    to_history(rins_mvm::csv::parse(&text, "dataset").unwrap(), "dataset").unwrap()
 }
 
 fn discover(m: &PlantConfig, h: &History) -> DiagnoseReport {

@@ -1,7 +1,7 @@
 //! The measurement format: the plant's own CSV is a valid measurement file (the reader and
 //! its tests on bad files are in rins-mvm, mvm/tests/mvm/reader.rs).
 
-use rins_mvm::reader::parse;
+use rins_mvm::csv::parse;
 use rins_scenarios::file::{OutputSpec, Scenario};
 use rins_scenarios::sinks::CsvSink;
 use rins_scenarios::{Sink, run};

@@ -1,11 +1,11 @@
-//! What discovery reports ([`super::search`]): each library term tested on each channel, the
+//! What discovery reports ([`crate::discover::search`]): each library term tested on each channel, the
 //! proposals with their bootstrap and ready blocks, the catalogue effects a proposal
 //! supersedes, and the terms that are catalogue effects already (identical up to scale, or in
 //! the span of two).
 
 use serde::Serialize;
 
-use crate::report::Confusable;
+use super::Confusable;
 
 /// One library term tested on one channel.
 #[derive(Clone, Debug, Serialize)]
