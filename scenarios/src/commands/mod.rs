@@ -11,6 +11,7 @@ pub mod fmu;
 pub mod measure;
 #[cfg(feature = "transport")]
 pub mod nav;
+pub mod paired_runs;
 pub mod paper;
 pub mod run;
 pub mod scenarios;

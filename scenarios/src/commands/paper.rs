@@ -1,18 +1,14 @@
 //! `rins paper`: the paper's headline job (analytic verification plus Table 4 with a few
 //! seeds), and the paired studies `table4` and `table5` with what they share.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Result;
-use rins_plant::message::Num;
-use rins_verify::paper::{Table4Options, Table4Report};
 
-use super::args::{RerunArgs, whole};
+use super::args::RerunArgs;
 use super::sea::{self, SeaArgs};
 use super::table4::{self, Table4Args};
 use super::table5::{self, Table5Args};
-use crate::figures::paper::write_table4_figures;
-use crate::file::Scenario;
 
 /// Arguments of `rins paper`: a study, or without one the headline job.
 #[derive(clap::Args, Debug)]
@@ -24,7 +20,7 @@ pub struct PaperArgs {
     #[arg(long, default_value_t = 32, allow_negative_numbers = true)]
     pub runs: i64,
     /// Headline job: IMU intervals per navigator update (1 to 4; see `rins paper table4`).
-    #[arg(long, default_value = "4", value_parser = super::table4::parse_subsamples)]
+    #[arg(long, default_value = "4", value_parser = super::paired_runs::parse_subsamples)]
     pub subsamples: rins_nav::Subsamples,
     /// Output folder.
     #[arg(long, default_value = "out/paper")]
@@ -101,59 +97,3 @@ fn headline(a: &PaperArgs) -> Result<()> {
     Ok(())
 }
 
-/// Checks `--runs` and `--days` of the paired paper runs; returns the number of seeds.
-pub fn check_runs_days(runs: i64, days: f64) -> Result<usize> {
-    let runs = whole("--runs", runs, 1, usize::MAX, "seed")?;
-    if !(days > 0.0 && days <= 60.0) {
-        anyhow::bail!("--days: expected a number in (0, 60], got {}", Num(days));
-    }
-    Ok(runs)
-}
-
-/// Runs the paired uncompensated/compensated study with a progress bar and writes
-/// `<name>.json` and the figures to `out` (and the Rerun recording when asked for).
-pub fn run_paired(
-    opt: &Table4Options,
-    name: &str,
-    out: &Path,
-    sc: &Scenario,
-    viz: &RerunArgs,
-) -> Result<Table4Report> {
-    let target = viz.target()?;
-    let total = (2 * opt.runs as u64 + 2) * (opt.duration_s * opt.plant.rate_hz) as u64;
-    let pb = crate::progress::bar(total, name);
-    let r = rins_verify::paper::table4(opt, &|n| pb.inc(n));
-    pb.finish_and_clear();
-    super::create_dir(out)?;
-    std::fs::write(
-        out.join(format!("{name}.json")),
-        serde_json::to_string_pretty(&r)?,
-    )?;
-    let figures = if name == "table5" {
-        ["Figure 9", "Figure 10"]
-    } else {
-        ["Figure 2", "Figure 3"]
-    };
-    write_table4_figures(&r, out, figures)?;
-    #[cfg(feature = "rerun")]
-    if let Some(t) = &target {
-        let text = if name == "table5" {
-            r.to_text_table5()
-        } else {
-            crate::report::RenderText::render_text(&r)
-        };
-        crate::figures::rerun::record_paired(
-            t,
-            viz.rerun_bucket_s,
-            sc,
-            &opt.plant,
-            opt.duration_s,
-            &r,
-            &text,
-        )?;
-        eprintln!("rerun: recorded -> {}", viz.dest());
-    }
-    #[cfg(not(feature = "rerun"))]
-    let _ = (target, sc);
-    Ok(r)
-}

@@ -14,7 +14,8 @@ use rins_verify::paper::{Band, SeaOptions, SeaReport, Table4Report};
 use serde::Serialize;
 
 use super::args::RerunArgs;
-use super::paper::check_runs_days;
+use super::paired_runs::check_runs_days;
+use crate::html::results::sea::CASES;
 use crate::figures::plot::{Kind, Line, Panel, write_svg};
 use crate::file::Scenario;
 
@@ -37,7 +38,7 @@ pub struct SeaArgs {
     pub sea: SeaOfSeeds,
     /// IMU intervals per navigator update, 1 to 4 (`rins paper table4 --subsamples`; the
     /// figures in docs/carrier.md are with 1).
-    #[arg(long, default_value = "1", value_parser = super::table4::parse_subsamples)]
+    #[arg(long, default_value = "1", value_parser = super::paired_runs::parse_subsamples)]
     pub subsamples: rins_nav::Subsamples,
     /// Print JSON instead of the table.
     #[arg(long)]
@@ -68,9 +69,6 @@ pub enum SeaOfSeeds {
 const UNC: RGBColor = RGBColor(200, 40, 40);
 /// Compensated case.
 const COMP: RGBColor = RGBColor(30, 90, 200);
-/// Category names of the end-error figure (and the rows of the page), in
-/// [`SeaReport::cases`] order.
-pub const CASES: [&str; 3] = ["static reference", "ship", "ship + isolation"];
 
 /// What the end-error figure plots, per case (written to `sea_end_error.json` so a test can
 /// compare it with `sea.json`).

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 
 use super::args::RerunArgs;
-use super::paper::{check_runs_days, run_paired};
+use super::paired_runs::{check_runs_days, run_paired};
 use crate::file::Scenario;
 
 /// Arguments of `rins paper table4`.
@@ -27,7 +27,7 @@ pub struct Table4Args {
     /// IMU intervals per navigator update, 1 to 4: the navigator combines them with the
     /// N-sample coning and sculling coefficients (docs/paper-reproduction.md: 4 moves the
     /// medians by less than 0.01 nmi against 1 and takes 30 % less CPU time).
-    #[arg(long, default_value = "4", value_parser = parse_subsamples)]
+    #[arg(long, default_value = "4", value_parser = super::paired_runs::parse_subsamples)]
     pub subsamples: rins_nav::Subsamples,
     /// Print JSON instead of the table.
     #[arg(long)]
@@ -90,12 +90,4 @@ pub fn study(a: &Table4Args) -> Result<rins_verify::paper::Table4Report> {
         println!("  figures and table4.json in {}", a.out.display());
     }
     Ok(r)
-}
-
-/// `--subsamples`: a count the navigator takes ([`rins_nav::Subsamples`]), or the range.
-pub(crate) fn parse_subsamples(s: &str) -> Result<rins_nav::Subsamples, String> {
-    let n: u8 = s
-        .parse()
-        .map_err(|_| format!("`{s}` is not a count of intervals (1 to 4)"))?;
-    rins_nav::Subsamples::new(n)
 }

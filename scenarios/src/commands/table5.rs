@@ -6,7 +6,7 @@ use anyhow::{Context, Result};
 
 use super::args::RerunArgs;
 use super::campaign::{run_campaign_from, write_outputs};
-use super::paper::{check_runs_days, run_paired};
+use super::paired_runs::{check_runs_days, run_paired};
 use crate::file::Scenario;
 use crate::truth::CampaignReport;
 

@@ -14,7 +14,7 @@ mod iterate;
 mod page_parts;
 mod paired;
 mod schemes;
-mod sea;
+pub mod sea;
 
 pub use analytic::analytic_sections;
 pub use calibration::calibration;

@@ -8,8 +8,11 @@ use anyhow::Result;
 use rins_verify::paper::SeaReport;
 
 use super::page_parts::figures_with_key;
-use crate::commands::sea::CASES;
 use crate::html::{Cell, Doc, Report, words};
+
+/// Category names of the sea study's cases (the rows of the page and of the end-error
+/// figure), in `SeaReport::cases` order.
+pub const CASES: [&str; 3] = ["static reference", "ship", "ship + isolation"];
 
 /// The cases' keys in sea.json, in [`CASES`] order.
 const KEYS: [&str; 3] = ["static_reference", "ship", "ship_isolated"];
