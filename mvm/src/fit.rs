@@ -333,8 +333,7 @@ pub fn paired_cv(x: &Design, base_cols: usize, full: &Fit, d: &ChannelData) -> (
         let testable = wls(x, d, Some(&held)).is_some_and(|fh| {
             (base_cols..x.ncols()).all(|k| {
                 !full.identified(k)
-                    || fh.identified(k)
-                        && fh.cov[(k, k)].sqrt() <= share * full.cov[(k, k)].sqrt()
+                    || fh.identified(k) && fh.cov[(k, k)].sqrt() <= share * full.cov[(k, k)].sqrt()
             })
         });
         if !testable {

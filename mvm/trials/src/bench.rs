@@ -497,18 +497,12 @@ pub fn aggregate(outcomes: &[Outcome]) -> Vec<ClassRates> {
         }
         out.push(rates(class.name(), "all", &of));
     }
-    let paired: Vec<&Outcome> = outcomes
-        .iter()
-        .filter(|o| o.spec.paired_control)
-        .collect();
+    let paired: Vec<&Outcome> = outcomes.iter().filter(|o| o.spec.paired_control).collect();
     if !paired.is_empty() {
         out.push(rates(PAIRED_CONTROLS, "all", &paired));
     }
     // Every trial that hides something: the coverage the intervals are judged by.
-    let hiding: Vec<&Outcome> = outcomes
-        .iter()
-        .filter(|o| !o.spec.is_control())
-        .collect();
+    let hiding: Vec<&Outcome> = outcomes.iter().filter(|o| !o.spec.is_control()).collect();
     if !hiding.is_empty() {
         out.push(rates("every effect trial", "all", &hiding));
     }

@@ -96,4 +96,3 @@ fn headline(a: &PaperArgs) -> Result<()> {
     }
     Ok(())
 }
-

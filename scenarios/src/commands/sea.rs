@@ -15,9 +15,9 @@ use serde::Serialize;
 
 use super::args::RerunArgs;
 use super::paired_runs::check_runs_days;
-use crate::html::results::sea::CASES;
 use crate::figures::plot::{Kind, Line, Panel, write_svg};
 use crate::file::Scenario;
+use crate::html::results::sea::CASES;
 
 /// Arguments of `rins paper sea`.
 #[derive(clap::Args, Debug)]

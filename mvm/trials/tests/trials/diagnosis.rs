@@ -345,8 +345,11 @@ fn a_benchmark_subset_is_right_and_claims_nothing_on_controls() {
 /// and noise seed, so the false-claim rate is measured on the effect trials' own designs.
 #[test]
 fn a_paired_control_is_its_trial_with_nothing_hidden() {
-    let specs =
-        rins_mvm_trials::bench::with_paired_controls(plan(4, 7, &[Class::GyroBias, Class::Control]));
+    let specs = rins_mvm_trials::bench::with_paired_controls(plan(
+        4,
+        7,
+        &[Class::GyroBias, Class::Control],
+    ));
     // Two effect trials (0, 2) and two drawn controls (1, 3): two paired controls, 4 and 5.
     assert_eq!(specs.len(), 6);
     for (control, of) in [(4, 0), (5, 2)] {
@@ -384,5 +387,9 @@ fn the_benchmark_misses_at_strong_z_of_seed_1_are_answered() {
     }
     let o = run_trial(specs[37]);
     assert!(o.z[0] >= STRONG_Z, "drawn z {}", o.z[0]);
-    assert!(o.z_demanded[0] < 6.0, "z beyond the twin {}", o.z_demanded[0]);
+    assert!(
+        o.z_demanded[0] < 6.0,
+        "z beyond the twin {}",
+        o.z_demanded[0]
+    );
 }
