@@ -537,15 +537,19 @@ mod tests {
     }
 
     /// A refused term without library parents ends the search, even though a term below it
-    /// would pass: its signal lies in one cross-validation fold only, so it ranks first but
-    /// predicts nothing on the other folds.
+    /// would pass: its signal lies in one cross-validation fold only (its column in all of
+    /// them), so it ranks first but predicts wrongly on the other folds.
     #[test]
     fn a_refused_single_term_ends_the_search() {
-        let one_fold: Vec<f64> = (0..N)
-            .map(|r| if r % FOLDS == 0 { 1.0 } else { 0.0 })
+        let w = wave(13);
+        let in_one_fold: Vec<f64> = w
+            .iter()
+            .enumerate()
+            .map(|(r, v)| if r % FOLDS == 0 { *v } else { 0.0 })
             .collect();
         let c = wave(11);
-        let d = channel(&[(5.0, &one_fold), (2.0, &c)]);
+        let d = channel(&[(15.0, &in_one_fold), (2.0, &c)]);
+        let one_fold = w;
         let lib = library(
             vec![one_fold.clone(), c.clone()],
             vec![0, 0],
@@ -561,7 +565,7 @@ mod tests {
         assert_eq!(miss.term, 0);
         assert!(!miss.passes && miss.parents.is_empty());
         assert!(
-            miss.test.delta_bic < -10.0 && !(miss.test.cv_gain_pct > 0.0),
+            miss.test.delta_bic < -10.0 && miss.test.cv_gain_pct <= 0.0,
             "{:?}",
             miss.test
         );
@@ -580,6 +584,22 @@ mod tests {
         );
         let (kept3, _) = select(&d, &empty_base(), &lib3, &gate(3), 3);
         assert_eq!(kept3.first().map(|k| k.term), Some(1));
+    }
+
+    /// A term whose column lives in one fold only is judged by no fold (the fold that holds it
+    /// out cannot determine it in training, the others hold out none of it): its CV gain is
+    /// NaN, undecided, and ΔBIC and the F test keep it.
+    #[test]
+    fn a_term_no_fold_can_judge_is_decided_by_delta_bic() {
+        let one_fold: Vec<f64> = (0..N)
+            .map(|r| if r % FOLDS == 0 { 1.0 } else { 0.0 })
+            .collect();
+        let d = channel(&[(5.0, &one_fold)]);
+        let lib = library(vec![one_fold], vec![0], vec![vec![]]);
+        let (kept, _) = select(&d, &empty_base(), &lib, &gate(1), 1);
+        assert_eq!(kept.iter().map(|k| k.term).collect::<Vec<_>>(), [0]);
+        assert!(kept[0].test.cv_gain_pct.is_nan(), "{:?}", kept[0].test);
+        assert!(kept[0].test.delta_bic < -10.0);
     }
 
     /// A block whose term implies a plausible scale factor but whose library parent does not
