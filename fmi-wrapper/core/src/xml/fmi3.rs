@@ -247,8 +247,5 @@ pub(super) fn document(table: &VariableTable, h: &Header, token: &str) -> Result
     let text = description(table, h, token)?
         .serialize()
         .map_err(|e| e.to_string())?;
-    let mut doc = Element::parse(&text)?;
-    complete(&mut doc, table)?;
-    doc.spell_infinities();
-    doc.to_document()
+    super::finish(&text, |doc| complete(doc, table))
 }

@@ -277,6 +277,19 @@ pub fn content_token(text: &str) -> String {
     )
 }
 
+/// The document fmi-schema serialised (`text`), completed where the library cannot express
+/// the standard (`complete`, per version) and with XML Schema's infinities: the last step of
+/// both versions' writers.
+fn finish(
+    text: &str,
+    complete: impl FnOnce(&mut Element) -> Result<(), String>,
+) -> Result<String, String> {
+    let mut doc = Element::parse(text)?;
+    complete(&mut doc)?;
+    doc.spell_infinities();
+    doc.to_document()
+}
+
 /// The modelDescription.xml and its token (a hash of the document with an empty token).
 ///
 /// Fails only on a table whose start values do not match their variables' kinds (or exceed
