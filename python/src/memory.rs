@@ -111,12 +111,43 @@ pub fn check(what: &str, need: u128, hint: &str) -> PyResult<()> {
 }
 
 /// An empty vector with room for `n` values, or `MemoryError` (through [`error`], for the
-/// whole of `need`) if the reservation fails.
+/// whole of `need`) if the reservation fails. A large reservation is advised for transparent
+/// huge pages ([`advise_huge_pages`]).
 pub fn vec<T>(n: u128, what: &str, need: u128, hint: &str) -> PyResult<Vec<T>> {
-    let mut v = Vec::new();
+    let mut v = Vec::<T>::new();
     usize::try_from(n)
         .ok()
         .and_then(|n| v.try_reserve_exact(n).ok())
         .ok_or_else(|| error(what, need, None, hint))?;
+    advise_huge_pages(v.as_mut_ptr().cast(), v.capacity() * size_of::<T>());
     Ok(v)
+}
+
+/// The transparent-huge-page size of x86-64 and aarch64 (4 KiB base pages).
+const HUGE_PAGE: usize = 2 << 20;
+
+/// Asks the kernel to back the whole 2 MiB pages inside `len` bytes at `ptr` with huge pages
+/// (`madvise(MADV_HUGEPAGE)`), as numpy does for its own large arrays. Why: the arrays of a
+/// run are written once, front to back, and where transparent huge pages are `madvise`-only
+/// (the common default) each 4 KiB page costs a fault on first touch: with the truth columns
+/// (425 bytes a sample) that was most of the difference between `truth=True` and
+/// `truth=False` (docs/python.md, Performance). Advice only: a kernel that declines leaves
+/// the memory as it was, so the result is ignored.
+#[allow(unsafe_code)] // one madvise call on memory this function's caller just reserved
+fn advise_huge_pages(ptr: *mut u8, len: usize) {
+    #[cfg(target_os = "linux")]
+    {
+        let start = (ptr as usize).next_multiple_of(HUGE_PAGE);
+        let end = (ptr as usize + len) / HUGE_PAGE * HUGE_PAGE;
+        if end > start {
+            // SAFETY: [start, end) lies inside the allocation just reserved, which this
+            // process owns and nothing reads yet; MADV_HUGEPAGE changes neither its contents
+            // nor its mapping, only how later faults are served.
+            unsafe {
+                libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE);
+            }
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = (ptr, len, HUGE_PAGE);
 }
