@@ -756,3 +756,33 @@ fn not_utf8(
         ),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use rins_plant::effects::{AccelTerm, GyroTerm};
+    use rins_plant::output_columns::{COLUMNS, Group, entries};
+
+    /// Every column `rins run`/`rins measure` writes (the plant's output table, every group and
+    /// every term) is one this reader accepts, numeric or label as written: a quantity added to
+    /// the table is read back (or this fails until the format names it).
+    #[test]
+    fn every_column_of_the_plants_output_table_is_read() {
+        let groups = [
+            Group::Measured,
+            Group::Setup,
+            Group::Truth,
+            Group::Effects,
+            Group::CarrierTruth,
+        ];
+        let all = entries(&groups, &GyroTerm::ALL, &AccelTerm::ALL, true);
+        assert!(all.len() >= COLUMNS.iter().filter(|c| c.in_csv).count());
+        for e in all {
+            for name in e.names() {
+                let numeric = super::classify(&name)
+                    .unwrap_or_else(|m| panic!("column {name} of the output table: {m}"));
+                let label = matches!(e.column.read, rins_plant::output_columns::Read::Position);
+                assert_eq!(numeric, !label, "{name}");
+            }
+        }
+    }
+}
