@@ -31,9 +31,6 @@ import tomllib
 ALLOWED = {
     # TODO(issue 45): the plant's circles, not yet untangled; remove each entry when its
     # circle is gone.
-    ("plant", ("carrier::own_table", "carrier::run", "plant", "stages::lane", "stages::motion",
-               "stages::readout", "stages::sensor_errors", "stages::temperature", "state")):
-        "TODO(issue 45): the plant and its stages, being untangled separately",
     ("plant", ("table::gimbal", "table::scheme")):
         "TODO(issue 45): the table's gimbal and scheme, being untangled separately",
     ("plant", ("carrier::spec", "carrier::track", "config", "params")):

@@ -48,3 +48,32 @@ pub fn stream_with(
         csv::stream(path, map, chunk_rows, sink)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use rins_plant::effects::{AccelTerm, GyroTerm};
+    use rins_plant::output_columns::{COLUMNS, Group, entries};
+
+    /// Every column `rins run`/`rins measure` writes of a static carrier (the plant's output
+    /// table, every term) is one this reader accepts, numeric or label as written: a quantity
+    /// added to the table is read back, or this fails until the format names it. (The reader
+    /// models a static carrier: a moving carrier's truth columns are refused as unknown,
+    /// docs/scenario-format.md, "Carrier truth".)
+    #[test]
+    fn every_column_of_the_plants_output_table_is_read() {
+        let groups = [Group::Measured, Group::Setup, Group::Truth, Group::Effects];
+        let all = entries(&groups, &GyroTerm::ALL, &AccelTerm::ALL, true);
+        let in_csv = COLUMNS
+            .iter()
+            .filter(|c| c.in_csv && groups.contains(&c.group));
+        assert!(all.len() >= in_csv.count());
+        for e in all {
+            for name in e.names() {
+                let numeric = super::classify(&name)
+                    .unwrap_or_else(|m| panic!("column {name} of the output table: {m}"));
+                let label = matches!(e.column.read, rins_plant::output_columns::Read::Position);
+                assert_eq!(numeric, !label, "{name}");
+            }
+        }
+    }
+}

@@ -67,18 +67,11 @@ impl SeedBatch {
             }
             Kind::Separate(plants)
         };
-        let placeholder = ImuSample {
-            index: 0,
-            t_s: 0.0,
-            dtheta_rad: Default::default(),
-            dv_mps: Default::default(),
-            encoder: Default::default(),
-            temps_c: [0.0; crate::thermal::node::COUNT],
-        };
         Ok(Self {
             seeds: members.iter().map(|m| m.seed).collect(),
             kind,
-            samples: vec![placeholder; members.len()],
+            // Placeholders of the right shape: the first step overwrites every one.
+            samples: vec![ImuSample::default(); members.len()],
         })
     }
 

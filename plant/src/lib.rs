@@ -23,6 +23,7 @@ pub mod effects;
 pub mod kinematics;
 pub mod message;
 pub mod output;
+pub mod output_columns;
 pub mod params;
 pub mod plant;
 pub mod presets;

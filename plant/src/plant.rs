@@ -20,7 +20,7 @@ use crate::stages::dwell_rule::DwellRule;
 use crate::stages::interval::Interval;
 use crate::stages::lane::Lane;
 use crate::stages::motion::Motion;
-use crate::stages::readout::{Readout, ReadoutTerms};
+use crate::stages::readout::{Measured, Readout};
 use crate::stages::sensor_errors::{SensorErrors, TickInput};
 use crate::stages::temperature::{TemperatureField, ThermalEvent};
 use crate::table::{GimbalAngles, Schedule, body_to_nav};
@@ -28,6 +28,7 @@ use crate::thermal::node;
 use crate::true_attitude::TruthMount;
 
 mod isolated;
+mod saved_state;
 
 /// A dwell's interval kept for the rest of the dwell. When a declared effect reads the time,
 /// the tick's catalogue errors and true increments are kept too: each later interval redoes
@@ -307,14 +308,10 @@ impl Plant {
         tr.dv_true_mps = x.dv_true_mps;
         tr.temps = self.temperature.temperatures();
         tr.position_weight = x.position_weight;
-        let sample = ImuSample {
-            index,
-            t_s: self.clock.time_s(),
-            dtheta_rad: measured.dtheta_rad,
-            dv_mps: measured.dv_mps,
-            encoder: self.lane.readout.encoders(tr.gimbal.angles),
-            temps_c: self.lane.readout.temp_readings_c(),
-        };
+        let sample =
+            self.lane
+                .readout
+                .sample(index, self.clock.time_s(), &measured, tr.gimbal.angles);
         self.motion.isolate(&sample.dtheta_rad, tick);
         sample
     }
@@ -355,14 +352,10 @@ impl Plant {
         }
         let first = self.read_out(index, &interval);
         out[0] = first;
+        let angles = self.truth.gimbal.angles;
         for (lane, o) in lanes.iter_mut().zip(&mut out[1..]) {
             let m = lane.measure(&interval);
-            *o = ImuSample {
-                dtheta_rad: m.dtheta_rad,
-                dv_mps: m.dv_mps,
-                temps_c: lane.readout.temp_readings_c(),
-                ..first
-            };
+            *o = lane.readout.sample(first.index, first.t_s, &m, angles);
         }
     }
 
@@ -498,6 +491,18 @@ impl Plant {
         self.lane.readout.temp_readings_c()
     }
 
+    /// What the unit reports now, before its next sample: no increments, the encoders' reading
+    /// of the table's true angles in the truth and the temperature sensors' last readings, at
+    /// the plant's time (an FMU's outputs before its first step).
+    pub fn start_sample(&self) -> ImuSample {
+        self.lane.readout.sample(
+            self.clock.samples(),
+            self.clock.time_s(),
+            &Measured::NONE,
+            self.truth.gimbal.angles,
+        )
+    }
+
     /// The gimbal encoders' readings of the table's true angles in the truth (a measured
     /// output): the last sample's, and before the first step those of the start angles, rad.
     pub fn encoder_readings(&self) -> GimbalAngles {
@@ -579,88 +584,6 @@ impl Plant {
     /// True when the table rides a moving carrier (ship, trajectory or an external vessel model).
     pub fn moving_carrier(&self) -> bool {
         self.motion.is_moving()
-    }
-
-    /// Writes every evolving quantity, stage by stage (caches excluded), for [`crate::state`].
-    pub(crate) fn write_state(&self, w: &mut crate::state::Writer) {
-        w.u64(self.clock.tick());
-        w.u64(self.clock.samples());
-        self.temperature.write(w);
-        self.lane.readout.write(w);
-        self.write_truth(w);
-        self.errors.write(w, &self.truth);
-        self.motion.write(w);
-        w.u64(self.lane.own.is_some() as u64);
-        if let Some(o) = &self.lane.own {
-            o.write(w);
-        }
-    }
-
-    /// Reads what [`Plant::write_state`] wrote into a freshly built plant of the same
-    /// configuration, then rebuilds the derived quantities.
-    pub(crate) fn read_state(
-        &mut self,
-        r: &mut crate::state::Reader<'_>,
-    ) -> Result<(), crate::state::StateError> {
-        let (tick, samples) = (r.u64()?, r.u64()?);
-        self.clock.restore(tick, samples);
-        self.temperature.read(r)?;
-        self.lane.readout.read(r)?;
-        self.read_truth(r)?;
-        let temps = self.temperature.temperatures();
-        self.errors.read(r, &temps, &mut self.truth)?;
-        self.motion.read(r, tick)?;
-        self.lane.own = match r.u64()? {
-            0 => None,
-            1 if self.motion.carrier().is_some_and(|c| c.isolation.is_some()) => {
-                Some(OwnTable::read(r)?)
-            }
-            f => {
-                return Err(crate::state::StateError::Inconsistent(format!(
-                    "own isolation loop flag {f} (0 or 1, and 1 only beside the table's loop)"
-                )));
-            }
-        };
-        self.truth.gimbal = self.motion.gimbal_now();
-        self.dwell = None;
-        Ok(())
-    }
-
-    /// The truth's evolving part (the rest is rebuilt or filled in by the next step).
-    fn write_truth(&self, w: &mut crate::state::Writer) {
-        let mut tr = self.truth;
-        self.lane.readout.terms().write_into(&mut tr);
-        w.v3(&tr.dtheta_true_rad);
-        w.v3(&tr.dv_true_mps);
-        tr.temps.nodes_c.iter().for_each(|x| w.f64(*x));
-        w.f64(tr.temps.chamber_c);
-        tr.gyro_terms_rad.iter().for_each(|v| w.v3(v));
-        tr.accel_terms_mps.iter().for_each(|v| w.v3(v));
-        w.f64(tr.position_weight);
-    }
-
-    fn read_truth(
-        &mut self,
-        r: &mut crate::state::Reader<'_>,
-    ) -> Result<(), crate::state::StateError> {
-        let tr = &mut self.truth;
-        tr.dtheta_true_rad = r.v3()?;
-        tr.dv_true_mps = r.v3()?;
-        for n in tr.temps.nodes_c.iter_mut() {
-            *n = r.f64()?;
-        }
-        tr.temps.chamber_c = r.f64()?;
-        for v in tr.gyro_terms_rad.iter_mut() {
-            *v = r.v3()?;
-        }
-        for v in tr.accel_terms_mps.iter_mut() {
-            *v = r.v3()?;
-        }
-        tr.position_weight = r.f64()?;
-        self.lane
-            .readout
-            .set_terms(ReadoutTerms::read_from(&self.truth));
-        Ok(())
     }
 }
 

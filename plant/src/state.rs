@@ -6,13 +6,17 @@
 //! temperature field, the readout, the truth, the sensor errors (declared effects only), the
 //! motion (commands, carrier). Each stage writes and reads its own part. Caches (dwell,
 //! attitude, schedule cursor) are not saved: they are rebuilt and give the same bits.
+//!
+//! This module is the bottom of the saved state: the format's pieces every stage writes with.
+//! The plant's own part (its header and the order of the stages) is `crate::plant::saved_state`,
+//! so the stages and the plant import this file and it imports neither.
 
 use nalgebra::Vector3;
 
 use crate::config::PlantConfig;
-use crate::plant::Plant;
 
-const MAGIC: &[u8; 8] = b"RINSPS03";
+/// The first bytes of every saved state (the version is its last two characters).
+pub(crate) const MAGIC: &[u8; 8] = b"RINSPS03";
 
 /// Why a state could not be restored.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -81,6 +85,16 @@ pub(crate) struct Reader<'a> {
 }
 
 impl<'a> Reader<'a> {
+    /// Reads `bytes` from `pos` on.
+    pub fn new(bytes: &'a [u8], pos: usize) -> Self {
+        Self { bytes, pos }
+    }
+
+    /// Bytes read so far (the header's included).
+    pub fn pos(&self) -> usize {
+        self.pos
+    }
+
     fn take<const N: usize>(&mut self) -> Result<[u8; N], StateError> {
         let end = self.pos + N;
         let s = self.bytes.get(self.pos..end).ok_or(StateError::Length {
@@ -101,45 +115,5 @@ impl<'a> Reader<'a> {
     }
     pub fn u128(&mut self) -> Result<u128, StateError> {
         Ok(u128::from_le_bytes(self.take::<16>()?))
-    }
-}
-
-impl Plant {
-    /// The plant's evolving state as bytes (see the module notes for the layout).
-    pub fn serialize_state(&self) -> Vec<u8> {
-        let mut w = Writer(MAGIC.to_vec());
-        w.u64(fingerprint(self.config()));
-        self.write_state(&mut w);
-        w.0
-    }
-
-    /// A plant built from `cfg` and resumed from `bytes` (from [`Plant::serialize_state`] of a
-    /// plant with the same configuration): it continues bit-identically.
-    pub fn from_serialized_state(cfg: &PlantConfig, bytes: &[u8]) -> Result<Plant, StateError> {
-        if bytes.len() < 16 || &bytes[..8] != MAGIC {
-            return Err(StateError::BadHeader);
-        }
-        let mut r = Reader { bytes, pos: 8 };
-        let saved = r.u64()?;
-        let current = fingerprint(cfg);
-        if saved != current {
-            return Err(StateError::ConfigMismatch { saved, current });
-        }
-        let mut plant = Plant::new(cfg).map_err(|e| {
-            StateError::Config(
-                e.iter()
-                    .map(|x| x.to_string())
-                    .collect::<Vec<_>>()
-                    .join("; "),
-            )
-        })?;
-        plant.read_state(&mut r)?;
-        if r.pos != bytes.len() {
-            return Err(StateError::Length {
-                got: bytes.len(),
-                expected: r.pos,
-            });
-        }
-        Ok(plant)
     }
 }

@@ -4,15 +4,12 @@
 
 use std::sync::Mutex;
 
-use nalgebra::Vector3;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rins_plant::effects::{AccelTerm, GyroTerm};
-use rins_plant::thermal::node;
-use rins_plant::units::{DPH, UG};
+use rins_plant::output_columns::{self, Entry, Group, OverRow, Read, Reading};
 use rins_plant::{ImuSample, Plant, Truth};
 
 use crate::memory;
@@ -22,67 +19,64 @@ use crate::scenario::PyScenario;
 /// column: the four 16-position stations, a z-up/z-down dwell elsewhere, or moving).
 pub const POSITION_LABELS: [&str; 7] = ["A", "B", "C", "D", "z-up", "z-down", "moving"];
 
-/// Samples gathered while the GIL is released, one column per quantity.
+/// Samples gathered while the GIL is released, one vector per column entry
+/// ([`rins_plant::output_columns`], in the layout's order).
 #[derive(Default)]
 struct Columns {
     n: usize,
     sample: Vec<u64>,
-    t_s: Vec<f64>,
-    dtheta_rad: Vec<f64>,
-    dv_mps: Vec<f64>,
-    outer_deg: Vec<f64>,
-    inner_deg: Vec<f64>,
     position: Vec<u8>,
-    temps_c: Vec<f64>,
-    temp_chamber_c: Vec<f64>,
-    dtheta_true_rad: Vec<f64>,
-    dv_true_mps: Vec<f64>,
-    q_bn: Vec<f64>,
-    gimbal_outer_rad: Vec<f64>,
-    gimbal_inner_rad: Vec<f64>,
-    gyro_dph: Vec<Vec<f64>>,
-    accel_ug: Vec<Vec<f64>>,
-    carrier: Vec<f64>,
+    /// The real columns' values, per entry, sample after sample.
+    reals: Vec<Vec<f64>>,
+    /// One sample's values (scratch).
+    values: Vec<f64>,
 }
 
 /// What the plant produces besides the samples, fixed for a run.
 struct Layout {
-    gyro_terms: Vec<GyroTerm>,
-    accel_terms: Vec<AccelTerm>,
+    /// The column groups gathered: the measured outputs and the set-up, with `truth` the truth,
+    /// the terms' errors and a moving carrier's truth.
+    groups: Vec<Group>,
+    /// The columns of those groups, the term columns once per enabled term.
+    entries: Vec<Entry>,
     /// The mount between the truth's carrier attitude and the table, for q_b^n.
     mount: rins_plant::TruthMount,
-    moving_carrier: bool,
     dt_s: f64,
-    /// Gather the truth columns too.
-    truth: bool,
 }
 
 impl Layout {
     fn of(cfg: &rins_plant::PlantConfig, truth: bool) -> Self {
+        let mut groups = vec![Group::Measured, Group::Setup];
+        if truth {
+            groups.extend([Group::Truth, Group::Effects]);
+            if !cfg.carrier.is_static() {
+                groups.push(Group::CarrierTruth);
+            }
+        }
+        let entries = output_columns::entries(
+            &groups,
+            &cfg.sensor.gyro.enabled_terms(),
+            &cfg.sensor.accel.enabled_terms(),
+            false,
+        );
         Self {
-            gyro_terms: cfg.sensor.gyro.enabled_terms(),
-            accel_terms: cfg.sensor.accel.enabled_terms(),
+            groups,
+            entries,
             mount: rins_plant::TruthMount::of_config(cfg),
-            moving_carrier: !cfg.carrier.is_static(),
             dt_s: 1.0 / cfg.rate_hz,
-            truth,
         }
     }
 
     /// Bytes of one sample's arrays, as [`Columns::reserve`] reserves them.
     fn bytes_per_sample(&self) -> u128 {
-        let f = size_of::<f64>() as u128;
-        // sample, position; t_s, Δθ, Δv, the encoders, the sensors' and the chamber's
-        // temperatures.
-        let measured = (size_of::<u64>() + size_of::<u8>()) as u128
-            + f * (1 + 3 + 3 + 2 + node::COUNT as u128 + 1);
-        if !self.truth {
-            return measured;
-        }
-        // Δθ and Δv true, q_bn, the gimbal angles, each effect's 3 rates, the carrier's 10.
-        let effects = 3 * (self.gyro_terms.len() + self.accel_terms.len()) as u128;
-        let carrier = if self.moving_carrier { 10 } else { 0 };
-        measured + f * (3 + 3 + 4 + 2 + effects + carrier)
+        self.entries
+            .iter()
+            .map(|e| match e.column.read {
+                Read::Index => size_of::<u64>() as u128,
+                Read::Position => size_of::<u8>() as u128,
+                _ => (size_of::<f64>() * e.width()) as u128,
+            })
+            .sum()
     }
 }
 
@@ -126,142 +120,104 @@ const UNINTERRUPTED: u64 = 4096;
 /// Samples between looks at the stop flag of a longer chunk.
 const STOP_EVERY: u64 = 64;
 
-fn push3(v: &mut Vec<f64>, x: &Vector3<f64>) {
-    v.extend_from_slice(&[x.x, x.y, x.z]);
-}
-
 impl Columns {
-    /// Empty columns with room for `n` samples (the truth columns only with `l.truth`), or
-    /// `MemoryError` naming `what` and the bytes `need` if a reservation fails.
+    /// Empty columns with room for `n` samples of `l`'s entries, or `MemoryError` naming `what`
+    /// and the bytes `need` if a reservation fails.
     fn reserve(n: u64, l: &Layout, what: &str, need: u128, hint: &str) -> PyResult<Self> {
         let n = u128::from(n);
-        let v = |k: usize| memory::vec::<f64>(n * k as u128, what, need, hint);
-        let t = |k: usize| if l.truth { v(k) } else { Ok(Vec::new()) };
+        let reals = l
+            .entries
+            .iter()
+            .map(|e| match e.column.read {
+                Read::Index | Read::Position => Ok(Vec::new()),
+                _ => memory::vec::<f64>(n * e.width() as u128, what, need, hint),
+            })
+            .collect::<PyResult<_>>()?;
         Ok(Self {
             n: 0,
             sample: memory::vec(n, what, need, hint)?,
-            t_s: v(1)?,
-            dtheta_rad: v(3)?,
-            dv_mps: v(3)?,
-            outer_deg: v(1)?,
-            inner_deg: v(1)?,
             position: memory::vec(n, what, need, hint)?,
-            temps_c: v(node::COUNT)?,
-            temp_chamber_c: v(1)?,
-            dtheta_true_rad: t(3)?,
-            dv_true_mps: t(3)?,
-            q_bn: t(4)?,
-            gimbal_outer_rad: t(1)?,
-            gimbal_inner_rad: t(1)?,
-            gyro_dph: l.gyro_terms.iter().map(|_| t(3)).collect::<PyResult<_>>()?,
-            accel_ug: l
-                .accel_terms
-                .iter()
-                .map(|_| t(3))
-                .collect::<PyResult<_>>()?,
-            carrier: if l.truth && l.moving_carrier {
-                v(10)?
-            } else {
-                Vec::new()
-            },
+            reals,
+            values: vec![0.0; l.entries.iter().map(Entry::width).max().unwrap_or(0)],
         })
     }
 
     /// One sample, computed as the CSV sink computes a row of one sample.
     fn push(&mut self, s: &ImuSample, tr: &Truth, l: &Layout) {
         self.n += 1;
-        self.sample.push(s.index);
-        self.t_s.push(s.t_s);
-        push3(&mut self.dtheta_rad, &s.dtheta_rad);
-        push3(&mut self.dv_mps, &s.dv_mps);
-        self.outer_deg.push(s.encoder.outer_rad.to_degrees());
-        self.inner_deg.push(s.encoder.inner_rad.to_degrees());
-        let g = &tr.gimbal;
-        let label =
-            rins_plant::table::position_label(g.angles.outer_rad, g.angles.inner_rad, g.moving);
-        let code = POSITION_LABELS
-            .iter()
-            .position(|p| *p == label)
-            .unwrap_or(POSITION_LABELS.len() - 1);
-        self.position.push(code as u8);
-        self.temps_c.extend_from_slice(&s.temps_c);
-        self.temp_chamber_c.push(tr.temps.chamber_c);
-        if !l.truth {
-            return;
-        }
-        push3(&mut self.dtheta_true_rad, &tr.dtheta_true_rad);
-        push3(&mut self.dv_true_mps, &tr.dv_true_mps);
-        // q_b^n = q_c^n·q_v^c·q_z(outer)·q_x(inner) in closed form, the plant's own
-        // composition and the CSV's (docs/carrier.md, Frames).
-        let q = l.mount.q_bn_of(tr);
-        self.q_bn.extend_from_slice(&[q.w, q.i, q.j, q.k]);
-        self.gimbal_outer_rad.push(g.angles.outer_rad);
-        self.gimbal_inner_rad.push(g.angles.inner_rad);
-        // The CSV's mean rate over a row of one sample: increment / (1·Δt), in °/h and µg.
-        let span_s = l.dt_s;
-        for (col, t) in self.gyro_dph.iter_mut().zip(&l.gyro_terms) {
-            push3(col, &(tr.gyro_terms_rad[*t as usize] / (span_s * DPH)));
-        }
-        for (col, t) in self.accel_ug.iter_mut().zip(&l.accel_terms) {
-            push3(col, &(tr.accel_terms_mps[*t as usize] / (span_s * UG)));
-        }
-        if l.moving_carrier {
-            let c = &tr.carrier;
-            let q = c.q_cn.quaternion();
-            self.carrier.extend_from_slice(&[
-                c.lat_rad.to_degrees(),
-                c.lon_rad.to_degrees(),
-                c.height_m,
-                c.v_n.x,
-                c.v_n.y,
-                c.v_n.z,
-                q.w,
-                q.i,
-                q.j,
-                q.k,
-            ]);
+        let r = Reading {
+            sample: s,
+            truth: tr,
+            mount: &l.mount,
+        };
+        for (e, col) in l.entries.iter().zip(&mut self.reals) {
+            match e.column.read {
+                Read::Index => self.sample.push(s.index),
+                Read::Position => {
+                    let label = output_columns::position_of(&r);
+                    let code = POSITION_LABELS
+                        .iter()
+                        .position(|p| *p == label)
+                        .unwrap_or(POSITION_LABELS.len() - 1);
+                    self.position.push(code as u8);
+                }
+                _ => {
+                    let v = &mut self.values[..e.width()];
+                    e.read(&r, v);
+                    // The CSV's mean rate over a row of one sample: increment / (1·Δt).
+                    if let OverRow::MeanRate { unit_si } = e.column.over_row {
+                        v.iter_mut().for_each(|x| *x /= l.dt_s * unit_si);
+                    }
+                    col.extend_from_slice(v);
+                }
+            }
         }
     }
 
-    /// The columns as a dict of numpy arrays (moved, not copied).
+    /// The columns as a dict of numpy arrays (moved, not copied): one array per column under
+    /// its key (1-D for one element, else one row per sample), a term column as a dict of its
+    /// enabled terms' arrays.
     fn into_dict<'py>(self, py: Python<'py>, l: &Layout) -> PyResult<Bound<'py, PyDict>> {
         let n = self.n;
         let d = PyDict::new(py);
-        let mat = |v: Vec<f64>, k: usize| -> PyResult<Bound<'py, PyAny>> {
+        let array = |v: Vec<f64>, k: usize| -> PyResult<Bound<'py, PyAny>> {
+            if k == 1 {
+                return Ok(PyArray1::from_vec(py, v).into_any());
+            }
             let a = Array2::from_shape_vec((n, k), v)
                 .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
             Ok(a.into_pyarray(py).into_any())
         };
-        let vec = |v: Vec<f64>| PyArray1::from_vec(py, v).into_any();
-        d.set_item("sample", PyArray1::from_vec(py, self.sample))?;
-        d.set_item("t_s", vec(self.t_s))?;
-        d.set_item("dtheta_rad", mat(self.dtheta_rad, 3)?)?;
-        d.set_item("dv_mps", mat(self.dv_mps, 3)?)?;
-        d.set_item("outer_deg", vec(self.outer_deg))?;
-        d.set_item("inner_deg", vec(self.inner_deg))?;
-        d.set_item("position", PyArray1::from_vec(py, self.position))?;
-        d.set_item("temps_c", mat(self.temps_c, node::COUNT)?)?;
-        d.set_item("temp_chamber_c", vec(self.temp_chamber_c))?;
-        if !l.truth {
-            return Ok(d);
-        }
-        d.set_item("dtheta_true_rad", mat(self.dtheta_true_rad, 3)?)?;
-        d.set_item("dv_true_mps", mat(self.dv_true_mps, 3)?)?;
-        d.set_item("q_bn", mat(self.q_bn, 4)?)?;
-        d.set_item("gimbal_outer_rad", vec(self.gimbal_outer_rad))?;
-        d.set_item("gimbal_inner_rad", vec(self.gimbal_inner_rad))?;
-        let gyro = PyDict::new(py);
-        for (col, t) in self.gyro_dph.into_iter().zip(&l.gyro_terms) {
-            gyro.set_item(t.key(), mat(col, 3)?)?;
-        }
-        d.set_item("gyro_effects_dph", gyro)?;
-        let accel = PyDict::new(py);
-        for (col, t) in self.accel_ug.into_iter().zip(&l.accel_terms) {
-            accel.set_item(t.key(), mat(col, 3)?)?;
-        }
-        d.set_item("accel_effects_ug", accel)?;
-        if l.moving_carrier {
-            d.set_item("carrier", mat(self.carrier, 10)?)?;
+        let mut reals = l.entries.iter().zip(self.reals).peekable();
+        let (mut sample, mut position) = (Some(self.sample), Some(self.position));
+        for c in output_columns::COLUMNS {
+            if !l.groups.contains(&c.group) {
+                continue;
+            }
+            match c.read {
+                Read::Index => {
+                    reals.next();
+                    let v = sample.take().unwrap_or_default();
+                    d.set_item(c.key, PyArray1::from_vec(py, v))?;
+                }
+                Read::Position => {
+                    reals.next();
+                    let v = position.take().unwrap_or_default();
+                    d.set_item(c.key, PyArray1::from_vec(py, v))?;
+                }
+                Read::Reals(_) => {
+                    let (e, v) = reals.next().expect("an entry per column");
+                    d.set_item(c.key, array(v, e.width())?)?;
+                }
+                Read::GyroTerm | Read::AccelTerm => {
+                    // Every enabled term's entry, in order (an empty dict with none enabled).
+                    let terms = PyDict::new(py);
+                    while let Some((e, v)) = reals.next_if(|(e, _)| e.column.key == c.key) {
+                        terms.set_item(e.term.map_or("", |t| t.1), array(v, e.width())?)?;
+                    }
+                    d.set_item(c.key, terms)?;
+                }
+            }
         }
         Ok(d)
     }

@@ -8,6 +8,7 @@ use rins_plant::carrier::CarrierTruth;
 use rins_plant::effects::accel::ACCEL_TERMS;
 use rins_plant::effects::gyro::GYRO_TERMS;
 use rins_plant::effects::{AccelTerm, GyroTerm};
+use rins_plant::output_columns::column;
 use rins_plant::table::position_label;
 use rins_plant::thermal::node;
 use rins_plant::units::{DPH, UG};
@@ -31,6 +32,8 @@ struct Last {
     /// The carrier, when it moves.
     carrier: Option<CarrierTruth>,
 }
+/// The output columns ([`rins_plant::output_columns`]) shown as min/max/mean envelopes per axis.
+const ENV_INCREMENTS: [&str; 2] = ["dtheta_rad", "dv_mps"];
 const XYZ: [[u8; 3]; 3] = [[220, 50, 50], [50, 160, 50], [50, 90, 230]];
 const ENVELOPE: [[u8; 3]; 3] = [[30, 30, 30], [150, 150, 150], [150, 150, 150]];
 /// Channels of the min/max/mean block: Δθ xyz, Δv xyz, outer, inner.
@@ -117,7 +120,9 @@ impl RunRecorder {
             ]
         };
         let mut env_series = Vec::new();
-        for (q, unit) in [("dtheta_rad", "rad"), ("dv_mps", "m/s")] {
+        // The increments' entity names and units are the output table's.
+        for c in ENV_INCREMENTS.map(|k| column(k).expect("an output column")) {
+            let (q, unit) = (c.key, c.unit);
             for a in AXES {
                 env_series.push(Series::new(
                     rec,
@@ -431,4 +436,29 @@ impl RunRecorder {
 fn fmt_s(s: f64) -> String {
     let t = format!("{s:.3}");
     t.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use rins_plant::output_columns::{COLUMNS, Group};
+
+    /// Where the recording shows each measured and set-up column of the output table: a
+    /// quantity added to the table fails here until the recording shows it (or says why not).
+    #[test]
+    fn the_recording_shows_every_measured_column_of_the_table() {
+        for c in COLUMNS
+            .iter()
+            .filter(|c| matches!(c.group, Group::Measured | Group::Setup))
+        {
+            let shown = match c.key {
+                // The timeline and the dwell label.
+                "sample" | "t_s" | "position" => "timeline / text log",
+                k if super::ENV_INCREMENTS.contains(&k) => "imu/<key>/<axis> envelopes",
+                "outer_deg" | "inner_deg" => "gimbal/<key> envelopes",
+                "temps_c" | "temp_chamber_c" => "thermal/temps_c",
+                k => panic!("the output column {k} is not in the recording: add its series"),
+            };
+            assert!(!shown.is_empty());
+        }
+    }
 }

@@ -339,6 +339,81 @@ mod tests {
         assert_eq!(std::mem::offset_of!(ImuRecord, temps_c), 80);
     }
 
+    /// The records carry the plant's output columns ([`rins_plant::output_columns`]) as the
+    /// table reads them: [`ImuRecord`] every measured column, [`TruthRecord`] the attitude and
+    /// the carrier's truth. The layout is fixed (`#[repr(C)]`, [`LAYOUT_VERSION`]), so a column
+    /// added to the table fails here until it is put on the wire (a new layout version) or
+    /// named as one the wire leaves out.
+    #[test]
+    fn the_records_carry_the_output_columns_of_the_table() {
+        use rins_plant::output_columns::{Group, Reading, entries};
+        let cfg = rins_plant::presets::paper_16pos_config();
+        let mut plant = rins_plant::Plant::new(&cfg).unwrap();
+        let mut s = plant.step();
+        for _ in 0..300 {
+            s = plant.step();
+        }
+        let (truth, mount) = (plant.truth(), plant.truth_mount());
+        let r = Reading {
+            sample: &s,
+            truth: &truth,
+            mount: &mount,
+        };
+        let (rec, tr) = (ImuRecord::from_sample(&s), TruthRecord::from_plant(&plant));
+        let groups = [
+            Group::Measured,
+            Group::Setup,
+            Group::Truth,
+            Group::Effects,
+            Group::CarrierTruth,
+        ];
+        let gyro = rins_plant::effects::GyroTerm::ALL;
+        let accel = rins_plant::effects::AccelTerm::ALL;
+        for e in entries(&groups, &gyro, &accel, false) {
+            let mut want = vec![0.0; e.width()];
+            e.read(&r, &mut want);
+            let got: Vec<f64> = match e.column.key {
+                "sample" => {
+                    assert_eq!(rec.tick, s.index);
+                    continue;
+                }
+                "t_s" => vec![rec.t_s],
+                "dtheta_rad" => rec.dtheta_rad.to_vec(),
+                "dv_mps" => rec.dv_mps.to_vec(),
+                "outer_deg" => vec![rec.outer_rad.to_degrees()],
+                "inner_deg" => vec![rec.inner_rad.to_degrees()],
+                "temps_c" => rec.temps_c.to_vec(),
+                "q_bn" => tr.q_bn.to_vec(),
+                "carrier" => [
+                    tr.lat_rad.to_degrees(),
+                    tr.lon_rad.to_degrees(),
+                    tr.height_m,
+                ]
+                .into_iter()
+                .chain(tr.v_enu_mps)
+                .chain(tr.q_cn)
+                .collect(),
+                // Not on the wire: the test set-up (station label, chamber) and the truth a
+                // navigator's error measures do not take from the batch (the error-free
+                // increments, the gimbal angles, the per-term errors).
+                "position" | "temp_chamber_c" | "dtheta_true_rad" | "dv_true_mps"
+                | "gimbal_outer_rad" | "gimbal_inner_rad" | "gyro_effects_dph"
+                | "accel_effects_ug" => continue,
+                k => panic!(
+                    "the output column {k} is not on the wire: add it to ImuRecord (measured) \
+                     or TruthRecord (truth) with a new LAYOUT_VERSION, or list it here as left out"
+                ),
+            };
+            assert_eq!(got, want, "column {}", e.column.key);
+            assert_eq!(
+                matches!(e.column.group, Group::Measured),
+                e.column.key != "q_bn" && e.column.key != "carrier",
+                "{}: the measured columns ride in ImuRecord, the truth in TruthRecord",
+                e.column.key
+            );
+        }
+    }
+
     #[test]
     fn a_reason_is_cut_at_a_character_boundary_and_read_back() {
         let mut b = ImuBatch::default();

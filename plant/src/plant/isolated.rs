@@ -31,12 +31,9 @@ impl Plant {
         std::iter::once(&mut self.lane)
             .chain(lanes.iter_mut())
             .for_each(|l| l.turn(x, &r, gimbal_ref));
-        let measured = self.lane.measure_turned();
-        for (lane, o) in lanes.iter_mut().zip(out.iter_mut()) {
-            let m = lane.measure_turned();
-            o.dtheta_rad = m.dtheta_rad;
-            o.dv_mps = m.dv_mps;
-        }
+        std::iter::once(&mut self.lane)
+            .chain(lanes.iter_mut())
+            .for_each(|l| l.measure_turned());
         std::iter::once(&mut self.lane)
             .chain(lanes.iter_mut())
             .for_each(|l| l.close(&r));
@@ -47,23 +44,10 @@ impl Plant {
         tr.dv_true_mps = own.dv_true_mps;
         tr.temps = self.temperature.temperatures();
         tr.position_weight = x.position_weight;
-        let first = ImuSample {
-            index,
-            t_s: self.clock.time_s(),
-            dtheta_rad: measured.dtheta_rad,
-            dv_mps: measured.dv_mps,
-            encoder: self.lane.readout.encoders(own.gimbal.angles),
-            temps_c: self.lane.readout.temp_readings_c(),
-        };
+        let t_s = self.clock.time_s();
+        let first = self.lane.turned_sample(index, t_s);
         for (lane, o) in lanes.iter().zip(out) {
-            let g = lane.table.expect("just turned").gimbal;
-            *o = ImuSample {
-                dtheta_rad: o.dtheta_rad,
-                dv_mps: o.dv_mps,
-                encoder: lane.readout.encoders(g.angles),
-                temps_c: lane.readout.temp_readings_c(),
-                ..first
-            };
+            *o = lane.turned_sample(index, t_s);
         }
         self.motion.isolate_reference(&x.dtheta_true_rad, &r);
         first

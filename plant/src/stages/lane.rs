@@ -7,7 +7,7 @@
 use nalgebra::Vector3;
 
 use crate::carrier::own_table::{OwnTable, ReferenceInterval};
-use crate::output::Truth;
+use crate::output::{ImuSample, Truth};
 use crate::stages::interval::Interval;
 use crate::stages::readout::{Measured, Readout};
 use crate::table::GimbalState;
@@ -76,12 +76,11 @@ impl Lane {
 
     /// Second phase: the turned interval measured.
     #[inline(always)]
-    pub fn measure_turned(&mut self) -> Measured {
+    pub fn measure_turned(&mut self) {
         let m = self
             .readout
             .measure(self.turned.as_ref().expect("turned first"));
         self.measured = Some(m);
-        m
     }
 
     /// Third phase: the seed's loop closed with its measured increment.
@@ -90,6 +89,15 @@ impl Lane {
         let m = self.measured.expect("measured first");
         let own = self.own.as_mut().expect("a lane on its own table");
         own.update(&m.dtheta_rad, r);
+    }
+
+    /// After the phases, on an own table: the sample the seed's unit outputs, numbered
+    /// `index` and ending at `t_s` (its encoders read its own table).
+    #[inline(always)]
+    pub fn turned_sample(&self, index: u64, t_s: f64) -> ImuSample {
+        let m = self.measured.expect("measured first");
+        let g = self.table.expect("turned first").gimbal;
+        self.readout.sample(index, t_s, &m, g.angles)
     }
 
     /// The plant's interval `x` as this lane's sensor sees it: without the deterministic errors

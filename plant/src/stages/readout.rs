@@ -13,19 +13,27 @@ use crate::effects::noise::NoiseState;
 use crate::effects::quantize::Quantizer;
 use crate::effects::temp_sensor::TempSensors;
 use crate::effects::{AccelTerm, GyroTerm};
-use crate::output::Truth;
+use crate::output::{ImuSample, Truth};
 use crate::state::{Reader, StateError, Writer};
 use crate::table::GimbalAngles;
 use crate::thermal::node;
 use crate::units::ARCSEC;
 
-/// The measured outputs of one interval.
+/// The measured increments of one interval.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Measured {
     /// Angular increment output, rad.
     pub dtheta_rad: Vector3<f64>,
     /// Velocity increment output, m/s.
     pub dv_mps: Vector3<f64>,
+}
+
+impl Measured {
+    /// No increment yet: what the unit reports before its first sample.
+    pub(crate) const NONE: Measured = Measured {
+        dtheta_rad: Vector3::new(0.0, 0.0, 0.0),
+        dv_mps: Vector3::new(0.0, 0.0, 0.0),
+    };
 }
 
 /// The readout's contributions to the last interval's error, per term (the truth's noise and
@@ -147,6 +155,29 @@ impl Readout {
     /// The encoders' reading of the true angles.
     pub(crate) fn encoders(&self, angles: GimbalAngles) -> GimbalAngles {
         self.encoders.read(angles)
+    }
+
+    /// The sample the unit outputs: the increments `m`, the encoders' reading of the true
+    /// angles `angles` and the temperature sensors' last readings, numbered `index` and ending
+    /// at `t_s`. Every [`ImuSample`] the plant gives is made here (a measured output the plant
+    /// adds is one more field set here), so a plant's, a lane's and an isolated table's samples
+    /// cannot differ in how they are put together.
+    #[inline(always)]
+    pub(crate) fn sample(
+        &self,
+        index: u64,
+        t_s: f64,
+        m: &Measured,
+        angles: GimbalAngles,
+    ) -> ImuSample {
+        ImuSample {
+            index,
+            t_s,
+            dtheta_rad: m.dtheta_rad,
+            dv_mps: m.dv_mps,
+            encoder: self.encoders(angles),
+            temps_c: self.temp_readings_c(),
+        }
     }
 
     /// The last interval's noise and quantisation, per term.

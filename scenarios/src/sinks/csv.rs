@@ -16,10 +16,8 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use anyhow::{Context, Result};
-use nalgebra::Vector3;
 use rins_plant::effects::{AccelTerm, GyroTerm};
-use rins_plant::thermal::node;
-use rins_plant::units::{DPH, UG};
+use rins_plant::output_columns::{self, Entry, Group, OverRow, Read, Reading};
 use rins_plant::{ImuSample, Truth};
 
 use crate::file::OutputSpec;
@@ -29,34 +27,49 @@ use crate::runner::Sink;
 pub struct CsvSink<W: Write> {
     out: W,
     opts: OutputSpec,
-    gyro_terms: Vec<GyroTerm>,
-    accel_terms: Vec<AccelTerm>,
+    /// The columns written, in order ([`rins_plant::output_columns`]).
+    entries: Vec<Entry>,
+    /// Where each entry's values start in `sums` and `values`.
+    offsets: Vec<usize>,
     in_row: u64,
-    dtheta: Vector3<f64>,
-    dv: Vector3<f64>,
-    dtheta_true: Vector3<f64>,
-    dv_true: Vector3<f64>,
-    gyro_sum: Vec<Vector3<f64>>,
-    accel_sum: Vec<Vector3<f64>>,
+    /// The row's sums of the summed columns (increments, term errors), per element.
+    sums: Vec<f64>,
+    /// One sample's values (scratch).
+    values: Vec<f64>,
     line: String,
     dt_s: f64,
     /// The mount between the truth's carrier attitude and the table, for q_b^n.
     mount: rins_plant::TruthMount,
-    /// The carrier moves: write its truth columns.
-    moving_carrier: bool,
     last: Option<(ImuSample, Truth)>,
     /// Run label written as a leading `run` column (measurement files with several runs).
     run: Option<String>,
 }
 
-const AXES: [&str; 3] = ["x", "y", "z"];
-
 /// The carrier truth columns of a moving carrier, in the trajectory file's names and units
 /// (docs/carrier.md): reference point (WGS-84), ground velocity ENU, attitude q_c^n.
-pub const CARRIER_COLUMNS: [&str; 10] = [
-    "lat_deg", "lon_deg", "height_m", "v_e_mps", "v_n_mps", "v_u_mps", "q_cn_w", "q_cn_x",
-    "q_cn_y", "q_cn_z",
-];
+pub const CARRIER_COLUMNS: [&str; 10] = output_columns::CARRIER_NAMES;
+
+/// The columns of a run with `opts`, the enabled terms and a moving carrier or not, in order.
+fn entries(
+    opts: &OutputSpec,
+    gyro_terms: &[GyroTerm],
+    accel_terms: &[AccelTerm],
+    moving_carrier: bool,
+) -> Vec<Entry> {
+    let mut groups = vec![Group::Measured, Group::Setup];
+    if opts.truth {
+        groups.push(Group::Truth);
+    }
+    if opts.effects {
+        groups.push(Group::Effects);
+    }
+    // A moving carrier's truth is written whatever the options: with `t_s` it forms a
+    // trajectory file; the static carrier adds nothing.
+    if moving_carrier {
+        groups.push(Group::CarrierTruth);
+    }
+    output_columns::entries(&groups, gyro_terms, accel_terms, true)
+}
 
 /// Column names for the given options and enabled terms (the carrier truth columns of a moving
 /// carrier are added by the sink, [`CARRIER_COLUMNS`]).
@@ -65,26 +78,10 @@ pub fn header(
     gyro_terms: &[GyroTerm],
     accel_terms: &[AccelTerm],
 ) -> Vec<String> {
-    let mut h: Vec<String> = vec!["sample".into(), "t_s".into()];
-    h.extend(AXES.iter().map(|a| format!("dtheta_{a}_rad")));
-    h.extend(AXES.iter().map(|a| format!("dv_{a}_mps")));
-    h.extend(["outer_deg", "inner_deg", "position"].map(String::from));
-    h.extend(node::NAMES.iter().map(|n| format!("temp_{n}_c")));
-    h.push("temp_chamber_c".into());
-    if opts.truth {
-        h.extend(AXES.iter().map(|a| format!("dtheta_true_{a}_rad")));
-        h.extend(AXES.iter().map(|a| format!("dv_true_{a}_mps")));
-        h.extend(["q_bn_w", "q_bn_x", "q_bn_y", "q_bn_z"].map(String::from));
-    }
-    if opts.effects {
-        for t in gyro_terms {
-            h.extend(AXES.iter().map(|a| format!("gyro_{}_{a}_dph", t.key())));
-        }
-        for t in accel_terms {
-            h.extend(AXES.iter().map(|a| format!("accel_{}_{a}_ug", t.key())));
-        }
-    }
-    h
+    entries(opts, gyro_terms, accel_terms, false)
+        .iter()
+        .flat_map(Entry::names)
+        .collect()
 }
 
 pub use rins_plant::table::position_label;
@@ -119,33 +116,39 @@ impl<W: Write> CsvSink<W> {
         let s = &plant_cfg.sensor;
         let gyro_terms: Vec<GyroTerm> = s.gyro.enabled_terms();
         let accel_terms: Vec<AccelTerm> = s.accel.enabled_terms();
-        let moving_carrier = !plant_cfg.carrier.is_static();
+        let entries = entries(
+            &opts,
+            &gyro_terms,
+            &accel_terms,
+            !plant_cfg.carrier.is_static(),
+        );
         if write_header {
-            let mut h = header(&opts, &gyro_terms, &accel_terms);
+            let mut h: Vec<String> = entries.iter().flat_map(Entry::names).collect();
             if run.is_some() {
                 h.insert(0, "run".into());
             }
-            if moving_carrier {
-                h.extend(CARRIER_COLUMNS.map(String::from));
-            }
             writeln!(out, "{}", h.join(","))?;
         }
+        let offsets: Vec<usize> = entries
+            .iter()
+            .scan(0, |at, e| {
+                let o = *at;
+                *at += e.width();
+                Some(o)
+            })
+            .collect();
+        let width = entries.iter().map(Entry::width).sum();
         Ok(Self {
             out,
             opts,
-            gyro_sum: vec![Vector3::zeros(); gyro_terms.len()],
-            accel_sum: vec![Vector3::zeros(); accel_terms.len()],
-            gyro_terms,
-            accel_terms,
+            entries,
+            offsets,
             in_row: 0,
-            dtheta: Vector3::zeros(),
-            dv: Vector3::zeros(),
-            dtheta_true: Vector3::zeros(),
-            dv_true: Vector3::zeros(),
+            sums: vec![0.0; width],
+            values: vec![0.0; width],
             line: String::with_capacity(1024),
             dt_s: 1.0 / plant_cfg.rate_hz,
             mount: rins_plant::TruthMount::of_config(plant_cfg),
-            moving_carrier,
             last: None,
             run: run.map(str::to_string),
         })
@@ -157,100 +160,69 @@ impl<W: Write> CsvSink<W> {
     }
 
     fn write_row(&mut self) -> Result<()> {
-        let Some((s, tr)) = self.last else {
+        let Some((s, tr)) = &self.last else {
             return Ok(());
         };
         let span_s = self.in_row as f64 * self.dt_s;
+        let r = Reading {
+            sample: s,
+            truth: tr,
+            mount: &self.mount,
+        };
         let l = &mut self.line;
         l.clear();
-        let g = &tr.gimbal;
-        let label = position_label(g.angles.outer_rad, g.angles.inner_rad, g.moving);
-        if let Some(r) = &self.run {
-            write!(l, "{r},")?;
+        if let Some(run) = &self.run {
+            write!(l, "{run},")?;
         }
-        write!(l, "{},{}", s.index, s.t_s)?;
-        for v in [&self.dtheta, &self.dv] {
-            write!(l, ",{},{},{}", v.x, v.y, v.z)?;
-        }
-        // Angles and temperatures as the unit reports them (encoders, temperature sensors); the
-        // position label and the chamber temperature describe the test set-up.
-        write!(
-            l,
-            ",{},{},{}",
-            s.encoder.outer_rad.to_degrees(),
-            s.encoder.inner_rad.to_degrees(),
-            label
-        )?;
-        for t in s.temps_c {
-            write!(l, ",{t}")?;
-        }
-        write!(l, ",{}", tr.temps.chamber_c)?;
-        if self.opts.truth {
-            for v in [&self.dtheta_true, &self.dv_true] {
-                write!(l, ",{},{},{}", v.x, v.y, v.z)?;
+        for (k, (e, &at)) in self.entries.iter().zip(&self.offsets).enumerate() {
+            let sep = if k == 0 { "" } else { "," };
+            let w = e.width();
+            match e.column.read {
+                Read::Index => write!(l, "{sep}{}", s.index)?,
+                Read::Position => write!(l, "{sep}{}", output_columns::position_of(&r))?,
+                _ => {
+                    let v = &mut self.values[at..at + w];
+                    match e.column.over_row {
+                        // Attitude, angles and temperatures at the end of the row.
+                        OverRow::Last => e.read(&r, v),
+                        OverRow::Sum => v.copy_from_slice(&self.sums[at..at + w]),
+                        OverRow::MeanRate { unit_si } => {
+                            for (x, sum) in v.iter_mut().zip(&self.sums[at..at + w]) {
+                                *x = sum / (span_s * unit_si);
+                            }
+                        }
+                    }
+                    for (i, x) in v.iter().enumerate() {
+                        let sep = if i == 0 { sep } else { "," };
+                        write!(l, "{sep}{x}")?;
+                    }
+                }
             }
-            // q_b^n = q_c^n·q_v^c·q_z(outer)·q_x(inner) in closed form, the plant's own
-            // composition (docs/carrier.md, Frames).
-            let q = self.mount.q_bn_of(&tr);
-            write!(l, ",{},{},{},{}", q.w, q.i, q.j, q.k)?;
-        }
-        if self.opts.effects {
-            for v in &self.gyro_sum {
-                let r = v / (span_s * DPH);
-                write!(l, ",{},{},{}", r.x, r.y, r.z)?;
-            }
-            for v in &self.accel_sum {
-                let r = v / (span_s * UG);
-                write!(l, ",{},{},{}", r.x, r.y, r.z)?;
-            }
-        }
-        if self.moving_carrier {
-            let c = &tr.carrier;
-            let q = c.q_cn.quaternion();
-            write!(
-                l,
-                ",{},{},{},{},{},{},{},{},{},{}",
-                c.lat_rad.to_degrees(),
-                c.lon_rad.to_degrees(),
-                c.height_m,
-                c.v_n.x,
-                c.v_n.y,
-                c.v_n.z,
-                q.w,
-                q.i,
-                q.j,
-                q.k
-            )?;
         }
         l.push('\n');
         self.out.write_all(l.as_bytes())?;
         self.in_row = 0;
-        self.dtheta = Vector3::zeros();
-        self.dv = Vector3::zeros();
-        self.dtheta_true = Vector3::zeros();
-        self.dv_true = Vector3::zeros();
-        self.gyro_sum.iter_mut().for_each(|v| *v = Vector3::zeros());
-        self.accel_sum
-            .iter_mut()
-            .for_each(|v| *v = Vector3::zeros());
+        self.sums.iter_mut().for_each(|x| *x = 0.0);
         Ok(())
     }
 }
 
 impl<W: Write> Sink for CsvSink<W> {
     fn sample(&mut self, s: &ImuSample, tr: &Truth) -> Result<()> {
-        self.dtheta += s.dtheta_rad;
-        self.dv += s.dv_mps;
-        if self.opts.truth {
-            self.dtheta_true += tr.dtheta_true_rad;
-            self.dv_true += tr.dv_true_mps;
-        }
-        if self.opts.effects {
-            for (acc, t) in self.gyro_sum.iter_mut().zip(&self.gyro_terms) {
-                *acc += tr.gyro_terms_rad[*t as usize];
-            }
-            for (acc, t) in self.accel_sum.iter_mut().zip(&self.accel_terms) {
-                *acc += tr.accel_terms_mps[*t as usize];
+        let r = Reading {
+            sample: s,
+            truth: tr,
+            mount: &self.mount,
+        };
+        // Increments and term errors are summed over the row, element by element.
+        for (e, &at) in self.entries.iter().zip(&self.offsets) {
+            if e.column.over_row != OverRow::Last {
+                let w = e.width();
+                let v = &mut self.values[at..at + w];
+                e.read(&r, v);
+                for (acc, x) in self.sums[at..at + w].iter_mut().zip(v.iter()) {
+                    *acc += x;
+                }
             }
         }
         self.in_row += 1;

@@ -210,24 +210,12 @@ pub fn sample_real(
                 // Before the first step (initialization mode included) the unit's readings of
                 // its initial state: a master initialising a controller from them reads the
                 // start temperatures and angles, not zeros.
-                None => read(&start_sample(v.plant), i),
+                None => read(&v.plant.start_sample(), i),
             })
         }),
         store: Some(Box::new(move |r, i, x| store(&mut r.sample, i, real(x)))),
         sample_field: Some(field),
         per_step: false,
-    }
-}
-
-/// What the unit reports before its first sample: no increments yet, the encoders' readings
-/// of the start angles and the temperature sensors' first readings, at the plant's time now.
-fn start_sample(plant: &Plant) -> ImuSample {
-    ImuSample {
-        index: plant.samples_done(),
-        t_s: plant.time_s(),
-        encoder: plant.encoder_readings(),
-        temps_c: plant.temp_readings_c(),
-        ..ImuSample::default()
     }
 }
 

@@ -324,3 +324,116 @@ fn shipped_parameter_sets_are_current() {
         );
     }
 }
+
+/// The FMU outputs of each output column of the plant's table ([`rins_plant::output_columns`])
+/// and the factor from the FMU's unit to the column's; `None`: the FMU does not output it.
+/// The FMU's names and value references stay as they are (a master's connections rely on
+/// them), so a column added to the table has its outputs named here, or the reason it has none.
+fn fmu_outputs_of(key: &str) -> Option<(Vec<String>, f64)> {
+    let one = |n: &str| Some((vec![n.to_string()], 1.0));
+    let deg = |n: &str| Some((vec![n.to_string()], 1f64.to_degrees()));
+    match key {
+        "t_s" => one("imu.time_s"),
+        "dtheta_rad" => one("imu.dtheta_rad"),
+        "dv_mps" => one("imu.dv_mps"),
+        "outer_deg" => deg("imu.encoder_outer_rad"),
+        "inner_deg" => deg("imu.encoder_inner_rad"),
+        "temps_c" => Some((
+            rins_plant::thermal::node::NAMES
+                .iter()
+                .map(|n| format!("imu.temp_{n}_c"))
+                .collect(),
+            1.0,
+        )),
+        "temp_chamber_c" => one("thermal.chamber_c"),
+        "dtheta_true_rad" => one("truth.dtheta_rad"),
+        "dv_true_mps" => one("truth.dv_mps"),
+        "q_bn" => one("truth.q_bn"),
+        "gimbal_outer_rad" => one("gimbal.outer_rad"),
+        "gimbal_inner_rad" => one("gimbal.inner_rad"),
+        // The sample's number is `imu.sample_count`, an Integer (the count, index + 1): checked
+        // beside. The station label is a string the FMU leaves to the master (its gimbal.*
+        // outputs carry the angles and `gimbal.moving`); the term columns are one output per
+        // term (`effect.gyro.*`, `effect.accel.*`, checked beside); `rins fmu run` refuses a
+        // moving carrier, whose truth no output carries.
+        "sample" | "position" | "gyro_effects_dph" | "accel_effects_ug" | "carrier" => None,
+        k => panic!(
+            "the output column {k} has no FMU output: add its row at the end of outputs.rs's \
+             table (the value references of the others stay) and name it here"
+        ),
+    }
+}
+
+/// Every output column of the plant's table is an FMU output reading the same values (in the
+/// FMU's units), and every term column's enabled terms are outputs too: a quantity added to
+/// the table and not to the FMU fails here.
+#[test]
+fn every_output_column_of_the_table_is_an_fmu_output() {
+    use rins_plant::output_columns::{Group, Reading, entries};
+    let cfg = rins_plant::presets::paper_16pos_config();
+    let mut plant = Plant::new(&cfg).unwrap();
+    let mut s = plant.step();
+    for _ in 0..300 {
+        s = plant.step();
+    }
+    let truth = plant.truth();
+    let mount = plant.truth_mount();
+    let r = Reading {
+        sample: &s,
+        truth: &truth,
+        mount: &mount,
+    };
+    let view = View {
+        plant: &plant,
+        truth,
+        sample: Some(&s),
+        true_sums: None,
+    };
+    let read = |name: &str| -> Vec<f64> {
+        let o = outputs()
+            .iter()
+            .find(|o| o.decl.name == name)
+            .unwrap_or_else(|| panic!("no FMU output {name}"));
+        (0..o.decl.count())
+            .map(|i| match (o.read)(&view, i) {
+                Value::Real(x) => x,
+                v => panic!("{name}: {v:?}"),
+            })
+            .collect()
+    };
+    let groups = [
+        Group::Measured,
+        Group::Setup,
+        Group::Truth,
+        Group::Effects,
+        Group::CarrierTruth,
+    ];
+    let gyro = rins_plant::effects::GyroTerm::ALL;
+    let accel = rins_plant::effects::AccelTerm::ALL;
+    for e in entries(&groups, &gyro, &accel, false) {
+        let mut want = vec![0.0; e.width()];
+        e.read(&r, &mut want);
+        let (names, factor) = match (e.column.key, e.term) {
+            ("gyro_effects_dph", Some((_, key))) => (vec![format!("effect.gyro.{key}_rad")], 1.0),
+            ("accel_effects_ug", Some((_, key))) => (vec![format!("effect.accel.{key}_mps")], 1.0),
+            ("sample", _) => {
+                let o = outputs()
+                    .iter()
+                    .find(|o| o.decl.name == "imu.sample_count")
+                    .unwrap();
+                assert_eq!((o.read)(&view, 0), Value::Integer(s.index + 1));
+                continue;
+            }
+            (key, _) => match fmu_outputs_of(key) {
+                Some(x) => x,
+                None => continue,
+            },
+        };
+        let got: Vec<f64> = names
+            .iter()
+            .flat_map(|n| read(n))
+            .map(|x| x * factor)
+            .collect();
+        assert_eq!(got, want, "column {} ({names:?})", e.column.key);
+    }
+}
