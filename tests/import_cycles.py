@@ -27,19 +27,8 @@ import sys
 import tomllib
 
 # Circles that are one concept: (crate folder, sorted module paths as printed) -> why. Each is
-# named in docs/architecture.md ("Import circles") too. None today, but for the TODO entries.
-ALLOWED = {
-    # TODO(issue 45): the plant's circles, not yet untangled; remove each entry when its
-    # circle is gone.
-    ("plant", ("table::gimbal", "table::scheme")):
-        "TODO(issue 45): the table's gimbal and scheme, being untangled separately",
-    ("plant", ("carrier::spec", "carrier::track", "config", "params")):
-        "TODO(issue 45): the carrier's spec and track with the config, being untangled separately",
-    ("plant", ("carrier::segment", "carrier::waves", "simd")):
-        "TODO(issue 45): the carrier's segments and waves with simd, being untangled separately",
-    ("plant", ("carrier::trajectory", "carrier::trajectory_text")):
-        "TODO(issue 45): the trajectory and its text format, being untangled separately",
-}
+# named in docs/architecture.md ("Import circles") too. None today.
+ALLOWED = {}
 
 
 def module_of(src, path):

@@ -3,7 +3,8 @@
 
 use crate::message::Num;
 use crate::table::GimbalAngles;
-use crate::table::scheme::{GimbalAxis, ResolvedStep};
+use crate::table::gimbal::GimbalAxis;
+use crate::table::scheme::ResolvedStep;
 
 /// A table command from the navigation computer (a real RINS navigation computer drives its own
 /// table). It takes effect at the start of the next output interval: the table leaves its

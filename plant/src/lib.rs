@@ -36,6 +36,7 @@ pub mod thermal;
 pub mod trig;
 pub mod true_attitude;
 pub mod units;
+mod validation;
 
 pub use batch::SeedBatch;
 pub use command::GimbalCommand;

@@ -12,8 +12,7 @@
 
 use nalgebra::Complex;
 
-use crate::carrier::segment::POINT_CHANNELS;
-use crate::carrier::waves::JET_LEN;
+use crate::carrier::widths::{JET_LEN, POINT_CHANNELS};
 
 /// Rows per block of [`combine_mirrored`]: one AVX-512 vector of f64.
 pub(crate) const LANES: usize = 8;

@@ -496,7 +496,7 @@ fn carrier_problems(
         let legs_s: f64 = c.ship.legs.iter().map(|l| l.duration_s).sum();
         if duration_s > legs_s
             && let Some((path, e, g)) =
-                rins_plant::carrier::spec::polar_problem(&c.ship, duration_s)
+                rins_plant::carrier::track::polar_problem(&c.ship, duration_s)
         {
             problems.push((path, format!("expected {e}, got {g}")));
         }

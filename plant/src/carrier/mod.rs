@@ -19,8 +19,10 @@ pub mod ship;
 pub mod spec;
 pub mod track;
 pub mod trajectory;
+pub mod trajectory_error;
 pub mod trajectory_text;
 pub mod waves;
+pub mod widths;
 
 pub use carrier_state::{CarrierState, CarrierTruth};
 pub use spec::{

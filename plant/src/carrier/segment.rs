@@ -63,8 +63,7 @@ pub const SEGMENT_MIN_TICKS: u64 = 2 * LANES as u64;
 /// α_nc^c (30..33).
 pub const CHANNELS: usize = 33;
 
-/// Channels a tick's increments need (ω_ic^c, f^c, up axis).
-pub const POINT_CHANNELS: usize = 9;
+pub use super::widths::POINT_CHANNELS;
 
 /// Per-row weights (`w[r·n + j]`, n per row) as blocks of [`LANES`] rows, weight after weight
 /// (the layout of [`combine_mirrored`]). Half segments are powers of two ≥ [`LANES`] ticks.

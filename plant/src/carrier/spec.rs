@@ -1,6 +1,5 @@
 //! The `[carrier]` section: what carries the table (static, a ship, a trajectory file).
 
-use crate::message::Num;
 use serde::{Deserialize, Serialize};
 
 /// Which carrier moves the table.
@@ -298,82 +297,6 @@ pub enum AfterEnd {
     /// acceleration and rates (a file that still moves at its last row then stops in one
     /// tick: end it at rest).
     Hold,
-}
-
-/// Checks the sea state against physics, calling `fail(path, expected, got)` for each problem:
-/// the band shortest frequency first and not empty, and a significant steepness below
-/// [`MAX_STEEPNESS`] (when a spectrum is on).
-pub fn validate_sea(sea: &SeaSpec, fail: &mut dyn FnMut(&str, &str, String)) {
-    let [lo, hi] = sea.band;
-    if lo >= hi {
-        fail(
-            "carrier.ship.sea.band",
-            "the shortest then the longest frequency, band[0] < band[1], each in [0.1, 10] \
-             (multiples of the peak frequency; an empty band has no waves)",
-            format!("[{}, {}]", Num(lo), Num(hi)),
-        );
-    }
-    let (hs, tp) = sea.hs_tp();
-    // A height or period outside its own range is reported by the range check alone (with an
-    // infinite or vanishing one the limits below would read "tp_s above inf s").
-    let within = |v: f64, path: &str| {
-        crate::params::range_for(path).is_none_or(|(lo, hi)| v >= lo && v <= hi)
-    };
-    let in_range = within(hs, "carrier.ship.sea.hs_m") && within(tp, "carrier.ship.sea.tp_s");
-    if sea.spectrum != SpectrumKind::None && in_range && sea.steepness() >= MAX_STEEPNESS {
-        let lambda = G_WAVE_MPS2 * tp * tp / (2.0 * std::f64::consts::PI);
-        let tp_min = (hs / MAX_STEEPNESS * 2.0 * std::f64::consts::PI / G_WAVE_MPS2).sqrt();
-        fail(
-            "carrier.ship.sea.hs_m",
-            &format!(
-                "a significant wave height below λp/7 = {:.3} m for tp_s = {} s (significant \
-                 steepness Hs/λp < 1/7, λp = g·Tp²/(2π) = {:.3} m: steeper waves break), \
-                 or tp_s above {:.3} s for this height",
-                Num(lambda * MAX_STEEPNESS),
-                Num(tp),
-                Num(lambda),
-                Num(tp_min),
-            ),
-            format!("hs_m = {} (steepness {:.3})", Num(hs), Num(sea.steepness())),
-        );
-    }
-}
-
-/// A ship leg that would go beyond ±[`super::track::MAX_LAT_DEG`] before `until_s` (the last
-/// leg continuing), as (path, expected, got) for an error message; `None` when the track
-/// stays inside.
-pub fn polar_problem(ship: &ShipSpec, until_s: f64) -> Option<(String, String, String)> {
-    let track = super::track::Track::new(ship);
-    let x = track.polar_excursion(ship.lat_deg.to_radians(), ship.height_m, until_s)?;
-    let l = ship.legs.get(x.leg)?;
-    let last = x.leg + 1 == ship.legs.len();
-    let span = if last && until_s > track_end_s(ship) {
-        format!("continued to the end of the run at {} s", Num(until_s))
-    } else {
-        format!("{} s long", Num(l.duration_s))
-    };
-    Some((
-        format!("carrier.ship.legs[{}]", x.leg),
-        format!(
-            "legs that keep the ship within ±{} ° latitude (a rhumb line spirals into a pole \
-             and never passes it, and the local-level frame is singular there): change the \
-             leg's heading or shorten it",
-            super::track::MAX_LAT_DEG
-        ),
-        format!(
-            "leg {} (heading {} °, {} kn, {span}) would reach latitude {:.3} ° at t = {:.0} s",
-            x.leg,
-            Num(l.heading_deg),
-            Num(l.speed_kn),
-            x.lat_deg,
-            x.t_s
-        ),
-    ))
-}
-
-/// The end of the last leg, s.
-fn track_end_s(ship: &ShipSpec) -> f64 {
-    ship.legs.iter().map(|l| l.duration_s).sum()
 }
 
 #[cfg(test)]

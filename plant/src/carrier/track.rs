@@ -15,6 +15,7 @@ use nalgebra::Vector3;
 
 use super::spec::ShipSpec;
 use crate::earth::{EarthPoint, LocalEarth};
+use crate::message::Num;
 use crate::units::DEG;
 
 /// Knots to m/s.
@@ -380,4 +381,41 @@ impl Track {
         }
         None
     }
+}
+
+/// A ship leg that would go beyond ±[`MAX_LAT_DEG`] before `until_s` (the last
+/// leg continuing), as (path, expected, got) for an error message; `None` when the track
+/// stays inside.
+pub fn polar_problem(ship: &ShipSpec, until_s: f64) -> Option<(String, String, String)> {
+    let track = Track::new(ship);
+    let x = track.polar_excursion(ship.lat_deg.to_radians(), ship.height_m, until_s)?;
+    let l = ship.legs.get(x.leg)?;
+    let last = x.leg + 1 == ship.legs.len();
+    let span = if last && until_s > track_end_s(ship) {
+        format!("continued to the end of the run at {} s", Num(until_s))
+    } else {
+        format!("{} s long", Num(l.duration_s))
+    };
+    Some((
+        format!("carrier.ship.legs[{}]", x.leg),
+        format!(
+            "legs that keep the ship within ±{} ° latitude (a rhumb line spirals into a pole \
+             and never passes it, and the local-level frame is singular there): change the \
+             leg's heading or shorten it",
+            MAX_LAT_DEG
+        ),
+        format!(
+            "leg {} (heading {} °, {} kn, {span}) would reach latitude {:.3} ° at t = {:.0} s",
+            x.leg,
+            Num(l.heading_deg),
+            Num(l.speed_kn),
+            x.lat_deg,
+            x.t_s
+        ),
+    ))
+}
+
+/// The end of the last leg, s.
+fn track_end_s(ship: &ShipSpec) -> f64 {
+    ship.legs.iter().map(|l| l.duration_s).sum()
 }

@@ -21,6 +21,7 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 use super::carrier_state::CarrierState;
 use super::track::wrap_lon_rad;
+pub use super::trajectory_error::TrajectoryError;
 use crate::earth::radii_of_curvature;
 use crate::message::Num;
 use crate::units::DEG;
@@ -40,22 +41,6 @@ pub const STEP_REL_TOL: f64 = 1e-6;
 pub const JUMP_ABS_TOL_M: f64 = 0.1;
 /// See [`JUMP_ABS_TOL_M`].
 pub const JUMP_REL_TOL: f64 = 0.01;
-
-/// An error in a trajectory file; `row` counts data rows from 1 (the header is row 0). The
-/// message says where ([`crate::message::file_location`]): the whole file (row 0 without a
-/// column), the header's column, the row, or the row's column.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{source_name}: {}: {message}", crate::message::file_location(*.row, .column))]
-pub struct TrajectoryError {
-    /// File name.
-    pub source_name: String,
-    /// Data row (1-based; 0 = header).
-    pub row: usize,
-    /// Column name.
-    pub column: String,
-    /// What is wrong and what was expected.
-    pub message: String,
-}
 
 /// One row.
 #[derive(Clone, Copy, Debug, PartialEq)]

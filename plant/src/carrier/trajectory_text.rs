@@ -8,7 +8,7 @@
 
 use std::io::{BufRead, BufReader, Read};
 
-use super::trajectory::TrajectoryError;
+use super::trajectory_error::TrajectoryError;
 
 /// Longest line accepted, bytes (the measurement reader's limit: a trajectory row is about two
 /// hundred bytes, a header about one hundred).

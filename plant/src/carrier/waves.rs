@@ -46,8 +46,7 @@ pub mod dof {
     pub const SWAY: usize = 5;
 }
 
-/// Number of jet values: six degrees of freedom × (value, rate, acceleration).
-pub const JET_LEN: usize = 18;
+pub use super::widths::JET_LEN;
 
 /// Values, rates and accelerations of the six degrees of freedom at one instant
 /// (rad, rad/s, rad/s² for roll, pitch, yaw; m, m/s, m/s² for heave, surge, sway).

@@ -4,7 +4,7 @@
 //! [`super::apply`] address the configuration through this walk alone, so an FMU's start does
 //! not serialise the configuration.
 //!
-//! Plain tables use [`param_fields!`], which destructures the whole struct: a field added to a
+//! Plain tables use `param_fields!` (below), which destructures the whole struct: a field added to a
 //! configuration type without a place here does not compile. Enumerations are written by hand,
 //! with the names serde reads and writes (`rename_all`), tested against serde.
 

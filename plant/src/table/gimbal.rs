@@ -1,8 +1,18 @@
 //! Dual-axis table kinematics: gimbal angles to IMU attitude and body rate.
 
 use nalgebra::{Matrix3, Vector3};
+use serde::{Deserialize, Serialize};
 
-use super::scheme::GimbalAxis;
+/// One of the two table axes. The outer axis is the vehicle's vertical (azimuth) axis; the
+/// inner axis is carried by the outer gimbal and is the IMU's x axis: C_b^v = R_z(outer)·R_x(inner).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum GimbalAxis {
+    /// Azimuth axis, fixed to the vehicle.
+    Outer,
+    /// Axis carried by the outer gimbal, along body x.
+    Inner,
+}
 
 /// Outer (azimuth) and inner gimbal angles, rad.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]

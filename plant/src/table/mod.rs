@@ -6,7 +6,9 @@ pub mod schedule;
 pub mod scheme;
 pub mod turn;
 
-pub use gimbal::{GimbalAngles, GimbalFrame, body_to_nav, gimbal_body_rate, position_label};
+pub use gimbal::{
+    GimbalAngles, GimbalAxis, GimbalFrame, body_to_nav, gimbal_body_rate, position_label,
+};
 pub use schedule::{Cursor, GimbalState, Schedule};
-pub use scheme::{GimbalAxis, RotationStep, SchemeKind, SchemeSpec};
+pub use scheme::{RotationStep, SchemeKind, SchemeSpec};
 pub use turn::SmoothTurn;

@@ -2,8 +2,9 @@
 //! saved plant state (tick counter only) restores the table exactly.
 
 use super::gimbal::GimbalAngles;
+use super::gimbal::GimbalAxis;
 use super::profile::TrapezoidProfile;
-use super::scheme::{GimbalAxis, ResolvedScheme};
+use super::scheme::ResolvedScheme;
 
 /// Where the table is at an instant.
 #[derive(Clone, Copy, Debug, PartialEq)]

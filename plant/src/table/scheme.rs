@@ -3,19 +3,8 @@
 use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
 
-use super::gimbal::{GimbalAngles, body_to_nav};
+use super::gimbal::{GimbalAngles, GimbalAxis, body_to_nav};
 use crate::units::DEG;
-
-/// One of the two table axes. The outer axis is the vehicle's vertical (azimuth) axis; the
-/// inner axis is carried by the outer gimbal and is the IMU's x axis: C_b^v = R_z(outer)·R_x(inner).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum GimbalAxis {
-    /// Azimuth axis, fixed to the vehicle.
-    Outer,
-    /// Axis carried by the outer gimbal, along body x.
-    Inner,
-}
 
 /// One step of a rotation scheme: rotate one gimbal by `angle_deg` (signed), then dwell.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

@@ -406,8 +406,8 @@ fn rhumb_lines_across_the_antimeridian_and_near_the_poles_follow_the_closed_form
 /// 40 000 s would end at 91.05°, past the pole); legs that stay inside are accepted.
 #[test]
 fn legs_beyond_89_degrees_are_refused_naming_the_leg_and_latitude() {
-    use rins_plant::carrier::spec::polar_problem;
     use rins_plant::carrier::track::Track;
+    use rins_plant::carrier::track::polar_problem;
     let u = 60.0 * KN;
     let lat80 = 80f64.to_radians();
     // Durations due north at 60 kn from 80° N to 88.99° and 89.01°.

@@ -16,8 +16,9 @@ use crate::config::PlantConfig;
 use crate::earth::Site;
 use crate::kinematics::{TableIncrements, table_increments};
 use crate::state::{Reader, StateError, Writer};
+use crate::table::gimbal::GimbalAxis;
 use crate::table::gimbal::gimbal_rotation;
-use crate::table::scheme::{GimbalAxis, ResolvedScheme, ResolvedStep};
+use crate::table::scheme::{ResolvedScheme, ResolvedStep};
 use crate::table::{Cursor, GimbalAngles, GimbalState, Schedule, body_to_nav};
 
 /// Last internal tick at or before `hold_s` (a dwell end); whether the boundary tick itself is
