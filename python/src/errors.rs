@@ -29,7 +29,7 @@ create_exception!(
 );
 
 /// A scenario error as `rins.ScenarioError`, with the scenario crate's message.
-pub fn scenario_error(e: rins_scenarios::ScenarioError) -> PyErr {
+pub fn scenario_error(e: rins_scenario::ScenarioError) -> PyErr {
     ScenarioError::new_err(e.to_string())
 }
 

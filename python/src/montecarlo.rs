@@ -131,7 +131,7 @@ pub fn end_figures(
         align,
         subsamples,
     )?;
-    rins_scenarios::runner::new_plant(&opt.plant, &sc.inner.source)
+    rins_scenario::new_plant(&opt.plant, &sc.inner.source)
         .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
     check_records(
         "rins.montecarlo (end_figures)",
@@ -206,7 +206,7 @@ pub fn table4_json(
         None => Alignment::Truth,
     };
     let opt = options(&sc, runs, days * 86_400.0, align, subsamples)?;
-    rins_scenarios::runner::new_plant(&opt.plant, &sc.inner.source)
+    rins_scenario::new_plant(&opt.plant, &sc.inner.source)
         .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
     // The seeds and the noise-free pair, and the first seed's series kept for the figures.
     check_records(

@@ -89,7 +89,7 @@ pub fn navigate<'py>(
         subsamples,
         ..NavRunConfig::default()
     };
-    let mut plant = rins_scenarios::runner::new_plant(&cfg, &sc.inner.source)
+    let mut plant = rins_scenario::new_plant(&cfg, &sc.inner.source)
         .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
     // The records the session keeps (as it counts them), then the arrays made from them.
     let samples = (nav_s / plant.dt_s()).round() as u64;

@@ -6,8 +6,8 @@ use std::path::Path;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat, PyList, PyTuple};
-use rins_scenarios::file::BUILTIN;
-use rins_scenarios::{Scenario, ScenarioError};
+use rins_scenario::file::BUILTIN;
+use rins_scenario::{Scenario, ScenarioError};
 
 use crate::errors::scenario_error;
 

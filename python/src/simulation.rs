@@ -281,7 +281,7 @@ impl Simulation {
                 Caller::Chunk.hint(),
             )?;
         }
-        let plant = rins_scenarios::runner::new_plant(&cfg, &sc.inner.source)
+        let plant = rins_scenario::new_plant(&cfg, &sc.inner.source)
             .map_err(|e| crate::errors::ScenarioError::new_err(format!("{e:#}")))?;
         Ok(Self {
             layout: Layout::of(&cfg, truth),

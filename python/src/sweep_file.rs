@@ -11,9 +11,9 @@ use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rins_plant::PlantConfig;
-use rins_scenarios::sweep::result::SeedResult;
-use rins_scenarios::sweep::spec::Align;
-use rins_scenarios::sweep::{SweepPlan, SweepReport, engine};
+use rins_sweep::result::SeedResult;
+use rins_sweep::spec::Align;
+use rins_sweep::{SweepPlan, SweepReport, engine};
 
 use crate::errors::{NavigationError, SweepError};
 use crate::montecarlo::{check_records, figures, from_figures};
@@ -33,7 +33,7 @@ pub struct PySweepPlan {
     inner: SweepPlan,
 }
 
-fn sweep_error(e: rins_scenarios::sweep::SweepError) -> PyErr {
+fn sweep_error(e: rins_sweep::SweepError) -> PyErr {
     SweepError::new_err(e.to_string())
 }
 
@@ -121,12 +121,10 @@ impl PySweepPlan {
                 "run fewer seeds or fewer days (sweep.seeds, sweep.days)",
             )?;
         }
-        let r = crate::interrupt::run(py, |stop| {
-            rins_scenarios::sweep::run(plan, &|_| stop.check())
-        })?
-        .map_err(|e| {
-            NavigationError::new_err(format!("{}: running the sweep: {e}", self.inner.source))
-        })?;
+        let r = crate::interrupt::run(py, |stop| rins_sweep::run(plan, &|_| stop.check()))?
+            .map_err(|e| {
+                NavigationError::new_err(format!("{}: running the sweep: {e}", self.inner.source))
+            })?;
         json(&r)
     }
 

@@ -6,7 +6,7 @@ fn main() {
     let t1 = 0.0;
     let m = rins_mvm::reader::read(std::path::Path::new(&args[2])).unwrap();
     let t2 = t0.elapsed().as_secs_f64();
-    let sc = rins_scenarios::file::Scenario::load(std::path::Path::new(&args[1])).unwrap();
+    let sc = rins_scenario::file::Scenario::load(std::path::Path::new(&args[1])).unwrap();
     let h = rins_mvm::to_history(m, "data").unwrap();
     let t3 = t0.elapsed().as_secs_f64();
     let a = rins_mvm::analyse(&sc.plant, &h, &Default::default());

@@ -14,9 +14,9 @@ use rins_mvm::report::unit_of as unit;
 use rins_mvm::{Analysis, CHANNELS, CompareReport};
 use rins_plant::PlantConfig;
 
-use crate::file::{BUILTIN, OutputSpec};
-use crate::plots::{Kind, Line, Panel, PanelGeometry, write_svg};
 use crate::sinks::CsvSink;
+use rins_report::figures::plot::{Kind, Line, Panel, PanelGeometry, write_svg};
+use rins_scenario::file::{BUILTIN, OutputSpec};
 
 /// Simulates a measurement log: each `(run label, plant, samples)` is run and appended to one
 /// CSV in the measurement format (IMU-rate rows, gimbal angles, node temperatures, `run` label).
@@ -32,7 +32,7 @@ pub fn write_measurements(path: &Path, runs: &[(String, PlantConfig, u64)]) -> R
     };
     for (i, (label, cfg, samples)) in runs.iter().enumerate() {
         let mut sink = CsvSink::for_run(&mut out, opts, cfg, Some(label), i == 0)?;
-        let mut plant = crate::runner::new_plant(cfg, label)?;
+        let mut plant = rins_scenario::new_plant(cfg, label)?;
         for _ in 0..*samples {
             let s = plant.step();
             crate::runner::Sink::sample(&mut sink, &s, &plant.truth())?;
@@ -309,5 +309,5 @@ pub fn render_bias_by_position(a: &Analysis) -> Result<(String, Vec<PanelGeometr
     let labels: Vec<String> = (0..6)
         .map(|c| format!("residual ({})", unit(c).0))
         .collect();
-    crate::plots::render_svg(BIAS_TITLE, BIAS_X, &bias_panels(a, &labels))
+    rins_report::figures::plot::render_svg(BIAS_TITLE, BIAS_X, &bias_panels(a, &labels))
 }

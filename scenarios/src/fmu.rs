@@ -15,9 +15,9 @@ use rins_imu_fmu::outputs::{Output, Record, outputs};
 use rins_plant::PlantConfig;
 use rins_plant::params::{self, ParamValue};
 
-use crate::file::Scenario;
 use crate::progress;
 use crate::runner::{RunSummary, Sink};
+use rins_scenario::file::Scenario;
 
 /// Where the built FMI libraries are looked for when no folder is given: next to the running
 /// executable (cargo puts `rins` and the cdylibs in the same target folder).

@@ -1,26 +1,20 @@
 //! # rins-scenarios
 //!
-//! Declarative scenario files for every experiment of Seo et al. (2022), the runner that drives
-//! the plant through them, output sinks, the figures and terminal text of the results, and the
-//! `rins` commands ([`commands`]; the binary only dispatches to them).
+//! The `rins` application: its commands ([`commands`], one module each; the binary only
+//! dispatches to them), the runner that drives the plant through a scenario into sinks
+//! ([`runner`], [`sinks`]), the FMU build and run glue ([`fmu`]), the simulated measurement logs
+//! and report figures of model vs measurements ([`diagnose`]), the Rerun recordings behind the
+//! `rerun` feature ([`recordings`]), Ctrl-C and progress bars. The scenario format is
+//! `rins-scenario`, sweeps `rins-sweep`, how results are shown `rins-report`.
 
 pub mod commands;
 pub mod diagnose;
-pub mod figures;
-pub mod file;
 pub mod fmu;
-pub mod html;
 pub mod interrupt;
-pub mod iteration;
 pub mod progress;
-pub mod report;
+#[cfg(feature = "rerun")]
+pub mod recordings;
 pub mod runner;
 pub mod sinks;
-pub mod spans;
-pub mod sweep;
-pub mod truth;
 
-/// The plotting helpers under their former path (`crate::diagnose` draws with them).
-pub use figures::plot as plots;
-pub use file::{Override, Scenario, ScenarioError};
 pub use runner::{RunSummary, Sink, run};

@@ -3,10 +3,10 @@
 use std::time::Instant;
 
 use anyhow::Result;
-use rins_plant::{ImuSample, Plant, Truth};
+use rins_plant::{ImuSample, Truth};
 
-use crate::file::Scenario;
 use crate::progress;
+use rins_scenario::{Scenario, new_plant};
 
 /// Receives every output sample in order.
 pub trait Sink {
@@ -28,20 +28,6 @@ pub struct RunSummary {
     pub wall_s: f64,
     /// Stopped early by Ctrl-C ([`crate::interrupt`]); the sinks were still finished.
     pub interrupted: bool,
-}
-
-/// Builds the plant of `cfg`, every configuration error joined into one message after `what`
-/// (the scenario's source or a run label).
-pub fn new_plant(cfg: &rins_plant::PlantConfig, what: &str) -> Result<Plant> {
-    Plant::new(cfg).map_err(|errs| {
-        anyhow::anyhow!(
-            "{what}: {}",
-            errs.iter()
-                .map(|e| e.to_string())
-                .collect::<Vec<_>>()
-                .join("; ")
-        )
-    })
 }
 
 /// Runs `scenario` for `samples` output samples, feeding `sinks`.

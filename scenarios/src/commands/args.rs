@@ -8,7 +8,7 @@ use std::path::Path;
 use anyhow::Result;
 use rins_plant::message::Num;
 
-use crate::file::{Override, Scenario};
+use rins_scenario::file::{Override, Scenario};
 
 /// `--seed`, `--duration-s`, `--rate-hz`: override the scenario file's values.
 #[derive(clap::Args, Clone, Debug, Default)]

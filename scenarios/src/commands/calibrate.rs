@@ -5,10 +5,10 @@ use std::path::PathBuf;
 use anyhow::Result;
 use rins_nav::calibration::{CalibrationConfig, Estimator};
 
-use crate::figures::calibration::write_calibration_figure;
-use crate::file::Scenario;
-use crate::report::{CalibrationRun, RenderText};
-use crate::truth::CalibrationReport;
+use rins_report::figures::calibration::write_calibration_figure;
+use rins_report::text::{CalibrationRun, RenderText};
+use rins_report::truth::CalibrationReport;
+use rins_scenario::file::Scenario;
 
 /// Arguments of `rins calibrate`.
 #[derive(clap::Args, Debug)]
@@ -49,7 +49,7 @@ pub fn run(a: &CalibrateArgs) -> Result<()> {
     )?;
     write_calibration_figure(&r.calibration, &a.out)?;
     if let Some(dir) = &a.report {
-        let page = crate::html::results::calibration(&r, &a.estimator, &a.out, dir)?;
+        let page = rins_report::html::results::calibration(&r, &a.estimator, &a.out, dir)?;
         eprintln!("report: {}", page.display());
     }
     if a.json {

@@ -7,10 +7,10 @@ use anyhow::{Context, Result};
 use rins_nav::campaign::Campaign;
 
 use super::calibrate::calibration_config;
-use crate::figures::calibration::write_campaign_figure;
-use crate::file::Scenario;
-use crate::report::RenderText;
-use crate::truth::CampaignReport;
+use rins_report::figures::calibration::write_campaign_figure;
+use rins_report::text::RenderText;
+use rins_report::truth::CampaignReport;
+use rins_scenario::file::Scenario;
 
 /// Arguments of `rins campaign`.
 #[derive(clap::Args, Debug)]
@@ -38,7 +38,7 @@ pub fn run(a: &CampaignArgs) -> Result<()> {
     let c = CampaignReport::new(run_campaign_from(&sc, a.ref_temp_c)?, &sc.plant);
     write_outputs(&c, &a.out)?;
     if let Some(dir) = &a.report {
-        let page = crate::html::results::campaign(&c, c.campaign.runs.len(), &a.out, dir)?;
+        let page = rins_report::html::results::campaign(&c, c.campaign.runs.len(), &a.out, dir)?;
         eprintln!("report: {}", page.display());
     }
     if a.json {

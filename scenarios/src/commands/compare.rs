@@ -9,7 +9,7 @@ use rins_mvm::{Analysis, Options, RowCache, Rows};
 use rins_plant::PlantConfig;
 
 use super::args::{RerunArgs, positive};
-use crate::report::RenderText;
+use rins_report::text::RenderText;
 
 /// The model, the measurements and the analysis settings of `compare` and `diagnose`.
 #[derive(clap::Args, Debug)]
@@ -56,7 +56,7 @@ pub struct CompareArgs {
 /// streamed into a row cache (`rins_mvm::RowCache`): memory holds a few segments at a time,
 /// whatever the file's length.
 pub fn load_data(a: &DataArgs) -> Result<(PlantConfig, RowCache, Options)> {
-    let sc = crate::file::Scenario::load(&a.model)?;
+    let sc = rins_scenario::file::Scenario::load(&a.model)?;
     // The replay represents a static carrier on a table only: a moving one is refused.
     rins_mvm::history::check_model(&sc.plant)
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.model.display()))?;
@@ -103,7 +103,7 @@ pub fn run(a: &CompareArgs) -> Result<()> {
         for f in crate::diagnose::write_report(dir, &an)? {
             eprintln!("wrote {f}");
         }
-        let page = crate::html::results::compare(
+        let page = rins_report::html::results::compare(
             report,
             report.channels.len(),
             report.navigation.len(),
@@ -131,7 +131,7 @@ pub fn record_analysis(
     let target = viz.target()?;
     #[cfg(feature = "rerun")]
     if let Some(t) = &target {
-        crate::figures::rerun::record_diagnosis(t, an, pred, history, source, text)?;
+        crate::recordings::record_diagnosis(t, an, pred, history, source, text)?;
         eprintln!("rerun: recorded -> {}", viz.dest());
     }
     #[cfg(not(feature = "rerun"))]

@@ -8,8 +8,8 @@ use anyhow::{Context, Result};
 use rins_mvm::Effect;
 
 use super::compare::{DataArgs, load_data, record_analysis};
-use crate::report::RenderText;
 use rins_mvm::Rows;
+use rins_report::text::RenderText;
 
 /// Arguments of `rins diagnose`.
 #[derive(clap::Args, Debug)]
@@ -122,7 +122,8 @@ pub fn run(a: &DiagnoseArgs) -> Result<()> {
             eprintln!("wrote {f}");
         }
         let channels: Vec<String> = report.residual_rms_before.keys().cloned().collect();
-        let page = crate::html::results::diagnose(report, report.ranking.len(), &channels, dir)?;
+        let page =
+            rins_report::html::results::diagnose(report, report.ranking.len(), &channels, dir)?;
         eprintln!("report: {}", page.display());
     }
     if a.data.json {
@@ -189,16 +190,16 @@ fn iterate(
         )?;
     }
     if let Some(dir) = &a.data.report {
-        for f in crate::iteration::write_figures(dir, &it.report)? {
+        for f in rins_report::iteration::write_figures(dir, &it.report)? {
             eprintln!("wrote {}", f.display());
         }
-        let page = crate::html::results::iterate(&it.report, dir)?;
+        let page = rins_report::html::results::iterate(&it.report, dir)?;
         eprintln!("report: {}", page.display());
     }
     if a.data.json {
         println!("{json}");
     } else {
-        print!("{}", crate::iteration::render_text(&it.report));
+        print!("{}", rins_report::iteration::render_text(&it.report));
     }
     Ok(())
 }
@@ -228,15 +229,15 @@ fn write_applied(a: &DiagnoseArgs, applied: &rins_mvm::Applied, source: &str) ->
             rins_mvm::Fate::Written => eprintln!(
                 "  {} = {} [{}, {}] (written; was {})",
                 c.key,
-                crate::iteration::number(c.fitted),
-                crate::iteration::number(c.ci95.map(|x| x[0])),
-                crate::iteration::number(c.ci95.map(|x| x[1])),
-                crate::iteration::number(Some(c.model))
+                rins_report::iteration::number(c.fitted),
+                rins_report::iteration::number(c.ci95.map(|x| x[0])),
+                rins_report::iteration::number(c.ci95.map(|x| x[1])),
+                rins_report::iteration::number(Some(c.model))
             ),
             _ => eprintln!(
                 "  {} = {} (kept: {})",
                 c.key,
-                crate::iteration::number(Some(c.model)),
+                rins_report::iteration::number(Some(c.model)),
                 c.reason
             ),
         }

@@ -8,8 +8,8 @@ use std::process::{Command, Stdio};
 use anyhow::{Context, Result};
 
 use super::args::{Overrides, load};
-use crate::figures::RunFigures;
 use crate::sinks::CsvSink;
+use crate::sinks::RunFigures;
 
 /// The FMU commands.
 #[derive(clap::Subcommand, Debug)]

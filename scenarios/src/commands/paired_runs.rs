@@ -9,8 +9,8 @@ use rins_plant::message::Num;
 use rins_verify::paper::{Table4Options, Table4Report};
 
 use super::args::{RerunArgs, whole};
-use crate::figures::paper::write_table4_figures;
-use crate::file::Scenario;
+use rins_report::figures::paper::write_table4_figures;
+use rins_scenario::file::Scenario;
 
 /// Checks `--runs` and `--days` of the paired paper runs; returns the number of seeds.
 pub fn check_runs_days(runs: i64, days: f64) -> Result<usize> {
@@ -51,9 +51,9 @@ pub fn run_paired(
         let text = if name == "table5" {
             r.to_text_table5()
         } else {
-            crate::report::RenderText::render_text(&r)
+            rins_report::text::RenderText::render_text(&r)
         };
-        crate::figures::rerun::record_paired(
+        crate::recordings::record_paired(
             t,
             viz.rerun_bucket_s,
             sc,

@@ -80,15 +80,16 @@ fn headline(a: &PaperArgs) -> Result<()> {
     println!("== Section 3.1 / Table 4 ({} seeds) ==", t4.runs);
     let t4_report = table4::study(&t4)?;
     // The headline always writes its HTML report: the README's first command leaves it there.
-    let mut page =
-        crate::html::Report::new("rins paper: analytic verification and Section 3.1 / Table 4");
-    crate::html::results::analytic_sections(&mut page, &report, report.checks.len())?;
+    let mut page = rins_report::html::Report::new(
+        "rins paper: analytic verification and Section 3.1 / Table 4",
+    );
+    rins_report::html::results::analytic_sections(&mut page, &report, report.checks.len())?;
     page.text(
         &format!("Section 3.1 / Table 4 ({} seeds)", t4.runs),
         "One week of static navigation of the 16-position RINS at 36.6 N 123.6 E with the Table 3 sensors, uncompensated and with delta-beta compensated.",
     );
-    crate::html::results::paired_verdict(&mut page, &t4_report, false)?;
-    crate::html::results::paired_sections(&mut page, &t4_report, false, &a.out)?;
+    rins_report::html::results::paired_verdict(&mut page, &t4_report, false)?;
+    rins_report::html::results::paired_sections(&mut page, &t4_report, false, &a.out)?;
     let path = page.write(a.report.as_ref().unwrap_or(&a.out))?;
     println!("  HTML report: {}", path.display());
     if !report.passed() {

@@ -6,9 +6,9 @@ use anyhow::{Context, Result};
 
 use super::Interrupted;
 use super::args::{Overrides, RerunArgs, load};
-use crate::figures::RunFigures;
 use crate::runner::{Sink, run as run_scenario};
 use crate::sinks::CsvSink;
+use crate::sinks::RunFigures;
 
 /// Arguments of `rins run`.
 #[derive(clap::Args, Debug)]
@@ -59,7 +59,7 @@ pub fn run(a: &RunArgs) -> Result<()> {
     let mut figures = a.figures.then(|| RunFigures::new(&sc.plant, n));
     #[cfg(feature = "rerun")]
     let mut rerun = match &target {
-        Some(t) => Some(crate::figures::rerun::RerunSink::open(
+        Some(t) => Some(crate::recordings::RerunSink::open(
             t,
             &sc,
             n,

@@ -2,7 +2,7 @@
 
 use anyhow::{Context, Result};
 
-use crate::file::{BUILTIN, Scenario};
+use rins_scenario::file::{BUILTIN, Scenario};
 
 /// Arguments of `rins scenarios`.
 #[derive(clap::Args, Debug)]

@@ -13,7 +13,7 @@ use rins_schemes::response::StaticResponse;
 use rins_schemes::{SchemeFile, basis, simulate};
 use serde::Serialize;
 
-use crate::figures::plot::{Kind, Line, PALETTE, Panel, write_figure};
+use rins_report::figures::plot::{Kind, Line, PALETTE, Panel, write_figure};
 
 /// The scheme commands.
 #[derive(clap::Subcommand, Debug)]
@@ -256,7 +256,7 @@ fn analyse(a: &AnalyseArgs) -> Result<()> {
     if let Some(dir) = &a.report {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
         write_analysis_figure(&report, dir)?;
-        let page = crate::html::results::schemes_analyse(&report, dir, dir)?;
+        let page = rins_report::html::results::schemes_analyse(&report, dir, dir)?;
         eprintln!("report: {}", page.display());
     }
     if a.json {
@@ -526,7 +526,7 @@ fn run_design(a: &DesignArgs) -> Result<()> {
         }
     }
     if let Some(dir) = &a.report {
-        let page = crate::html::results::schemes_design(&r, dir)?;
+        let page = rins_report::html::results::schemes_design(&r, dir)?;
         eprintln!("report: {}", page.display());
     }
     if a.json {

@@ -15,9 +15,9 @@ use serde::Serialize;
 
 use super::args::RerunArgs;
 use super::paired_runs::check_runs_days;
-use crate::figures::plot::{Kind, Line, Panel, write_svg};
-use crate::file::Scenario;
-use crate::html::results::sea::CASES;
+use rins_report::figures::plot::{Kind, Line, Panel, write_svg};
+use rins_report::html::results::sea::CASES;
+use rins_scenario::file::Scenario;
 
 /// Arguments of `rins paper sea`.
 #[derive(clap::Args, Debug)]
@@ -136,11 +136,11 @@ pub fn run(a: &SeaArgs) -> Result<()> {
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
-        print!("{}", crate::report::RenderText::render_text(&r));
+        print!("{}", rins_report::text::RenderText::render_text(&r));
         println!("  figures and sea.json in {}", a.out.display());
     }
     if let Some(dir) = &a.report {
-        let page = crate::html::results::sea(&r, &a.out, dir)?;
+        let page = rins_report::html::results::sea(&r, &a.out, dir)?;
         eprintln!("report: {}", page.display());
     }
     Ok(())

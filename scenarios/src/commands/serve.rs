@@ -75,11 +75,11 @@ pub fn run(a: &ServeArgs) -> Result<()> {
         peer_timeout: peer_timeout(a.peer_timeout_s)?,
         wait_for_restart: a.wait_for_restart,
     };
-    let mut plant = crate::runner::new_plant(&sc.plant, &sc.source)?;
+    let mut plant = rins_scenario::new_plant(&sc.plant, &sc.source)?;
     let target = a.viz.target()?;
     #[cfg(feature = "rerun")]
     let mut rerun = match &target {
-        Some(t) => Some(crate::figures::rerun::RerunSink::open(
+        Some(t) => Some(crate::recordings::RerunSink::open(
             t,
             &sc,
             sc.samples(),

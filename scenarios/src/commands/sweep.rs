@@ -8,8 +8,8 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 
-use crate::report::RenderText;
-use crate::sweep::{SweepPlan, tables};
+use rins_report::text::RenderText;
+use rins_sweep::{SweepPlan, tables};
 
 /// Arguments of `rins sweep`.
 #[derive(clap::Args, Debug)]
@@ -34,7 +34,7 @@ pub fn run(a: &SweepArgs) -> Result<()> {
     super::create_dir(&a.out)?;
     let total = plan.samples_per_run() * (plan.points.len() * plan.seeds.len() * 2) as u64;
     let pb = crate::progress::bar(total, &plan.name);
-    let r = crate::sweep::run(&plan, &|n| pb.inc(n))
+    let r = rins_sweep::run(&plan, &|n| pb.inc(n))
         .with_context(|| format!("{}: running the sweep", plan.source))?;
     pb.finish_and_clear();
     let json = serde_json::to_string_pretty(&r)?;
@@ -42,7 +42,7 @@ pub fn run(a: &SweepArgs) -> Result<()> {
     std::fs::write(&path, &json).with_context(|| format!("cannot write {}", path.display()))?;
     tables::write_csv(&r, &a.out.join("sweep.csv"))?;
     tables::write_parquet(&r, &a.out.join("sweep.parquet"))?;
-    crate::figures::sweep::write_sweep_figures(&r, &a.out)?;
+    rins_report::figures::sweep::write_sweep_figures(&r, &a.out)?;
     if a.json {
         println!("{json}");
     } else {
@@ -54,7 +54,7 @@ pub fn run(a: &SweepArgs) -> Result<()> {
         );
     }
     if let Some(dir) = &a.report {
-        let page = crate::html::sweep::report(&r, &a.out, dir)?;
+        let page = rins_report::html::sweep::report(&r, &a.out, dir)?;
         eprintln!("report: {}", page.display());
     }
     Ok(())

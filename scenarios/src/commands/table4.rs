@@ -6,7 +6,7 @@ use anyhow::Result;
 
 use super::args::RerunArgs;
 use super::paired_runs::{check_runs_days, run_paired};
-use crate::file::Scenario;
+use rins_scenario::file::Scenario;
 
 /// Arguments of `rins paper table4`.
 #[derive(clap::Args, Debug)]
@@ -49,7 +49,7 @@ pub struct Table4Args {
 pub fn run(a: &Table4Args) -> Result<()> {
     let r = study(a)?;
     if let Some(dir) = &a.report {
-        let page = crate::html::results::paired(&r, false, &a.out, dir)?;
+        let page = rins_report::html::results::paired(&r, false, &a.out, dir)?;
         eprintln!("report: {}", page.display());
     }
     Ok(())
@@ -86,7 +86,7 @@ pub fn study(a: &Table4Args) -> Result<rins_verify::paper::Table4Report> {
     if a.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
-        print!("{}", crate::report::RenderText::render_text(&r));
+        print!("{}", rins_report::text::RenderText::render_text(&r));
         println!("  figures and table4.json in {}", a.out.display());
     }
     Ok(r)

@@ -7,8 +7,8 @@ use anyhow::{Context, Result};
 use super::args::RerunArgs;
 use super::campaign::{run_campaign_from, write_outputs};
 use super::paired_runs::{check_runs_days, run_paired};
-use crate::file::Scenario;
-use crate::truth::CampaignReport;
+use rins_report::truth::CampaignReport;
+use rins_scenario::file::Scenario;
 
 /// Arguments of `rins paper table5`.
 #[derive(clap::Args, Debug)]
@@ -73,7 +73,7 @@ pub fn run(a: &Table5Args) -> Result<()> {
         );
     }
     if let Some(dir) = &a.report {
-        let page = crate::html::results::paired(&r, true, &a.out, dir)?;
+        let page = rins_report::html::results::paired(&r, true, &a.out, dir)?;
         eprintln!("report: {}", page.display());
     }
     Ok(())

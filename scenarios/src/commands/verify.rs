@@ -6,7 +6,7 @@ use anyhow::Result;
 
 use super::args::whole;
 use super::emit_report;
-use crate::figures::analytic::{write_checks_figure, write_cycle_figure};
+use rins_report::figures::analytic::{write_checks_figure, write_cycle_figure};
 
 /// The verification reports.
 #[derive(clap::Subcommand, Debug)]

@@ -20,8 +20,8 @@ use rins_plant::effects::{AccelTerm, GyroTerm};
 use rins_plant::output_columns::{self, Entry, Group, OverRow, Read, Reading};
 use rins_plant::{ImuSample, Truth};
 
-use crate::file::OutputSpec;
 use crate::runner::Sink;
+use rins_scenario::file::OutputSpec;
 
 /// Writes `imu.csv`.
 pub struct CsvSink<W: Write> {

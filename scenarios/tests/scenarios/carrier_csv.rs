@@ -5,7 +5,7 @@
 
 use rins_plant::Plant;
 use rins_plant::earth::{WGS84_A_M, WGS84_E2};
-use rins_scenarios::file::Scenario;
+use rins_scenario::file::Scenario;
 use rins_scenarios::sinks::CsvSink;
 use rins_scenarios::sinks::csv::CARRIER_COLUMNS;
 use rins_scenarios::{Sink, run};

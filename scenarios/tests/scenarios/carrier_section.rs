@@ -3,7 +3,7 @@
 
 use rins_plant::Plant;
 use rins_plant::carrier::{CarrierKind, SpectrumKind};
-use rins_scenarios::Scenario;
+use rins_scenario::Scenario;
 
 const SHIP: &str = r#"[scenario]
 name = "ship"

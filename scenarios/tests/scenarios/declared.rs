@@ -9,7 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use rins_mvm::csv;
 use rins_mvm::{Effect, History, Options, analyse, to_history};
 use rins_plant::PlantConfig;
-use rins_scenarios::file::Scenario;
+use rins_scenario::file::Scenario;
 
 /// The model: the bias and noise are known; the temperature-rate term is declared with a zero
 /// coefficient (a candidate, contributing nothing until fitted).

@@ -9,7 +9,7 @@ use rins_mvm::csv;
 use rins_mvm::{Attitude, DiagnoseReport, Effect, History, Options, analyse, to_history};
 use rins_plant::PlantConfig;
 use rins_plant::effects::{GyroTerm, gyro};
-use rins_scenarios::file::Scenario;
+use rins_scenario::file::Scenario;
 
 /// The model: bias, scale factor and white noise known. The table's 12-step cycle (about
 /// 950 s) dwells equally at Z-up and Z-down and at both tilts (inner ±90°), and turns both ways

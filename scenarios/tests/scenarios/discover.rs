@@ -12,7 +12,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use rins_mvm::{DiagnoseReport, Effect, History, Options, analyse, to_history};
 use rins_plant::PlantConfig;
-use rins_scenarios::file::Scenario;
+use rins_scenario::file::Scenario;
 
 const MODEL: &str = r#"
 [scenario]
@@ -702,7 +702,7 @@ fn iterated(m: &PlantConfig, h: &(impl rins_mvm::Rows + ?Sized)) -> rins_mvm::It
         &rins_mvm::IterateOptions::default(),
     )
     .unwrap();
-    eprintln!("{}", rins_scenarios::iteration::render_text(&it.report));
+    eprintln!("{}", rins_report::iteration::render_text(&it.report));
     it
 }
 

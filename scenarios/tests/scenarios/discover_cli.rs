@@ -1,7 +1,7 @@
 //! `rins diagnose --discover` and `--apply custom:NAME` on the command line, on the
 //! walkthrough's plant-written dataset (docs/model-vs-measurements.md, "Discovery").
 
-use rins_scenarios::file::Scenario;
+use rins_scenario::file::Scenario;
 
 /// The command line of the walkthrough: `rins diagnose --discover --json` proposes the block,
 /// `--apply custom:NAME` writes a model file that declares it with the fitted coefficients, and

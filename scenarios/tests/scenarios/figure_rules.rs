@@ -12,12 +12,12 @@
 
 use std::path::{Path, PathBuf};
 
-use rins_scenarios::commands::measure::{MeasureArgs, run as measure};
-use rins_scenarios::figures::paper::paired_figures;
-use rins_scenarios::figures::plot::{BAR_DOT_PX, Kind, Panel, PanelGeometry};
-use rins_scenarios::figures::rules::{
+use rins_report::figures::paper::paired_figures;
+use rins_report::figures::plot::{BAR_DOT_PX, Kind, Panel, PanelGeometry};
+use rins_report::figures::rules::{
     HEADROOM_PX, MIN_TEXT_PT, Rect, SCATTER_X_PAD_FRAC, min_text_px, text_pt,
 };
+use rins_scenarios::commands::measure::{MeasureArgs, run as measure};
 
 /// The SVG's pixel width (its `width` attribute) and every `font-size` of its text, px, with
 /// the text.
@@ -176,7 +176,7 @@ fn bias_by_position_is_categorical_and_its_legends_cover_no_point() {
         overrides: Default::default(),
     })
     .unwrap();
-    let model = rins_scenarios::Scenario::load(&docs("diagnosis-model.toml")).unwrap();
+    let model = rins_scenario::Scenario::load(&docs("diagnosis-model.toml")).unwrap();
     let m = rins_mvm::reader::read(&data).unwrap();
     let h = rins_mvm::to_history(m, "unit").unwrap();
     let opts = rins_mvm::Options {
@@ -317,7 +317,7 @@ fn svg_texts(svg: &str) -> Vec<(i32, i32, &str)> {
 
 #[test]
 fn week_long_figures_shrink_fivefold_as_envelopes_with_the_same_extremes() {
-    let sc = rins_scenarios::Scenario::load(Path::new("builtin:paper-16pos-week")).unwrap();
+    let sc = rins_scenario::Scenario::load(Path::new("builtin:paper-16pos-week")).unwrap();
     let opt = rins_verify::paper::Table4Options {
         plant: sc.plant.clone(),
         runs: 1,
@@ -432,7 +432,7 @@ fn week_long_figures_shrink_fivefold_as_envelopes_with_the_same_extremes() {
 /// band's centre: the sea figure's medians sat at the 5-95 % midpoint before `Kind::Interval`.
 #[test]
 fn interval_dots_sit_at_the_estimate_not_the_band_centre() {
-    use rins_scenarios::figures::plot::{Line, Panel, render_svg};
+    use rins_report::figures::plot::{Line, Panel, render_svg};
     // (low, estimate, high): the estimate at 10 %, 50 % and 90 % of each band.
     let bands = [(1.0, 1.4, 5.0), (2.0, 4.0, 6.0), (0.5, 3.2, 3.5)];
     let points: Vec<(f64, f64)> = bands
@@ -504,7 +504,7 @@ fn sea_end_error_is_print_sized_with_headroom_and_visible_dots() {
     ];
     let panels = end_error_panels(&data, 8);
     let (svg, g) =
-        rins_scenarios::figures::plot::render_svg(END_ERROR_TITLE, END_ERROR_X, &panels).unwrap();
+        rins_report::figures::plot::render_svg(END_ERROR_TITLE, END_ERROR_X, &panels).unwrap();
     text_at_least_8_pt("sea_end_error", &svg);
     marks_keep_headroom("sea_end_error", &g, true);
     // The bands' 5 % and 95 % ends, from the data above (not from what was drawn).
@@ -552,7 +552,7 @@ fn sea_end_error_is_print_sized_with_headroom_and_visible_dots() {
 /// outermost dots `HEADROOM_PX` off the left and right frame as well as top and bottom.
 #[test]
 fn scatter_clusters_keep_off_the_frame() {
-    use rins_scenarios::figures::plot::{Line, Panel, render_svg};
+    use rins_report::figures::plot::{Line, Panel, render_svg};
     // Two clusters at 23 and 63 °C, 60 points each (a dense scatter), plus a fitted curve.
     let pts: Vec<(f64, f64)> = (0..120)
         .map(|i| {
@@ -587,17 +587,17 @@ fn scatter_clusters_keep_off_the_frame() {
 fn the_png_font_has_the_unit_glyphs() {
     use plotters::prelude::*;
     // The figures register the font on first use.
-    let one = rins_scenarios::figures::plot::Panel::new(
+    let one = rins_report::figures::plot::Panel::new(
         "p",
         "y",
-        vec![rins_scenarios::figures::plot::Line::new(
+        vec![rins_report::figures::plot::Line::new(
             "",
             vec![(0.0, 0.0), (1.0, 1.0)],
             BLACK,
             Kind::Solid,
         )],
     );
-    rins_scenarios::figures::plot::render_svg("t", "x", &[one]).unwrap();
+    rins_report::figures::plot::render_svg("t", "x", &[one]).unwrap();
     let draw = |s: &str| {
         let mut buf = vec![0u8; 60 * 60 * 3];
         {
@@ -658,7 +658,7 @@ fn the_iteration_history_ticks_whole_steps() {
             z_critical: 4.0,
             closest_to_gate: Vec::new(),
         };
-        rins_scenarios::iteration::write_figures(&dir, &report).unwrap();
+        rins_report::iteration::write_figures(&dir, &report).unwrap();
         let svg = std::fs::read_to_string(dir.join("iteration_history.svg")).unwrap();
         let mut rows: std::collections::BTreeMap<i32, Vec<(i32, &str)>> = Default::default();
         for (x, y, t) in svg_texts(&svg) {

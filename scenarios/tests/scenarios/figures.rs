@@ -1,8 +1,8 @@
 //! Static figures: `rins run --figures` bucket means against the closed-form Earth rate, and the
 //! SVG and PNG files are real (PNG signature and size, SVG text with the titles).
 
-use rins_scenarios::Scenario;
-use rins_scenarios::figures::RunFigures;
+use rins_scenario::Scenario;
+use rins_scenarios::sinks::RunFigures;
 
 const STATIC_IDEAL: &str = r#"
 [scenario]

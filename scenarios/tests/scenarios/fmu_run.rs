@@ -3,7 +3,7 @@
 //! every effect, the truth columns and a chamber profile (fed through the chamber input).
 //! Needs the cdylibs (`cargo build --release -p rins-imu-fmi2 -p rins-imu-fmi3`).
 
-use rins_scenarios::file::Scenario;
+use rins_scenario::file::Scenario;
 use rins_scenarios::sinks::CsvSink;
 
 const SCENARIO: &str = r#"

@@ -2,7 +2,7 @@
 //! its tests on bad files are in rins-mvm, mvm/tests/mvm/reader.rs).
 
 use rins_mvm::csv::parse;
-use rins_scenarios::file::{OutputSpec, Scenario};
+use rins_scenario::file::{OutputSpec, Scenario};
 use rins_scenarios::sinks::CsvSink;
 use rins_scenarios::{Sink, run};
 

@@ -8,8 +8,8 @@
 
 use rins_plant::config::SensorSpec;
 use rins_plant::{PlantConfig, presets};
-use rins_scenarios::Override;
-use rins_scenarios::file::{BUILTIN, Scenario, ScenarioFile};
+use rins_scenario::Override;
+use rins_scenario::file::{BUILTIN, Scenario, ScenarioFile};
 
 /// The replaced path, without its validation (the new path validates; both must agree on the
 /// configuration of every file the new path accepts).

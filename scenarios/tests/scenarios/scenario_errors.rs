@@ -1,7 +1,7 @@
 //! Scenario errors name where the bad value was written: line and column from the TOML parser
 //! (inline tables and arrays included), or the command-line flag that set it.
 
-use rins_scenarios::{Override, Scenario};
+use rins_scenario::{Override, Scenario};
 
 fn err(text: &str) -> String {
     Scenario::from_toml(text, "t.toml").unwrap_err().to_string()

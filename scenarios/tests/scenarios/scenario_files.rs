@@ -1,7 +1,7 @@
 //! Scenario files: built-ins load, bad input gets an error naming file, line, key and range,
 //! and the CSV output is lossless under decimation and bit-identical for the same seed.
 
-use rins_scenarios::file::{BUILTIN, OutputSpec, Scenario, ScenarioError};
+use rins_scenario::file::{BUILTIN, OutputSpec, Scenario, ScenarioError};
 use rins_scenarios::sinks::CsvSink;
 use rins_scenarios::{Sink, run};
 
@@ -157,7 +157,7 @@ fn every_key_is_documented() {
         "/../docs/scenario-format.md"
     ))
     .unwrap();
-    let mut f = rins_scenarios::file::ScenarioFile {
+    let mut f = rins_scenario::file::ScenarioFile {
         campaign: Some(Default::default()),
         ..Default::default()
     };
@@ -190,7 +190,7 @@ fn every_key_is_documented() {
 fn the_headline_scenario_is_the_fmu_default_plant() {
     // The FMU's start values come from `presets::paper_16pos_config`; the scenario file is the
     // user-facing definition. They must not drift apart.
-    let s = rins_scenarios::file::Scenario::load(std::path::Path::new("builtin:paper-16pos-week"))
+    let s = rins_scenario::file::Scenario::load(std::path::Path::new("builtin:paper-16pos-week"))
         .unwrap();
     assert_eq!(s.plant, rins_plant::presets::paper_16pos_config());
 }

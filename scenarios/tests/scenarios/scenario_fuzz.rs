@@ -7,8 +7,8 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rins_scenarios::Scenario;
-use rins_scenarios::file::{BUILTIN, ScenarioError};
+use rins_scenario::Scenario;
+use rins_scenario::file::{BUILTIN, ScenarioError};
 
 const SEED: u64 = 0x5eed_0016;
 /// Mutated copies of the built-in files.

@@ -63,7 +63,7 @@ fn analyse_json_and_report_agree_and_the_invariant_bounds_every_scheme() {
     );
     let verdict_end = page[first_h2..].find("</p>").unwrap() + first_h2;
     let shown = format!("{:.1}", inv);
-    let shown_sig = rins_scenarios::html::format_sig(inv, 4);
+    let shown_sig = rins_report::html::format_sig(inv, 4);
     assert!(
         page[first_h2..verdict_end].contains(&shown_sig),
         "the verdict quotes {shown} ({shown_sig}): {}",

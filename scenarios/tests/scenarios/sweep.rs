@@ -14,8 +14,8 @@
 use std::path::PathBuf;
 
 use rins_experiments::NavRunConfig;
-use rins_scenarios::Scenario;
-use rins_scenarios::sweep::{SweepError, SweepPlan};
+use rins_scenario::Scenario;
+use rins_sweep::{SweepError, SweepPlan};
 use rins_verify::paper::EndFigures;
 use serde_json::Value;
 
@@ -32,7 +32,7 @@ fn tmp(tag: &str) -> PathBuf {
 
 /// The built-in Section 3.1 scenario's text.
 fn week_text() -> &'static str {
-    rins_scenarios::file::BUILTIN
+    rins_scenario::file::BUILTIN
         .iter()
         .find(|(n, _)| *n == "paper-16pos-week")
         .unwrap()
@@ -120,7 +120,7 @@ fn sweep_figures_equal_single_runs_bit_for_bit_and_the_csv_has_a_row_per_seed_an
     assert_eq!(lines.len() - 1, 2 * 2 * 2, "{csv}");
     // The same sweep in-process: the engine's figures themselves.
     let plan = SweepPlan::load(&dir.join("tiny.toml")).unwrap();
-    let lib = rins_scenarios::sweep::run(&plan, &|_| {}).unwrap();
+    let lib = rins_sweep::run(&plan, &|_| {}).unwrap();
     let mut row = 1;
     for (k, (point, dbeta)) in points.iter().zip(DBETA_Z).enumerate() {
         assert_eq!(point["values"][0].as_f64(), Some(dbeta));
@@ -337,11 +337,11 @@ fn sweep_linspace_and_zip_make_the_points_the_docs_say() {
 
 #[test]
 fn sweep_figures_put_names_on_a_categorical_axis_one_line_per_other_value_clear_of_the_legend() {
-    use rins_scenarios::figures::rules::HEADROOM_PX;
+    use rins_report::figures::rules::HEADROOM_PX;
     let text = "[sweep]\nscenario = \"builtin:paper-16pos-week\"\nduration_s = 300.0\nseeds = 2\noutputs = [\"lon_nm\"]\n\n[[parameter]]\nkey = \"scheme.kind\"\nvalues = [\"sixteen-position\", \"eight-position\"]\n\n[[parameter]]\nkey = \"sensor.gyro.position_bias.dph[2]\"\nvalues = [0.0, 0.02]\n";
     let plan = SweepPlan::from_toml(text, "f.toml", None).unwrap();
-    let r = rins_scenarios::sweep::run(&plan, &|_| {}).unwrap();
-    let figs = rins_scenarios::figures::sweep::sweep_figures(&r);
+    let r = rins_sweep::run(&plan, &|_| {}).unwrap();
+    let figs = rins_report::figures::sweep::sweep_figures(&r);
     assert_eq!(figs.len(), 1);
     let f = &figs[0];
     assert_eq!(f.stem, "sweep_lon_nm");

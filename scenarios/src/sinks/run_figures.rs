@@ -10,8 +10,8 @@ use rins_plant::thermal::node;
 use rins_plant::units::{DPH, UG};
 use rins_plant::{ImuSample, PlantConfig, Truth};
 
-use super::plot::{Kind, Line, PALETTE, Panel, write_figure};
 use crate::runner::Sink;
+use rins_report::figures::plot::{Kind, Line, PALETTE, Panel, write_figure};
 
 /// Buckets per figure line.
 pub const POINTS: u64 = 2000;

@@ -4,7 +4,7 @@
 use std::fmt::Write;
 
 use super::RenderText;
-use crate::sweep::{NAVIGATORS, SweepReport, value_text};
+use rins_sweep::{NAVIGATORS, SweepReport, value_text};
 
 impl RenderText for SweepReport {
     fn render_text(&self) -> String {

@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 
 use super::{Cell, Doc, Report, words};
-use crate::sweep::outputs::PER_SEED;
-use crate::sweep::{NAVIGATORS, SweepReport};
+use rins_sweep::outputs::PER_SEED;
+use rins_sweep::{NAVIGATORS, SweepReport};
 
 /// Most per-seed rows the page lists.
 pub const MAX_SEED_ROWS: usize = 200;
@@ -115,7 +115,7 @@ pub fn report(r: &SweepReport, fig_dir: &Path, out: &Path) -> Result<PathBuf> {
                     Cell::Text(
                         p.values
                             .iter()
-                            .map(crate::sweep::value_text)
+                            .map(rins_sweep::value_text)
                             .collect::<Vec<_>>()
                             .join(", "),
                     ),

@@ -2,7 +2,7 @@
 //! [`super::rules`]: print size (text at least 8 pt at one column width, titles wrapped),
 //! headroom for every mark, envelopes for long series, legends in a free corner (or above the
 //! plot), categorical x axes, no "-0.0" ticks, typeset units. The PNG rasteriser needs a font: DejaVu Sans ships in
-//! `assets/fonts/` (licence beside it) and is built into the binary, so a machine without fonts
+//! `scenarios/report/fonts/` (licence beside it) and is built into the binary, so a machine without fonts
 //! draws the same text.
 //!
 //! One concept a file: `panel` (what a caller describes), `palette` and `sizes`, the

@@ -8,7 +8,7 @@ use super::sizes::WIDTH_PX;
 use crate::figures::rules;
 
 /// DejaVu Sans, registered as the `sans-serif` family for both backends.
-static FONT: &[u8] = include_bytes!("../../../../assets/fonts/DejaVuSans.ttf");
+static FONT: &[u8] = include_bytes!("../../../fonts/DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
 
 pub(super) fn register_font() {

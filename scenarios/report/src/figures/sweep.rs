@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 
 use super::plot::{Kind, Line, PALETTE, Panel, PanelGeometry, render_svg, write_figure};
-use crate::sweep::{NAVIGATORS, SweepReport, value_text};
+use rins_sweep::{NAVIGATORS, SweepReport, value_text};
 
 /// Where the lines of a point's group sit apart in x, as a fraction of the x span (a dodge,
 /// so that bars at the same x stay apart).

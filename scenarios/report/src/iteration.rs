@@ -126,7 +126,7 @@ pub fn render_text(r: &IterationReport) -> String {
                 m.channel,
                 m.delta_bic,
                 m.p_value,
-                crate::report::diagnosis_text::cv_phrase(m.cv_rmse_gain_pct),
+                crate::text::diagnosis_text::cv_phrase(m.cv_rmse_gain_pct),
                 m.failed
             );
         }

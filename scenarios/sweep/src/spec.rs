@@ -14,8 +14,8 @@ use rins_plant::params::{self, Param, ParamValue};
 use serde::Deserialize;
 
 use super::outputs::{self, Output};
-use crate::file::{Scenario, ScenarioError};
-use crate::spans::SpanIndex;
+use rins_scenario::file::{Scenario, ScenarioError};
+use rins_scenario::spans::SpanIndex;
 
 /// Time the self-alignment takes (300 s coarse + 600 s fine), prepended to the scheme as
 /// `rins paper table4 --align self` does.
@@ -369,7 +369,7 @@ fn label(pars: &[Parameter], values: &[ParamValue]) -> String {
 fn load_scenario(name: &str, dir: Option<&Path>) -> Result<Scenario, ScenarioError> {
     let raw = Path::new(name);
     let is_builtin = name.starts_with("builtin:")
-        || (crate::file::BUILTIN.iter().any(|(n, _)| *n == name) && !raw.exists());
+        || (rins_scenario::file::BUILTIN.iter().any(|(n, _)| *n == name) && !raw.exists());
     let path = match dir {
         Some(d) if !is_builtin && raw.is_relative() => d.join(raw),
         _ => raw.to_path_buf(),
@@ -767,7 +767,7 @@ fn points(
         };
         let check = Scenario {
             plant: plant.clone(),
-            meta: crate::file::ScenarioMeta {
+            meta: rins_scenario::file::ScenarioMeta {
                 duration_s,
                 ..sc.meta.clone()
             },

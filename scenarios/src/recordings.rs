@@ -1,14 +1,14 @@
 //! Rerun recordings of the commands' results (`--rerun DEST`, built with the `rerun` feature):
 //! a run as it happens ([`RerunSink`]), a paired paper study ([`record_paired`]) and a
-//! model-vs-measurement analysis ([`record_diagnosis`]). The static figures beside this module
-//! draw the same results as SVG and PNG.
+//! model-vs-measurement analysis ([`record_diagnosis`]). The static figures (`rins_report::figures`,
+//! [`crate::sinks::RunFigures`]) draw the same results as SVG and PNG.
 
 use anyhow::Result;
 use rins_plant::{ImuSample, Truth};
 use rins_rerun::{Layout, Recorder, RunOptions, RunRecorder, Target};
 
-use crate::file::Scenario;
 use crate::runner::Sink;
+use rins_scenario::file::Scenario;
 
 /// A [`Sink`] that records the run to Rerun.
 pub struct RerunSink {
@@ -27,7 +27,7 @@ impl RerunSink {
         navigate: bool,
     ) -> Result<Self> {
         let recorder = Recorder::open(target, &scenario.meta.name)?;
-        let plant = crate::runner::new_plant(&scenario.plant, &scenario.source)?;
+        let plant = rins_scenario::new_plant(&scenario.plant, &scenario.source)?;
         let bucket_samples =
             rins_rerun::bucket::samples_per_bucket(bucket_s, scenario.plant.rate_hz, samples);
         let tracker = navigate.then(|| {
@@ -125,7 +125,7 @@ pub fn record_paired(
 ) -> Result<()> {
     let recorder = Recorder::open(target, &scenario.meta.name)?;
     let rec = recorder.stream();
-    let mut plant = crate::runner::new_plant(plant_cfg, &scenario.source)?;
+    let mut plant = rins_scenario::new_plant(plant_cfg, &scenario.source)?;
     let n = (duration_s * plant_cfg.rate_hz).round() as u64;
     let bucket_samples = rins_rerun::bucket::samples_per_bucket(bucket_s, plant_cfg.rate_hz, n);
     let mut run = RunRecorder::new(
