@@ -69,7 +69,7 @@ mod tests {
         assert!(all.len() >= in_csv.count());
         for e in all {
             for name in e.names() {
-                let numeric = super::classify(&name)
+                let numeric = crate::measurement::classify(&name)
                     .unwrap_or_else(|m| panic!("column {name} of the output table: {m}"));
                 let label = matches!(e.column.read, rins_plant::output_columns::Read::Position);
                 assert_eq!(numeric, !label, "{name}");
