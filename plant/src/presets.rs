@@ -1,5 +1,5 @@
 //! Named sensor specifications. A scenario file reads the same presets as TOML fragments
-//! (`scenarios/files/presets/NAME.toml`, laid under the file's own `[sensor]` keys); rins-scenarios
+//! (`scenarios/scenario/files/presets/NAME.toml`, laid under the file's own `[sensor]` keys); rins-scenarios
 //! tests each fragment equal to its constructor here, so a change goes to both.
 
 use crate::config::SensorSpec;

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyFloat, PyList, PyTuple};
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use rins_scenario::file::BUILTIN;
 use rins_scenario::{Scenario, ScenarioError};
 
@@ -61,8 +61,8 @@ impl PyScenario {
         Self::from_text(text, path)
     }
 
-    /// A dict laid out like the TOML file, written as TOML text first (so the same checks and
-    /// messages apply; line numbers then refer to `rins.to_toml(d)`).
+    /// A dict laid out like the TOML file, walked once into TOML text (so the same checks and
+    /// messages apply; line numbers then refer to `rins.to_toml(d)`); no JSON in between.
     pub fn from_dict(d: &Bound<'_, PyDict>) -> PyResult<Self> {
         let text = dict_to_toml(d)?;
         Self::from_text(text, "dict")
@@ -71,8 +71,12 @@ impl PyScenario {
     /// Accepts a `Scenario`, a path / `builtin:NAME` string or a dict.
     pub fn resolve(obj: &Bound<'_, PyAny>) -> PyResult<Self> {
         if let Ok(s) = obj.cast::<PyScenario>() {
+            // Already read and checked: a copy, not a second parse of its text.
             let s = s.get();
-            return Self::from_text(s.text.clone(), &s.inner.source);
+            return Ok(Self {
+                inner: s.inner.clone(),
+                text: s.text.clone(),
+            });
         }
         if let Ok(d) = obj.cast::<PyDict>() {
             return Self::from_dict(d);
@@ -87,63 +91,113 @@ impl PyScenario {
     }
 }
 
-/// The first float in `v` (a dict's value: nested dicts, lists and tuples are searched) that
-/// is not finite, with its dotted path under `path` (`site.lat_deg`, `parameter[0].values[1]`).
-fn non_finite(v: &Bound<'_, PyAny>, path: &str) -> PyResult<Option<(String, f64)>> {
-    if let Ok(x) = v.cast::<PyFloat>() {
-        let x = x.value();
-        return Ok((!x.is_finite()).then(|| (path.to_string(), x)));
-    }
-    if let Ok(d) = v.cast::<PyDict>() {
-        for (k, x) in d.iter() {
-            let key = k.str()?.to_string();
-            let sub = if path.is_empty() {
-                key
-            } else {
-                format!("{path}.{key}")
-            };
-            if let Some(found) = non_finite(&x, &sub)? {
-                return Ok(Some(found));
-            }
-        }
-        return Ok(None);
-    }
-    if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
-        for (i, x) in v.try_iter()?.enumerate() {
-            if let Some(found) = non_finite(&x?, &format!("{path}[{i}]"))? {
-                return Ok(Some(found));
-            }
-        }
-    }
-    Ok(None)
+/// A `ScenarioError` for the dict's value at `path`.
+fn dict_error(path: &str, what: &str) -> PyErr {
+    let at = if path.is_empty() {
+        String::new()
+    } else {
+        format!("{path}: ")
+    };
+    crate::errors::ScenarioError::new_err(format!("dict: {at}{what}"))
 }
 
-/// The dict as TOML text (through JSON: None, sets and other non-TOML values are refused, and
-/// a NaN or infinite number is refused naming its field).
-pub fn dict_to_toml(d: &Bound<'_, PyDict>) -> PyResult<String> {
-    let py = d.py();
-    if let Some((path, x)) = non_finite(d.as_any(), "")? {
-        let x = if x.is_nan() {
-            "NaN".to_string()
-        } else {
-            x.to_string()
-        };
-        return Err(crate::errors::ScenarioError::new_err(format!(
-            "dict: {path}: expected a finite number, got {x}"
-        )));
+/// A dict's value as a TOML value, read in one walk: strings, booleans, whole numbers (within
+/// TOML's 64-bit signed range), finite floats, lists and tuples (as arrays) and dicts with
+/// string keys (as tables). Anything else is refused naming its dotted path under `path`
+/// (`site.lat_deg`, `parameter[0].values[1]`) and what it is.
+fn toml_value(v: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
+    // bool before int: Python's True is an int too.
+    if let Ok(b) = v.cast::<PyBool>() {
+        return Ok(toml::Value::Boolean(b.is_true()));
     }
-    let json: String = py.import("json")?.call_method1("dumps", (d,))?.extract()?;
-    let value: serde_json::Value = serde_json::from_str(&json).map_err(|e| {
-        crate::errors::ScenarioError::new_err(format!("dict: not representable as TOML: {e}"))
-    })?;
-    let table = toml::Table::try_from(value).map_err(|e| {
-        crate::errors::ScenarioError::new_err(format!(
-            "dict: not representable as TOML (None has no TOML form): {e}"
-        ))
-    })?;
-    toml::to_string(&table).map_err(|e| {
-        crate::errors::ScenarioError::new_err(format!("dict: not representable as TOML: {e}"))
-    })
+    if let Ok(i) = v.cast::<PyInt>() {
+        return i.extract::<i64>().map(toml::Value::Integer).map_err(|_| {
+            dict_error(
+                path,
+                &format!(
+                    "expected a whole number in [{}, {}] (TOML's integers), got {i}",
+                    i64::MIN,
+                    i64::MAX
+                ),
+            )
+        });
+    }
+    if let Ok(x) = v.cast::<PyFloat>() {
+        let x = x.value();
+        if !x.is_finite() {
+            let shown = if x.is_nan() {
+                "NaN".to_string()
+            } else {
+                x.to_string()
+            };
+            return Err(dict_error(
+                path,
+                &format!("expected a finite number, got {shown}"),
+            ));
+        }
+        return Ok(toml::Value::Float(x));
+    }
+    if let Ok(text) = v.cast::<PyString>() {
+        return Ok(toml::Value::String(text.to_str()?.to_string()));
+    }
+    if let Ok(d) = v.cast::<PyDict>() {
+        return toml_table(d, path).map(toml::Value::Table);
+    }
+    if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
+        let items = v
+            .try_iter()?
+            .enumerate()
+            .map(|(i, x)| toml_value(&x?, &format!("{path}[{i}]")))
+            .collect::<PyResult<Vec<_>>>()?;
+        return Ok(toml::Value::Array(items));
+    }
+    // numpy's scalars (np.int64, np.float32, …) are numbers though not Python's int or float.
+    if v.hasattr("__index__")? {
+        let i = v.call_method0("__index__")?;
+        return toml_value(&i, path);
+    }
+    if v.hasattr("__float__")? && !v.is_none() {
+        let x = v.call_method0("__float__")?;
+        return toml_value(&x, path);
+    }
+    let kind = if v.is_none() {
+        "None, which has no TOML form (leave the key out for its default)".to_string()
+    } else {
+        format!("a {} (not representable as TOML)", v.get_type().name()?)
+    };
+    Err(dict_error(
+        path,
+        &format!("expected a string, number, bool, list or dict, got {kind}"),
+    ))
+}
+
+/// A dict with string keys as a TOML table (see [`toml_value`]).
+fn toml_table(d: &Bound<'_, PyDict>, path: &str) -> PyResult<toml::Table> {
+    let mut table = toml::Table::new();
+    for (k, x) in d.iter() {
+        let Ok(key) = k.cast::<PyString>() else {
+            return Err(dict_error(
+                path,
+                &format!("expected string keys, got the key {}", k.repr()?),
+            ));
+        };
+        let key = key.to_str()?.to_string();
+        let sub = if path.is_empty() {
+            key.clone()
+        } else {
+            format!("{path}.{key}")
+        };
+        let value = toml_value(&x, &sub)?;
+        table.insert(key, value);
+    }
+    Ok(table)
+}
+
+/// The dict as TOML text, walked once ([`toml_value`]): the scenario parser then reads it as
+/// it reads a file, so a dict gets the same checks and messages (lines refer to this text).
+pub fn dict_to_toml(d: &Bound<'_, PyDict>) -> PyResult<String> {
+    let table = toml_table(d, "")?;
+    toml::to_string(&table).map_err(|e| dict_error("", &format!("not representable as TOML: {e}")))
 }
 
 #[pymethods]

@@ -588,6 +588,11 @@ def test_argument_errors():
         (lambda: rins.table4(WEEK, runs=-1, days=0.001), ValueError, "runs: expected a whole number in [1, ", "got -1"),
         (lambda: rins.Scenario(nan), rins.ScenarioError, "dict: site.lat_deg: expected a finite number, got NaN"),
         (lambda: rins.to_toml(inf), rins.ScenarioError, "dict: sensor.gyro.position_bias.dph[1]: expected a finite number, got -inf"),
+        (lambda: rins.to_toml({"scenario": {"name": "x"}, "site": {"lat_deg": None}}), rins.ScenarioError,
+         "dict: site.lat_deg: expected a string, number, bool, list or dict, got None, which has no TOML form"),
+        (lambda: rins.to_toml({"run": {"seed": 2**70}}), rins.ScenarioError,
+         f"dict: run.seed: expected a whole number in [-9223372036854775808, 9223372036854775807] (TOML's integers), got {2**70}"),
+        (lambda: rins.to_toml({"run": {1: 2}}), rins.ScenarioError, "dict: run: expected string keys, got the key 1"),
     ]
     for call, exc, *parts in cases:
         msg = raises(call, exc, *parts)
@@ -597,6 +602,15 @@ def test_argument_errors():
     b = rins.run(SHORT, duration_s=1.0, seed=BIG - 1, truth=False)
     same_bits(a["dtheta_rad"], b["dtheta_rad"], "seed as numpy uint64")
     assert len(rins.Simulation(SHORT, duration_s=1.0, chunk=np.int64(30)).step(np.int32(7))["t_s"]) == 7
+    # A dict is walked straight into TOML (no JSON): numpy scalars are numbers, and the text is
+    # what the TOML writer makes of the same values given as Python's own.
+    plain = {"scenario": {"name": "np", "duration_s": 10.0}, "run": {"seed": 3, "rate_hz": 100.0}}
+    numpy_d = {"scenario": {"name": "np", "duration_s": np.float64(10.0)},
+               "run": {"seed": np.int64(3), "rate_hz": np.float32(100.0)}}
+    assert rins.to_toml(numpy_d) == rins.to_toml(plain), (rins.to_toml(numpy_d), rins.to_toml(plain))
+    assert tomllib.loads(rins.to_toml(plain)) == plain
+    s1 = rins.Scenario(plain)
+    assert rins.Scenario(s1).toml == s1.toml and rins.Scenario(s1).seed == 3
 
 
 if __name__ == "__main__":

@@ -94,7 +94,7 @@ fn with_preset(name: &str, f: impl FnOnce(&mut PlantConfig)) -> PlantConfig {
     cfg
 }
 
-/// The built-in scenarios (scenarios/files/*.toml), written out key by key over the defaults.
+/// The built-in scenarios (scenarios/scenario/files/*.toml), written out key by key over the defaults.
 fn builtin() -> Vec<(&'static str, PlantConfig)> {
     let calibration = |kind| {
         with_preset("paper-table3", |c| {

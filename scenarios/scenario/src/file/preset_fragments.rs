@@ -1,5 +1,5 @@
 //! The sensor presets in the scenario format: each is the `[sensor]` keys it sets, written as a
-//! TOML fragment (`scenarios/files/presets/NAME.toml`), so that a preset and a file's own
+//! TOML fragment (`scenarios/scenario/files/presets/NAME.toml`), so that a preset and a file's own
 //! `[sensor]` keys meet in one document and are read into the typed configuration once.
 //! `rins_plant::presets` keeps the same presets as Rust constructors for callers without a
 //! scenario file; the two are tested equal (tests/scenarios/preset_path.rs).
