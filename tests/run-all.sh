@@ -18,6 +18,9 @@ cargo fmt --all --check
 echo "== import circles (tests/import_cycles.py: only those docs/architecture.md names) =="
 python3 tests/import_cycles.py .
 
+echo "== crate graph (tests/crate_graph.py: drawn from the imports, none back up; Python off the report and the app) =="
+python3 tests/crate_graph.py .
+
 echo "== cargo build (the FMI shared libraries are loaded by the tests) =="
 cargo build --workspace --release "${features[@]}"
 target_dir="${CARGO_TARGET_DIR:-target}"
