@@ -7,7 +7,8 @@ bottom (a crate's layer is one above the highest crate it imports). Fails when
 * an import is not among the crate's [dependencies] (or a [dependencies] rins crate is never
   imported: a dependency kept for nothing),
 * the Python package depends, directly or through others, on the report (`rins-report`) or the
-  application (`rins-scenarios`).
+  application (`rins-scenarios`),
+* a crate is not named for its folder: crate `rins-X` lives in a folder named `X`.
 
 docs/architecture.md shows the graph this prints. Usage: python3 tests/crate_graph.py [ROOT]
 """
@@ -50,7 +51,7 @@ def main():
     root = sys.argv[1] if len(sys.argv) > 1 else "."
     with open(os.path.join(root, "Cargo.toml"), "rb") as f:
         members = tomllib.load(f)["workspace"]["members"]
-    crates = {}
+    crates, problems_early = {}, []
     for m in members:
         with open(os.path.join(root, m, "Cargo.toml"), "rb") as f:
             t = tomllib.load(f)
@@ -59,9 +60,11 @@ def main():
         deps = set(t.get("dependencies", {})) | {
             d for tgt in t.get("target", {}).values() for d in tgt.get("dependencies", {})}
         crates[name] = {"dir": m, "lib": lib, "deps": deps}
+        if name != "rins-" + os.path.basename(m):
+            problems_early.append(f"{name} lives in {m}: a crate rins-X lives in a folder named X")
     names = {c["lib"]: n for n, c in crates.items()}
     names.update({n.replace("-", "_"): n for n in crates})
-    problems = []
+    problems = list(problems_early)
     graph = {}
     for n, c in crates.items():
         used = imports(os.path.join(root, c["dir"], "src"), names) - {n}

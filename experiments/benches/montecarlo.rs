@@ -21,7 +21,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use rins_experiments::{NavRunConfig, run, run_seeds};
-use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
+use rins_navigation::strapdown::{NavState, Strapdown, VerticalChannel};
 use rins_plant::Plant;
 use std::hint::black_box;
 
@@ -134,7 +134,7 @@ fn main() {
     });
     // Table 4's navigators as the paper study runs them: updated every 4 intervals.
     let navs4 = navs.clone().map(|n| NavRunConfig {
-        subsamples: rins_nav::Subsamples::new(4).expect("in range"),
+        subsamples: rins_navigation::Subsamples::new(4).expect("in range"),
         ..n
     });
     g.bench_function(

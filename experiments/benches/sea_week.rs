@@ -61,7 +61,7 @@ fn main() {
             "sea_week: {hours} h at 100 Hz, isolation {}: wall {wall:.1} s, {:.0} ns/sample (plant + navigator), end horizontal error {:.3} nmi",
             if isolation { "on" } else { "off" },
             wall / samples * 1e9,
-            rins_nav::errors::nmi(r.end().horizontal_m)
+            rins_navigation::errors::nmi(r.end().horizontal_m)
         );
     }
 }

@@ -1,8 +1,8 @@
 //! The paper's system-level calibration as an experiment (Section 3.2, Figures 4–5): build the
 //! Z-up or Z-down calibration plant, self-align, navigate through the sequence, and hand the
-//! error records to the estimator of Eq. 17 / 19 (`rins_nav::calibration`).
+//! error records to the estimator of Eq. 17 / 19 (`rins_navigation::calibration`).
 
-use rins_nav::calibration::{
+use rins_navigation::calibration::{
     CalPosition, Calibration, CalibrationConfig, CalibrationError, PositionEstimate,
     estimate_position,
 };

@@ -1,9 +1,9 @@
 //! The temperature campaign as an experiment (Section 4.1, Figure 8): Z-up/Z-down calibrations
-//! at many chamber temperatures on both cores, then the δβ(T) fit of `rins_nav::campaign`.
+//! at many chamber temperatures on both cores, then the δβ(T) fit of `rins_navigation::campaign`.
 
 use rayon::prelude::*;
-use rins_nav::calibration::CalibrationConfig;
-use rins_nav::campaign::{Campaign, CampaignError, CampaignRun, fit_campaign};
+use rins_navigation::calibration::CalibrationConfig;
+use rins_navigation::campaign::{Campaign, CampaignError, CampaignRun, fit_campaign};
 use rins_plant::PlantConfig;
 use rins_plant::thermal::{CHAMBER_MAX_C, CHAMBER_MIN_C};
 

@@ -10,9 +10,9 @@
 
 use nalgebra::Vector3;
 use rayon::prelude::*;
-use rins_nav::errors::NavRecord;
-use rins_nav::strapdown::Strapdown;
-use rins_nav::strapdown_lanes::{LANES, StrapdownLanes};
+use rins_navigation::errors::NavRecord;
+use rins_navigation::strapdown::Strapdown;
+use rins_navigation::strapdown_lanes::{LANES, StrapdownLanes};
 use rins_plant::{PlantConfig, SeedBatch};
 
 use crate::session::{
@@ -300,7 +300,7 @@ fn lane_groups(navigators: &[Strapdown]) -> Vec<Vec<usize>> {
 mod tests {
     use super::*;
     use crate::session::run;
-    use rins_nav::VerticalChannel;
+    use rins_navigation::VerticalChannel;
     use rins_plant::Plant;
     use rins_plant::carrier::{CarrierKind, SpectrumKind};
 
@@ -372,7 +372,7 @@ mod tests {
             },
             NavRunConfig {
                 compensation: Some(cfg.sensor.gyro.position_bias),
-                subsamples: rins_nav::Subsamples::new(4).unwrap(),
+                subsamples: rins_navigation::Subsamples::new(4).unwrap(),
                 record_every_s: 30.0,
                 ..NavRunConfig::default()
             },
@@ -382,7 +382,7 @@ mod tests {
             .build()
             .unwrap();
         one_batch.install(|| check_with(&cfg, &[1, 2, 3, 4, 5, 6, 7, 8, 9], &navs, 200.0));
-        let at = rins_nav::NavState {
+        let at = rins_navigation::NavState {
             q_bn: nalgebra::UnitQuaternion::identity(),
             v_n: Vector3::zeros(),
             lat_rad: 0.6,

@@ -9,12 +9,12 @@ use rins_plant::{ImuSample, Plant};
 
 use crate::tracker::{Tracker, initial_state};
 
-pub use rins_nav::alignment::Alignment;
-use rins_nav::alignment::{FineAlignment, coarse, correct_attitude};
-use rins_nav::errors::attitude_error;
-pub use rins_nav::errors::{NavRecord, vehicle_attitude};
-use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
-use rins_nav::subsamples::Subsamples;
+pub use rins_navigation::alignment::Alignment;
+use rins_navigation::alignment::{FineAlignment, coarse, correct_attitude};
+use rins_navigation::errors::attitude_error;
+pub use rins_navigation::errors::{NavRecord, vehicle_attitude};
+use rins_navigation::strapdown::{NavState, Strapdown, VerticalChannel};
+use rins_navigation::subsamples::Subsamples;
 
 /// Options of a navigation run.
 #[derive(Clone, Debug)]
@@ -27,7 +27,7 @@ pub struct NavRunConfig {
     pub compensation: Option<PositionBiasSpec>,
     /// Interval of the error records (and of the tRMS samples of Eq. 20), s.
     pub record_every_s: f64,
-    /// IMU intervals per navigator update ([`rins_nav::subsamples`]).
+    /// IMU intervals per navigator update ([`rins_navigation::subsamples`]).
     pub subsamples: Subsamples,
 }
 

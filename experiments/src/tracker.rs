@@ -4,14 +4,14 @@
 //!
 //! A [`Tracker`] is a strapdown navigator and its [`Bookkeeping`]: the navigation computer's δβ
 //! compensation and the error records. The Monte Carlo engine runs the navigators of many
-//! trackers side by side in vector lanes ([`rins_nav::StrapdownLanes`]) and keeps each one's
+//! trackers side by side in vector lanes ([`rins_navigation::StrapdownLanes`]) and keeps each one's
 //! bookkeeping here, so a tracker gives the same records whichever way its navigator runs.
 
 use nalgebra::{Matrix3, Vector3};
-use rins_nav::compensation::PositionBiasCompensation;
-use rins_nav::errors::{NavRecord, Trms, attitude_error, position_error_m, vehicle_attitude};
-use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
-use rins_nav::subsamples::Subsamples;
+use rins_navigation::compensation::PositionBiasCompensation;
+use rins_navigation::errors::{NavRecord, Trms, attitude_error, position_error_m, vehicle_attitude};
+use rins_navigation::strapdown::{NavState, Strapdown, VerticalChannel};
+use rins_navigation::subsamples::Subsamples;
 use rins_plant::earth::Site;
 use rins_plant::effects::gyro::PositionBiasSpec;
 use rins_plant::{ImuSample, Plant, Truth};

@@ -560,14 +560,14 @@ pub fn replay(model: &PlantConfig, rows: &(impl Rows + ?Sized), window_s: f64) -
     let nx = groups.iter().map(|g| g.len).sum::<usize>();
     let row_dt_s = info.median_dt_s;
 
-    let site_state = |c_bn: Matrix3<f64>| rins_nav::strapdown::NavState {
+    let site_state = |c_bn: Matrix3<f64>| rins_navigation::strapdown::NavState {
         q_bn: rins_plant::attitude::quaternion_of(&c_bn),
         v_n: Vector3::zeros(),
         lat_rad: model.site.lat_deg.to_radians(),
         lon_rad: model.site.lon_deg.to_radians(),
         height_m: model.site.height_m,
     };
-    let vertical = rins_nav::strapdown::VerticalChannel::Hold {
+    let vertical = rins_navigation::strapdown::VerticalChannel::Hold {
         ref_height_m: model.site.height_m,
     };
     let mut per_segment: Vec<(Vec<Window>, Vec<AllanAcc>, NavTrack)> = Vec::new();
@@ -606,14 +606,14 @@ pub fn replay(model: &PlantConfig, rows: &(impl Rows + ?Sized), window_s: f64) -
                 }
             };
             let mut nav_meas =
-                rins_nav::strapdown::Strapdown::new(site_state(c_bn0), row_dt_s, vertical);
+                rins_navigation::strapdown::Strapdown::new(site_state(c_bn0), row_dt_s, vertical);
             let mut nav_model = nav_meas.clone();
             let mut track = NavTrack {
                 run: h.run[seg.start],
                 ..NavTrack::default()
             };
-            let horizontal = |n: &rins_nav::strapdown::Strapdown| {
-                let (north, east) = rins_nav::errors::position_error_m(
+            let horizontal = |n: &rins_navigation::strapdown::Strapdown| {
+                let (north, east) = rins_navigation::errors::position_error_m(
                     n.state(),
                     model.site.lat_deg.to_radians(),
                     model.site.lon_deg.to_radians(),

@@ -1,12 +1,12 @@
 //! The strapdown navigator alone, per update of one navigator: [`Strapdown`] one at a time
 //! against [`StrapdownLanes`] (eight side by side, and two), on the same increments (Earth rate,
 //! gravity, small noise-like wobbles), and eight updated once every 4 intervals (per interval).
-//! `cargo bench -p rins-nav --bench strapdown`.
+//! `cargo bench -p rins-navigation --bench strapdown`.
 
 use criterion::{Criterion, Throughput};
 use nalgebra::{UnitQuaternion, Vector3};
-use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
-use rins_nav::strapdown_lanes::{LANES, StrapdownLanes};
+use rins_navigation::strapdown::{NavState, Strapdown, VerticalChannel};
+use rins_navigation::strapdown_lanes::{LANES, StrapdownLanes};
 use std::hint::black_box;
 
 /// Updates per measurement and navigator.
@@ -75,7 +75,7 @@ fn main() {
         "lanes of 8, updated every 4 intervals (per navigator interval)",
         |b| {
             b.iter(|| {
-                let four = rins_nav::Subsamples::new(4).expect("in range");
+                let four = rins_navigation::Subsamples::new(4).expect("in range");
                 let navs = navigators().into_iter().map(|n| n.with_subsamples(four));
                 black_box(lanes_run(navs.collect()))
             })

@@ -1,4 +1,4 @@
-//! # rins-nav
+//! # rins-navigation
 //!
 //! The reference "external navigation software" for the rins plant: a strapdown navigator in
 //! ENU on WGS-84 consuming Δθ/Δv increments with coning and sculling compensation, coarse and

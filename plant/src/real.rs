@@ -1,6 +1,6 @@
 //! The number type of code that runs for one navigator or for several side by side: one `f64`,
 //! or [`Lanes`], one navigator per vector lane. The WGS-84 radii and normal gravity
-//! ([`crate::earth`]) and the navigator's strapdown equations (rins-nav) are written over it
+//! ([`crate::earth`]) and the navigator's strapdown equations (rins-navigation) are written over it
 //! once.
 //!
 //! Every operation of [`Lanes`] is the `f64` operation on each lane: IEEE add, subtract,

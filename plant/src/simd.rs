@@ -19,7 +19,7 @@ pub(crate) const LANES: usize = 8;
 
 /// Compiles `$body` for AVX-512F and AVX2 as well and runs the widest the CPU supports; with
 /// `use $wide` the AVX-512F build is the hand-written function `$wide` instead. Exported for
-/// the navigator in vector lanes (rins-nav), whose bits likewise do not depend on the choice.
+/// the navigator in vector lanes (rins-navigation), whose bits likewise do not depend on the choice.
 #[macro_export]
 macro_rules! multiversion {
     ($(#[$doc:meta])* $vis:vis fn $name:ident($($a:ident: $t:ty),*) $(-> $r:ty)?

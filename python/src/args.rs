@@ -98,7 +98,7 @@ pub fn seeds(obj: &Bound<'_, PyAny>) -> PyResult<Vec<u64>> {
 }
 
 /// `subsamples`: IMU intervals per navigator update (1 to 4).
-pub fn subsamples(obj: &Bound<'_, PyAny>) -> PyResult<rins_nav::Subsamples> {
+pub fn subsamples(obj: &Bound<'_, PyAny>) -> PyResult<rins_navigation::Subsamples> {
     let n = whole(obj, "subsamples", 1, 4).map_err(|e| {
         let py = obj.py();
         let msg = format!(
@@ -111,7 +111,7 @@ pub fn subsamples(obj: &Bound<'_, PyAny>) -> PyResult<rins_nav::Subsamples> {
             PyValueError::new_err(msg)
         }
     })?;
-    rins_nav::Subsamples::new(n as u8).map_err(PyValueError::new_err)
+    rins_navigation::Subsamples::new(n as u8).map_err(PyValueError::new_err)
 }
 
 /// The Python side's check of a whole-number argument (`rins.montecarlo`'s `seeds_per_task`):

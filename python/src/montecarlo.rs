@@ -1,12 +1,12 @@
 //! Monte Carlo over seeds: the end figures `rins paper table4` reports per seed (uncompensated
 //! and δβ-compensated navigation, common random numbers), for any list of seeds, and the whole
 //! Table 4 study. Both reuse the Monte Carlo engine (`rins_experiments::run_seeds`, through
-//! rins-verify's `paper::paired_navs`, `EndFigures::from_run`, `paper::table4`); the seeds run
+//! rins-verification's `paper::paired_navs`, `EndFigures::from_run`, `paper::table4`); the seeds run
 //! on every core with the GIL released.
 
 use pyo3::prelude::*;
 use rins_experiments::{Alignment, NavRunConfig};
-use rins_verify::paper::{EndFigures, Table4Options};
+use rins_verification::paper::{EndFigures, Table4Options};
 
 use crate::navigation::parse_alignment;
 use crate::scenario::PyScenario;
@@ -74,7 +74,7 @@ fn options(
     runs: usize,
     duration_s: f64,
     alignment: Alignment,
-    subsamples: rins_nav::Subsamples,
+    subsamples: rins_navigation::Subsamples,
 ) -> PyResult<Table4Options> {
     samples_of(duration_s, sc.inner.plant.rate_hz)?;
     let mut plant = sc.inner.plant.clone();
@@ -117,7 +117,7 @@ pub fn end_figures(
     let seeds = crate::args::seeds(seeds)?;
     let subsamples = match subsamples {
         Some(n) => crate::args::subsamples(n)?,
-        None => rins_nav::Subsamples::ONE,
+        None => rins_navigation::Subsamples::ONE,
     };
     let sc = PyScenario::resolve(scenario)?;
     let align = match alignment {
@@ -144,7 +144,7 @@ pub fn end_figures(
     // Each seed's samples feed both navigators (the Monte Carlo engine: seeds sharing the
     // physics are read out from one plant); the figures are those of runs made one by one.
     let out = crate::interrupt::run(py, |stop| {
-        let navs = rins_verify::paper::paired_navs(&opt, &opt.plant);
+        let navs = rins_verification::paper::paired_navs(&opt, &opt.plant);
         let progress = |_| stop.check();
         rins_experiments::run_seeds(&opt.plant, &seeds, opt.duration_s, &navs, &progress).map(
             |runs| {
@@ -186,7 +186,7 @@ pub fn table4_json(
 ) -> PyResult<String> {
     let subsamples = match subsamples {
         Some(n) => crate::args::subsamples(n)?,
-        None => rins_nav::Subsamples::new(4).map_err(pyo3::exceptions::PyValueError::new_err)?,
+        None => rins_navigation::Subsamples::new(4).map_err(pyo3::exceptions::PyValueError::new_err)?,
     };
     let sc = match scenario {
         Some(s) => PyScenario::resolve(s)?,
@@ -218,7 +218,7 @@ pub fn table4_json(
         "run fewer runs= or fewer days=",
     )?;
     let report = crate::interrupt::run(py, |stop| {
-        rins_verify::paper::table4(&opt, &|_| stop.check())
+        rins_verification::paper::table4(&opt, &|_| stop.check())
     })?;
     serde_json::to_string_pretty(&report)
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))

@@ -70,7 +70,7 @@ pub fn navigate<'py>(
     let seed = crate::args::seed(seed)?;
     let subsamples = match subsamples {
         Some(n) => crate::args::subsamples(n)?,
-        None => rins_nav::Subsamples::ONE,
+        None => rins_navigation::Subsamples::ONE,
     };
     let sc = PyScenario::resolve(scenario)?;
     let mut cfg = sc.inner.plant.clone();

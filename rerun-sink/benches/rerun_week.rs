@@ -8,7 +8,7 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use rins_plant::Plant;
-use rins_rerun::{Recorder, RunOptions, RunRecorder, Target, bucket};
+use rins_rerun_sink::{Recorder, RunOptions, RunRecorder, Target, bucket};
 
 fn plant_only(cfg: &rins_plant::PlantConfig, n: u64) -> f64 {
     let mut p = Plant::new(cfg).expect("valid preset");
@@ -50,9 +50,9 @@ fn with_rerun(
         r.sample(&s, &p.truth()).expect("log");
     }
     r.finish().expect("finish");
-    rins_rerun::blueprint::send(
+    rins_rerun_sink::blueprint::send(
         rec.stream(),
-        &rins_rerun::Layout {
+        &rins_rerun_sink::Layout {
             plant: true,
             ..Default::default()
         },

@@ -1,4 +1,4 @@
-//! # rins-rerun
+//! # rins-rerun-sink
 //!
 //! Rerun recordings of rins runs: the IMU rotating through its scheme inside the gimbal frames,
 //! the dwell position, Δθ/Δv, gimbal angles, temperatures, each effect's contribution and the

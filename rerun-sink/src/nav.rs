@@ -3,8 +3,8 @@
 
 use anyhow::Result;
 use rerun::RecordingStream;
-use rins_nav::NavRecord;
-use rins_nav::errors::nmi;
+use rins_navigation::NavRecord;
+use rins_navigation::errors::nmi;
 
 use crate::series::{Series, nanos};
 

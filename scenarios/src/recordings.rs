@@ -5,7 +5,7 @@
 
 use anyhow::Result;
 use rins_plant::{ImuSample, Truth};
-use rins_rerun::{Layout, Recorder, RunOptions, RunRecorder, Target};
+use rins_rerun_sink::{Layout, Recorder, RunOptions, RunRecorder, Target};
 
 use crate::runner::Sink;
 use rins_scenario::file::Scenario;
@@ -29,7 +29,7 @@ impl RerunSink {
         let recorder = Recorder::open(target, &scenario.meta.name)?;
         let plant = rins_scenario::new_plant(&scenario.plant, &scenario.source)?;
         let bucket_samples =
-            rins_rerun::bucket::samples_per_bucket(bucket_s, scenario.plant.rate_hz, samples);
+            rins_rerun_sink::bucket::samples_per_bucket(bucket_s, scenario.plant.rate_hz, samples);
         let tracker = navigate.then(|| {
             rins_experiments::Tracker::at_truth(
                 &plant,
@@ -57,7 +57,7 @@ impl RerunSink {
             docs: vec!["/about".into()],
             track: run.moving_carrier(),
         };
-        rins_rerun::scene::log_doc(
+        rins_rerun_sink::scene::log_doc(
             recorder.stream(),
             "about",
             &about(scenario, bucket_samples, navigate),
@@ -87,7 +87,7 @@ impl RerunSink {
     /// Sends the blueprint and closes the recording (idempotent).
     pub fn close(&mut self) -> Result<()> {
         if let Some(r) = self.recorder.take() {
-            rins_rerun::blueprint::send(r.stream(), &self.layout)?;
+            rins_rerun_sink::blueprint::send(r.stream(), &self.layout)?;
             r.finish()?;
         }
         Ok(())
@@ -120,14 +120,14 @@ pub fn record_paired(
     scenario: &Scenario,
     plant_cfg: &rins_plant::PlantConfig,
     duration_s: f64,
-    r: &rins_verify::paper::Table4Report,
+    r: &rins_verification::paper::Table4Report,
     text: &str,
 ) -> Result<()> {
     let recorder = Recorder::open(target, &scenario.meta.name)?;
     let rec = recorder.stream();
     let mut plant = rins_scenario::new_plant(plant_cfg, &scenario.source)?;
     let n = (duration_s * plant_cfg.rate_hz).round() as u64;
-    let bucket_samples = rins_rerun::bucket::samples_per_bucket(bucket_s, plant_cfg.rate_hz, n);
+    let bucket_samples = rins_rerun_sink::bucket::samples_per_bucket(bucket_s, plant_cfg.rate_hz, n);
     let mut run = RunRecorder::new(
         rec,
         plant_cfg,
@@ -153,34 +153,34 @@ pub fn record_paired(
     run.finish()?;
     let dt = 1.0 / plant_cfg.rate_hz;
     let every = "first seed, one record per 60 s";
-    rins_rerun::nav::NavSeries::log_all(
+    rins_rerun_sink::nav::NavSeries::log_all(
         rec,
         "uncompensated",
         every,
         &r.first_seed.uncompensated,
         dt,
     )?;
-    rins_rerun::nav::NavSeries::log_all(rec, "compensated", every, &r.first_seed.compensated, dt)?;
-    rins_rerun::nav::NavSeries::log_all(
+    rins_rerun_sink::nav::NavSeries::log_all(rec, "compensated", every, &r.first_seed.compensated, dt)?;
+    rins_rerun_sink::nav::NavSeries::log_all(
         rec,
         "noise_free_uncompensated",
         "noise-free",
         &r.noise_free_series.uncompensated,
         dt,
     )?;
-    rins_rerun::nav::NavSeries::log_all(
+    rins_rerun_sink::nav::NavSeries::log_all(
         rec,
         "noise_free_compensated",
         "noise-free",
         &r.noise_free_series.compensated,
         dt,
     )?;
-    rins_rerun::scene::log_doc(
+    rins_rerun_sink::scene::log_doc(
         rec,
         "results",
         &format!("# Results\n\n```text\n{text}\n```\n"),
     )?;
-    rins_rerun::scene::log_doc(rec, "about", &about(scenario, bucket_samples, false))?;
+    rins_rerun_sink::scene::log_doc(rec, "about", &about(scenario, bucket_samples, false))?;
     let layout = Layout {
         plant: true,
         nav_cases: [
@@ -195,7 +195,7 @@ pub fn record_paired(
         docs: vec!["/results".into(), "/about".into()],
         track: run.moving_carrier(),
     };
-    rins_rerun::blueprint::send(rec, &layout)?;
+    rins_rerun_sink::blueprint::send(rec, &layout)?;
     recorder.finish()
 }
 
@@ -238,7 +238,7 @@ pub fn record_diagnosis(
             (i as u64, w.t_mid_s, v)
         });
         let path = format!("diagnosis/residual/{ch}");
-        rins_rerun::series::log_rows(rec, &path, &names, &[], rows)?;
+        rins_rerun_sink::series::log_rows(rec, &path, &names, &[], rows)?;
         roots.push(format!("/{path}"));
     }
     let mut nav_roots = Vec::new();
@@ -254,7 +254,7 @@ pub fn record_diagnosis(
             .iter()
             .enumerate()
             .map(|(i, ts)| (i as u64, *ts, vec![t.measured_m[i], t.model_m[i]]));
-        rins_rerun::series::log_rows(
+        rins_rerun_sink::series::log_rows(
             rec,
             &path,
             &[
@@ -266,7 +266,7 @@ pub fn record_diagnosis(
         )?;
         nav_roots.push(format!("/{path}"));
     }
-    rins_rerun::scene::log_doc(
+    rins_rerun_sink::scene::log_doc(
         rec,
         "results",
         &format!(
@@ -283,7 +283,7 @@ pub fn record_diagnosis(
                 (st.step as u64, st.step as f64, vec![ratio, bound])
             });
             let path = format!("diagnosis/iteration/{ch}");
-            rins_rerun::series::log_rows(
+            rins_rerun_sink::series::log_rows(
                 rec,
                 &path,
                 &[
@@ -310,7 +310,7 @@ pub fn record_diagnosis(
         nav_roots.truncate(8);
         extra.push(("Navigation: measured vs model".to_string(), nav_roots));
     }
-    rins_rerun::blueprint::send(
+    rins_rerun_sink::blueprint::send(
         rec,
         &Layout {
             plant: false,
@@ -354,7 +354,7 @@ fn about(sc: &Scenario, bucket: u64, navigate: bool) -> String {
         rate = sc.plant.rate_hz,
         dur = sc.meta.duration_s,
         seed = sc.plant.seed,
-        stride = (bucket / rins_rerun::run::SLOW_SAMPLES).max(1),
+        stride = (bucket / rins_rerun_sink::run::SLOW_SAMPLES).max(1),
         nav = if navigate {
             "\n\n`nav/reference/*`: the reference navigator, aligned to the truth, its errors instantaneous at each bucket end."
         } else {

@@ -3,7 +3,7 @@
 //! both exist, split into stationary and rotation phases, and what it does to navigation.
 
 use nalgebra::Vector3;
-use rins_verify::quadrature::{NODES, WEIGHTS};
+use rins_verification::quadrature::{NODES, WEIGHTS};
 use serde::Serialize;
 
 use crate::cycle::{Cycle, CycleError, Piece, PieceKind};

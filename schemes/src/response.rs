@@ -45,7 +45,7 @@ fn model(lat: f64) -> (M7, M75, f64, f64, f64) {
     let r = (rm * rn).sqrt();
     let g = normal_gravity(lat, 0.0);
     let c = lat.cos();
-    let f = rins_verify::ins::static_error_matrix(lat);
+    let f = rins_verification::ins::static_error_matrix(lat);
     let mut b = M75::zeros();
     for i in 0..3 {
         b[(i, i)] = -1.0;

@@ -220,7 +220,7 @@ def fmpy_connected(imu_fmu, carrier_fmu, steps, outputs=OUTPUTS, init_transfer=T
 
 def in_process_system(steps, csv=True):
     """The carrier -> IMU system in process (the two models' generic FMI state machines
-    connected in the masters' order: fmi-wrapper/models/imu/examples/carrier_imu.rs, built
+    connected in the masters' order: fmi-wrapper/models/imu-fmu/examples/carrier_imu.rs, built
     beside `rins` by tests/run-all.sh): imu.dtheta_rad after every step and the wall time."""
     exe = os.path.join(os.path.dirname(RINS), "examples", "carrier_imu")
     assert os.path.exists(exe), f"{exe} missing: `cargo test --workspace --release` builds it (or cargo build --release -p rins-imu-fmu --example carrier_imu)"

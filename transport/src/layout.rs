@@ -160,9 +160,9 @@ impl StartRecord {
     }
 
     /// The navigation state it describes (the quaternion taken as sent, bit for bit).
-    pub fn nav_state(&self) -> rins_nav::strapdown::NavState {
+    pub fn nav_state(&self) -> rins_navigation::strapdown::NavState {
         let [w, i, j, k] = self.q_bn;
-        rins_nav::strapdown::NavState {
+        rins_navigation::strapdown::NavState {
             q_bn: nalgebra::UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(w, i, j, k)),
             v_n: self.v_enu_mps.into(),
             lat_rad: self.lat_rad,

@@ -5,7 +5,7 @@
 use std::time::{Duration, Instant};
 
 use nalgebra::Vector3;
-use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
+use rins_navigation::strapdown::{NavState, Strapdown, VerticalChannel};
 use rins_plant::PlantConfig;
 
 use crate::action::NavAction;
@@ -191,7 +191,7 @@ impl NavSummary {
             ..*s
         };
         let (north_m, east_m) =
-            rins_nav::errors::position_error_m(&at_truth_lon, t.lat_rad, t.lon_rad, t.height_m);
+            rins_navigation::errors::position_error_m(&at_truth_lon, t.lat_rad, t.lon_rad, t.height_m);
         Some(FinalError {
             north_m,
             east_m,

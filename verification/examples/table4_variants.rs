@@ -1,7 +1,7 @@
 //! Development aid: the noise-free Table 4 pair under different modelling choices.
 use rins_experiments::{Alignment, NavRunConfig};
 use rins_plant::effects::gyro::Transition;
-use rins_verify::paper::{Table4Options, table4};
+use rins_verification::paper::{Table4Options, table4};
 
 fn main() {
     let base = rins_scenarios_free_config();

@@ -1,4 +1,4 @@
-//! # rins-verify
+//! # rins-verification
 //!
 //! Verification of the plant and navigator against independent references: the analytic
 //! cancellation of Eq. 8, the δβ residual of Eq. 11, Table 2 of the paper, and (in later

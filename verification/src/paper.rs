@@ -70,7 +70,7 @@ impl EndFigures {
     /// The end figures of a finished navigation run.
     pub fn from_run(r: &rins_experiments::NavRun) -> Self {
         let e = r.end();
-        let nm = rins_nav::errors::nmi;
+        let nm = rins_navigation::errors::nmi;
         Self {
             lat_nm: nm(e.north_m),
             lon_nm: nm(e.east_m),
@@ -166,7 +166,7 @@ pub struct Table4Report {
     pub runs: usize,
     /// Simulated days.
     pub days: f64,
-    /// IMU intervals per navigator update ([`rins_nav::Subsamples`]).
+    /// IMU intervals per navigator update ([`rins_navigation::Subsamples`]).
     pub nav_subsamples: u8,
     /// Uncompensated statistics.
     pub uncompensated: CaseStats,

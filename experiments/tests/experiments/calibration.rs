@@ -2,7 +2,7 @@
 
 use rayon::prelude::*;
 use rins_experiments::calibration::calibrate;
-use rins_nav::calibration::{CalibrationConfig, Estimator};
+use rins_navigation::calibration::{CalibrationConfig, Estimator};
 use rins_plant::PlantConfig;
 use rins_plant::effects::GyroTerm;
 

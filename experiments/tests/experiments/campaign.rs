@@ -1,8 +1,8 @@
 //! The temperature campaign recovers δβ(T) and refuses bad inputs.
 
 use rins_experiments::campaign::run_campaign;
-use rins_nav::calibration::CalibrationConfig;
-use rins_nav::campaign::CampaignError;
+use rins_navigation::calibration::CalibrationConfig;
+use rins_navigation::campaign::CampaignError;
 use rins_plant::PlantConfig;
 
 fn noise_free_full() -> PlantConfig {

@@ -6,7 +6,7 @@
 
 use nalgebra::{Matrix3, Rotation3, Vector3};
 use rins_experiments::Tracker;
-use rins_nav::errors::attitude_error;
+use rins_navigation::errors::attitude_error;
 use rins_plant::table::SchemeKind;
 use rins_plant::units::{ARCSEC, PPM};
 use rins_plant::{Plant, PlantConfig};

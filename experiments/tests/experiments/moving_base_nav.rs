@@ -17,7 +17,7 @@
 //! 0.14 m and 3.2e-8 rad).
 
 use nalgebra::{Rotation3, UnitQuaternion};
-use rins_nav::strapdown::{NavState, Strapdown, VerticalChannel};
+use rins_navigation::strapdown::{NavState, Strapdown, VerticalChannel};
 use rins_plant::carrier::{CarrierKind, LegSpec, SpectrumKind};
 use rins_plant::earth::radii_of_curvature;
 use rins_plant::{Plant, PlantConfig};

@@ -1,6 +1,6 @@
 //! Terminal text of the results the commands print. The verification reports render their own
 //! text (`AnalyticReport::to_text`, `InsReport::to_text`, Table 5's `to_text_table5`); the
-//! result types of the calibration (rins-nav), of the diagnosis (rins-verify), of Table 4
+//! result types of the calibration (rins-navigation), of the diagnosis (rins-verification), of Table 4
 //! ([`table4_text`]) and of the at-sea study ([`sea_text`]) get theirs here, through [`RenderText`],
 //! since a trait of this crate is how they take a method here.
 

@@ -6,8 +6,8 @@
 //! between Z-up and Z-down (g-sensitivity along z, scale factor and misalignment on the Earth
 //! rate, docs/paper-reproduction.md) enters the estimate too, and is not in this truth.
 
-use rins_nav::calibration::Calibration;
-use rins_nav::campaign::Campaign;
+use rins_navigation::calibration::Calibration;
+use rins_navigation::campaign::Campaign;
 use rins_plant::PlantConfig;
 use rins_plant::effects::gyro::GyroModel;
 use rins_plant::units::DPH;

@@ -92,7 +92,7 @@ pub struct RerunArgs {
 impl RerunArgs {
     /// The destination, checked, or None when no recording was asked for.
     #[cfg(feature = "rerun")]
-    pub fn target(&self) -> Result<Option<rins_rerun::Target>> {
+    pub fn target(&self) -> Result<Option<rins_rerun_sink::Target>> {
         if let Some(b) = self.rerun_bucket_s
             && !(b > 0.0 && b.is_finite())
         {

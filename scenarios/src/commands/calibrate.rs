@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use rins_nav::calibration::{CalibrationConfig, Estimator};
+use rins_navigation::calibration::{CalibrationConfig, Estimator};
 
 use rins_report::figures::calibration::write_calibration_figure;
 use rins_report::text::{CalibrationRun, RenderText};
@@ -71,12 +71,12 @@ pub fn calibration_config(sc: &Scenario, estimator: &str) -> CalibrationConfig {
     let lead = sc.plant.scheme.lead_dwell_s;
     let alignment = if lead > 0.0 {
         let coarse = (lead / 4.0).min(120.0);
-        rins_nav::Alignment::SelfAlign {
+        rins_navigation::Alignment::SelfAlign {
             coarse_s: coarse,
             fine_s: lead - coarse,
         }
     } else {
-        rins_nav::Alignment::Truth
+        rins_navigation::Alignment::Truth
     };
     CalibrationConfig {
         estimator: if estimator == "paper" {

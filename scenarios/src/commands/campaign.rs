@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
-use rins_nav::campaign::Campaign;
+use rins_navigation::campaign::Campaign;
 
 use super::calibrate::calibration_config;
 use rins_report::figures::calibration::write_campaign_figure;

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use anyhow::Result;
 use rins_plant::message::Num;
-use rins_verify::paper::{Table4Options, Table4Report};
+use rins_verification::paper::{Table4Options, Table4Report};
 
 use super::args::{RerunArgs, whole};
 use rins_report::figures::paper::write_table4_figures;
@@ -33,7 +33,7 @@ pub fn run_paired(
     let target = viz.target()?;
     let total = (2 * opt.runs as u64 + 2) * (opt.duration_s * opt.plant.rate_hz) as u64;
     let pb = crate::progress::bar(total, name);
-    let r = rins_verify::paper::table4(opt, &|n| pb.inc(n));
+    let r = rins_verification::paper::table4(opt, &|n| pb.inc(n));
     pb.finish_and_clear();
     super::create_dir(out)?;
     std::fs::write(
@@ -69,10 +69,10 @@ pub fn run_paired(
     Ok(r)
 }
 
-/// `--subsamples`: a count the navigator takes ([`rins_nav::Subsamples`]), or the range.
-pub(crate) fn parse_subsamples(s: &str) -> Result<rins_nav::Subsamples, String> {
+/// `--subsamples`: a count the navigator takes ([`rins_navigation::Subsamples`]), or the range.
+pub(crate) fn parse_subsamples(s: &str) -> Result<rins_navigation::Subsamples, String> {
     let n: u8 = s
         .parse()
         .map_err(|_| format!("`{s}` is not a count of intervals (1 to 4)"))?;
-    rins_nav::Subsamples::new(n)
+    rins_navigation::Subsamples::new(n)
 }

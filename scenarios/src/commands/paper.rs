@@ -21,7 +21,7 @@ pub struct PaperArgs {
     pub runs: i64,
     /// Headline job: IMU intervals per navigator update (1 to 4; see `rins paper table4`).
     #[arg(long, default_value = "4", value_parser = super::paired_runs::parse_subsamples)]
-    pub subsamples: rins_nav::Subsamples,
+    pub subsamples: rins_navigation::Subsamples,
     /// Output folder.
     #[arg(long, default_value = "out/paper")]
     pub out: PathBuf,
@@ -61,7 +61,7 @@ pub fn run(a: &PaperArgs) -> Result<()> {
 /// The analytic verification, then Table 4 with the paper's 32 seeds (`--runs`); fails when
 /// the verification failed.
 fn headline(a: &PaperArgs) -> Result<()> {
-    let report = rins_verify::report::AnalyticReport::run();
+    let report = rins_verification::report::AnalyticReport::run();
     println!(
         "== Analytic verification (Eq. 8, Eq. 11, Table 2) ==\n{}",
         report.to_text()

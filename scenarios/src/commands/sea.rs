@@ -2,15 +2,15 @@
 //! on a ship at 10-15 kn with course changes and sea state 4-5, without and with azimuth
 //! isolation, δβ uncompensated and compensated, over several seeds, beside the static reference
 //! (the same sensors and seeds on the static carrier). The navigator starts aligned from truth
-//! on the moving base. Runs on [`rins_verify::paper::sea`], Table 4's machinery.
+//! on the moving base. Runs on [`rins_verification::paper::sea`], Table 4's machinery.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use plotters::style::RGBColor;
-use rins_nav::NavRecord;
+use rins_navigation::NavRecord;
 use rins_plant::carrier::SeaRealisation;
-use rins_verify::paper::{Band, SeaOptions, SeaReport, Table4Report};
+use rins_verification::paper::{Band, SeaOptions, SeaReport, Table4Report};
 use serde::Serialize;
 
 use super::args::RerunArgs;
@@ -39,7 +39,7 @@ pub struct SeaArgs {
     /// IMU intervals per navigator update, 1 to 4 (`rins paper table4 --subsamples`; the
     /// figures in docs/carrier.md are with 1).
     #[arg(long, default_value = "1", value_parser = super::paired_runs::parse_subsamples)]
-    pub subsamples: rins_nav::Subsamples,
+    pub subsamples: rins_navigation::Subsamples,
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
@@ -113,7 +113,7 @@ pub fn run(a: &SeaArgs) -> Result<()> {
     reference.carrier = Default::default();
     let opt = SeaOptions {
         ship,
-        paired: rins_verify::paper::Table4Options {
+        paired: rins_verification::paper::Table4Options {
             plant: reference,
             runs,
             duration_s: a.days * 86_400.0,
@@ -128,7 +128,7 @@ pub fn run(a: &SeaArgs) -> Result<()> {
     // Three cases × 2 navigators per seed, plus each case's noise-free pair and the ideal IMU
     // on each ship case (two navigators each).
     let pb = crate::progress::bar((6 * runs as u64 + 10) * per_run, "sea");
-    let r = rins_verify::paper::sea(&opt, &|n| pb.inc(n));
+    let r = rins_verification::paper::sea(&opt, &|n| pb.inc(n));
     pb.finish_and_clear();
     super::create_dir(&a.out)?;
     std::fs::write(a.out.join("sea.json"), serde_json::to_string_pretty(&r)?)?;
@@ -171,7 +171,7 @@ fn hours(recs: &[NavRecord], f: &dyn Fn(&NavRecord) -> f64) -> Vec<(f64, f64)> {
 /// (categorical: median and 5-95 % band per case, side by side, and the noise-free pair)
 /// and `sea_end_error.json` (the plotted numbers).
 pub fn write_figures(r: &SeaReport, out: &Path) -> Result<()> {
-    let nm = rins_nav::errors::nmi;
+    let nm = rins_navigation::errors::nmi;
     let panels: Vec<Panel> = r
         .cases()
         .iter()

@@ -28,7 +28,7 @@ pub struct Table4Args {
     /// N-sample coning and sculling coefficients (docs/paper-reproduction.md: 4 moves the
     /// medians by less than 0.01 nmi against 1 and takes 30 % less CPU time).
     #[arg(long, default_value = "4", value_parser = super::paired_runs::parse_subsamples)]
-    pub subsamples: rins_nav::Subsamples,
+    pub subsamples: rins_navigation::Subsamples,
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
@@ -56,7 +56,7 @@ pub fn run(a: &Table4Args) -> Result<()> {
 }
 
 /// The study itself: runs it, writes table4.json and the figures, prints the table (or JSON).
-pub fn study(a: &Table4Args) -> Result<rins_verify::paper::Table4Report> {
+pub fn study(a: &Table4Args) -> Result<rins_verification::paper::Table4Report> {
     let runs = check_runs_days(a.runs, a.days)?;
     let sc = Scenario::load(&a.scenario)?;
     let mut plant = sc.plant.clone();
@@ -64,19 +64,19 @@ pub fn study(a: &Table4Args) -> Result<rins_verify::paper::Table4Report> {
         // The IMU sits at its initial position while aligning; the scheme starts afterwards.
         plant.scheme.lead_dwell_s += 900.0;
     }
-    let opt = rins_verify::paper::Table4Options {
+    let opt = rins_verification::paper::Table4Options {
         plant,
         runs,
         duration_s: a.days * 86_400.0,
         compensation: None,
         nav: rins_experiments::NavRunConfig {
             alignment: if a.align == "self" {
-                rins_nav::Alignment::SelfAlign {
+                rins_navigation::Alignment::SelfAlign {
                     coarse_s: 300.0,
                     fine_s: 600.0,
                 }
             } else {
-                rins_nav::Alignment::Truth
+                rins_navigation::Alignment::Truth
             },
             subsamples: a.subsamples,
             ..rins_experiments::NavRunConfig::default()

@@ -55,7 +55,7 @@ pub fn run(a: &Table5Args) -> Result<()> {
         }
     };
     let sc = Scenario::load(&a.scenario)?;
-    let opt = rins_verify::paper::Table4Options {
+    let opt = rins_verification::paper::Table4Options {
         plant: sc.plant.clone(),
         runs,
         duration_s: a.days * 86_400.0,

@@ -52,7 +52,7 @@ pub fn run(cmd: &VerifyCommand) -> Result<()> {
 }
 
 fn analytic(a: &AnalyticArgs) -> Result<()> {
-    let r = rins_verify::report::AnalyticReport::run();
+    let r = rins_verification::report::AnalyticReport::run();
     if let Some(dir) = &a.figures {
         write_cycle_figure(dir)?;
         write_checks_figure(
@@ -72,7 +72,7 @@ fn analytic(a: &AnalyticArgs) -> Result<()> {
 
 fn ins(a: &InsArgs) -> Result<()> {
     let runs = whole("--runs", a.runs, 8, usize::MAX, "Monte Carlo runs")?;
-    let r = rins_verify::ins::InsReport::run(runs);
+    let r = rins_verification::ins::InsReport::run(runs);
     if let Some(dir) = &a.figures {
         write_checks_figure(
             &dir.join("ins_checks.svg"),

@@ -1,7 +1,7 @@
 //! Runs a sweep: each point's seeds through the Monte Carlo engine
 //! ([`rins_experiments::run_seeds`], both cores), every seed's samples feeding the uncompensated
 //! and the δβ-compensated navigator exactly as `rins paper table4` does (its navigators,
-//! [`rins_verify::paper::paired_navs`], and its end figures, [`EndFigures::from_run`]).
+//! [`rins_verification::paper::paired_navs`], and its end figures, [`EndFigures::from_run`]).
 
 use std::collections::BTreeMap;
 use std::time::Instant;
@@ -10,7 +10,7 @@ use rins_experiments::NavRunConfig;
 use rins_experiments::session::SessionError;
 use rins_plant::PlantConfig;
 use rins_plant::params::ParamValue;
-use rins_verify::paper::{Band, EndFigures, Table4Options};
+use rins_verification::paper::{Band, EndFigures, Table4Options};
 
 use super::result::{OutputInfo, ParameterInfo, PointResult, SeedResult, SweepReport};
 use super::spec::{Align, Point, SweepPlan};
@@ -62,7 +62,7 @@ pub fn seed_figures(
             ..NavRunConfig::default()
         },
     };
-    let navs = rins_verify::paper::paired_navs(&opt, plant);
+    let navs = rins_verification::paper::paired_navs(&opt, plant);
     let runs = rins_experiments::run_seeds(plant, seeds, duration_s, &navs, progress)?;
     Ok(seeds
         .iter()

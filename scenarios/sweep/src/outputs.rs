@@ -1,7 +1,7 @@
 //! The end figures a sweep can tabulate and draw, by name: those `rins paper table4` reports per
 //! seed ([`EndFigures`]) and the magnitudes of the signed ones (the paper prints magnitudes).
 
-use rins_verify::paper::EndFigures;
+use rins_verification::paper::EndFigures;
 
 /// One end figure of a navigation run.
 #[derive(Clone, Copy, Debug)]

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use rins_verify::paper::{Band, EndFigures};
+use rins_verification::paper::{Band, EndFigures};
 use serde::Serialize;
 
 /// The two navigators every seed feeds, in the order of [`SeedResult`] and of the tables.

@@ -109,10 +109,10 @@ impl Align {
     }
 
     /// The navigator's alignment.
-    pub fn nav(self) -> rins_nav::Alignment {
+    pub fn nav(self) -> rins_navigation::Alignment {
         match self {
-            Align::Truth => rins_nav::Alignment::Truth,
-            Align::SelfAlign => rins_nav::Alignment::SelfAlign {
+            Align::Truth => rins_navigation::Alignment::Truth,
+            Align::SelfAlign => rins_navigation::Alignment::SelfAlign {
                 coarse_s: 300.0,
                 fine_s: 600.0,
             },

@@ -13,7 +13,7 @@ use super::outputs::PER_SEED;
 use super::result::{NAVIGATORS, SweepReport, value_text};
 
 /// The value of an end figure by its [`PER_SEED`] name.
-fn figure(f: &rins_verify::paper::EndFigures, name: &str) -> f64 {
+fn figure(f: &rins_verification::paper::EndFigures, name: &str) -> f64 {
     match name {
         "lat_nm" => f.lat_nm,
         "lon_nm" => f.lon_nm,

@@ -318,14 +318,14 @@ fn svg_texts(svg: &str) -> Vec<(i32, i32, &str)> {
 #[test]
 fn week_long_figures_shrink_fivefold_as_envelopes_with_the_same_extremes() {
     let sc = rins_scenario::Scenario::load(Path::new("builtin:paper-16pos-week")).unwrap();
-    let opt = rins_verify::paper::Table4Options {
+    let opt = rins_verification::paper::Table4Options {
         plant: sc.plant.clone(),
         runs: 1,
         duration_s: 7.0 * 86_400.0,
         compensation: None,
         nav: rins_experiments::NavRunConfig::default(),
     };
-    let r = rins_verify::paper::table4(&opt, &|_| {});
+    let r = rins_verification::paper::table4(&opt, &|_| {});
     assert!(
         r.first_seed.uncompensated.len() > 10_000,
         "a week of records"
@@ -480,7 +480,7 @@ fn sea_end_error_is_print_sized_with_headroom_and_visible_dots() {
     use rins_scenarios::commands::sea::{
         END_ERROR_TITLE, END_ERROR_X, EndErrorData, end_error_panels,
     };
-    use rins_verify::paper::Band;
+    use rins_verification::paper::Band;
     let band = |p05, median, p95| Band { median, p05, p95 };
     let data = vec![
         EndErrorData {

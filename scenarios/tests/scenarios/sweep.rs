@@ -16,7 +16,7 @@ use std::path::PathBuf;
 use rins_experiments::NavRunConfig;
 use rins_scenario::Scenario;
 use rins_sweep::{SweepError, SweepPlan};
-use rins_verify::paper::EndFigures;
+use rins_verification::paper::EndFigures;
 use serde_json::Value;
 
 const RINS: &str = env!("CARGO_BIN_EXE_rins");

@@ -38,7 +38,7 @@ fn eq11_stationary_and_rotation_phases_to_1e_12() {
     let resp = StaticResponse::new(opt.lat_rad, opt.days);
     let a = analyse_scheme(&sixteen(f64::INFINITY), &set, &opt, &resp).unwrap();
     let e = a.effect("gyro.position_bias").unwrap();
-    let eq11 = rins_verify::analytic::eq11(sensor.gyro.position_bias.dph, 180.0);
+    let eq11 = rins_verification::analytic::eq11(sensor.gyro.position_bias.dph, 180.0);
     let expected_z = -8.0 * 180.0 * 0.005 * DPH;
     assert!(
         ((e.stationary[2] - expected_z) / expected_z).abs() < 1e-12,
@@ -87,7 +87,7 @@ fn eq8_constant_errors_cancel_and_the_vertical_scale_factor_term_matches() {
         }
         if accel.is_infinite() {
             let e = a.effect("accel.scale_factor").unwrap();
-            let eq8 = rins_verify::analytic::eq8();
+            let eq8 = rins_verification::analytic::eq8();
             let closed = eq8.accel_scale_factor_vertical.closed_form_mps;
             assert!(
                 ((e.per_cycle[2] - closed) / closed).abs() < 1e-12,
@@ -115,7 +115,7 @@ fn static_response_matches_the_closed_form_position() {
         eps[axis] = 0.01 * DPH;
         let scale = (0..=168)
             .map(|h| {
-                let (n, e) = rins_verify::ins::gyro_bias_position(&eps, lat, h as f64 * 3600.0);
+                let (n, e) = rins_verification::ins::gyro_bias_position(&eps, lat, h as f64 * 3600.0);
                 n.hypot(e)
             })
             .fold(0.0, f64::max);
@@ -126,7 +126,7 @@ fn static_response_matches_the_closed_form_position() {
             let (mut n, mut e) = (0.0, 0.0);
             for j in 0..k {
                 let t = end - schuler_s * (j as f64 + 0.5) / k as f64;
-                let p = rins_verify::ins::gyro_bias_position(&eps, lat, t);
+                let p = rins_verification::ins::gyro_bias_position(&eps, lat, t);
                 n += p.0 / k as f64;
                 e += p.1 / k as f64;
             }

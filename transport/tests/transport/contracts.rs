@@ -224,7 +224,7 @@ fn in_process(
     samples: u64,
 ) -> (
     u64,
-    rins_nav::strapdown::NavState,
+    rins_navigation::strapdown::NavState,
     rins_plant::carrier::CarrierTruth,
 ) {
     let mut plant = rins_plant::Plant::new(cfg).unwrap();
@@ -242,7 +242,7 @@ fn in_process(
     (digest, *t.state(), plant.carrier_truth())
 }
 
-fn state_bits(s: &rins_nav::strapdown::NavState) -> Vec<u64> {
+fn state_bits(s: &rins_navigation::strapdown::NavState) -> Vec<u64> {
     let q = s.q_bn.quaternion();
     [
         s.lat_rad, s.lon_rad, s.height_m, s.v_n.x, s.v_n.y, s.v_n.z, q.w, q.i, q.j, q.k,
@@ -254,11 +254,11 @@ fn state_bits(s: &rins_nav::strapdown::NavState) -> Vec<u64> {
 
 /// Horizontal position error (m, longitude difference wrapped) and velocity error (m/s) of
 /// `s` against the carrier truth `c`.
-fn errors(s: &rins_nav::strapdown::NavState, c: &rins_plant::carrier::CarrierTruth) -> (f64, f64) {
+fn errors(s: &rins_navigation::strapdown::NavState, c: &rins_plant::carrier::CarrierTruth) -> (f64, f64) {
     let dlon = (s.lon_rad - c.lon_rad + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
         - std::f64::consts::PI;
-    let (n, e) = rins_nav::errors::position_error_m(
-        &rins_nav::strapdown::NavState {
+    let (n, e) = rins_navigation::errors::position_error_m(
+        &rins_navigation::strapdown::NavState {
             lon_rad: c.lon_rad + dlon,
             ..*s
         },

@@ -1,8 +1,8 @@
 //! The analytic harness figures required of the plant (Eq. 8, Eq. 11, Table 2).
 
-use rins_verify::analytic::{cycle_trace, eq8, eq11};
-use rins_verify::report::AnalyticReport;
-use rins_verify::table2::compare;
+use rins_verification::analytic::{cycle_trace, eq8, eq11};
+use rins_verification::report::AnalyticReport;
+use rins_verification::table2::compare;
 
 #[test]
 fn eq8_errors_cancel_over_a_cycle() {

@@ -1,6 +1,6 @@
 //! The navigator reproduces textbook static free-inertial responses (each check can fail).
 
-use rins_verify::ins::{InsReport, accel_bias_case, arw_position_sigma, gyro_bias_case};
+use rins_verification::ins::{InsReport, accel_bias_case, arw_position_sigma, gyro_bias_case};
 
 #[test]
 fn the_whole_ins_report_passes() {

@@ -1,4 +1,4 @@
-//! The integration tests of rins-verify in one test binary (one link instead of one per file):
+//! The integration tests of rins-verification in one test binary (one link instead of one per file):
 //! one module per former test file.
 
 mod analytic;

@@ -3,9 +3,9 @@
 use rins_experiments::{NavRunConfig, run};
 use rins_plant::effects::GyroTerm;
 use rins_plant::{Plant, PlantConfig};
-use rins_verify::analytic::eq11;
-use rins_verify::ins::gyro_bias_position;
-use rins_verify::paper::{Band, Table4Options, table4};
+use rins_verification::analytic::eq11;
+use rins_verification::ins::gyro_bias_position;
+use rins_verification::paper::{Band, Table4Options, table4};
 
 fn dbeta_only(transition_accel_inf: bool) -> PlantConfig {
     let mut c = PlantConfig::default();
@@ -147,7 +147,7 @@ fn fitted_campaign_compensation_reduces_the_static_navigation_error() {
     let camp = rins_experiments::campaign::run_campaign(
         &base,
         &temps,
-        &rins_nav::calibration::CalibrationConfig::default(),
+        &rins_navigation::calibration::CalibrationConfig::default(),
         25.0,
     )
     .unwrap();

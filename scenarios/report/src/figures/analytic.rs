@@ -5,7 +5,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use plotters::style::RGBColor;
-use rins_verify::report::Check;
+use rins_verification::report::Check;
 
 use super::plot::{Kind, Line, PALETTE, Panel, write_svg};
 
@@ -14,7 +14,7 @@ use super::plot::{Kind, Line, PALETTE, Panel, write_svg};
 pub fn write_cycle_figure(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let (bias, dbeta, dwell) = ([0.005; 3], [0.005; 3], 180.0);
-    let tr = rins_verify::analytic::cycle_trace(bias, dbeta, dwell, 0.5);
+    let tr = rins_verification::analytic::cycle_trace(bias, dbeta, dwell, 0.5);
     let arcsec = |r: f64| r.to_degrees() * 3600.0;
     let t_end = tr.last().map_or(0.0, |p| p.t_s) / 60.0;
     let expected = arcsec(-8.0 * dwell * dbeta[2] * rins_plant::units::DPH);

@@ -6,8 +6,8 @@ use std::path::Path;
 
 use anyhow::Result;
 use plotters::style::RGBColor;
-use rins_nav::calibration::Calibration;
-use rins_nav::campaign::Campaign;
+use rins_navigation::calibration::Calibration;
+use rins_navigation::campaign::Campaign;
 
 use super::plot::{Kind, Line, Panel, write_svg};
 

@@ -7,8 +7,8 @@ use std::path::Path;
 
 use anyhow::Result;
 use plotters::style::RGBColor;
-use rins_nav::NavRecord;
-use rins_verify::paper::{Series, Table4Report};
+use rins_navigation::NavRecord;
+use rins_verification::paper::{Series, Table4Report};
 
 use super::plot::{Kind, Line, PALETTE, Panel, PanelGeometry, render_svg, write_svg};
 
@@ -119,7 +119,7 @@ pub fn paired_figures<'a>(
             x_label: "time (h)",
             panels: att,
         });
-        let nm = rins_nav::errors::nmi;
+        let nm = rins_navigation::errors::nmi;
         let mut horizontal = pair(&|x| nm(x.horizontal_m));
         // tRMS is smooth: dashed lines in darker case colours over the envelopes.
         horizontal.push(Line::new(

@@ -3,8 +3,8 @@
 
 use std::fmt::Write;
 
-use rins_nav::calibration::Calibration;
-use rins_nav::campaign::Campaign;
+use rins_navigation::calibration::Calibration;
+use rins_navigation::campaign::Campaign;
 
 use super::RenderText;
 use crate::truth::CalibrationTruth;

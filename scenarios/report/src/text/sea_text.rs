@@ -5,7 +5,7 @@
 
 use std::fmt::Write;
 
-use rins_verify::paper::SeaReport;
+use rins_verification::paper::SeaReport;
 
 use super::RenderText;
 use super::table4_text::NOISE_FREE;

@@ -3,7 +3,7 @@
 
 use std::fmt::Write;
 
-use rins_verify::paper::{Band, Table4Report, paired_table_header, published};
+use rins_verification::paper::{Band, Table4Report, paired_table_header, published};
 
 use super::RenderText;
 

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
-use rins_verify::paper::{published, published_table5};
+use rins_verification::paper::{published, published_table5};
 use serde::Serialize;
 
 use super::page_parts::{figures_with_key, json};

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
-use rins_verify::paper::SeaReport;
+use rins_verification::paper::SeaReport;
 
 use super::page_parts::figures_with_key;
 use crate::html::{Cell, Doc, Report, words};
