@@ -483,8 +483,14 @@ def test_memory_error():
     print(f"6 GiB address space: rins.run(week) -> MemoryError: {lines['run'][len('MemoryError '):]}")
 
 
+# Ctrl-C as a terminal delivers it: Python raises KeyboardInterrupt only where SIGINT was not
+# ignored when the interpreter started, and a shell ignores it in commands it starts in the
+# background without job control (`cmd &` in a script, nohup): a suite started that way would
+# see every signal of these tests ignored. Each process that is signalled sets Python's own
+# handler first.
 INTERRUPT_CHILD = """
-import sys, rins
+import signal, sys, rins
+signal.signal(signal.SIGINT, signal.default_int_handler)
 call = {
     "montecarlo": lambda: rins.montecarlo(%(week)r, range(1, 33)),
     "run": lambda: rins.run(%(week)r, duration_s=2 * 86400.0, truth=False),
@@ -527,6 +533,7 @@ def test_interrupt():
     sim = rins.Simulation(SHORT, truth=False)
     first = sim.step(1000)
     sent = []
+    signal.signal(signal.SIGINT, signal.default_int_handler)  # see INTERRUPT_CHILD
     timer = threading.Timer(0.5, lambda: (sent.append(time.perf_counter()), os.kill(os.getpid(), signal.SIGINT)))
     timer.start()
     try:
