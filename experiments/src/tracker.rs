@@ -9,7 +9,9 @@
 
 use nalgebra::{Matrix3, Vector3};
 use rins_navigation::compensation::PositionBiasCompensation;
-use rins_navigation::errors::{NavRecord, Trms, attitude_error, position_error_m, vehicle_attitude};
+use rins_navigation::errors::{
+    NavRecord, Trms, attitude_error, position_error_m, vehicle_attitude,
+};
 use rins_navigation::strapdown::{NavState, Strapdown, VerticalChannel};
 use rins_navigation::subsamples::Subsamples;
 use rins_plant::earth::Site;

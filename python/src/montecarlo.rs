@@ -186,7 +186,9 @@ pub fn table4_json(
 ) -> PyResult<String> {
     let subsamples = match subsamples {
         Some(n) => crate::args::subsamples(n)?,
-        None => rins_navigation::Subsamples::new(4).map_err(pyo3::exceptions::PyValueError::new_err)?,
+        None => {
+            rins_navigation::Subsamples::new(4).map_err(pyo3::exceptions::PyValueError::new_err)?
+        }
     };
     let sc = match scenario {
         Some(s) => PyScenario::resolve(s)?,

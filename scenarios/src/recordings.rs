@@ -127,7 +127,8 @@ pub fn record_paired(
     let rec = recorder.stream();
     let mut plant = rins_scenario::new_plant(plant_cfg, &scenario.source)?;
     let n = (duration_s * plant_cfg.rate_hz).round() as u64;
-    let bucket_samples = rins_rerun_sink::bucket::samples_per_bucket(bucket_s, plant_cfg.rate_hz, n);
+    let bucket_samples =
+        rins_rerun_sink::bucket::samples_per_bucket(bucket_s, plant_cfg.rate_hz, n);
     let mut run = RunRecorder::new(
         rec,
         plant_cfg,
@@ -160,7 +161,13 @@ pub fn record_paired(
         &r.first_seed.uncompensated,
         dt,
     )?;
-    rins_rerun_sink::nav::NavSeries::log_all(rec, "compensated", every, &r.first_seed.compensated, dt)?;
+    rins_rerun_sink::nav::NavSeries::log_all(
+        rec,
+        "compensated",
+        every,
+        &r.first_seed.compensated,
+        dt,
+    )?;
     rins_rerun_sink::nav::NavSeries::log_all(
         rec,
         "noise_free_uncompensated",

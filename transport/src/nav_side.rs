@@ -190,8 +190,12 @@ impl NavSummary {
             lon_rad: t.lon_rad + dlon,
             ..*s
         };
-        let (north_m, east_m) =
-            rins_navigation::errors::position_error_m(&at_truth_lon, t.lat_rad, t.lon_rad, t.height_m);
+        let (north_m, east_m) = rins_navigation::errors::position_error_m(
+            &at_truth_lon,
+            t.lat_rad,
+            t.lon_rad,
+            t.height_m,
+        );
         Some(FinalError {
             north_m,
             east_m,

@@ -115,7 +115,8 @@ fn static_response_matches_the_closed_form_position() {
         eps[axis] = 0.01 * DPH;
         let scale = (0..=168)
             .map(|h| {
-                let (n, e) = rins_verification::ins::gyro_bias_position(&eps, lat, h as f64 * 3600.0);
+                let (n, e) =
+                    rins_verification::ins::gyro_bias_position(&eps, lat, h as f64 * 3600.0);
                 n.hypot(e)
             })
             .fold(0.0, f64::max);

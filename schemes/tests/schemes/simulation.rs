@@ -73,7 +73,8 @@ fn static_drift_response_matches_the_navigator() {
         eps[axis] = 0.01 * rins_plant::units::DPH;
         let scale = (0..=168)
             .map(|h| {
-                let (n, e) = rins_verification::ins::gyro_bias_position(&eps, lat, h as f64 * 3600.0);
+                let (n, e) =
+                    rins_verification::ins::gyro_bias_position(&eps, lat, h as f64 * 3600.0);
                 n.hypot(e)
             })
             .fold(0.0, f64::max);

@@ -254,7 +254,10 @@ fn state_bits(s: &rins_navigation::strapdown::NavState) -> Vec<u64> {
 
 /// Horizontal position error (m, longitude difference wrapped) and velocity error (m/s) of
 /// `s` against the carrier truth `c`.
-fn errors(s: &rins_navigation::strapdown::NavState, c: &rins_plant::carrier::CarrierTruth) -> (f64, f64) {
+fn errors(
+    s: &rins_navigation::strapdown::NavState,
+    c: &rins_plant::carrier::CarrierTruth,
+) -> (f64, f64) {
     let dlon = (s.lon_rad - c.lon_rad + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
         - std::f64::consts::PI;
     let (n, e) = rins_navigation::errors::position_error_m(
