@@ -467,6 +467,30 @@ pub fn entries(
     out
 }
 
+/// Every group, in the order the CSV writes them.
+pub const GROUPS: [Group; 5] = [
+    Group::Measured,
+    Group::Setup,
+    Group::Truth,
+    Group::Effects,
+    Group::CarrierTruth,
+];
+
+/// Every entry a run can write (every group, every catalogue term), each with its values in
+/// `r` ([`Entry::read`]; zeros for the index and the position): what a sink whose layout is
+/// fixed (the FMU's outputs, the wire's records) checks itself against, so a column added to
+/// the table reaches its test.
+pub fn every_entry_read(r: &Reading<'_>) -> Vec<(Entry, Vec<f64>)> {
+    entries(&GROUPS, &GyroTerm::ALL, &AccelTerm::ALL, false)
+        .into_iter()
+        .map(|e| {
+            let mut values = vec![0.0; e.width()];
+            e.read(r, &mut values);
+            (e, values)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -482,8 +506,7 @@ mod tests {
                 c.key
             );
         }
-        let order = [Measured, Setup, Truth, Effects, CarrierTruth];
-        let rank = |g| order.iter().position(|x| *x == g).unwrap();
+        let rank = |g| GROUPS.iter().position(|x| *x == g).unwrap();
         // Measured and set-up columns interleave (the CSV's first block); then each group.
         let block = |g| rank(g).max(1);
         assert!(
@@ -500,8 +523,7 @@ mod tests {
     fn every_csv_column_is_documented() {
         let doc = include_str!("../../docs/scenario-format.md");
         let doc = &doc[doc.find("## Output columns").expect("the section")..];
-        let groups = [Measured, Setup, Truth, Effects, CarrierTruth];
-        for e in entries(&groups, &[GyroTerm::Bias], &[AccelTerm::Bias], true) {
+        for e in entries(&GROUPS, &[GyroTerm::Bias], &[AccelTerm::Bias], true) {
             let documented = match e.column.names {
                 Names::One(n) => doc.contains(&format!("`{n}`")),
                 Names::List(l) => l.iter().all(|n| doc.contains(&format!("`{n}`"))),

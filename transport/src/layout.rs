@@ -346,7 +346,7 @@ mod tests {
     /// named as one the wire leaves out.
     #[test]
     fn the_records_carry_the_output_columns_of_the_table() {
-        use rins_plant::output_columns::{Group, Reading, entries};
+        use rins_plant::output_columns::{Group, Reading, every_entry_read};
         let cfg = rins_plant::presets::paper_16pos_config();
         let mut plant = rins_plant::Plant::new(&cfg).unwrap();
         let mut s = plant.step();
@@ -360,18 +360,7 @@ mod tests {
             mount: &mount,
         };
         let (rec, tr) = (ImuRecord::from_sample(&s), TruthRecord::from_plant(&plant));
-        let groups = [
-            Group::Measured,
-            Group::Setup,
-            Group::Truth,
-            Group::Effects,
-            Group::CarrierTruth,
-        ];
-        let gyro = rins_plant::effects::GyroTerm::ALL;
-        let accel = rins_plant::effects::AccelTerm::ALL;
-        for e in entries(&groups, &gyro, &accel, false) {
-            let mut want = vec![0.0; e.width()];
-            e.read(&r, &mut want);
+        for (e, want) in every_entry_read(&r) {
             let got: Vec<f64> = match e.column.key {
                 "sample" => {
                     assert_eq!(rec.tick, s.index);

@@ -369,7 +369,7 @@ fn fmu_outputs_of(key: &str) -> Option<(Vec<String>, f64)> {
 /// the table and not to the FMU fails here.
 #[test]
 fn every_output_column_of_the_table_is_an_fmu_output() {
-    use rins_plant::output_columns::{Group, Reading, entries};
+    use rins_plant::output_columns::{Reading, every_entry_read};
     let cfg = rins_plant::presets::paper_16pos_config();
     let mut plant = Plant::new(&cfg).unwrap();
     let mut s = plant.step();
@@ -401,18 +401,7 @@ fn every_output_column_of_the_table_is_an_fmu_output() {
             })
             .collect()
     };
-    let groups = [
-        Group::Measured,
-        Group::Setup,
-        Group::Truth,
-        Group::Effects,
-        Group::CarrierTruth,
-    ];
-    let gyro = rins_plant::effects::GyroTerm::ALL;
-    let accel = rins_plant::effects::AccelTerm::ALL;
-    for e in entries(&groups, &gyro, &accel, false) {
-        let mut want = vec![0.0; e.width()];
-        e.read(&r, &mut want);
+    for (e, want) in every_entry_read(&r) {
         let (names, factor) = match (e.column.key, e.term) {
             ("gyro_effects_dph", Some((_, key))) => (vec![format!("effect.gyro.{key}_rad")], 1.0),
             ("accel_effects_ug", Some((_, key))) => (vec![format!("effect.accel.{key}_mps")], 1.0),
