@@ -389,3 +389,94 @@ fn sweep_figures_put_names_on_a_categorical_axis_one_line_per_other_value_clear_
         }
     }
 }
+
+/// A sweep point's plant travels to a Dask worker as TOML text (`SweepPlan.point_plants`), and
+/// the worker must compute exactly what `run_json` computes in-process: the text must give back
+/// the same plant, bit for bit. Checked here for every built-in scenario with random values of
+/// random parameters of its table (any value the sweep's range check lets through, whole
+/// numbers up to 2^64 − 1, every enumeration name), so the client need not parse each text
+/// back at run time.
+#[test]
+fn every_sweepable_plant_survives_toml_text_bit_for_bit() {
+    use rand::{Rng, SeedableRng};
+    use rins_plant::PlantConfig;
+    use rins_plant::params::{self, ParamValue};
+
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0x7011_5eed);
+    let mut checked = 0usize;
+    let mut set_values = 0usize;
+    for (name, text) in rins_scenario::file::BUILTIN {
+        let sc = Scenario::from_toml(text, name).unwrap();
+        let table = params::flatten(&sc.plant);
+        for trial in 0..60 {
+            let mut values = Vec::new();
+            for _ in 0..6 {
+                let p = &table[rng.random_range(0..table.len())];
+                let v = match &p.value {
+                    ParamValue::Real(_) => {
+                        // An open side of the range is drawn up to 1e30 (uniform over
+                        // ±inf would give NaN, which no check lets through).
+                        let (lo, hi) = p.range.unwrap_or((-1e6, 1e6));
+                        let (lo, hi) = (lo.max(-1e30), hi.min(1e30));
+                        // Uniform over the range has 53 random bits; also the range's edges,
+                        // a negative zero and tiny values where the range allows them.
+                        ParamValue::Real(match rng.random_range(0..8) {
+                            0 => lo,
+                            1 => hi,
+                            2 if lo <= 0.0 => -0.0,
+                            3 if lo <= 0.0 && hi >= 1e-300 => 1e-300 * rng.random::<f64>(),
+                            _ => lo + (hi - lo) * rng.random::<f64>(),
+                        })
+                    }
+                    ParamValue::Integer(_) => {
+                        let (lo, hi) = p.range.unwrap_or((0.0, u64::MAX as f64));
+                        ParamValue::Integer(if hi >= u64::MAX as f64 {
+                            rng.random::<u64>()
+                        } else {
+                            rng.random_range(lo as u64..=hi as u64)
+                        })
+                    }
+                    ParamValue::Bool(_) => ParamValue::Bool(rng.random()),
+                    ParamValue::Enum(e) => ParamValue::Enum(match params::enum_choices(&p.path) {
+                        Some(c) => c[rng.random_range(0..c.len())].to_string(),
+                        None => e.clone(),
+                    }),
+                };
+                values.push((p.path.as_str(), v));
+            }
+            // As the sweep makes a point: the values set, then the whole scenario checked
+            // (a profile's times out of order, a period below the step, … are refused there
+            // and never travel).
+            let Ok(plant) = params::apply(&sc.plant, values.clone()) else {
+                continue;
+            };
+            let point = Scenario {
+                plant: plant.clone(),
+                ..sc.clone()
+            };
+            if point.validate(None).is_err() {
+                continue;
+            }
+            set_values += values.len();
+            let text = toml::to_string(&plant).unwrap();
+            let back: PlantConfig = toml::from_str(&text)
+                .unwrap_or_else(|e| panic!("{name} trial {trial} ({values:?}): {e}"));
+            // `==` on the plant compares numbers by value; the texts written again compare
+            // the bits too (a negative zero, the last digit of a real).
+            assert_eq!(back, plant, "{name} trial {trial}: {values:?}");
+            assert_eq!(
+                toml::to_string(&back).unwrap(),
+                text,
+                "{name} trial {trial}"
+            );
+            checked += 1;
+        }
+    }
+    // Most draws are accepted: the check is not passing on an empty set.
+    assert!(
+        checked >= 7 * 60 * 3 / 4,
+        "only {checked} of {} trials gave a plant",
+        7 * 60
+    );
+    assert!(set_values >= checked * 6);
+}
