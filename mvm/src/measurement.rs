@@ -3,7 +3,8 @@
 //! and every layer of the reader beneath them (column maps, the header checks, the physical
 //! ranges, the chunks) shares.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
+use std::sync::OnceLock;
 
 /// Columns every file needs (plus attitude and at least one temperature).
 pub const REQUIRED: [&str; 7] = [
@@ -31,6 +32,25 @@ pub const FAMILIES: [(&str, &str); 5] = [
     ("gyro_", "_dph"),
     ("accel_", "_ug"),
 ];
+
+/// The CSV names of the plant's output table ([`rins_plant::output_columns`]) for a static
+/// carrier, every term, each with whether it is numeric (`false`: the station label). A moving
+/// carrier's truth columns are not among them: the model is of a static carrier.
+fn plant_columns() -> &'static HashMap<String, bool> {
+    use rins_plant::effects::{AccelTerm, GyroTerm};
+    use rins_plant::output_columns::{Group, Read, entries};
+    static NAMES: OnceLock<HashMap<String, bool>> = OnceLock::new();
+    NAMES.get_or_init(|| {
+        let groups = [Group::Measured, Group::Setup, Group::Truth, Group::Effects];
+        entries(&groups, &GyroTerm::ALL, &AccelTerm::ALL, true)
+            .into_iter()
+            .flat_map(|e| {
+                let numeric = !matches!(e.column.read, Read::Position);
+                e.names().into_iter().map(move |n| (n, numeric))
+            })
+            .collect()
+    })
+}
 
 /// Units a quantity may wrongly be given in, to say what was expected.
 const WRONG_UNITS: [&str; 12] = [
@@ -164,6 +184,11 @@ pub fn classify(name: &str) -> Result<bool, String> {
         .any(|(p, s)| name.starts_with(p) && name.ends_with(s) && name.len() > p.len() + s.len())
     {
         return Ok(true);
+    }
+    // Any other column the plant writes (its output table): the plant's own CSV is always a
+    // measurement file, whatever quantity the table gains.
+    if let Some(&numeric) = plant_columns().get(name) {
+        return Ok(numeric);
     }
     // A known quantity in a wrong unit?
     for want in REQUIRED.iter().chain(&GIMBAL).chain(&OPTIONAL[1..]) {
