@@ -403,12 +403,14 @@ fn every_sweepable_plant_survives_toml_text_bit_for_bit() {
     use rins_plant::params::{self, ParamValue};
 
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0x7011_5eed);
+    const TRIALS: usize = 60;
     let mut checked = 0usize;
-    let mut set_values = 0usize;
+    // Which kinds of value travelled in a checked plant (real, whole number, switch, name).
+    let mut kinds = [false; 4];
     for (name, text) in rins_scenario::file::BUILTIN {
         let sc = Scenario::from_toml(text, name).unwrap();
         let table = params::flatten(&sc.plant);
-        for trial in 0..60 {
+        for trial in 0..TRIALS {
             let mut values = Vec::new();
             for _ in 0..6 {
                 let p = &table[rng.random_range(0..table.len())];
@@ -457,7 +459,14 @@ fn every_sweepable_plant_survives_toml_text_bit_for_bit() {
             if point.validate(None).is_err() {
                 continue;
             }
-            set_values += values.len();
+            for (_, v) in &values {
+                kinds[match v {
+                    ParamValue::Real(_) => 0,
+                    ParamValue::Integer(_) => 1,
+                    ParamValue::Bool(_) => 2,
+                    ParamValue::Enum(_) => 3,
+                }] = true;
+            }
             let text = toml::to_string(&plant).unwrap();
             let back: PlantConfig = toml::from_str(&text)
                 .unwrap_or_else(|e| panic!("{name} trial {trial} ({values:?}): {e}"));
@@ -472,11 +481,15 @@ fn every_sweepable_plant_survives_toml_text_bit_for_bit() {
             checked += 1;
         }
     }
-    // Most draws are accepted: the check is not passing on an empty set.
+    // Most draws are accepted, with every kind of value among them: the check is not passing
+    // on an empty or one-sided set.
+    let trials = rins_scenario::file::BUILTIN.len() * TRIALS;
     assert!(
-        checked >= 7 * 60 * 3 / 4,
-        "only {checked} of {} trials gave a plant",
-        7 * 60
+        checked >= trials * 3 / 4,
+        "only {checked} of {trials} trials gave a plant"
     );
-    assert!(set_values >= checked * 6);
+    assert_eq!(
+        kinds, [true; 4],
+        "kinds of value checked: real, whole, switch, name"
+    );
 }
